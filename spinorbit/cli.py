@@ -1,0 +1,74 @@
+"""Command line: ``spinorbit run | list | bench``.
+
+Input mistakes print one line ``error: <key>: got ...; expected ...`` and exit 2;
+an integration that fails writes what it has and exits 3.
+"""
+import argparse
+import sys
+from pathlib import Path
+
+from .errors import IntegrationError, SpinorbitError
+
+SCENARIO_DIR = Path("scenarios")
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="spinorbit", description="Couple orbit and spin (Euler, Theoria motus ch. 16).")
+    sub = parser.add_subparsers(dest="command", required=True)
+    run = sub.add_parser("run", help="run a scenario and write a run directory")
+    run.add_argument("scenario", help="path to a scenario .toml file")
+    run.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
+                     help="override a scenario key by dotted path (repeatable)")
+    run.add_argument("--out", help="run directory (default runs/<scenario name>)")
+    listing = sub.add_parser("list", help="list the scenarios in a folder")
+    listing.add_argument("folder", nargs="?", default=str(SCENARIO_DIR))
+    args = parser.parse_args(argv)
+    try:
+        if args.command == "run":
+            return _run(args)
+        return _list(Path(args.folder))
+    except IntegrationError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 3
+    except SpinorbitError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+
+
+def _run(args):
+    from .reports import write_run
+    from .results import run_scenario
+    from .scenarios import load_scenario
+
+    scenario = load_scenario(args.scenario, args.overrides)
+    out = Path(args.out or Path("runs") / scenario.name)
+    try:
+        result = run_scenario(scenario)
+    except IntegrationError as exc:
+        partial = getattr(exc, "result", None)
+        if partial is not None:
+            write_run(partial, out, status="failed", error=exc)
+            print(f"partial output written to {out}/", file=sys.stderr)
+        raise
+    write_run(result, out)
+    print(f"{scenario.name}: wrote {out}/ (summary.json, timeseries.ecsv, report.md)")
+    for key, value in result.summary.get("comparison", {}).items():
+        print(f"  {key} = {value:.6g}" if isinstance(value, float) else f"  {key} = {value}")
+    return 0
+
+
+def _list(folder):
+    import tomllib
+
+    files = sorted(folder.rglob("*.toml"))
+    if not files:
+        print(f"no scenarios in {folder}/")
+        return 0
+    for path in files:
+        scene = tomllib.loads(path.read_text()).get("scene", {})
+        print(f"{str(path.relative_to(folder)):48s} {scene.get('kind', '?'):28s} {scene.get('title', '')}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,48 @@
+"""Exceptions, each named after what went wrong and saying what to do next."""
+
+
+class SpinorbitError(Exception):
+    """Base of every error this package raises on purpose."""
+
+
+class ScenarioError(SpinorbitError, ValueError):
+    """A scenario key has a value the code cannot use.
+
+    The message names the dotted key path, what was given and what is accepted.
+    """
+
+    def __init__(self, key, given, accepted):
+        self.key, self.given, self.accepted = key, given, accepted
+        super().__init__(f"{key}: got {given!r}; expected {accepted}")
+
+
+class PhysicsError(SpinorbitError, ValueError):
+    """Parameters that do not describe a physical system (e.g. a non-rigid inertia)."""
+
+
+class EphemerisRangeError(SpinorbitError, ValueError):
+    """A time outside the span an orbit source covers; never extrapolated."""
+
+    def __init__(self, source, requested, span, unit="TDB days from J2000"):
+        self.source, self.requested, self.span = source, requested, span
+        super().__init__(
+            f"{source} covers {span[0]:.6g} to {span[1]:.6g} {unit}; "
+            f"asked for {requested}. Shorten [span], or choose a source that covers it "
+            "(a larger .bsp in ephemerides/, or orbit.source = 'rebound')."
+        )
+
+
+class IntegrationError(SpinorbitError, RuntimeError):
+    """An integration that could not continue (NaN, step-size underflow, max steps).
+
+    Carries the time and state where it stopped; output written so far is kept.
+    """
+
+    def __init__(self, message, t=None, y=None, advice=""):
+        self.t, self.y = t, y
+        where = "" if t is None else f" at t = {t:.9g} d"
+        super().__init__(f"{message}{where}. {advice}".strip())
+
+
+class ResonanceError(SpinorbitError, ArithmeticError):
+    """A closed form evaluated where its denominator vanishes (e.g. P96 at eps = 2 delta)."""

@@ -1,0 +1,92 @@
+"""The integrator contract and the solution it returns.
+
+Contract for subclass authors (numbered so reviews can point at it):
+
+1. Class attributes: ``name`` (registry key), ``order`` (global order of
+   accuracy, or None for adaptive methods whose order is not the point),
+   ``kind`` ("adaptive", "fixed", "structure-preserving", "averaged") and
+   ``options`` (dict of accepted option names -> default values).
+2. ``__init__(**options)`` accepts only the names in ``options``; anything else
+   raises ScenarioError naming ``integrator.<key>`` and the accepted names.
+3. ``solve(system, t_out)`` integrates a :class:`~spinorbit.dynamics.SpinSystem`
+   from ``system.t0`` and returns a :class:`Solution` holding the state at every
+   time in ``t_out`` (sorted ascending, ``t_out[0] >= system.t0``), with the
+   quaternion renormalised.
+4. ``supports(system)`` says whether the method can run this system (e.g. a
+   splitting method needs ``system.torque``); ``solve`` raises ScenarioError
+   otherwise.
+5. Failure (NaN, step-size underflow, max steps) raises IntegrationError with
+   the time and state, advice, and ``.partial`` = the Solution up to there.
+6. ``nfev`` counts right-hand-side (or torque) evaluations; ``wall_s`` is the
+   wall time of the solve excluding one-off compilation (warm up first).
+"""
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import IntegrationError, ScenarioError
+
+
+@dataclass
+class Solution:
+    """States at output times: t (n,) in the system's time unit, y (n, dim)."""
+
+    t: np.ndarray
+    y: np.ndarray
+    method: str
+    nfev: int = 0
+    nsteps: int = 0
+    wall_s: float = 0.0
+    options: dict = field(default_factory=dict)
+
+    @property
+    def quaternion(self):
+        return self.y[:, :4]
+
+    @property
+    def omega(self):
+        return self.y[:, 4:7]
+
+
+class Integrator:
+    name = "base"
+    order = None
+    kind = "adaptive"
+    options: dict = {}
+
+    def __init__(self, **options):
+        unknown = sorted(set(options) - set(self.options))
+        if unknown:
+            raise ScenarioError(f"integrator.{unknown[0]}", options[unknown[0]],
+                                f"one of {sorted(self.options)} for method '{self.name}'")
+        self.settings = {**self.options, **options}
+
+    def supports(self, system):
+        return True
+
+    def solve(self, system, t_out):
+        raise NotImplementedError
+
+    def _check_times(self, system, t_out):
+        t_out = np.asarray(t_out, dtype=float)
+        if t_out.ndim != 1 or t_out.size == 0 or np.any(np.diff(t_out) < 0) or t_out[0] < system.t0:
+            raise ScenarioError("span", f"{t_out.size} output times", "ascending times starting at or after t0")
+        if not self.supports(system):
+            raise ScenarioError("integrator.method", self.name,
+                                f"a method that supports system '{system.name}' (this one needs a rigid body with an external torque)")
+        return t_out
+
+
+def check_finite(y, t, method, partial=None):
+    """Raise IntegrationError if the state has a NaN or infinity."""
+    if not np.all(np.isfinite(y)):
+        err = IntegrationError(f"{method}: state became non-finite", t, y,
+                               "Reduce the step or tolerance, or check the scene for a close encounter.")
+        err.partial = partial
+        raise err
+
+
+def normalise_quaternions(y):
+    y = np.array(y, dtype=float)
+    y[:, :4] /= np.linalg.norm(y[:, :4], axis=1, keepdims=True)
+    return y

@@ -1,0 +1,42 @@
+"""The result of a run: an astropy QTable with a TDB time column, a summary, figures.
+
+Edge module (imports astropy).  ``run_scenario`` is the one entry point used by
+the command line and by notebooks.
+"""
+from dataclasses import dataclass, field
+from typing import Callable
+
+from .scenarios import Scenario, load_scenario
+
+
+@dataclass
+class RunResult:
+    """``table``: QTable (``time`` column TDB + unit-carrying columns);
+    ``summary``: JSON-ready dict whose metric keys carry their unit in the name;
+    ``figures``: name -> function(matplotlib Figure) drawing one plot."""
+
+    scenario: Scenario
+    table: object
+    summary: dict
+    figures: dict[str, Callable] = field(default_factory=dict)
+    solution: object = None
+
+
+def run_scenario(scenario, overrides=()):
+    """Run a scenario (a Scenario or a path to its TOML file) and return a RunResult."""
+    if not isinstance(scenario, Scenario):
+        scenario = load_scenario(scenario, overrides)
+    result = scenario.module.run(scenario)
+    result.summary = {**base_summary(scenario), **result.summary}
+    return result
+
+
+def base_summary(scenario):
+    return {
+        "scene": scenario.name,
+        "kind": scenario.kind,
+        "title": scenario["scene.title"],
+        "span": {"start_tdb": scenario["span.start"], "end": scenario["span.end"],
+                 "step_d": scenario["span.step"]},
+        "integrator": {"method": scenario["integrator.method"], **scenario.integrator_options()},
+    }

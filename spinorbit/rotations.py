@@ -1,0 +1,137 @@
+"""Attitude: quaternions, rotation matrices and JPL 3-1-3 Euler angles.
+
+Conventions (docs/CONVENTIONS.md):
+
+* A quaternion ``q = (w, x, y, z)`` (scalar first, unit norm) rotates body-frame
+  vectors into the inertial frame: ``v_inertial = matrix_from_quat(q) @ v_body``.
+* The JPL lunar angles (phi, theta, psi) give the matrix from ICRF to the body
+  principal axes, ``M = Rz(psi) Rx(theta) Rz(phi)``, with frame rotations
+  ``Rz(a) = [[cos a, sin a, 0], [-sin a, cos a, 0], [0, 0, 1]]``.  So
+  ``M = matrix_from_quat(q).T``.
+* Kinematics (Euler ch. 15 §809-811 in quaternion form): dq/dt = q * (0, omega_body) / 2.
+
+All functions are numba-compiled and take/return plain float64 arrays.
+"""
+import math
+
+import numpy as np
+from numba import njit
+
+
+@njit(cache=True)
+def quat_multiply(a, b):
+    """Hamilton product a * b of two scalar-first quaternions."""
+    return np.array([
+        a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+        a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+        a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+        a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0],
+    ])
+
+
+@njit(cache=True)
+def matrix_from_quat(q):
+    """Body-to-inertial rotation matrix of a (not necessarily unit) quaternion."""
+    w, x, y, z = q[0], q[1], q[2], q[3]
+    s = 2.0 / (w * w + x * x + y * y + z * z)
+    return np.array([
+        [1 - s * (y * y + z * z), s * (x * y - w * z), s * (x * z + w * y)],
+        [s * (x * y + w * z), 1 - s * (x * x + z * z), s * (y * z - w * x)],
+        [s * (x * z - w * y), s * (y * z + w * x), 1 - s * (x * x + y * y)],
+    ])
+
+
+@njit(cache=True)
+def quat_from_matrix(m):
+    """Unit quaternion (w >= 0) of a body-to-inertial rotation matrix (Shepperd's method)."""
+    tr = m[0, 0] + m[1, 1] + m[2, 2]
+    k = np.argmax(np.array([tr, m[0, 0], m[1, 1], m[2, 2]]))
+    if k == 0:
+        s = 2.0 * math.sqrt(1.0 + tr)
+        q = np.array([0.25 * s, (m[2, 1] - m[1, 2]) / s, (m[0, 2] - m[2, 0]) / s, (m[1, 0] - m[0, 1]) / s])
+    elif k == 1:
+        s = 2.0 * math.sqrt(1.0 + m[0, 0] - m[1, 1] - m[2, 2])
+        q = np.array([(m[2, 1] - m[1, 2]) / s, 0.25 * s, (m[0, 1] + m[1, 0]) / s, (m[0, 2] + m[2, 0]) / s])
+    elif k == 2:
+        s = 2.0 * math.sqrt(1.0 - m[0, 0] + m[1, 1] - m[2, 2])
+        q = np.array([(m[0, 2] - m[2, 0]) / s, (m[0, 1] + m[1, 0]) / s, 0.25 * s, (m[1, 2] + m[2, 1]) / s])
+    else:
+        s = 2.0 * math.sqrt(1.0 - m[0, 0] - m[1, 1] + m[2, 2])
+        q = np.array([(m[1, 0] - m[0, 1]) / s, (m[0, 2] + m[2, 0]) / s, (m[1, 2] + m[2, 1]) / s, 0.25 * s])
+    if q[0] < 0:
+        q = -q
+    return q / math.sqrt(q[0] ** 2 + q[1] ** 2 + q[2] ** 2 + q[3] ** 2)
+
+
+@njit(cache=True)
+def rotate_to_body(q, v_inertial):
+    """Components in body axes of an inertial vector: R(q)^T v."""
+    return matrix_from_quat(q).T @ v_inertial
+
+
+@njit(cache=True)
+def quat_rate(q, omega_body):
+    """dq/dt for body angular velocity omega_body (rad per time unit)."""
+    return 0.5 * quat_multiply(q, np.array([0.0, omega_body[0], omega_body[1], omega_body[2]]))
+
+
+@njit(cache=True)
+def matrix_from_euler313(phi, theta, psi):
+    """ICRF-to-body matrix M = Rz(psi) Rx(theta) Rz(phi) (JPL lunar convention), rad."""
+    cf, sf = math.cos(phi), math.sin(phi)
+    ct, st = math.cos(theta), math.sin(theta)
+    cp, sp = math.cos(psi), math.sin(psi)
+    return np.array([
+        [cp * cf - sp * ct * sf, cp * sf + sp * ct * cf, sp * st],
+        [-sp * cf - cp * ct * sf, -sp * sf + cp * ct * cf, cp * st],
+        [st * sf, -st * cf, ct],
+    ])
+
+
+@njit(cache=True)
+def euler313_from_matrix(m):
+    """(phi, theta, psi) in rad of an ICRF-to-body matrix; phi, psi in [0, 2 pi).
+
+    At the gimbal singularity (sin theta below 1e-15) only phi + psi is defined;
+    phi is set to 0 there.
+    """
+    st = math.hypot(m[2, 0], m[2, 1])
+    theta = math.atan2(st, m[2, 2])
+    if st > 1e-15:
+        phi = math.atan2(m[2, 0], -m[2, 1])
+        psi = math.atan2(m[0, 2], m[1, 2])
+    else:
+        phi = 0.0
+        psi = math.atan2(m[0, 1], m[0, 0]) if m[2, 2] > 0 else math.atan2(-m[0, 1], m[0, 0])
+    two_pi = 2.0 * math.pi
+    return np.array([phi % two_pi, theta, psi % two_pi])
+
+
+@njit(cache=True)
+def omega_body_from_euler313_rates(angles, rates):
+    """Body angular velocity from 3-1-3 angles and their rates (JPL convention)."""
+    theta, psi = angles[1], angles[2]
+    dphi, dtheta, dpsi = rates[0], rates[1], rates[2]
+    st, ct, sp, cp = math.sin(theta), math.cos(theta), math.sin(psi), math.cos(psi)
+    return np.array([dphi * st * sp + dtheta * cp, dphi * st * cp - dtheta * sp, dphi * ct + dpsi])
+
+
+@njit(cache=True)
+def euler313_rates_from_omega_body(angles, omega):
+    """Inverse of omega_body_from_euler313_rates (singular at sin theta = 0)."""
+    theta, psi = angles[1], angles[2]
+    st, ct, sp, cp = math.sin(theta), math.cos(theta), math.sin(psi), math.cos(psi)
+    dphi = (omega[0] * sp + omega[1] * cp) / st
+    dtheta = omega[0] * cp - omega[1] * sp
+    dpsi = omega[2] - dphi * ct
+    return np.array([dphi, dtheta, dpsi])
+
+
+def quat_from_euler313(phi, theta, psi):
+    """Body-to-inertial quaternion of JPL 3-1-3 angles (rad)."""
+    return quat_from_matrix(matrix_from_euler313(phi, theta, psi).T.copy())
+
+
+def euler313_from_quat(q):
+    """JPL 3-1-3 angles (rad) of a body-to-inertial quaternion."""
+    return euler313_from_matrix(matrix_from_quat(np.asarray(q, dtype=float)).T.copy())

@@ -1,0 +1,61 @@
+"""Pieces every scene module shares: run the integrator, build the table, draw plots."""
+import numpy as np
+
+from ..results import RunResult
+from ..scenarios import tdb_days_to_time
+from ..simulate import simulate
+
+
+def u():
+    """astropy.units, imported on first use."""
+    import astropy.units as units
+
+    return units
+
+
+def simulate_scenario(scenario, system, t_out):
+    """simulate() with the scenario's [integrator] table."""
+    return simulate(system, t_out, scenario["integrator.method"], scenario.integrator_options(),
+                    scenario["integrator.estimate_error"])
+
+
+def attitude_table(solution):
+    """QTable with TDB time, quaternion (body -> inertial) and body angular velocity (rad/d)."""
+    from astropy.table import QTable
+
+    units = u()
+    table = QTable()
+    table["time"] = tdb_days_to_time(solution.t)
+    for i, name in enumerate("wxyz"):
+        table[f"q_{name}"] = solution.quaternion[:, i]
+    for i, name in enumerate("xyz"):
+        table[f"omega_{name}"] = solution.omega[:, i] * units.rad / units.d
+    return table
+
+
+def result(scenario, table, summary, figures, solution):
+    return RunResult(scenario, table, summary, figures, solution)
+
+
+def plot_series(x, ys, xlabel, ylabel, labels=None, logy=False):
+    """A drawing function for reports.write_plots: one or more curves against x."""
+    ys = np.atleast_2d(ys)
+
+    def draw(fig):
+        ax = fig.add_subplot()
+        for i, y in enumerate(ys):
+            ax.plot(x, y, lw=0.8, label=None if labels is None else labels[i])
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(ylabel)
+        if logy:
+            ax.set_yscale("log")
+        if labels is not None:
+            ax.legend()
+        ax.grid(alpha=0.3)
+
+    return draw
+
+
+def plot_omega(solution):
+    return plot_series(solution.t - solution.t[0], solution.omega.T, "days from start",
+                       "body angular velocity [rad/d]", ["x", "y", "z"])
