@@ -82,6 +82,9 @@ class Scenario:
         self.values = {key: self._convert(key, spec) for key, spec in self.schema.items()}
         self.kind = kind
         self.t_start, self.t_end = self._span()
+        from .integrators import get_method
+
+        get_method(self["integrator.method"])(**self.integrator_options())   # checks method and options now
 
     def __getitem__(self, key):
         if key not in self.values:

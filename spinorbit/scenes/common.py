@@ -1,6 +1,8 @@
 """Pieces every scene module shares: run the integrator, build the table, draw plots."""
 import numpy as np
 
+from ..bodies import RigidBody
+from ..errors import PhysicsError, ScenarioError
 from ..results import RunResult
 from ..scenarios import tdb_days_to_time
 from ..simulate import simulate
@@ -11,6 +13,15 @@ def u():
     import astropy.units as units
 
     return units
+
+
+def rigid_body(scenario, key="body.moments"):
+    """RigidBody from principal moments at ``key``; a non-physical body is a ScenarioError on that key."""
+    moments = scenario[key]
+    try:
+        return RigidBody.from_principal(*moments, name=key)
+    except PhysicsError as exc:
+        raise ScenarioError(key, moments.tolist(), f"a rigid body ({exc})") from None
 
 
 def simulate_scenario(scenario, system, t_out):

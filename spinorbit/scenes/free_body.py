@@ -5,7 +5,6 @@ elliptic-function solution of spinorbit.theory.FreeRigidBody.
 """
 import numpy as np
 
-from ..bodies import RigidBody
 from ..constants import ARCSEC
 from ..dynamics import invariant_drift, torque_free_system
 from ..rotations import quat_from_euler313
@@ -21,9 +20,9 @@ SCHEMA = {
 
 
 def run(scenario):
+    body = common.rigid_body(scenario)
     from ..theory import FreeRigidBody
 
-    body = RigidBody.from_principal(*scenario["body.moments"])
     omega0 = scenario["body.omega0"]
     q0 = quat_from_euler313(*scenario["body.attitude0"])
     system = torque_free_system(body.moments, q0, omega0, scenario.t_start)
