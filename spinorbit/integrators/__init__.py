@@ -14,6 +14,10 @@ METHODS = {
     "radau": "spinorbit.integrators.scipy_ivp:Radau",
     "rk45": "spinorbit.integrators.scipy_ivp:RK45",
     "rk8": "spinorbit.integrators.rk8:RK8",
+    "rk4": "spinorbit.integrators.rk4:RK4",
+    "strang": "spinorbit.integrators.splitting:Strang",
+    "yoshida4": "spinorbit.integrators.splitting:Yoshida4",
+    "suzuki4": "spinorbit.integrators.splitting:Suzuki4",
 }
 
 

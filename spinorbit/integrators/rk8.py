@@ -77,7 +77,7 @@ class RK8(Integrator):
                             steps * len(self.B), steps, wall, dict(self.settings))
         if n_done < t_out.size:
             reason = "exceeded max_steps" if steps > self.settings["max_steps"] else "state became non-finite"
-            err = IntegrationError(f"rk8: {reason}", t_fail, y[n_done - 1] if n_done else system.y0,
+            err = IntegrationError(f"{self.name}: {reason}", t_fail, y[n_done - 1] if n_done else system.y0,
                                    "Reduce integrator.step, or use an adaptive method (dop853) to find the difficulty.")
             err.partial = solution
             raise err

@@ -1,0 +1,191 @@
+"""Structure-preserving splitting for a rigid body under an external torque (Lie-group method).
+
+The Hamiltonian of a torqued rigid body splits into the free rigid body
+(Euler ch. 15 §808) and the torque potential (ch. 16 P91).  One step
+alternates their exact flows:
+
+* **kick** ``K(h)``: body angular momentum ``L += h N(t, q)`` at fixed attitude
+  (the torque depends on time and attitude only, e.g. point masses);
+* **free flow** ``D(h)``: the free body, itself split into rotations whose
+  flows are exact.  Every sub-flow has a body angular velocity ``w`` constant
+  over the sub-step, so the attitude advances by ``q <- q * exp(w h / 2)`` and
+  the body momentum rotates by ``-|w| h`` about ``w``: both are rotations, so
+  ``|L|`` is kept to rounding and the quaternion stays unit.
+
+Free-flow splittings (option ``free_flow``):
+
+``"symmetric"`` (default)
+    H = [(L_i^2 + L_j^2)/(2 I_i) + L_s^2/(2 I_s)] + (1/(2 I_j) - 1/(2 I_i)) L_j^2,
+    where s is the axis whose two companions i, j have the closest moments.
+    The bracket is an axisymmetric body, solved exactly (rotation about L plus
+    rotation about axis s); the remainder is a rotation about axis j whose rate
+    is proportional to I_i - I_j, so the splitting error vanishes for a
+    symmetric body and stays small for a nearly symmetric fast spinner.
+``"axes"``
+    H = sum_k L_k^2 / (2 I_k), rotations about the three axes in turn
+    (Touma & Wisdom 1994; McLachlan 1993; Dullweber, Leimkuhler & McLachlan 1997).
+    Each rotation angle is ~ |w| h, so the error grows with the spin rate:
+    it fails for a fast, nearly symmetric spinner (measured in
+    benchmarks/RESULTS.md and tests/test_integrators.py).
+
+Methods: ``strang`` (K(h/2) D(h) K(h/2), order 2), ``yoshida4`` (triple-jump
+composition of Strang, order 4, Yoshida 1990) and ``suzuki4`` (five-stage
+composition, order 4, Suzuki 1990; smaller error constant).  All are symplectic
+and time-reversible: the energy of a torque-free run has bounded error, no drift.
+Time enters the kicks only (t advances with the free flow).
+"""
+import math
+import time
+
+import numpy as np
+from numba import njit
+
+from ..errors import IntegrationError, ScenarioError
+from ..rotations import quat_multiply
+from .base import Integrator, Solution
+
+FREE_FLOWS = ("symmetric", "axes")
+
+
+@njit(cache=True)
+def _rotate(q, l, w, h):
+    """Exact flow over h with constant body angular velocity w: q * exp(w h/2), L rotated by -|w| h."""
+    rate = math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
+    angle = rate * h
+    if angle == 0.0:
+        return q, l
+    n = w / rate
+    half = 0.5 * angle
+    s = math.sin(half)
+    q_new = quat_multiply(q, np.array([math.cos(half), s * n[0], s * n[1], s * n[2]]))
+    # Rodrigues rotation of l by -angle about n
+    c, sn = math.cos(angle), -math.sin(angle)
+    dot = n[0] * l[0] + n[1] * l[1] + n[2] * l[2]
+    cross = np.array([n[1] * l[2] - n[2] * l[1], n[2] * l[0] - n[0] * l[2], n[0] * l[1] - n[1] * l[0]])
+    l_new = l * c + cross * sn + n * dot * (1.0 - c)
+    return q_new, l_new
+
+
+@njit(cache=True)
+def _axis_rotation(q, l, axis, rate_per_l, h):
+    """Flow of H = rate_per_l * L_axis^2 / 2: rotation about body axis at rate rate_per_l * L_axis."""
+    w = np.zeros(3)
+    w[axis] = rate_per_l * l[axis]
+    return _rotate(q, l, w, h)
+
+
+@njit(cache=True)
+def _free_flow(q, l, moments, h, symmetric, s, i, j):
+    """Symmetric (2nd-order) splitting of the free rigid body over h; see the module docstring."""
+    if symmetric:
+        q, l = _axis_rotation(q, l, j, 1.0 / moments[j] - 1.0 / moments[i], 0.5 * h)
+        q, l = _rotate(q, l, l / moments[i], h)                                   # |L|^2 / (2 I_i)
+        q, l = _axis_rotation(q, l, s, 1.0 / moments[s] - 1.0 / moments[i], h)    # axisymmetric part
+        q, l = _axis_rotation(q, l, j, 1.0 / moments[j] - 1.0 / moments[i], 0.5 * h)
+    else:
+        q, l = _axis_rotation(q, l, 0, 1.0 / moments[0], 0.5 * h)
+        q, l = _axis_rotation(q, l, 1, 1.0 / moments[1], 0.5 * h)
+        q, l = _axis_rotation(q, l, 2, 1.0 / moments[2], h)
+        q, l = _axis_rotation(q, l, 1, 1.0 / moments[1], 0.5 * h)
+        q, l = _axis_rotation(q, l, 0, 1.0 / moments[0], 0.5 * h)
+    return q, l
+
+
+@njit
+def _split_loop(torque, params, moments, t0, y0, t_out, h, gammas, symmetric, axes, max_steps):
+    """Fixed step <= h landing on every output time; returns (y_out, n_done, steps, nfev, t_fail)."""
+    s, i, j = axes[0], axes[1], axes[2]
+    y_out = np.empty((t_out.shape[0], 7))
+    y = np.empty(7)
+    q = y0[:4].copy()
+    l = moments * y0[4:7]
+    t = t0
+    y[:4], y[4:7] = q, l / moments
+    n_torque = torque(t, y, params)
+    nfev, steps = 1, 0
+    for k in range(t_out.shape[0]):
+        span = t_out[k] - t
+        n_sub = int(np.ceil(span / h - 1e-12)) if span > 0 else 0
+        dt = span / n_sub if n_sub > 0 else 0.0
+        for _ in range(n_sub):
+            for g in gammas:
+                sub = g * dt
+                l = l + 0.5 * sub * n_torque
+                q, l = _free_flow(q, l, moments, sub, symmetric, s, i, j)
+                t += sub
+                y[:4], y[4:7] = q, l / moments
+                n_torque = torque(t, y, params)
+                nfev += 1
+                l = l + 0.5 * sub * n_torque
+            q = q / math.sqrt(q[0] ** 2 + q[1] ** 2 + q[2] ** 2 + q[3] ** 2)
+            steps += 1
+            if steps > max_steps or not (np.all(np.isfinite(l)) and np.all(np.isfinite(q))):
+                return y_out, k, steps, nfev, t
+        t = t_out[k]
+        y_out[k, :4], y_out[k, 4:7] = q, l / moments
+    return y_out, t_out.shape[0], steps, nfev, t
+
+
+def symmetric_axes(moments):
+    """(s, i, j): s the axis whose companions have the closest moments (A=B -> z, B=C -> x)."""
+    a, b, c = moments
+    return (2, 0, 1) if b - a <= c - b else (0, 2, 1)
+
+
+class Strang(Integrator):
+    """Kick-drift-kick splitting, order 2; options ``step`` (days) and ``free_flow``."""
+
+    name, order, kind = "strang", 2, "structure-preserving"
+    options = {"step": 1.0, "free_flow": "symmetric", "max_steps": 10**9}
+    gammas = np.array([1.0])
+
+    def supports(self, system):
+        return system.torque is not None and system.y0.size == 7
+
+    def solve(self, system, t_out):
+        t_out = self._check_times(system, t_out)
+        h = float(self.settings["step"])
+        if not h > 0:
+            raise ScenarioError("integrator.step", h, "a positive step in days")
+        flow = self.settings["free_flow"]
+        if flow not in FREE_FLOWS:
+            raise ScenarioError("integrator.free_flow", flow, f"one of {list(FREE_FLOWS)}")
+        moments = np.asarray(system.moments, dtype=float)
+        args = (system.torque, system.params, moments, float(system.t0), system.y0, t_out, h, self.gammas,
+                flow == "symmetric", np.array(symmetric_axes(moments)), int(self.settings["max_steps"]))
+        _split_loop(*args[:5], t_out[:1], *args[6:])          # compile outside the timed region
+        start = time.perf_counter()
+        y, n_done, steps, nfev, t_fail = _split_loop(*args)
+        wall = time.perf_counter() - start
+        solution = Solution(t_out[:n_done], y[:n_done], self.name, nfev, steps, wall, dict(self.settings))
+        if n_done < t_out.size:
+            reason = "exceeded max_steps" if steps > self.settings["max_steps"] else "state became non-finite"
+            err = IntegrationError(f"{self.name}: {reason}", t_fail, y[n_done - 1] if n_done else system.y0,
+                                   "Reduce integrator.step, or use an adaptive method (dop853) to find the difficulty.")
+            err.partial = solution
+            raise err
+        return solution
+
+
+def _triple_jump():
+    g1 = 1.0 / (2.0 - 2.0 ** (1.0 / 3.0))
+    return np.array([g1, 1.0 - 2.0 * g1, g1])
+
+
+def _suzuki():
+    g1 = 1.0 / (4.0 - 4.0 ** (1.0 / 3.0))
+    return np.array([g1, g1, 1.0 - 4.0 * g1, g1, g1])
+
+
+class Yoshida4(Strang):
+    """Strang composed as a triple jump (Yoshida 1990), order 4, three torque calls per step."""
+
+    name, order = "yoshida4", 4
+    gammas = _triple_jump()
+
+
+class Suzuki4(Strang):
+    """Strang composed in five stages (Suzuki 1990), order 4, five torque calls per step."""
+
+    name, order = "suzuki4", 4
+    gammas = _suzuki()
