@@ -20,12 +20,21 @@ def main(argv=None):
     run.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
                      help="override a scenario key by dotted path (repeatable)")
     run.add_argument("--out", help="run directory (default runs/<scenario name>)")
+    sweep = sub.add_parser("sweep", help="run a parameter sweep / ensemble on Dask (local cluster by default)")
+    sweep.add_argument("scenario")
+    sweep.add_argument("--vary", action="append", required=True, metavar="KEY=V1,V2,...",
+                       help="values of one key (repeatable; the sweep is their Cartesian product)")
+    sweep.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE")
+    sweep.add_argument("--scheduler", default="local", help="'local' (default), 'synchronous' or tcp://host:port")
+    sweep.add_argument("--out", help="sweep directory (default runs/<scenario name>-sweep)")
     listing = sub.add_parser("list", help="list the scenarios in a folder")
     listing.add_argument("folder", nargs="?", default=str(SCENARIO_DIR))
     args = parser.parse_args(argv)
     try:
         if args.command == "run":
             return _run(args)
+        if args.command == "sweep":
+            return _sweep(args)
         return _list(Path(args.folder))
     except IntegrationError as exc:
         print(f"error: {exc}", file=sys.stderr)
@@ -55,6 +64,19 @@ def _run(args):
     for key, value in result.summary.get("comparison", {}).items():
         print(f"  {key} = {value:.6g}" if isinstance(value, float) else f"  {key} = {value}")
     return 0
+
+
+def _sweep(args):
+    from .sweep import parse_vary, run_sweep
+
+    grid = dict(parse_vary(v) for v in args.vary)
+    out = Path(args.out or Path("runs") / f"{Path(args.scenario).stem}-sweep")
+    records = run_sweep(args.scenario, grid, out, args.scheduler, args.overrides)
+    failed = [r for r in records if r["status"] != "ok"]
+    print(f"sweep: {len(records)} runs, {len(failed)} failed; table in {out}/sweep.csv")
+    for record in failed:
+        print(f"  failed {record['overrides']}: {record['error']}", file=sys.stderr)
+    return 1 if failed else 0
 
 
 def _list(folder):

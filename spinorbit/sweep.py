@@ -1,0 +1,138 @@
+"""Parameter sweeps and ensembles on Dask (a local cluster by default).
+
+``spinorbit sweep SCENE.toml --vary body.moments.0=0.5,0.6 --vary span.end="10 d","20 d"``
+runs the Cartesian product of the values, one run directory per member
+(``OUT/000/``, ``OUT/001/`` ...), and collects every member's comparison and
+run metrics into ``OUT/sweep.json`` and ``OUT/sweep.csv``.  Each member writes
+its own files as it finishes, so nothing done is lost if the sweep stops.
+
+``scheduler``: "local" (dask.distributed LocalCluster, one process per core),
+"synchronous" (in this process, for debugging), or a scheduler address
+("tcp://host:8786") to use a cluster that outgrows one machine.
+"""
+import itertools
+import json
+from pathlib import Path
+
+from .errors import ScenarioError
+
+
+def parse_vary(text):
+    """``key=v1,v2`` -> (key, [v1, v2]) with each value kept as TOML text."""
+    if "=" not in text:
+        raise ScenarioError("--vary", text, "key=value1,value2,... e.g. span.end=10 d,20 d")
+    key, values = (s.strip() for s in text.split("=", 1))
+    items = [v.strip() for v in _split_top_level(values) if v.strip()]
+    if not items:
+        raise ScenarioError(f"--vary {key}", values, "at least one value")
+    return key, items
+
+
+def members(grid):
+    """Cartesian product of {key: [values]} as lists of ``key=value`` overrides."""
+    keys = list(grid)
+    return [[f"{k}={v}" for k, v in zip(keys, combo)] for combo in itertools.product(*grid.values())]
+
+
+def run_member(scenario_path, overrides, out_dir):
+    """Run one member and write its run directory; return a flat record (never raises)."""
+    from .reports import write_run
+    from .results import run_scenario
+    from .errors import SpinorbitError
+
+    record = {"overrides": overrides, "out": str(out_dir)}
+    try:
+        result = run_scenario(scenario_path, overrides)
+        write_run(result, out_dir)
+        record.update(status="ok", **_flat_metrics(result.summary))
+    except SpinorbitError as exc:
+        record.update(status="failed", error=str(exc))
+    return record
+
+
+def run_sweep(scenario_path, grid, out_dir, scheduler="local", base_overrides=()):
+    """Run every member of ``grid`` on Dask; return the list of records (also written to disk)."""
+    import dask
+
+    from .scenarios import load_scenario
+
+    load_scenario(scenario_path, base_overrides)          # fail fast on a bad base scene
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    jobs = [dask.delayed(run_member)(str(scenario_path), [*base_overrides, *m], out / f"{i:03d}")
+            for i, m in enumerate(members(grid))]
+    with _scheduler(scheduler) as compute:
+        records = list(compute(*jobs))
+    (out / "sweep.json").write_text(json.dumps(records, indent=2) + "\n")
+    _write_csv(records, out / "sweep.csv")
+    return records
+
+
+class _scheduler:
+    """Context manager yielding a ``compute(*delayed)`` function for the chosen scheduler."""
+
+    def __init__(self, name):
+        self.name, self.client, self.cluster = name, None, None
+
+    def __enter__(self):
+        import dask
+
+        if self.name == "synchronous":
+            return lambda *jobs: dask.compute(*jobs, scheduler="synchronous")
+        from dask.distributed import Client, LocalCluster
+
+        if self.name == "local":
+            self.cluster = LocalCluster(threads_per_worker=1, processes=True, dashboard_address=None)
+            self.client = Client(self.cluster)
+        elif self.name.startswith(("tcp://", "tls://", "ucx://")):
+            self.client = Client(self.name)
+        else:
+            raise ScenarioError("--scheduler", self.name, "'local', 'synchronous' or a scheduler address tcp://host:port")
+        return lambda *jobs: self.client.gather(self.client.compute(list(jobs)))
+
+    def __exit__(self, *exc):
+        if self.client is not None:
+            self.client.close()
+        if self.cluster is not None:
+            self.cluster.close()
+
+
+def _flat_metrics(summary):
+    flat = {}
+    for table in ("comparison", "run"):
+        for key, value in summary.get(table, {}).items():
+            if isinstance(value, (int, float, str, bool)):
+                flat[key] = value
+    return flat
+
+
+def _write_csv(records, path):
+    import csv
+
+    columns = list(dict.fromkeys(k for r in records for k in r))
+    with path.open("w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=columns)
+        writer.writeheader()
+        for record in records:
+            writer.writerow({k: (";".join(v) if isinstance(v, list) else v) for k, v in record.items()})
+
+
+def _split_top_level(text):
+    """Split on commas outside quotes and brackets (so lists and quantities survive)."""
+    parts, depth, quote, current = [], 0, None, ""
+    for char in text:
+        if quote:
+            quote = None if char == quote else quote
+        elif char in "\"'":
+            quote = char
+        elif char in "[(":
+            depth += 1
+        elif char in "])":
+            depth -= 1
+        elif char == "," and depth == 0:
+            parts.append(current)
+            current = ""
+            continue
+        current += char
+    parts.append(current)
+    return parts
