@@ -1,0 +1,169 @@
+"""JPL ephemerides read with jplephem: SPK kernels (.bsp) and the ``de421`` package arrays.
+
+States are km and km/day in ICRF axes at TDB days from J2000.0.  Nothing is
+downloaded: DE421 comes from the ``skyfield-data`` package, other kernels from
+``ephemerides/<name>.bsp`` or an installed ``naif-<name>`` package.
+"""
+import importlib
+import importlib.resources
+from pathlib import Path
+
+import numpy as np
+
+from ..constants import J2000_JD
+from ..errors import EphemerisRangeError, ScenarioError
+
+EPHEMERIDES_DIR = Path(__file__).resolve().parents[2] / "ephemerides"
+
+# Body name -> NAIF codes to try, first found wins (planet centre, else its barycentre).
+NAIF = {
+    "sun": (10,), "mercury": (199, 1), "venus": (299, 2), "earth": (399,), "moon": (301,),
+    "earth_moon_barycenter": (3,), "mars": (499, 4), "jupiter": (5,), "saturn": (6,),
+    "uranus": (7,), "neptune": (8,), "pluto": (9,), "solar_system_barycenter": (0,),
+}
+
+
+def kernel_path(source):
+    """Path of the SPK kernel called ``source`` ('de421', 'de440', ... or a path to a .bsp)."""
+    if source.endswith(".bsp"):
+        return Path(source)
+    local = EPHEMERIDES_DIR / f"{source}.bsp"
+    if local.exists():
+        return local
+    if source == "de421":
+        return Path(str(importlib.resources.files("skyfield_data") / "data" / "de421.bsp"))
+    try:
+        return Path(getattr(importlib.import_module(f"naif_{source}"), source))
+    except (ImportError, AttributeError):
+        shipped = sorted(p.stem for p in EPHEMERIDES_DIR.glob("*.bsp"))
+        raise ScenarioError("orbit.source", source,
+                            f"'de421', a .bsp in ephemerides/ ({shipped or 'none there'}), "
+                            f"or an installed naif-{source} package") from None
+
+
+class JPLKernel:
+    """An SPK kernel; states of one body relative to another by chaining segments.
+
+    E.g. Moon relative to Earth = (301 wrt 3) - (399 wrt 3); Sun relative to the
+    Moon goes through the solar-system barycentre (10 wrt 0, 3 wrt 0, 301 wrt 3).
+    """
+
+    def __init__(self, path=None):
+        from jplephem.spk import SPK
+
+        self.path = kernel_path("de421") if path is None else Path(path)
+        self.name = self.path.stem
+        self._spk = SPK.open(str(self.path))
+        self._parent = {}       # target code -> (center code, [segments])
+        for seg in self._spk.segments:
+            self._parent.setdefault(seg.target, (seg.center, []))[1].append(seg)
+        starts = [s.start_jd for s in self._spk.segments]
+        ends = [s.end_jd for s in self._spk.segments]
+        self.span = (max(starts) - J2000_JD, min(ends) - J2000_JD)
+
+    def code(self, name):
+        """NAIF code of ``name`` in this kernel."""
+        for code in NAIF.get(name, ()):
+            if code == 0 or code in self._parent:
+                return code
+        raise ScenarioError("body", name, f"one of {sorted(n for n in NAIF if self._has(n))}")
+
+    def _has(self, name):
+        return any(c == 0 or c in self._parent for c in NAIF[name])
+
+    def _chain(self, code):
+        """Codes from ``code`` up to the barycentre (0)."""
+        chain = [code]
+        while chain[-1] != 0:
+            chain.append(self._parent[chain[-1]][0])
+        return chain
+
+    def _segment_state(self, code, t):
+        """State of ``code`` relative to its parent, km and km/day, shape (3, len(t)) each."""
+        pos, vel = np.empty((3, t.size)), np.empty((3, t.size))
+        done = np.zeros(t.size, bool)
+        for seg in self._parent[code][1]:
+            inside = ~done & (t + J2000_JD >= seg.start_jd) & (t + J2000_JD <= seg.end_jd)
+            if inside.any():
+                pos[:, inside], vel[:, inside] = seg.compute_and_differentiate(J2000_JD, t[inside])
+                done |= inside
+        if not done.all():
+            raise EphemerisRangeError(self.name, f"t = {t[~done][0]!r}", self.span)
+        return pos, vel
+
+    def relative_states(self, target, center, t_tdb_days):
+        """(pos_km, vel_km_per_day) of ``target`` relative to ``center``, shape (len(t), 3)."""
+        t = np.atleast_1d(np.asarray(t_tdb_days, dtype=float))
+        self.check_span(t.min(), t.max())
+        up, down = self._chain(self.code(target)), self._chain(self.code(center))
+        while len(up) > 1 and len(down) > 1 and up[-2] == down[-2]:
+            up, down = up[:-1], down[:-1]          # drop the shared part of the chains
+        pos, vel = np.zeros((3, t.size)), np.zeros((3, t.size))
+        for chain, sign in ((up, 1.0), (down, -1.0)):
+            for code in chain[:-1]:
+                p, v = self._segment_state(code, t)
+                pos += sign * p
+                vel += sign * v
+        return pos.T, vel.T
+
+    def check_span(self, t_start, t_end):
+        """Raise EphemerisRangeError unless [t_start, t_end] (TDB days) lies in the kernel's span."""
+        if not (self.span[0] <= t_start and t_end <= self.span[1]):
+            raise EphemerisRangeError(self.name, f"{t_start:.6g} to {t_end:.6g}", self.span)
+
+
+class DE421Arrays:
+    """DE421 from the ``de421`` package: the same Chebyshev series as numpy arrays, 1899-2200.
+
+    Evaluated by jplephem's ``Ephemeris`` reader.  Planet entries are the system
+    barycentres; 'moon' in the arrays is geocentric, Earth = EMB - Moon/(1 + EMRAT).
+    """
+
+    name = "de421 arrays"
+
+    def __init__(self):
+        import de421
+        from jplephem.ephem import Ephemeris
+
+        self._eph = Ephemeris(de421)
+        self.span = (self._eph.jalpha - J2000_JD, self._eph.jomega - J2000_JD)
+
+    def _barycentric(self, name, t):
+        eph = self._eph
+        state = lambda key: eph.position_and_velocity(key, J2000_JD, t)
+        if name in ("earth", "moon"):
+            emb_p, emb_v = state("earthmoon")
+            moon_p, moon_v = state("moon")
+            share = eph.earth_share if name == "earth" else -eph.moon_share
+            return emb_p - share * moon_p, emb_v - share * moon_v
+        key = {"earth_moon_barycenter": "earthmoon"}.get(name, name)
+        if key not in eph.names or key in ("librations", "nutations"):
+            raise ScenarioError("body", name, f"one of {sorted(NAIF)} except the barycentre")
+        return state(key)
+
+    def relative_states(self, target, center, t_tdb_days):
+        """(pos_km, vel_km_per_day) of ``target`` relative to ``center``, shape (len(t), 3)."""
+        t = np.atleast_1d(np.asarray(t_tdb_days, dtype=float))
+        self.check_span(t.min(), t.max())
+        if {target, center} == {"earth", "moon"}:   # direct from the geocentric series
+            p, v = self._eph.position_and_velocity("moon", J2000_JD, t)
+            sign = 1.0 if target == "moon" else -1.0
+            return sign * p.T, sign * v.T
+        tp, tv = self._barycentric(target, t)
+        cp, cv = self._barycentric(center, t)
+        return (tp - cp).T, (tv - cv).T
+
+    check_span = JPLKernel.check_span
+
+
+def open_ephemeris(source, t_start, t_end):
+    """The reader for ``source`` covering [t_start, t_end] TDB days.
+
+    'de421' uses the skyfield-data .bsp and, for spans beyond it (to 2200), the
+    ``de421`` package arrays; any other name is a .bsp (see :func:`kernel_path`).
+    """
+    kernel = JPLKernel(kernel_path(source))
+    if source == "de421" and not (kernel.span[0] <= t_start and t_end <= kernel.span[1]):
+        kernel = DE421Arrays()
+    kernel.check_span(t_start, t_end)
+    return kernel
