@@ -135,3 +135,16 @@ def quat_from_euler313(phi, theta, psi):
 def euler313_from_quat(q):
     """JPL 3-1-3 angles (rad) of a body-to-inertial quaternion."""
     return euler313_from_matrix(matrix_from_quat(np.asarray(q, dtype=float)).T.copy())
+
+
+def quat_angle(q_a, q_b):
+    """Rotation angle (rad) between attitudes q_a and q_b, shape (..., 4); accurate near 0.
+
+    2 atan2(|vec(conj(q_a) q_b)|, |scalar|): unlike 2 arccos|q_a.q_b| it
+    resolves differences far below 1e-8 rad.
+    """
+    q_a, q_b = np.asarray(q_a, dtype=float), np.asarray(q_b, dtype=float)
+    w = np.sum(q_a * q_b, axis=-1)
+    v = (q_a[..., :1] * q_b[..., 1:] - q_b[..., :1] * q_a[..., 1:]
+         - np.cross(q_a[..., 1:], q_b[..., 1:]))
+    return 2.0 * np.arctan2(np.linalg.norm(v, axis=-1), np.abs(w))
