@@ -23,10 +23,16 @@ class ScipyIVP(Integrator):
         t_out = self._check_times(system, t_out)
         rhs, params = system.rhs, system.params
         nfev = [0]
+        last_finite = [system.t0, system.y0, False]   # latest (t, y) with a finite rhs; saw a NaN?
 
         def fun(t, y):
             nfev[0] += 1
-            return rhs(t, y, params)
+            dy = rhs(t, y, params)
+            if not np.all(np.isfinite(dy)):
+                last_finite[2] = True
+            elif t >= last_finite[0]:
+                last_finite[:2] = t, y
+            return dy
 
         fun(system.t0, system.y0)          # compile outside the timed region
         nfev[0] = 0
@@ -39,8 +45,11 @@ class ScipyIVP(Integrator):
         partial = Solution(sol.t, normalise_quaternions(y) if len(y) else y, self.name, nfev[0],
                            int(sol.t.size), wall, dict(self.settings))
         if sol.status != 0:
-            err = IntegrationError(f"{self.name}: {sol.message}", float(sol.t[-1]) if sol.t.size else system.t0,
-                                   y[-1] if len(y) else system.y0, "Loosen rtol/atol or try method 'radau' for stiff cases.")
+            t_fail, y_fail, nan = last_finite
+            advice = ("The right-hand side became non-finite just after this time: check the torque model "
+                      "and the scene for a close encounter." if nan else
+                      "Loosen rtol/atol or try method 'radau' for stiff cases.")
+            err = IntegrationError(f"{self.name}: {sol.message}", float(t_fail), np.array(y_fail), advice)
             err.partial = partial
             raise err
         check_finite(y, t_out[-1], self.name, partial)
