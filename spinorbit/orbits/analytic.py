@@ -57,3 +57,80 @@ class CircularOrbits:
 
     def positions(self, t):
         return np.array([_circle_positions(ti, self.data) for ti in np.atleast_1d(t)])
+
+
+@njit(cache=True)
+def eccentric_anomaly(mean_anomaly, e):
+    """Solve Kepler's equation E - e sin E = M by Newton's method (0 <= e < 1), rad."""
+    m = mean_anomaly - 2.0 * math.pi * round(mean_anomaly / (2.0 * math.pi))
+    big_e = m + e * math.sin(m) if e < 0.8 else math.copysign(math.pi, m)
+    for _ in range(50):
+        step = (big_e - e * math.sin(big_e) - m) / (1.0 - e * math.cos(big_e))
+        big_e -= step
+        if abs(step) < 1e-15:
+            break
+    return big_e
+
+
+@njit(cache=True)
+def _kepler_positions(t, data):
+    """data = (a, e, n, M0, P (n, 3), Q (n, 3)) -> (n, 3): r = a(cos E - e) P + b sin E Q."""
+    a, e, rate, m0, p, q = data
+    out = np.empty((a.shape[0], 3))
+    for i in range(a.shape[0]):
+        big_e = eccentric_anomaly(m0[i] + rate[i] * t, e[i])
+        x = a[i] * (math.cos(big_e) - e[i])
+        y = a[i] * math.sqrt(1.0 - e[i] * e[i]) * math.sin(big_e)
+        for j in range(3):
+            out[i, j] = x * p[i, j] + y * q[i, j]
+    return out
+
+
+@dataclass
+class KeplerOrbit:
+    """Point masses on fixed Kepler ellipses about the body (two-body motion; Euler ch. 16 P94).
+
+    a in km (or scene length unit), e in [0, 1), mean_motion n in rad per time
+    unit (None: sqrt(gm / a^3), right when the attracting mass dominates, e.g. the
+    Sun about Mercury), mean_anomaly at t = 0, and the orientation angles (rad)
+    periapsis (argument of periapsis), inclination and node, as r = Rz(node)
+    Rx(inclination) Rz(periapsis) applied to the ellipse in its own plane.
+    With node = 0 the plane is tilted about x, as in :class:`CircularOrbits`.
+    """
+
+    names: tuple
+    gm: np.ndarray
+    a: np.ndarray
+    e: np.ndarray
+    mean_motion: np.ndarray = None
+    mean_anomaly: np.ndarray = None
+    periapsis: np.ndarray = None
+    inclination: np.ndarray = None
+    node: np.ndarray = None
+    span: tuple = (-math.inf, math.inf)
+    data: tuple = field(init=False)
+
+    def __post_init__(self):
+        n = len(self.names)
+        as_array = lambda v: np.zeros(n) if v is None else np.asarray(v, dtype=float).reshape(n)
+        self.gm, self.a, self.e = as_array(self.gm), as_array(self.a), as_array(self.e)
+        if np.any(self.a <= 0):
+            raise ScenarioError("orbit.a", self.a.tolist(), "positive semi-major axes")
+        if np.any((self.e < 0) | (self.e >= 1)):
+            raise ScenarioError("orbit.e", self.e.tolist(), "eccentricities in [0, 1)")
+        if self.mean_motion is None:
+            self.mean_motion = np.sqrt(self.gm / self.a**3)
+        self.mean_motion = as_array(self.mean_motion)
+        self.mean_anomaly, self.periapsis = as_array(self.mean_anomaly), as_array(self.periapsis)
+        self.inclination, self.node = as_array(self.inclination), as_array(self.node)
+        cw, sw = np.cos(self.periapsis), np.sin(self.periapsis)
+        ci, si = np.cos(self.inclination), np.sin(self.inclination)
+        co, so = np.cos(self.node), np.sin(self.node)
+        p = np.stack([co * cw - so * ci * sw, so * cw + co * ci * sw, si * sw], axis=1)
+        q = np.stack([-co * sw - so * ci * cw, -so * sw + co * ci * cw, si * cw], axis=1)
+        self.data = (self.a, self.e, self.mean_motion, self.mean_anomaly, p, q)
+
+    kernel = staticmethod(_kepler_positions)
+
+    def positions(self, t):
+        return np.array([_kepler_positions(ti, self.data) for ti in np.atleast_1d(t)])

@@ -1,0 +1,80 @@
+"""Orbits from a REBOUND N-body run: IAS15 with REBOUNDx ``gr_full`` and the Earth's J2.
+
+Sun, Mercury..Neptune, Earth and Moon start from a JPL kernel's barycentric
+states at an epoch, are integrated once over the span, and sampled into a
+:class:`HermiteOrbits` relative to the spinning body.  Units inside REBOUND:
+km, days, G = 1 with masses given as GM (km^3/day^2), DE421 values.
+"""
+import numpy as np
+
+from ..constants import DAY_S
+from .interpolant import HermiteOrbits, grid
+from .kernel import JPLKernel, de421_constants
+
+# Body name -> key of its GM in the DE421 header (AU^3/day^2); Earth and Moon from GMB, EMRAT.
+GM_KEYS = {"sun": "GMS", "mercury": "GM1", "venus": "GM2", "mars": "GM4", "jupiter": "GM5",
+           "saturn": "GM6", "uranus": "GM7", "neptune": "GM8"}
+BODIES = ("sun", "mercury", "venus", "earth", "moon", "mars", "jupiter", "saturn", "uranus", "neptune")
+
+
+def de421_gm():
+    """GM of each body in :data:`BODIES`, km^3/day^2, from the DE421 header."""
+    c = de421_constants()
+    au3 = c["AU"] ** 3
+    gm = {name: c[key] * au3 for name, key in GM_KEYS.items()}
+    gmb = c["GMB"] * au3
+    gm["earth"], gm["moon"] = gmb * c["EMRAT"] / (1 + c["EMRAT"]), gmb / (1 + c["EMRAT"])
+    return gm
+
+
+class ReboundOrbits(HermiteOrbits):
+    """``bodies`` relative to ``center``, integrated by REBOUND from ``t_start`` to ``t_end`` (TDB d).
+
+    kernel: the JPLKernel giving the initial barycentric states at t_start (default DE421).
+    gr: REBOUNDx ``gr_full`` (all bodies, c in km/day); earth_j2: REBOUNDx
+    ``gravitational_harmonics`` on the Earth, J2 and R_eq from the DE421 header, axis
+    along ICRF z (the J2000 pole; precession moves it ~20"/yr, ignored).
+    """
+
+    def __init__(self, center, bodies, t_start, t_end, step=0.25, kernel=None, gr=True,
+                 earth_j2=True, epsilon=1e-9):
+        import rebound
+        import reboundx
+
+        kernel = JPLKernel() if kernel is None else kernel
+        kernel.check_span(t_start, t_start)
+        gm = de421_gm()
+        sim = rebound.Simulation()
+        sim.G = 1.0
+        sim.integrator = "ias15"
+        sim.integrator.epsilon = epsilon
+        for name in BODIES:
+            p, v = kernel.relative_states(name, "solar_system_barycenter", [t_start])
+            sim.add(m=gm[name], x=p[0, 0], y=p[0, 1], z=p[0, 2], vx=v[0, 0], vy=v[0, 1], vz=v[0, 2],
+                    name=name)
+        extras = reboundx.Extras(sim)
+        if gr:
+            force = extras.load_force("gr_full")
+            extras.add_force(force)
+            force.params["c"] = de421_constants()["CLIGHT"] * DAY_S
+        if earth_j2:
+            force = extras.load_force("gravitational_harmonics")
+            extras.add_force(force)
+            c = de421_constants()
+            sim.particles["earth"].params["J2"] = c["J2E"]
+            sim.particles["earth"].params["R_eq"] = c["RE"]
+        self.simulation, self.extras = sim, extras        # keep extras alive with sim
+
+        times = grid(t_start, t_end, step)
+        n = len(BODIES)
+        xyz, vxyz = np.empty((n, 3)), np.empty((n, 3))
+        index = [BODIES.index(b) for b in bodies]
+        c = BODIES.index(center)
+        pos = np.empty((len(bodies), times.size, 3))
+        vel = np.empty_like(pos)
+        for k, t in enumerate(times):
+            sim.integrate(t - t_start, exact_finish_time=1)
+            sim.serialize_particle_data(xyz=xyz, vxvyvz=vxyz)
+            pos[:, k] = xyz[index] - xyz[c]
+            vel[:, k] = vxyz[index] - vxyz[c]
+        super().__init__(bodies, [gm[b] for b in bodies], t_start, step, pos, vel, source="rebound")

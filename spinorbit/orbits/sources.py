@@ -1,0 +1,103 @@
+"""One entry point: the perturbers' orbits relative to the spinning body, built once per run.
+
+``sample_orbits("de421", "moon", ("earth", "sun"), t0, t1)`` samples the ephemeris
+on a uniform grid into a :class:`HermiteOrbits` and measures its interpolation
+error at every mid-point (``max_error_km``, ``max_relative_error`` per body).
+"""
+import numpy as np
+
+from ..constants import GM_KM3_D2
+from ..errors import ScenarioError
+
+# Common grid step, days.  With the Moon involved (27.3-d orbit) the cubic Hermite
+# error is ~0.02 km on the Earth-Moon vector (|dr|/r ~ 6e-8, torque ~ 2e-7) and ~0.02 km
+# (1.3e-10) on the Sun seen from the Moon, whose 27-d wiggle sets its step too.
+DEFAULT_STEP_D = 0.25
+SOURCES = "'de421', a .bsp name in ephemerides/ (e.g. 'de440'), 'rebound', 'circular', 'kepler'"
+
+
+def gm_of(bodies, table=GM_KM3_D2):
+    """GM of each body, km^3/day^2 (DE421 values)."""
+    unknown = [b for b in bodies if b not in table]
+    if unknown:
+        raise ScenarioError("orbit.bodies", unknown, f"bodies with a known GM: {sorted(table)}")
+    return np.array([table[b] for b in bodies])
+
+
+def sample_orbits(source, center, bodies, t_start, t_end, step=None, measure=True):
+    """``bodies`` relative to ``center`` over [t_start, t_end] TDB days, as an OrbitSource.
+
+    source: 'de421' (skyfield-data .bsp; de421 package arrays beyond 2053), any
+    '<name>' with ephemerides/<name>.bsp or naif-<name> installed, 'rebound'
+    (N-body from DE421 states at t_start), or 'circular' / 'kepler' (the two-body
+    orbit through DE421's state at t_start; returned unsampled, exact).
+    """
+    bodies = tuple(bodies)
+    step = DEFAULT_STEP_D if step is None else float(step)
+    if source in ("circular", "kepler"):
+        return two_body_orbits(source, center, bodies, t_start)
+    if source == "rebound":
+        from .nbody import ReboundOrbits
+
+        orbits = ReboundOrbits(center, bodies, t_start, t_end, step)
+        reference = None
+    elif isinstance(source, str) and source.isidentifier() or str(source).endswith(".bsp"):
+        from .interpolant import HermiteOrbits, grid
+        from .kernel import open_ephemeris
+
+        ephemeris = open_ephemeris(source, t_start, t_end)
+        times = grid(t_start, t_end, step)
+        ephemeris.check_span(times[0], times[-1])
+
+        def reference(t):
+            return np.stack([ephemeris.relative_states(b, center, t)[0] for b in bodies], axis=1)
+
+        states = [ephemeris.relative_states(b, center, times) for b in bodies]
+        orbits = HermiteOrbits(bodies, gm_of(bodies), t_start, step, [s[0] for s in states],
+                               [s[1] for s in states], source=ephemeris.name)
+    else:
+        raise ScenarioError("orbit.source", source, SOURCES)
+    if measure and reference is not None:
+        orbits.measure_error(reference)
+    return orbits
+
+
+def two_body_orbits(kind, center, bodies, t_epoch, kernel=None):
+    """Kepler ellipses (or circles) through the DE421 states of ``bodies`` at t_epoch (TDB d).
+
+    Each body moves about ``center`` under GM(center) + GM(body).  'kepler' takes the
+    osculating elements; 'circular' keeps the orbit plane, the current distance and
+    the current position in the plane, with e = 0 (Euler's hypothesis, §825).
+    """
+    from .analytic import KeplerOrbit
+    from .kernel import JPLKernel
+
+    kernel = JPLKernel() if kernel is None else kernel
+    mu = gm_of(bodies) + gm_of((center,))
+    rows = [_elements(*kernel.relative_states(b, center, [t_epoch]), m, kind == "circular")
+            for b, m in zip(bodies, mu)]
+    a, e, incl, node, peri, m0 = np.array(rows).T
+    n = np.sqrt(mu / a**3)
+    return KeplerOrbit(bodies, gm_of(bodies), a, e, n, m0 - n * t_epoch, peri, incl, node)
+
+
+def _elements(r, v, mu, circular=False):
+    """(a, e, inclination, node, argument of periapsis, mean anomaly) of a state (km, km/d).
+
+    circular: (|r|, 0, i, node, 0, argument of latitude) instead.
+    """
+    r, v = r[0], v[0]
+    h_hat = np.cross(r, v) / np.linalg.norm(np.cross(r, v))
+    node_vec = np.cross([0.0, 0.0, 1.0], h_hat)
+    n_hat = node_vec / np.linalg.norm(node_vec) if np.linalg.norm(node_vec) > 1e-12 else np.array([1.0, 0, 0])
+    m_hat = np.cross(h_hat, n_hat)
+    incl, node = np.arccos(h_hat[2]), np.arctan2(n_hat[1], n_hat[0])
+    if circular:
+        return np.linalg.norm(r), 0.0, incl, node, 0.0, np.arctan2(r @ m_hat, r @ n_hat)
+    e_vec = np.cross(v, np.cross(r, v)) / mu - r / np.linalg.norm(r)
+    e = np.linalg.norm(e_vec)
+    a = 1.0 / (2.0 / np.linalg.norm(r) - v @ v / mu)
+    peri = np.arctan2(e_vec @ m_hat, e_vec @ n_hat)
+    nu = np.arctan2(np.cross(e_vec, r) @ h_hat, e_vec @ r)
+    big_e = 2.0 * np.arctan(np.sqrt((1 - e) / (1 + e)) * np.tan(nu / 2))
+    return a, e, incl, node, peri, big_e - e * np.sin(big_e)

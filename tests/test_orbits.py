@@ -1,0 +1,157 @@
+"""Orbit sources: DE421 readers vs skyfield, the interpolant's error bound, Kepler vs a numerical two-body run."""
+import math
+
+import numpy as np
+import pytest
+
+from spinorbit.errors import EphemerisRangeError, ScenarioError
+from spinorbit.orbits import kernel as kernel_module
+from spinorbit.orbits.analytic import CircularOrbits, KeplerOrbit
+from spinorbit.orbits.interpolant import HermiteOrbits, grid
+from spinorbit.orbits.kernel import DE421Arrays, JPLKernel, open_ephemeris
+from spinorbit.orbits.sources import sample_orbits
+from tests.units import arcsec, mas
+
+EPOCHS = np.array([-36000.0, -10000.5, 0.0, 1234.567, 19000.25])   # TDB days from J2000, 1901-2052
+PAIRS = [("moon", "earth"), ("earth", "moon"), ("sun", "moon"), ("jupiter", "earth"), ("venus", "sun")]
+
+
+def angle(a, b):
+    """Angle between rows of a and b, rad."""
+    return np.arctan2(np.linalg.norm(np.cross(a, b), axis=-1), (a * b).sum(-1))
+
+
+@pytest.fixture(scope="module")
+def de421():
+    return JPLKernel()
+
+
+@pytest.mark.parametrize("target, center", PAIRS)
+def test_de421_matches_skyfield(de421, target, center):
+    from skyfield.api import load, load_file
+
+    eph = load_file(str(kernel_module.kernel_path("de421")))
+    ts = load.timescale(builtin=True)
+    names = {"earth": "earth", "moon": "moon", "sun": "sun", "jupiter": "jupiter barycenter",
+             "venus": "venus"}
+    state = (eph[names[target]] - eph[names[center]]).at(ts.tdb_jd(2451545.0, EPOCHS))
+    pos, vel = de421.relative_states(target, center, EPOCHS)
+    assert np.abs(pos - state.position.km.T).max() < 1e-6                     # km
+    assert np.abs(vel - state.velocity.km_per_s.T * 86400).max() < 1e-7       # km/day
+    assert angle(pos, state.position.km.T).max() < 1e-3 * mas
+
+
+@pytest.mark.parametrize("target, center", PAIRS)
+def test_de421_arrays_match_bsp(de421, target, center):
+    arrays = DE421Arrays()
+    pos, vel = de421.relative_states(target, center, EPOCHS)
+    pos2, vel2 = arrays.relative_states(target, center, EPOCHS)
+    # the same Chebyshev series: equal to rounding (measured 3e-5 km on 1.3e8 km, Sun from Moon)
+    assert (np.linalg.norm(pos - pos2, axis=1) / np.linalg.norm(pos, axis=1)).max() < 1e-12
+    assert (np.linalg.norm(vel - vel2, axis=1) / np.linalg.norm(vel, axis=1)).max() < 1e-11
+    assert angle(pos, pos2).max() < 1e-3 * mas
+
+
+def test_de421_beyond_the_bsp_uses_the_arrays():
+    assert open_ephemeris("de421", 0.0, 30000.0).span[1] == pytest.approx(73079.5)  # 2200-01
+    with pytest.raises(EphemerisRangeError, match="73079.5"):
+        open_ephemeris("de421", 0.0, 80000.0)
+
+
+def test_out_of_span_raises_with_the_span(de421):
+    with pytest.raises(EphemerisRangeError, match="-36680.5 to 19639.5"):
+        de421.relative_states("moon", "earth", [19640.0])
+    orbits = sample_orbits("de421", "moon", ("earth",), 0.0, 10.0)
+    with pytest.raises(EphemerisRangeError, match="0 to 10"):
+        orbits.positions([10.5])
+    inside, outside = orbits.kernel(10.0, orbits.data), orbits.kernel(10.0 + 1e-9, orbits.data)
+    assert np.all(np.isfinite(inside)) and np.all(np.isnan(outside))      # never clamped
+    assert np.all(np.isnan(orbits.kernel(-1e-9, orbits.data)))
+
+
+def test_unknown_source_and_body_name_the_choices(de421):
+    with pytest.raises(ScenarioError, match="orbit.source"):
+        kernel_module.kernel_path("de999")
+    with pytest.raises(ScenarioError, match="body"):
+        de421.relative_states("vulcan", "earth", [0.0])
+
+
+def test_a_bsp_dropped_into_ephemerides_is_found_by_name(tmp_path, monkeypatch):
+    (tmp_path / "mykernel.bsp").symlink_to(kernel_module.kernel_path("de421"))
+    monkeypatch.setattr(kernel_module, "EPHEMERIDES_DIR", tmp_path)
+    orbits = sample_orbits("mykernel", "earth", ("moon",), 0.0, 2.0)
+    assert orbits.source == "mykernel"
+    expected = JPLKernel().relative_states("moon", "earth", [1.0])[0]
+    assert np.abs(orbits.positions([1.0])[0] - expected).max() < 0.01    # km
+
+
+def test_hermite_error_on_a_circle_is_the_h4_bound():
+    """Cubic Hermite error at mid-points = r (omega h)^4 / 384 (4th-derivative remainder)."""
+    radius, rate, step = 384400.0, 2 * math.pi / 27.32, 0.25
+    circle = CircularOrbits(("earth",), [1.0], [radius], [rate], inclination=[0.3])
+    t = grid(0.0, 60.0, step)
+    vel = np.array([np.cross([0, -math.sin(0.3), math.cos(0.3)], p) * rate for p in circle.positions(t)[:, 0]])
+    orbits = HermiteOrbits(("earth",), [1.0], 0.0, step, circle.positions(t).transpose(1, 0, 2), vel[None])
+    err = orbits.measure_error(circle.positions)[0]
+    bound = radius * (rate * step) ** 4 / 384
+    assert 0.99 * bound < err < 1.001 * bound        # km (bound = 0.0121 km)
+
+
+def test_de421_interpolation_error_is_within_the_stated_bound():
+    """Moon-centred Earth and Sun at 0.25 d: |dr|/r < 1e-7 (torque error < 3e-7), measured 5.6e-8."""
+    orbits = sample_orbits("de421", "moon", ("earth", "sun"), 0.0, 365.25)
+    assert np.all(orbits.max_error_km < 0.03)                 # km; measured 0.020, 0.020
+    assert orbits.max_relative_error[0] < 1e-7                # measured 5.6e-8
+    assert orbits.max_relative_error[1] < 1e-9                # measured 1.3e-10
+    t = np.linspace(0.1, 365.0, 97)
+    truth = JPLKernel().relative_states("earth", "moon", t)[0]
+    assert angle(orbits.positions(t)[:, 0], truth).max() < 0.02 * arcsec
+
+
+def test_kepler_matches_a_numerical_two_body_run():
+    from scipy.integrate import solve_ivp
+
+    mu, a, e = 1.0e6, 1.0e4, 0.6
+    orbit = KeplerOrbit(("p",), [mu], [a], [e], mean_anomaly=[0.7], periapsis=[1.1],
+                        inclination=[0.4], node=[-0.5])
+    period = 2 * math.pi / orbit.mean_motion[0]
+    r0 = orbit.positions([0.0])[0, 0]
+    h = 0.1                                     # 4th-order central difference for the velocity
+    f = lambda dt: orbit.positions([dt])[0, 0]
+    v0 = (8 * (f(h) - f(-h)) - (f(2 * h) - f(-2 * h))) / (12 * h)
+    run = solve_ivp(lambda t, y: np.r_[y[3:], -mu * y[:3] / np.linalg.norm(y[:3]) ** 3],
+                    (0, 3 * period), np.r_[r0, v0], method="DOP853", rtol=1e-13, atol=1e-9,
+                    dense_output=True)
+    t = np.linspace(0, 3 * period, 301)
+    assert np.abs(orbit.positions(t)[:, 0] - run.sol(t)[:3].T).max() < 1e-8 * a      # km
+
+
+def test_kepler_orientation_is_node_inclination_periapsis():
+    from scipy.spatial.transform import Rotation
+
+    a, e, node, incl, peri = 7.0, 0.3, 0.8, 0.5, -1.2
+    orbit = KeplerOrbit(("p",), [1.0], [a], [e], periapsis=[peri], inclination=[incl], node=[node])
+    rotation = Rotation.from_euler("ZXZ", [node, incl, peri])        # Rz(node) Rx(i) Rz(peri)
+    assert np.abs(orbit.positions([0.0])[0, 0] - rotation.apply([a * (1 - e), 0, 0])).max() < 1e-14
+
+
+def test_kepler_circle_is_the_circle():
+    kepler = KeplerOrbit(("s",), [1.0], [2.0], [0.0], [0.3], mean_anomaly=[0.5], inclination=[0.2])
+    circle = CircularOrbits(("s",), [1.0], [2.0], [0.3], phase=[0.5], inclination=[0.2])
+    t = np.linspace(-50, 50, 41)
+    assert np.abs(kepler.positions(t) - circle.positions(t)).max() < 1e-14
+
+
+def test_kepler_rejects_hyperbolic_eccentricity():
+    with pytest.raises(ScenarioError, match="orbit.e"):
+        KeplerOrbit(("s",), [1.0], [1.0], [1.2])
+
+
+@pytest.mark.parametrize("kind", ["kepler", "circular"])
+def test_two_body_sources_pass_through_the_de421_state(de421, kind):
+    orbits = sample_orbits(kind, "earth", ("moon",), 100.0, 200.0)
+    truth = de421.relative_states("moon", "earth", [100.0])[0]
+    assert np.abs(orbits.positions([100.0])[0] - truth).max() < 1e-6     # km
+    # after a day the two-body orbit has left DE421 by the solar perturbation, < 0.5 %
+    drift = np.linalg.norm(orbits.positions([101.0])[0] - de421.relative_states("moon", "earth", [101.0])[0])
+    assert drift < 0.005 * np.linalg.norm(truth)
