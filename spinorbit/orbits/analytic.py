@@ -134,3 +134,53 @@ class KeplerOrbit:
 
     def positions(self, t):
         return np.array([_kepler_positions(ti, self.data) for ti in np.atleast_1d(t)])
+
+
+@njit(cache=True)
+def _uneven_circle_positions(t, data):
+    """data = (f, delta, alpha, beta, a_freq, phase), each (n,) -> (n, 3) in the x-y plane."""
+    f, delta, alpha, beta, a_freq, phase = data
+    out = np.zeros((f.shape[0], 3))
+    for i in range(f.shape[0]):
+        angle = delta[i] * t + alpha[i] * math.sin(a_freq[i] * t) + phase[i]
+        s = f[i] * (1.0 + beta[i] * math.cos(a_freq[i] * t)) ** (-1.0 / 3.0)
+        out[i, 0] = s * math.cos(angle)
+        out[i, 1] = s * math.sin(angle)
+    return out
+
+
+@dataclass
+class UnevenCircle:
+    """Euler's uneven orbit of P94 (§833): XF = delta t + alpha sin At + phase, 1/s^3 = (1 + beta cos At)/f^3.
+
+    f (mean distance, km), delta and A (rad per time unit), alpha, beta and phase (rad, -),
+    one value per attracting mass; the orbit lies in the x-y plane.
+    """
+
+    names: tuple
+    gm: np.ndarray
+    f: np.ndarray
+    delta: np.ndarray
+    alpha: np.ndarray
+    beta: np.ndarray
+    a_freq: np.ndarray
+    phase: np.ndarray = None
+    span: tuple = (-math.inf, math.inf)
+    data: tuple = field(init=False)
+
+    def __post_init__(self):
+        n = len(self.names)
+        as_array = lambda v: np.zeros(n) if v is None else np.asarray(v, dtype=float).reshape(n)
+        self.gm, self.f, self.delta = as_array(self.gm), as_array(self.f), as_array(self.delta)
+        self.alpha, self.beta, self.a_freq = as_array(self.alpha), as_array(self.beta), as_array(self.a_freq)
+        self.phase = as_array(self.phase)
+        if np.any(self.f <= 0):
+            raise ScenarioError("orbit.f", self.f.tolist(), "positive mean distances")
+        if np.any(np.abs(self.beta) >= 1):
+            raise ScenarioError("orbit.beta", self.beta.tolist(), "|beta| < 1 (1/s^3 must stay positive)")
+        self.data = (self.f, self.delta, self.alpha, self.beta, self.a_freq, self.phase)
+
+    kernel = staticmethod(_uneven_circle_positions)
+
+    def positions(self, t):
+        return np.array([_uneven_circle_positions(ti, self.data) for ti in np.atleast_1d(t)])
