@@ -2,7 +2,8 @@
 
 States are km and km/day in ICRF axes at TDB days from J2000.0.  Nothing is
 downloaded: DE421 comes from the ``skyfield-data`` package, other kernels from
-``ephemerides/<name>.bsp`` or an installed ``naif-<name>`` package.
+``ephemerides/<name>.bsp`` (in the working directory or this repository) or an
+installed ``naif-<name>`` package.
 """
 import importlib
 import importlib.resources
@@ -27,9 +28,9 @@ def kernel_path(source):
     """Path of the SPK kernel called ``source`` ('de421', 'de440', ... or a path to a .bsp)."""
     if source.endswith(".bsp"):
         return Path(source)
-    local = EPHEMERIDES_DIR / f"{source}.bsp"
-    if local.exists():
-        return local
+    for folder in (Path.cwd() / "ephemerides", EPHEMERIDES_DIR):
+        if (folder / f"{source}.bsp").exists():
+            return folder / f"{source}.bsp"
     if source == "de421":
         return Path(str(importlib.resources.files("skyfield_data") / "data" / "de421.bsp"))
     try:

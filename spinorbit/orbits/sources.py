@@ -41,7 +41,7 @@ def sample_orbits(source, center, bodies, t_start, t_end, step=None, measure=Tru
 
         orbits = ReboundOrbits(center, bodies, t_start, t_end, step)
         reference = None
-    elif isinstance(source, str) and source.isidentifier() or str(source).endswith(".bsp"):
+    elif isinstance(source, str):
         from .interpolant import HermiteOrbits, grid
         from .kernel import open_ephemeris
 
