@@ -10,6 +10,11 @@ from ..errors import ScenarioError
 
 SCENES = {
     "free_body": "spinorbit.scenes.free_body",
+    "p92_start_from_rest": "spinorbit.scenes.p92_start_from_rest",
+    "p93_planar_libration": "spinorbit.scenes.p93_planar_libration",
+    "p94_forced_libration": "spinorbit.scenes.p94_forced_libration",
+    "p95_near_principal_axis": "spinorbit.scenes.p95_near_principal_axis",
+    "p96_precession": "spinorbit.scenes.p96_precession",
 }
 
 

@@ -1,0 +1,101 @@
+"""Planar libration on a circular orbit (Euler ch. 16 P93, §825-831) against its closed form.
+
+The full 3-D rigid body turns about its axis C, normal to the orbit of the
+centre of forces F (a uniform circle in the body's equatorial plane, the
+inertial x-y plane).  zeta = AF = (longitude of F) - (longitude of A) obeys
+zeta'' + n sin 2 zeta = 0 with n = (3/2) GM (B - A)/(C s^3); the scenario picks
+Euler's energy constant C as a multiple of n (-1, 0, 1, > 1: §826's cases).
+"""
+import math
+
+import numpy as np
+
+from ..constants import ARCSEC
+from ..dynamics import SpinSystem, make_point_mass_torque, make_rigid_body_rhs
+from ..rotations import matrix_from_quat
+from ..scenarios import Key
+from . import common
+
+SCHEMA = {
+    "body.moments": Key(unit="", size=3, help="principal moments A < B <= C, any unit"),
+    "orbit.gm": Key(unit="km3/d2", help="GM of the centre of forces"),
+    "orbit.radius": Key(unit="km", help="distance s of F"),
+    "orbit.rate": Key(unit="rad/d", help="angular speed delta of F"),
+    "libration.energy_over_n": Key(unit="", help="Euler's constant C in units of n: -1, 0, 1 or > 1"),
+}
+
+
+def planar_system(moments, orbit, t0, zeta0, zeta_dot0, delta):
+    """Body turning about z with A at angle (delta t0 - zeta0) from x; omega_z = delta - zeta' (§825)."""
+    torque = make_point_mass_torque(orbit.kernel)
+    lam = delta * t0 - zeta0
+    q0 = np.array([math.cos(lam / 2), 0.0, 0.0, math.sin(lam / 2)])
+    y0 = np.concatenate([q0, [0.0, 0.0, delta - zeta_dot0]])
+    return SpinSystem(make_rigid_body_rhs(torque), (moments, orbit.gm, orbit.data), t0, y0,
+                      moments, torque, "planar libration")
+
+
+def zeta_from_solution(solution, f_longitude):
+    """zeta = longitude of F - longitude of the body's A axis, unwrapped (rad)."""
+    lam = np.array([math.atan2(r[1, 0], r[0, 0]) for r in map(matrix_from_quat, solution.quaternion)])
+    return np.unwrap(f_longitude - lam)
+
+
+def crossing_times(t, x, level=0.0):
+    """Times where x crosses ``level`` upwards, by linear interpolation."""
+    i = np.nonzero((x[:-1] < level) & (x[1:] >= level))[0]
+    return t[i] + (level - x[i]) * (t[i + 1] - t[i]) / (x[i + 1] - x[i])
+
+
+def run(scenario):
+    from ..orbits.analytic import CircularOrbits
+    from ..theory import PlanarLibration, libration_n
+
+    body = common.rigid_body(scenario)
+    gm, s, delta = scenario["orbit.gm"], scenario["orbit.radius"], scenario["orbit.rate"]
+    n = libration_n(body.moments, gm, s)
+    energy = scenario["libration.energy_over_n"] * n
+    zeta_dot0 = math.sqrt(max(energy + n, 0.0))
+    t0 = scenario.t_start
+    orbit = CircularOrbits(("F",), [gm], [s], [delta], phase=[-delta * t0])
+    system = planar_system(body.moments, orbit, t0, 0.0, zeta_dot0, delta)
+    t = scenario.output_times()
+    solution, point = common.simulate_scenario(scenario, system, t)
+
+    theory = PlanarLibration(n, 0.0, zeta_dot0)
+    dt = solution.t - t0
+    zeta_num = zeta_from_solution(solution, delta * dt)
+    zeta_cf = theory.zeta(dt)
+    comparison = {"case": theory.case, "n_rad2_per_d2": n, "energy_over_n": theory.energy / n}
+    if theory.case == "separatrix":
+        # Euler's t = ln tan(45 deg + zeta/2)/sqrt(2n); the separatrix is unstable, so compare while zeta < 80 deg.
+        keep = zeta_num < math.radians(80)
+        comparison["zeta_error_max_arcsec_below_80deg"] = float(np.abs(zeta_num - zeta_cf)[keep].max() / ARCSEC)
+        for deg in (30, 60, 80):
+            comparison[f"time_to_{deg}deg_d"] = float(crossing_times(dt, zeta_num, math.radians(deg))[0])
+            comparison[f"time_to_{deg}deg_euler_d"] = float(theory.separatrix_time(math.radians(deg)))
+    else:
+        comparison["zeta_error_max_arcsec"] = float(np.abs(zeta_num - zeta_cf).max() / ARCSEC)
+    if theory.case == "bounded":
+        ups = crossing_times(dt, zeta_num)
+        comparison["period_closed_form_d"] = float(theory.period)
+        comparison["period_measured_d"] = float(np.mean(np.diff(ups))) if ups.size > 1 else math.nan
+        comparison["max_digression_closed_form_deg"] = math.degrees(theory.max_digression)
+        comparison["max_digression_measured_deg"] = float(np.degrees(np.abs(zeta_num).max()))
+        comparison["return_time_small_oscillation_euler_d"] = theory.small_oscillation_return_time()
+        comparison["return_time_exact_d"] = float(theory.period / 2)
+    if theory.case == "circulation":
+        levels = math.pi / 2 + math.pi * np.arange(int((zeta_num.max() - math.pi / 2) // math.pi) + 1)
+        passes = np.interp(levels, zeta_num, dt)
+        comparison["half_turn_time_closed_form_d"] = float(theory.period)
+        comparison["half_turn_time_measured_d"] = float(np.mean(np.diff(passes))) if passes.size > 1 else math.nan
+    if theory.case == "equilibrium":
+        comparison["max_digression_measured_arcsec"] = float(np.abs(zeta_num).max() / ARCSEC)
+
+    table = common.attitude_table(solution)
+    table["zeta"] = zeta_num * common.u().rad
+    table["zeta_closed_form"] = zeta_cf * common.u().rad
+    figures = {"zeta": common.plot_series(dt, np.degrees([zeta_num, zeta_cf]), "days from start", "zeta = AF [deg]",
+                                          ["integrated (3-D rigid body)", "closed form"])}
+    summary = {"comparison": comparison, "run": point}
+    return common.result(scenario, table, summary, figures, solution)
