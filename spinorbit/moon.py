@@ -1,0 +1,195 @@
+"""The lunar model (layer 2): figure torques of degree 2-4, fluid core, tidal and rotational distortion.
+
+Four levels, each adding physics to the one before:
+
+1. Euler's model: a rigid degree-2 Moon, Earth and Sun as point masses
+   (Euler ch. 16 P91, §815: N = 3 GM/r^5 r x I r);
+2. + the Moon's degree-3 and degree-4 gravity field acting with every point mass:
+   N = -M_A r x grad U_Moon(r) (Williams, Boggs & Folkner 2008; Folkner et al. 2014);
+3. + a spherical fluid core coupled by friction and the tidal and rotational distortion
+   of the mantle's moment of inertia (Folkner et al. 2014, IPN PR 42-196, lunar
+   orientation; the inertia tensor as corrected by Pavlov & Williams 2019):
+
+   I_m = I~ - C_c 1 - k2 (M_E/M) (R^3/r^5) [x_i x_j - r^2 d_ij/3]
+               + k2 R^3/(3 GM) [w_i w_j - d_ij (w^2 - n^2)/3, zz: w_z^2 - (w^2 + 2 n^2)/3]
+   d(I_m w_m)/dt + w_m x I_m w_m = N_figure + N_cmb,   N_cmb = k_v (w_c - w_m)
+   C_c dw_c/dt + w_m x C_c w_c = -N_cmb                 (w_c in mantle axes)
+
+   x = the Earth's position in the mantle frame at t - tau (the tide raised a time
+   tau earlier, carried round with the mantle); w in the rotational term is taken at t;
+4. (optional) further point masses (planets) acting on the figure.
+
+Units: km, rad/day, GM km^3/day^2, moments in units of M R^2 (R = gravity reference
+radius).  State y = [q (4), w_m (3)] or [q, w_m, w_c (3)] with a core.
+"""
+import math
+
+import numpy as np
+from numba import njit
+
+from .rotations import matrix_from_quat, quat_rate
+
+# Layout of the float vector ``consts`` in the parameters (see moon_params).
+R_KM, K2_MASS_RATIO, K2_ROT, TAU_D, KV, C_CORE, N_MEAN = range(7)
+
+
+@njit(cache=True)
+def harmonic_gradient(r, radius, c_nm, s_nm, n_min, n_max):
+    """grad W at r (body axes, km) for W = (1/r) sum (R/r)^n P_nm (C cos + S sin): 1/km^2.
+
+    W is the potential per unit GM of the body, degrees n_min..n_max, unnormalised
+    coefficients (C_n0 = -J_n).  Cartesian V_nm/W_nm recursion, free of polar
+    singularities (Montenbruck & Gill 2000, §3.2.4-3.2.5).
+    """
+    top = n_max + 1
+    x, y, z = r[0], r[1], r[2]
+    r2 = x * x + y * y + z * z
+    rho = radius * radius / r2
+    x0, y0, z0 = radius * x / r2, radius * y / r2, radius * z / r2
+    v = np.zeros((top + 1, top + 1))
+    w = np.zeros((top + 1, top + 1))
+    v[0, 0] = radius / math.sqrt(r2)
+    for m in range(top + 1):
+        if m > 0:
+            v[m, m] = (2 * m - 1) * (x0 * v[m - 1, m - 1] - y0 * w[m - 1, m - 1])
+            w[m, m] = (2 * m - 1) * (x0 * w[m - 1, m - 1] + y0 * v[m - 1, m - 1])
+        if m < top:
+            v[m + 1, m] = (2 * m + 1) * z0 * v[m, m]
+            w[m + 1, m] = (2 * m + 1) * z0 * w[m, m]
+        for n in range(m + 2, top + 1):
+            v[n, m] = ((2 * n - 1) * z0 * v[n - 1, m] - (n + m - 1) * rho * v[n - 2, m]) / (n - m)
+            w[n, m] = ((2 * n - 1) * z0 * w[n - 1, m] - (n + m - 1) * rho * w[n - 2, m]) / (n - m)
+    ax = ay = az = 0.0
+    for n in range(n_min, n_max + 1):
+        c = c_nm[n, 0]
+        ax -= c * v[n + 1, 1]
+        ay -= c * w[n + 1, 1]
+        az -= (n + 1) * c * v[n + 1, 0]
+        for m in range(1, n + 1):
+            c, s = c_nm[n, m], s_nm[n, m]
+            fac = (n - m + 2) * (n - m + 1)
+            ax += 0.5 * (-c * v[n + 1, m + 1] - s * w[n + 1, m + 1]
+                         + fac * (c * v[n + 1, m - 1] + s * w[n + 1, m - 1]))
+            ay += 0.5 * (-c * w[n + 1, m + 1] + s * v[n + 1, m + 1]
+                         + fac * (-c * w[n + 1, m - 1] + s * v[n + 1, m - 1]))
+            az += (n - m + 1) * (-c * v[n + 1, m] - s * w[n + 1, m])
+    return np.array([ax, ay, az]) / (radius * radius)
+
+
+@njit(cache=True)
+def figure_torque(inertia, r_body, gm):
+    """Degree-2 torque 3 GM/r^5 r x (I r) of a point mass (Euler ch. 16 P91, §815), any I tensor."""
+    r2 = r_body[0] ** 2 + r_body[1] ** 2 + r_body[2] ** 2
+    return 3.0 * gm / (r2 * r2 * math.sqrt(r2)) * np.cross(r_body, inertia @ r_body)
+
+
+@njit(cache=True)
+def harmonic_torque(r_body, gm, radius, c_nm, s_nm, n_min, n_max):
+    """Torque per unit M R^2 of a point mass GM at r_body on the body's degree n_min..n_max field.
+
+    N = -M_A r x grad U_body(r); divided by M R^2: -(GM/R^2) r x grad W.
+    """
+    return -gm / (radius * radius) * np.cross(r_body, harmonic_gradient(r_body, radius, c_nm, s_nm, n_min, n_max))
+
+
+@njit(cache=True)
+def rotate_about(v, axis, angle):
+    """Rodrigues: v rotated right-handedly by ``angle`` about the unit vector ``axis``."""
+    c, s = math.cos(angle), math.sin(angle)
+    return v * c + np.cross(axis, v) * s + axis * (axis @ v) * (1.0 - c)
+
+
+@njit(cache=True)
+def distortion(omega, r_del, v_del, consts):
+    """Tidal + rotational change of the mantle inertia (M R^2) and its rate (tidal part), body axes.
+
+    r_del, v_del: the Earth's position (km) and its rate of change in mantle axes (km/d)
+    at t - tau.  The rotational part's rate (w varies by 1e-4 of n) is below 1e-12 M R^2/d
+    and is left out.
+    """
+    k_tide = consts[K2_MASS_RATIO] * consts[R_KM] ** 3
+    r2 = r_del @ r_del
+    f = k_tide / (r2 * r2 * math.sqrt(r2))
+    rv = r_del @ v_del
+    outer = np.outer(r_del, r_del)
+    d_outer = np.outer(v_del, r_del) + np.outer(r_del, v_del)
+    eye = np.eye(3)
+    tide = -f * (outer - r2 / 3.0 * eye)
+    tide_rate = -f * (d_outer - 2.0 * rv / 3.0 * eye) + 5.0 * f * rv / r2 * (outer - r2 / 3.0 * eye)
+    w2, n2 = omega @ omega, consts[N_MEAN] ** 2
+    rot = np.outer(omega, omega) - (w2 - n2) / 3.0 * eye
+    rot[2, 2] = omega[2] * omega[2] - (w2 + 2.0 * n2) / 3.0
+    return tide + consts[K2_ROT] * rot, tide_rate
+
+
+def make_moon_rhs(positions, degree=2, core=False, tides=False):
+    """Compiled rhs(t, y, p) of the lunar model.
+
+    ``positions(t, data) -> (n, 3)``: attracting bodies relative to the Moon, km, ICRF;
+    body 0 must be the Earth (it raises the tide).  ``degree``: 2, 3 or 4 (highest
+    degree of the Moon's field); ``core``: fluid core, y has 10 components;
+    ``tides``: tidal and rotational distortion.  p = moon_params(...).
+    """
+    n_max = int(degree)
+    with_core, with_tides = bool(core), bool(tides)
+    dt_diff = 1e-3        # days, central difference for the Earth's velocity at t - tau
+
+    @njit
+    def rhs(t, y, p):
+        moments, gm, data, c_nm, s_nm, consts = p[0], p[1], p[2], p[3], p[4], p[5]
+        q, omega = y[:4], y[4:7]
+        to_body = matrix_from_quat(q).T
+        inertia = np.diag(moments)
+        inertia_rate = np.zeros((3, 3))
+        if with_tides:
+            tau = consts[TAU_D]
+            wn = math.sqrt(omega @ omega)
+            axis = omega / wn
+            r_del = rotate_about(to_body @ positions(t - tau, data)[0], axis, wn * tau)
+            vel_i = (positions(t - tau + dt_diff, data)[0] - positions(t - tau - dt_diff, data)[0]) / (2 * dt_diff)
+            v_del = rotate_about(to_body @ vel_i, axis, wn * tau) - np.cross(omega, r_del)
+            delta, inertia_rate = distortion(omega, r_del, v_del, consts)
+            inertia = inertia + delta
+        r_all = positions(t, data)
+        torque = np.zeros(3)
+        for i in range(gm.shape[0]):
+            r_b = to_body @ r_all[i]
+            torque += figure_torque(inertia, r_b, gm[i])
+            if n_max >= 3:
+                torque += harmonic_torque(r_b, gm[i], consts[R_KM], c_nm, s_nm, 3, n_max)
+        dy = np.empty_like(y)
+        dy[:4] = quat_rate(q, omega)
+        if with_core:
+            c_core = consts[C_CORE]
+            omega_c = y[7:10]
+            n_cmb = consts[KV] * (omega_c - omega)
+            inertia = inertia - c_core * np.eye(3)
+            torque += n_cmb
+            dy[7:10] = -np.cross(omega, omega_c) - n_cmb / c_core
+        rhs_vec = torque - np.cross(omega, inertia @ omega) - inertia_rate @ omega
+        dy[4:7] = np.linalg.solve(inertia, rhs_vec)
+        return dy
+
+    return rhs
+
+
+def moon_params(moments, gm, data, c_nm, s_nm, radius_km, k2=0.0, gm_moon=1.0, tau_d=0.0,
+                kv_over_c=0.0, core_c_over_c=0.0, n_mean=0.0):
+    """Parameter tuple of make_moon_rhs.
+
+    moments: (A, B, C) of the whole undistorted Moon, M R^2; gm (n,) km^3/d^2 (gm[0] = Earth);
+    data: the orbit kernel's data; c_nm, s_nm (5, 5) unnormalised; k2, tau_d (days);
+    kv_over_c: k_v / C (1/day); core_c_over_c: C_core / C; n_mean: mean motion, rad/day.
+    """
+    moments = np.asarray(moments, dtype=float)
+    c_total = moments[2]
+    consts = np.zeros(7)
+    consts[R_KM] = radius_km
+    consts[K2_MASS_RATIO] = k2 * gm[0] / gm_moon
+    consts[K2_ROT] = k2 * radius_km**3 / (3.0 * gm_moon)
+    consts[TAU_D] = tau_d
+    consts[KV] = kv_over_c * c_total
+    consts[C_CORE] = core_c_over_c * c_total
+    consts[N_MEAN] = n_mean
+    return (moments, np.asarray(gm, dtype=float), data, np.ascontiguousarray(c_nm, dtype=float),
+            np.ascontiguousarray(s_nm, dtype=float), consts)

@@ -1,0 +1,212 @@
+"""JPL DE421 lunar orientation and lunar model constants (edge module).
+
+Two independent routes to the DE421 mantle orientation (JPL 3-1-3 angles
+phi, theta, psi: ICRF -> lunar principal axes, M = Rz(psi) Rx(theta) Rz(phi)):
+
+* :func:`librations` — the ``de421`` package's Chebyshev arrays
+  (``jpl-librations.npy``: shape (records x 4 sub-intervals, 3 angles, 10
+  coefficients), 8-day sub-intervals from ``jalpha`` = JD 2414992.5), evaluated with
+  ``numpy.polynomial.chebyshev``;
+* :func:`pck_matrix` — NAIF's binary PCK ``moon_pa_de421_1900-2050.bpc`` with the
+  frame kernel ``moon_080317.tf`` (both shipped by ``lunarsky``), through skyfield's
+  ``PlanetaryConstants`` (frame ``MOON_PA_DE421``).
+
+:data:`MOON` holds the DE421 lunar constants (``constants.npy``, the ephemeris
+header) under physical names with units.  References: Williams, Boggs & Folkner
+(2008), JPL IOM 335-JW,DB,WF-20080314-001 "DE421 lunar orbit, physical librations
+and surface coordinates"; Folkner et al. (2014), IPN PR 42-196 (the equations).
+Times: TDB days from J2000.0.
+"""
+from dataclasses import dataclass
+from functools import cache
+from pathlib import Path
+
+import numpy as np
+from numpy.polynomial import chebyshev
+
+from ..constants import J2000_JD
+from ..errors import EphemerisRangeError
+
+
+def _de421_dir():
+    import de421
+
+    return Path(de421.__file__).parent
+
+
+@cache
+def header():
+    """The DE421 header constants, name -> value (DE units: au, day, rad)."""
+    return {name.decode(): float(value) for name, value in np.load(_de421_dir() / "constants.npy")}
+
+
+@dataclass(frozen=True)
+class MoonConstants:
+    """DE421 lunar model constants, named with their units.
+
+    Moments (``moments``, units of M R^2, R = ``radius_km``) follow from the
+    undistorted J2, beta = (C - A)/B, gamma = (B - A)/C as in Folkner et al.
+    (2014, eq. for I): C = 2 J2 (1 + beta) / (2 beta - gamma + beta gamma),
+    B = C (1 + gamma)/(1 + beta), A = C (1 - beta gamma)/(1 + beta).
+    """
+
+    epoch_tdb_d: float            # JDEPOC - J2000: epoch of the initial state
+    angles0_rad: np.ndarray       # (PHI, THT, PSI) at the epoch
+    omega0_rad_d: np.ndarray      # mantle angular velocity, body axes (OMEGAX/Y/Z)
+    omega_core0_rad_d: np.ndarray  # fluid-core angular velocity, mantle axes (OMGCX/Y/Z)
+    beta: float                   # LBET = (C - A)/B
+    gamma: float                  # LGAM = (B - A)/C
+    j2: float                     # J2M, undistorted
+    c22: float                    # C22M
+    c_nm: np.ndarray              # unnormalised C_nm, shape (5, 5), degree 3-4 (C_n0 = -J_n)
+    s_nm: np.ndarray              # unnormalised S_nm, shape (5, 5)
+    radius_km: float              # AM, reference radius of the lunar gravity field
+    k2: float                     # K2M, lunar potential Love number
+    tau_d: float                  # TAUM, time delay of the lunar tide, days
+    kv_over_c_per_d: float        # KVC = k_nu / C, core-mantle friction, 1/day
+    core_c_over_c: float          # IFAC = C_core / C
+    gm_km3_d2: dict               # GM of sun, earth, moon (DE421), km^3/day^2
+    au_km: float
+    emrat: float                  # Earth/Moon mass ratio
+
+    @property
+    def c_mr2(self):
+        """C/(M R^2) of the whole Moon (undistorted)."""
+        b, g = self.beta, self.gamma
+        return 2 * self.j2 * (1 + b) / (2 * b - g + b * g)
+
+    @property
+    def moments(self):
+        """(A, B, C) of the whole undistorted Moon, units of M R^2."""
+        b, g, c = self.beta, self.gamma, self.c_mr2
+        return np.array([c * (1 - b * g) / (1 + b), c * (1 + g) / (1 + b), c])
+
+
+@cache
+def moon_constants():
+    """:class:`MoonConstants` read from the DE421 header."""
+    h = header()
+    c_nm, s_nm = np.zeros((5, 5)), np.zeros((5, 5))
+    c_nm[3, 0], c_nm[4, 0] = -h["J3M"], -h["J4M"]
+    for n in (3, 4):
+        for m in range(1, n + 1):
+            c_nm[n, m], s_nm[n, m] = h[f"C{n}{m}M"], h[f"S{n}{m}M"]
+    au = h["AU"]
+    gm = lambda x: x * au**3                       # au^3/d^2 -> km^3/d^2
+    gmb = h["GMB"]
+    return MoonConstants(
+        epoch_tdb_d=h["JDEPOC"] - J2000_JD,
+        angles0_rad=np.array([h["PHI"], h["THT"], h["PSI"]]),
+        omega0_rad_d=np.array([h["OMEGAX"], h["OMEGAY"], h["OMEGAZ"]]),
+        omega_core0_rad_d=np.array([h["OMGCX"], h["OMGCY"], h["OMGCZ"]]),
+        beta=h["LBET"], gamma=h["LGAM"], j2=h["J2M"], c22=h["C22M"], c_nm=c_nm, s_nm=s_nm,
+        radius_km=h["AM"], k2=h["K2M"], tau_d=h["TAUM"], kv_over_c_per_d=h["KVC"],
+        core_c_over_c=h["IFAC"],
+        gm_km3_d2={"sun": gm(h["GMS"]), "earth": gm(gmb * h["EMRAT"] / (1 + h["EMRAT"])),
+                   "moon": gm(gmb / (1 + h["EMRAT"]))},
+        au_km=au, emrat=h["EMRAT"],
+    )
+
+
+@cache
+def _libration_series():
+    return np.load(_de421_dir() / "jpl-librations.npy")
+
+
+def libration_span():
+    """(start, end) TDB days from J2000 covered by the de421 libration arrays."""
+    h = header()
+    return h["jalpha"] - J2000_JD, h["jomega"] - J2000_JD
+
+
+def librations(t_tdb_d):
+    """DE421 mantle angles (n, 3) rad and their rates (n, 3) rad/day at TDB days ``t``.
+
+    psi is continuous (not reduced modulo 2 pi), as in the ephemeris.
+    """
+    t = np.atleast_1d(np.asarray(t_tdb_d, dtype=float))
+    series = _libration_series()
+    start, end = libration_span()
+    if t.min() < start or t.max() > end:
+        raise EphemerisRangeError("de421 librations", f"{t.min():.6g} to {t.max():.6g}", (start, end))
+    length = (end - start) / series.shape[0]                       # 8 days
+    index = np.minimum(((t - start) // length).astype(int), series.shape[0] - 1)
+    x = 2.0 * (t - start - index * length) / length - 1.0
+    coeffs = series[index]                                         # (n, 3, 10)
+    angles = np.empty((t.size, 3))
+    rates = np.empty((t.size, 3))
+    for k in range(3):
+        c = coeffs[:, k, :].T                                      # (10, n): one series per time
+        angles[:, k] = chebyshev.chebval(x, c, tensor=False)
+        rates[:, k] = chebyshev.chebval(x, chebyshev.chebder(c), tensor=False) * 2.0 / length
+    return angles, rates
+
+
+def orientation(t_tdb_d):
+    """DE421 ICRF-to-body matrices (n, 3, 3) and body angular velocities (n, 3) rad/day."""
+    from ..rotations import matrix_from_euler313, omega_body_from_euler313_rates
+
+    angles, rates = librations(t_tdb_d)
+    mats = np.array([matrix_from_euler313(*a) for a in angles])
+    omega = np.array([omega_body_from_euler313_rates(a, r) for a, r in zip(angles, rates)])
+    return mats, omega
+
+
+def _pck_paths():
+    import importlib.resources
+
+    data = importlib.resources.files("lunarsky") / "data"
+    return (str(data / "fk" / "satellites" / "moon_080317.tf"),
+            str(data / "pck" / "moon_pa_de421_1900-2050.bpc"))
+
+
+@cache
+def _pck_frame():
+    from skyfield.api import load
+    from skyfield.planetarylib import PlanetaryConstants
+
+    text, binary = _pck_paths()
+    pc = PlanetaryConstants()
+    pc.read_text(load.open(text))
+    pc.read_binary(load.open(binary))
+    return pc.build_frame_named("MOON_PA_DE421")
+
+
+@cache
+def pck_span():
+    """(start, end) TDB days from J2000 covered by the NAIF lunar PCK."""
+    from jplephem.pck import PCK
+
+    pck = PCK.open(_pck_paths()[1])
+    try:
+        return (max(s.initial_jd for s in pck.segments) - J2000_JD,
+                min(s.final_jd for s in pck.segments) - J2000_JD)
+    finally:
+        pck.close()
+
+
+def pck_matrix(t_tdb_d):
+    """ICRF-to-MOON_PA_DE421 matrices (n, 3, 3) from the NAIF PCK via skyfield."""
+    from skyfield.api import load
+
+    t = np.atleast_1d(np.asarray(t_tdb_d, dtype=float))
+    start, end = pck_span()
+    if t.min() < start or t.max() > end:
+        raise EphemerisRangeError("moon_pa_de421 PCK", f"{t.min():.6g} to {t.max():.6g}", (start, end))
+    times = load.timescale().tdb_jd(J2000_JD, t)
+    return np.moveaxis(_pck_frame().rotation_at(times), -1, 0).reshape(t.size, 3, 3)
+
+
+def pole_and_longitude_difference(m_a, m_b):
+    """Differences of two series of ICRF-to-body matrices (n, 3, 3), rad: (pole, longitude).
+
+    pole: angle between the two body z axes (tilt of the spin axis);
+    longitude: signed rotation about z of frame a relative to frame b
+    (from the relative matrix m_a m_b^T; positive when a leads b).
+    """
+    m_a, m_b = np.asarray(m_a), np.asarray(m_b)
+    z_a, z_b = m_a[:, 2, :], m_b[:, 2, :]
+    pole = np.arctan2(np.linalg.norm(np.cross(z_a, z_b), axis=1), np.sum(z_a * z_b, axis=1))
+    rel = np.einsum("nij,nkj->nik", m_a, m_b)
+    longitude = np.arctan2(rel[:, 0, 1] - rel[:, 1, 0], rel[:, 0, 0] + rel[:, 1, 1])
+    return pole, longitude

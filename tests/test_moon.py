@@ -1,0 +1,80 @@
+"""The lunar model and its DE421 references.
+
+Decoding checks (the de421 arrays at JDEPOC reproduce the header's PHI, THT, PSI and
+OMEGAX/Y/Z), the NAIF PCK route against the arrays, the degree-n torque against
+Euler's closed form, and the libration scene against DE421 on spans that fit in CI.
+"""
+import numpy as np
+import pytest
+
+from spinorbit.errors import EphemerisRangeError
+from spinorbit.references import moon_de421 as ref
+from spinorbit.rotations import omega_body_from_euler313_rates
+from tests.units import arcsec, mas
+
+C = ref.moon_constants()
+
+
+def test_angles_at_epoch_equal_header():
+    angles, _ = ref.librations(C.epoch_tdb_d)
+    assert np.abs(angles[0] - C.angles0_rad).max() < 1e-12          # rad (1e-12 rad = 0.2 uas)
+
+
+def test_body_rates_at_epoch_equal_header():
+    angles, rates = ref.librations(C.epoch_tdb_d)
+    omega = omega_body_from_euler313_rates(angles[0], rates[0])
+    assert np.abs(omega - C.omega0_rad_d).max() < 1e-13 * np.linalg.norm(C.omega0_rad_d)
+
+
+def test_moments_match_published():
+    # DESIGN §4: A, B, C = 0.3930197, 0.3931092, 0.3932677 M R^2; C/MR^2 = 4 C22/gamma = 0.393268
+    assert np.allclose(C.moments, [0.3930197, 0.3931092, 0.3932677], rtol=0, atol=1e-7)
+    assert C.c_mr2 == pytest.approx(4 * C.c22 / C.gamma, rel=1e-9)
+
+
+def test_pck_agrees_with_arrays():
+    start, end = ref.pck_span()
+    t = np.linspace(start, end, 4001)
+    pole, lon = ref.pole_and_longitude_difference(ref.orientation(t)[0], ref.pck_matrix(t))
+    # measured: 0.007 mas pole, 0.013 mas longitude over 1900-2050
+    assert np.abs(pole).max() < 0.05 * mas
+    assert np.abs(lon).max() < 0.05 * mas
+
+
+def test_reference_range_errors():
+    start, end = ref.libration_span()
+    with pytest.raises(EphemerisRangeError):
+        ref.librations([start - 1.0])
+    with pytest.raises(EphemerisRangeError):
+        ref.pck_matrix([ref.pck_span()[1] + 1.0])
+
+
+def test_degree2_harmonics_equal_point_mass_torque():
+    """The V/W recursion at degree 2 (C20 = -J2, C22) equals 3 GM/r^5 r x I r (§815)."""
+    from spinorbit.moon import figure_torque, harmonic_torque
+
+    c_nm, s_nm = np.zeros((5, 5)), np.zeros((5, 5))
+    c_nm[2, 0], c_nm[2, 2] = -C.j2, C.c22
+    rng = np.random.default_rng(1)
+    for r in rng.normal(size=(5, 3)) * 3.8e5:
+        expected = figure_torque(np.diag(C.moments), r, 1.0)
+        got = harmonic_torque(r, 1.0, C.radius_km, c_nm, s_nm, 2, 2)
+        assert np.abs(got - expected).max() < 1e-12 * np.abs(expected).max()
+
+
+def test_degree3_torque_against_finite_difference_potential():
+    """r x grad W from the recursion equals r x (numerical gradient of the explicit degree-3 zonal)."""
+    from spinorbit.moon import harmonic_gradient
+
+    c_nm, s_nm = np.zeros((5, 5)), np.zeros((5, 5))
+    c_nm[3, 0] = -1e-5                 # C30 = -J3, J3 = 1e-5
+
+    def potential(r):           # W = -J3 (R/r)^3 P3(z/r) / r
+        x = r[2] / np.linalg.norm(r)
+        return -1e-5 * (C.radius_km / np.linalg.norm(r)) ** 3 * 0.5 * (5 * x**3 - 3 * x) / np.linalg.norm(r)
+
+    r = np.array([2.1e5, -1.4e5, 2.6e5])
+    h = 1.0
+    numeric = np.array([(potential(r + h * e) - potential(r - h * e)) / (2 * h) for e in np.eye(3)])
+    got = harmonic_gradient(r, C.radius_km, c_nm, s_nm, 3, 3)
+    assert np.abs(got - numeric).max() < 1e-7 * np.abs(numeric).max()
