@@ -1,0 +1,56 @@
+"""First motion of a body at rest (Euler ch. 16 P92, §820-823; ch. 15 §806) against the integrator.
+
+A body at rest with a fixed centre of forces F (direction given in body axes)
+begins to turn about the axis (cos alpha, cos beta, cos gamma) ~ (P/A, Q/B, R/C)
+with d gamma'/dt = |(P/A, Q/B, R/C)|.  The integrator's omega(t)/t at the
+first output step gives the same axis and rate to O(t).
+"""
+import math
+
+import numpy as np
+
+from ..constants import ARCSEC
+from ..dynamics import SpinSystem, make_point_mass_torque, make_rigid_body_rhs
+from ..scenarios import Key
+from . import common
+
+SCHEMA = {
+    "body.moments": Key(unit="", size=3, help="principal moments A <= B <= C, any unit"),
+    "orbit.gm": Key(unit="km3/d2", help="GM of the centre of forces"),
+    "orbit.radius": Key(unit="km", help="distance s of F"),
+    "force.direction": Key(unit="", size=3, help="direction of F in body principal axes"),
+}
+
+
+def run(scenario):
+    from ..orbits.analytic import CircularOrbits
+    from ..theory import start_from_rest
+
+    body = common.rigid_body(scenario)
+    gm, s = scenario["orbit.gm"], scenario["orbit.radius"]
+    u = scenario["force.direction"] / np.linalg.norm(scenario["force.direction"])
+    # F fixed (rate 0) at u: a circle point (cos a, sin a cos i, sin a sin i).
+    orbit = CircularOrbits(("F",), [gm], [s], [0.0], phase=[math.acos(u[0])],
+                           inclination=[math.atan2(u[2], u[1])])
+    torque = make_point_mass_torque(orbit.kernel)
+    system = SpinSystem(make_rigid_body_rhs(torque), (body.moments, orbit.gm, orbit.data), scenario.t_start,
+                        np.array([1.0, 0, 0, 0, 0, 0, 0]), body.moments, torque, "body at rest")
+    t = scenario.output_times()
+    solution, point = common.simulate_scenario(scenario, system, t)
+
+    axis, cos_of, rate = start_from_rest(body.moments, u, gm, s)
+    dt1 = solution.t[1] - solution.t[0]
+    w1 = solution.omega[1]
+    axis_num = w1 / np.linalg.norm(w1)
+    comparison = {
+        "axis_cos_alpha": float(axis[0]), "axis_cos_beta": float(axis[1]), "axis_cos_gamma": float(axis[2]),
+        "cos_OF": cos_of,
+        "rate_euler_rad_per_d2": rate,
+        "rate_integrated_rad_per_d2": float(np.linalg.norm(w1) / dt1),
+        "rate_rel_error": float(abs(np.linalg.norm(w1) / dt1 / rate - 1)),
+        "axis_error_arcsec": float(math.acos(min(1.0, float(axis_num @ axis))) / ARCSEC),
+        "first_step_d": float(dt1),
+    }
+    table = common.attitude_table(solution)
+    figures = {"omega": common.plot_omega(solution)}
+    return common.result(scenario, table, {"comparison": comparison, "run": point}, figures, solution)
