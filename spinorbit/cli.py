@@ -27,6 +27,12 @@ def main(argv=None):
     sweep.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE")
     sweep.add_argument("--scheduler", default="local", help="'local' (default), 'synchronous' or tcp://host:port")
     sweep.add_argument("--out", help="sweep directory (default runs/<scenario name>-sweep)")
+    bench = sub.add_parser("bench", help="work-precision of every suitable integrator on a scene")
+    bench.add_argument("scenario")
+    bench.add_argument("--methods", help="comma-separated method names (default: every method that supports the scene)")
+    bench.add_argument("--budget", type=float, default=10.0, help="stop a method's ladder after a run this long, s")
+    bench.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE")
+    bench.add_argument("--out", help="output directory (default runs/<scenario name>-bench)")
     listing = sub.add_parser("list", help="list the scenarios in a folder")
     listing.add_argument("folder", nargs="?", default=str(SCENARIO_DIR))
     args = parser.parse_args(argv)
@@ -35,6 +41,8 @@ def main(argv=None):
             return _run(args)
         if args.command == "sweep":
             return _sweep(args)
+        if args.command == "bench":
+            return _bench(args)
         return _list(Path(args.folder))
     except IntegrationError as exc:
         print(f"error: {exc}", file=sys.stderr)
@@ -77,6 +85,15 @@ def _sweep(args):
     for record in failed:
         print(f"  failed {record['overrides']}: {record['error']}", file=sys.stderr)
     return 1 if failed else 0
+
+
+def _bench(args):
+    from .bench import bench_scenario
+
+    methods = args.methods.split(",") if args.methods else None
+    rows, paths = bench_scenario(args.scenario, methods, args.out, args.budget, args.overrides)
+    print(f"bench: {len(rows)} runs; wrote {', '.join(str(p) for p in paths)}")
+    return 0
 
 
 def _list(folder):

@@ -27,6 +27,7 @@ def _rk_fixed(rhs, params, t0, y0, t_out, h, a, b, c, max_steps):
     y_out = np.empty((t_out.shape[0], dim))
     k = np.empty((n_stages, dim))
     y = y0.copy()
+    ys = np.empty(dim)
     t = t0
     steps = 0
     for i in range(t_out.shape[0]):
@@ -35,14 +36,18 @@ def _rk_fixed(rhs, params, t0, y0, t_out, h, a, b, c, max_steps):
         dt = span / n_sub if n_sub > 0 else 0.0
         for _ in range(n_sub):
             for s in range(n_stages):
-                ys = y.copy()
+                ys[:] = y
                 for j in range(s):
                     if a[s, j] != 0.0:
-                        ys += dt * a[s, j] * k[j]
+                        w = dt * a[s, j]
+                        for m in range(dim):
+                            ys[m] += w * k[j, m]
                 k[s] = rhs(t + c[s] * dt, ys, params)
             for s in range(n_stages):
                 if b[s] != 0.0:
-                    y += dt * b[s] * k[s]
+                    w = dt * b[s]
+                    for m in range(dim):
+                        y[m] += w * k[s, m]
             t += dt
             steps += 1
             if steps > max_steps or not np.all(np.isfinite(y)):

@@ -41,54 +41,55 @@ import numpy as np
 from numba import njit
 
 from ..errors import IntegrationError, ScenarioError
-from ..rotations import quat_multiply
 from .base import Integrator, Solution
 
 FREE_FLOWS = ("symmetric", "axes")
 
 
 @njit(cache=True)
-def _rotate(q, l, w, h):
-    """Exact flow over h with constant body angular velocity w: q * exp(w h/2), L rotated by -|w| h."""
-    rate = math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
+def _rotate(q, l, wx, wy, wz, h):
+    """In place: exact flow over h with constant body angular velocity w (q * exp(w h/2), L rotated by -|w| h)."""
+    rate = math.sqrt(wx * wx + wy * wy + wz * wz)
     angle = rate * h
     if angle == 0.0:
-        return q, l
-    n = w / rate
-    half = 0.5 * angle
-    s = math.sin(half)
-    q_new = quat_multiply(q, np.array([math.cos(half), s * n[0], s * n[1], s * n[2]]))
-    # Rodrigues rotation of l by -angle about n
-    c, sn = math.cos(angle), -math.sin(angle)
-    dot = n[0] * l[0] + n[1] * l[1] + n[2] * l[2]
-    cross = np.array([n[1] * l[2] - n[2] * l[1], n[2] * l[0] - n[0] * l[2], n[0] * l[1] - n[1] * l[0]])
-    l_new = l * c + cross * sn + n * dot * (1.0 - c)
-    return q_new, l_new
+        return
+    nx, ny, nz = wx / rate, wy / rate, wz / rate
+    s = math.sin(0.5 * angle)
+    b0, b1, b2, b3 = math.cos(0.5 * angle), s * nx, s * ny, s * nz
+    a0, a1, a2, a3 = q[0], q[1], q[2], q[3]
+    q[0] = a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3
+    q[1] = a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2
+    q[2] = a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1
+    q[3] = a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0
+    c, sn = math.cos(angle), -math.sin(angle)          # Rodrigues, angle -|w| h about n
+    lx, ly, lz = l[0], l[1], l[2]
+    d = (nx * lx + ny * ly + nz * lz) * (1.0 - c)
+    l[0] = lx * c + (ny * lz - nz * ly) * sn + nx * d
+    l[1] = ly * c + (nz * lx - nx * lz) * sn + ny * d
+    l[2] = lz * c + (nx * ly - ny * lx) * sn + nz * d
 
 
 @njit(cache=True)
 def _axis_rotation(q, l, axis, rate_per_l, h):
-    """Flow of H = rate_per_l * L_axis^2 / 2: rotation about body axis at rate rate_per_l * L_axis."""
-    w = np.zeros(3)
-    w[axis] = rate_per_l * l[axis]
-    return _rotate(q, l, w, h)
+    """In place: flow of H = rate_per_l L_axis^2 / 2, a rotation about a body axis at rate rate_per_l L_axis."""
+    rate = rate_per_l * l[axis]
+    _rotate(q, l, rate if axis == 0 else 0.0, rate if axis == 1 else 0.0, rate if axis == 2 else 0.0, h)
 
 
 @njit(cache=True)
 def _free_flow(q, l, moments, h, symmetric, s, i, j):
-    """Symmetric (2nd-order) splitting of the free rigid body over h; see the module docstring."""
+    """In place: symmetric (2nd-order) splitting of the free rigid body over h; see the module docstring."""
     if symmetric:
-        q, l = _axis_rotation(q, l, j, 1.0 / moments[j] - 1.0 / moments[i], 0.5 * h)
-        q, l = _rotate(q, l, l / moments[i], h)                                   # |L|^2 / (2 I_i)
-        q, l = _axis_rotation(q, l, s, 1.0 / moments[s] - 1.0 / moments[i], h)    # axisymmetric part
-        q, l = _axis_rotation(q, l, j, 1.0 / moments[j] - 1.0 / moments[i], 0.5 * h)
+        _axis_rotation(q, l, j, 1.0 / moments[j] - 1.0 / moments[i], 0.5 * h)
+        _rotate(q, l, l[0] / moments[i], l[1] / moments[i], l[2] / moments[i], h)      # |L|^2 / (2 I_i)
+        _axis_rotation(q, l, s, 1.0 / moments[s] - 1.0 / moments[i], h)             # axisymmetric part
+        _axis_rotation(q, l, j, 1.0 / moments[j] - 1.0 / moments[i], 0.5 * h)
     else:
-        q, l = _axis_rotation(q, l, 0, 1.0 / moments[0], 0.5 * h)
-        q, l = _axis_rotation(q, l, 1, 1.0 / moments[1], 0.5 * h)
-        q, l = _axis_rotation(q, l, 2, 1.0 / moments[2], h)
-        q, l = _axis_rotation(q, l, 1, 1.0 / moments[1], 0.5 * h)
-        q, l = _axis_rotation(q, l, 0, 1.0 / moments[0], 0.5 * h)
-    return q, l
+        _axis_rotation(q, l, 0, 1.0 / moments[0], 0.5 * h)
+        _axis_rotation(q, l, 1, 1.0 / moments[1], 0.5 * h)
+        _axis_rotation(q, l, 2, 1.0 / moments[2], h)
+        _axis_rotation(q, l, 1, 1.0 / moments[1], 0.5 * h)
+        _axis_rotation(q, l, 0, 1.0 / moments[0], 0.5 * h)
 
 
 @njit
@@ -96,11 +97,10 @@ def _split_loop(torque, params, moments, t0, y0, t_out, h, gammas, symmetric, ax
     """Fixed step <= h landing on every output time; returns (y_out, n_done, steps, nfev, t_fail)."""
     s, i, j = axes[0], axes[1], axes[2]
     y_out = np.empty((t_out.shape[0], 7))
-    y = np.empty(7)
+    y = y0[:7].copy()
     q = y0[:4].copy()
     l = moments * y0[4:7]
     t = t0
-    y[:4], y[4:7] = q, l / moments
     n_torque = torque(t, y, params)
     nfev, steps = 1, 0
     for k in range(t_out.shape[0]):
@@ -110,19 +110,28 @@ def _split_loop(torque, params, moments, t0, y0, t_out, h, gammas, symmetric, ax
         for _ in range(n_sub):
             for g in gammas:
                 sub = g * dt
-                l = l + 0.5 * sub * n_torque
-                q, l = _free_flow(q, l, moments, sub, symmetric, s, i, j)
+                for m in range(3):
+                    l[m] += 0.5 * sub * n_torque[m]
+                _free_flow(q, l, moments, sub, symmetric, s, i, j)
                 t += sub
-                y[:4], y[4:7] = q, l / moments
+                for m in range(4):
+                    y[m] = q[m]
+                for m in range(3):
+                    y[4 + m] = l[m] / moments[m]
                 n_torque = torque(t, y, params)
                 nfev += 1
-                l = l + 0.5 * sub * n_torque
-            q = q / math.sqrt(q[0] ** 2 + q[1] ** 2 + q[2] ** 2 + q[3] ** 2)
+                for m in range(3):
+                    l[m] += 0.5 * sub * n_torque[m]
+            norm = math.sqrt(q[0] ** 2 + q[1] ** 2 + q[2] ** 2 + q[3] ** 2)
+            for m in range(4):
+                q[m] /= norm
             steps += 1
             if steps > max_steps or not (np.all(np.isfinite(l)) and np.all(np.isfinite(q))):
                 return y_out, k, steps, nfev, t
         t = t_out[k]
-        y_out[k, :4], y_out[k, 4:7] = q, l / moments
+        y_out[k, :4] = q
+        for m in range(3):
+            y_out[k, 4 + m] = l[m] / moments[m]
     return y_out, t_out.shape[0], steps, nfev, t
 
 

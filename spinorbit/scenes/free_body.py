@@ -22,6 +22,18 @@ SCHEMA = {
 }
 
 
+def build(scenario):
+    """For ``spinorbit bench``: (system, output times, error(solution) = max attitude error vs closed form, rad)."""
+    from ..theory import FreeRigidBody
+
+    moments, omega0 = scenario["body.moments"], scenario["body.omega0"]
+    q0 = quat_from_euler313(*scenario["body.attitude0"])
+    system = torque_free_system(moments, q0, omega0, scenario.t_start)
+    t = scenario.output_times()
+    q_exact = FreeRigidBody(moments, omega0, q0).attitude(t - scenario.t_start)
+    return system, t, lambda solution: float(quat_angle(solution.quaternion, q_exact).max())
+
+
 def run(scenario):
     from ..theory import FreeRigidBody
 

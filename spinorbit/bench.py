@@ -1,0 +1,159 @@
+"""Work-precision of the integrators on one scene: ``spinorbit bench SCENE.toml``.
+
+A scene module that can be benchmarked defines ``build(scenario) -> (system,
+t_out, error)``: the :class:`~spinorbit.dynamics.SpinSystem`, the output times
+(TDB days) and ``error(solution)``, the maximum attitude error in rad against
+the scene's closed form or a converged run (:func:`converged_error`).
+
+Every registered method that ``supports`` the system is run on a ladder of
+settings: fixed-step and splitting methods at steps halving from a quarter of
+the shortest time scale (or the output spacing), adaptive methods at
+rtol = 1e-3 ... 1e-13 (atol = rtol/1000).  A method's ladder stops when a run
+takes longer than ``budget_s``, fails, or reaches the rounding floor.
+Wall times exclude one-off compilation (each integrator warms up first).
+"""
+import csv
+import math
+from pathlib import Path
+
+import numpy as np
+
+from .errors import IntegrationError, ScenarioError
+from .integrators import METHODS, get_method, integrate
+from .rotations import quat_angle
+
+COLUMNS = ("method", "kind", "order", "setting", "wall_s", "rhs_evaluations", "steps", "error_rad")
+LEVELS = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12)
+
+
+def converged_error(system, t_out, step, method="rk8"):
+    """An error function against a converged fixed-step run at ``step`` (checked against step/2).
+
+    Returns (error, agreement_rad): ``agreement_rad`` is the max attitude
+    difference between the runs at step and step/2, an upper bound of the
+    reference's own error.
+    """
+    a = integrate(system, t_out, method, step=step)
+    b = integrate(system, t_out, method, step=step / 2)
+    q_ref = b.quaternion
+    agreement = float(quat_angle(a.quaternion, q_ref).max())
+    return (lambda solution: float(quat_angle(solution.quaternion, q_ref).max())), agreement
+
+
+def time_scale(system):
+    """Shortest time scale of the free motion, 2 pi / |omega0| (time units)."""
+    rate = float(np.linalg.norm(system.y0[4:7]))
+    return 2 * math.pi / rate if rate > 0 else float(system.meta.get("time_scale", 1.0))
+
+
+def ladder(cls, system, t_out, n=14):
+    """Settings for one method, coarse to fine."""
+    if cls.kind == "adaptive":
+        return [{"rtol": 10.0**-k, "atol": 10.0**-k * 1e-3} for k in range(3, 14)]
+    spacing = np.diff(t_out)
+    h0 = time_scale(system) / 4
+    if spacing.size:
+        h0 = min(h0, float(np.median(spacing)))
+    return [{"step": h0 / 2**k} for k in range(n)]
+
+
+def run_method(name, system, t_out, error, budget_s=10.0, floor=1e-14):
+    """Rows of the work-precision table for one method."""
+    cls = get_method(name)
+    rows, previous = [], math.inf
+    for setting in ladder(cls, system, t_out):
+        try:
+            solution = integrate(system, t_out, name, **setting)
+        except IntegrationError:
+            continue                      # too coarse to finish: try the next, finer setting
+        err = error(solution)
+        rows.append({"method": cls.name, "kind": cls.kind, "order": cls.order,
+                     "setting": ", ".join(f"{k}={v:.3g}" for k, v in setting.items()),
+                     "wall_s": solution.wall_s, "rhs_evaluations": solution.nfev, "steps": solution.nsteps,
+                     "error_rad": err})
+        if solution.wall_s > budget_s or err < floor or (err > 0.5 * previous and err < 1e-10):
+            break
+        previous = err
+    return rows
+
+
+def bench_system(system, t_out, error, methods=None, budget_s=10.0):
+    """Work-precision rows for every requested (default: every suitable) method."""
+    names = methods or [m for m in METHODS if get_method(m)().supports(system)]
+    for name in names:
+        get_method(name)                 # ScenarioError for an unknown name
+    return [row for name in names for row in run_method(name, system, t_out, error, budget_s)]
+
+
+def fastest_at(rows, level):
+    """{method: least wall time with error <= level}."""
+    best = {}
+    for row in rows:
+        if row["error_rad"] <= level:
+            best[row["method"]] = min(best.get(row["method"], math.inf), row["wall_s"])
+    return best
+
+
+def markdown(rows, title, command):
+    lines = [f"# Work-precision: {title}", "", f"Command: `{command}`. Wall times exclude compilation; "
+             "error = max attitude error over the outputs, rad.", "",
+             "| method | order | setting | wall_s | rhs evaluations | error [rad] |", "|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['method']} | {r['order'] or '-'} | {r['setting']} | {r['wall_s']:.3g} | "
+                     f"{r['rhs_evaluations']} | {r['error_rad']:.2e} |")
+    lines += ["", "Fastest run reaching each error level (wall s):", "",
+              "| error <= | " + " | ".join(sorted({r["method"] for r in rows})) + " |",
+              "|---|" + "---|" * len({r["method"] for r in rows})]
+    for level in LEVELS:
+        best = fastest_at(rows, level)
+        cells = [f"{best[m]:.3g}" if m in best else "-" for m in sorted({r["method"] for r in rows})]
+        lines.append(f"| {level:.0e} | " + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"
+
+
+def plot(rows, path, title):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7, 5))
+    for name in dict.fromkeys(r["method"] for r in rows):
+        pts = [(r["wall_s"], max(r["error_rad"], 1e-17)) for r in rows if r["method"] == name]
+        ax.loglog(*zip(*pts), "o-", ms=3, label=name)
+    ax.set_xlabel("wall time [s] (compilation excluded)")
+    ax.set_ylabel("max attitude error [rad]")
+    ax.set_title(title)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def write(rows, out, title, command):
+    """work_precision.csv, .md and .png in ``out``; returns the paths."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    paths = [out / "work_precision.csv", out / "work_precision.md", out / "work_precision.png"]
+    with open(paths[0], "w", newline="") as f:
+        writer = csv.DictWriter(f, COLUMNS)
+        writer.writeheader()
+        writer.writerows(rows)
+    paths[1].write_text(markdown(rows, title, command))
+    plot(rows, paths[2], title)
+    return paths
+
+
+def bench_scenario(path, methods=None, out=None, budget_s=10.0, overrides=()):
+    """Load a scenario, build its system and write the work-precision table; returns (rows, paths)."""
+    from .scenarios import load_scenario
+
+    scenario = load_scenario(path, overrides)
+    if not hasattr(scenario.module, "build"):
+        raise ScenarioError("scene.kind", scenario.kind, "a scene kind whose module defines build() for benchmarking")
+    system, t_out, error = scenario.module.build(scenario)
+    rows = bench_system(system, t_out, error, methods, budget_s)
+    command = f"spinorbit bench {path}" + (f" --methods {','.join(methods)}" if methods else "")
+    title = scenario["scene.title"] or scenario.name
+    return rows, write(rows, out or Path("runs") / f"{scenario.name}-bench", title, command)
