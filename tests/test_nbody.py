@@ -1,4 +1,8 @@
-"""REBOUND (IAS15 + gr_full + Earth J2) against DE421: the Moon's geocentric direction."""
+"""REBOUND (IAS15 + gr_full + Earth J2) against DE421: the Moon's geocentric direction.
+
+Measured from J2000 (max over the span): 1 yr 0.32", 10 yr 3.19", 50 yr 13.0", 100 yr 19.0".
+DE421 adds tides (the secular lunar acceleration), the lunar figure and asteroids.
+"""
 import numpy as np
 import pytest
 
@@ -41,4 +45,4 @@ def test_rebound_moon_after_10_yr():
 @pytest.mark.slow
 def test_rebound_moon_after_100_yr():
     angle, _ = moon_error(100)
-    assert angle < 30 * arcsec         # DESIGN.md: ~26"
+    assert angle < 25 * arcsec         # measured 19.0" (DESIGN.md: ~26"); ~2.5 min

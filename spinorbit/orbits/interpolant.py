@@ -89,7 +89,8 @@ class HermiteOrbits:
 
         reference(t) -> (len(t), n_bodies, 3) km, the source the samples came from.
         Sets and returns ``max_error_km`` (n,) and ``max_relative_error`` (n,) = max |dr|/r;
-        the point-mass torque 3 GM u x (I u)/r^3 then errs by at most ~3 |dr|/r relative.
+        the point-mass torque 3 GM/r^3 u x (I u) then errs by at most ~5 |dr|/r of its
+        scale 3 GM (C - A)/r^3 (3 |dr|/r from 1/r^3, 2 |dr|/r from the direction u).
         """
         t = self.span[0] + self.step * (np.arange(self.data[1].shape[1] - 1) + 0.5)
         true = reference(t)
