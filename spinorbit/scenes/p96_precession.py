@@ -1,0 +1,128 @@
+"""Precession and nutation of a symmetric spinner (Euler ch. 16 P96, §844-849) against integration.
+
+A body with two equal moments cc < aa (oblate; aa about its figure axis, our
+z) spins at eps about an axis near its figure axis, at the mean angle n from
+the pole Z of the orbit of F (a uniform circle at rate delta, the x-y plane).
+Euler's theory: the figure axis A regresses about Z at N cos n (§846), with
+2 phi inequalities in ZA and XZA (§847, phi = FZA), and at eps = 2 delta the
+formulas fail (§849): there ``SymmetricPrecession.coefficients`` raises
+ResonanceError; the scene reports it and compares the secular growth of the
+2 phi term in ZA with §849's singular solution.
+
+Both Euler's text (eps in the pole equations) and the version with the pole's
+free rotation in the body (eps aa/cc, which §841 drops) are compared.
+"""
+import math
+
+import numpy as np
+
+from ..constants import ARCSEC
+from ..dynamics import SpinSystem, make_point_mass_torque, make_rigid_body_rhs
+from ..errors import ResonanceError
+from ..rotations import matrix_from_quat
+from ..scenarios import Key
+from . import common
+
+SCHEMA = {
+    "body.moments": Key(unit="", size=3, help="principal moments cc = cc < aa (symmetric, oblate)"),
+    "body.spin": Key(unit="rad/d", help="spin rate eps about the figure axis"),
+    "body.obliquity": Key(unit="rad", help="initial angle n between the figure axis A and the orbit pole Z"),
+    "orbit.gm": Key(unit="km3/d2", help="GM of the centre of forces"),
+    "orbit.radius": Key(unit="km", help="distance s of F"),
+    "orbit.rate": Key(unit="rad/d", help="angular speed delta of F"),
+}
+
+
+def initial_state(n, eps, x0, y0):
+    """Figure axis at ZA = n, XZA = 0; omega = eps A + A x v_A with the pole velocity
+    v_A = eps (-y e_p + x e_lambda) of Euler's dp = -eps y dt, sin p d lambda = eps x dt (§844)."""
+    a_hat = np.array([math.sin(n), 0.0, math.cos(n)])
+    e_p, e_lam = np.array([math.cos(n), 0.0, -math.sin(n)]), np.array([0.0, 1.0, 0.0])
+    omega_inertial = eps * a_hat + np.cross(a_hat, eps * (-y0 * e_p + x0 * e_lam))
+    q0 = np.array([math.cos(n / 2), 0.0, math.sin(n / 2), 0.0])
+    return q0, matrix_from_quat(q0).T @ omega_inertial
+
+
+def figure_axis_angles(solution):
+    """ZA = p and unwrapped XZA = lambda (rad) of the body's z axis."""
+    axis = np.array([matrix_from_quat(q)[:, 2] for q in solution.quaternion])
+    return np.arccos(np.clip(axis[:, 2], -1, 1)), np.unwrap(np.arctan2(axis[:, 1], axis[:, 0]))
+
+
+def fit(t, y, columns):
+    """Least-squares coefficients of y on the given columns."""
+    return np.linalg.lstsq(np.column_stack(columns), y, rcond=None)[0]
+
+
+def run(scenario):
+    from ..orbits.analytic import CircularOrbits
+    from ..theory import SymmetricPrecession
+
+    body = common.rigid_body(scenario)
+    cc, aa = body.moments[0], body.moments[2]
+    if not (abs(body.moments[1] - cc) <= 1e-12 * aa and aa > cc):
+        from ..errors import ScenarioError
+        raise ScenarioError("body.moments", body.moments.tolist(), "a symmetric oblate body [cc, cc, aa] with aa > cc")
+    eps, n = scenario["body.spin"], scenario["body.obliquity"]
+    gm, s, delta = scenario["orbit.gm"], scenario["orbit.radius"], scenario["orbit.rate"]
+    t0 = scenario.t_start
+    big_n = 1.5 * gm * (aa - cc) / (eps * cc * s**3)
+    euler = SymmetricPrecession(eps, delta, big_n, n)
+    true = SymmetricPrecession(eps, delta, big_n, n, ratio=aa / cc)
+    comparison = {"N_rad_per_d": big_n, "eps_over_delta": eps / delta}
+    try:
+        e, f, _ = true.coefficients()
+        x0, resonance = e + f, None
+    except ResonanceError as exc:
+        x0, resonance = 0.0, exc
+    q0, omega0 = initial_state(n, eps, x0, 0.0)
+    orbit = CircularOrbits(("F",), [gm], [s], [delta], phase=[-delta * t0])
+    torque = make_point_mass_torque(orbit.kernel)
+    system = SpinSystem(make_rigid_body_rhs(torque), (body.moments, orbit.gm, orbit.data), t0,
+                        np.concatenate([q0, omega0]), body.moments, torque, "symmetric spinner")
+    t = scenario.output_times()
+    solution, point = common.simulate_scenario(scenario, system, t)
+
+    dt = solution.t - t0
+    p, lam = figure_axis_angles(solution)
+    phi = lam - delta * dt
+    c2, s2 = np.cos(2 * phi), np.sin(2 * phi)
+    nut_c, nut_s = np.cos(true.eps_f * dt), np.sin(true.eps_f * dt)
+    one = np.ones_like(dt)
+    if resonance is None:
+        lam_fit = fit(dt, lam, [one, dt, s2, c2, nut_c, nut_s])
+        p_fit = fit(dt, p, [one, c2, s2, nut_c, nut_s])
+        comparison.update({
+            "resonance_detected": False,
+            "precession_rate_measured_arcsec_per_d": float(-lam_fit[1] / ARCSEC),
+            "precession_rate_euler_arcsec_per_d": euler.precession_rate / ARCSEC,
+            "precession_rate_gyroscopic_arcsec_per_d": true.precession_rate / ARCSEC,
+            "precession_rate_euler_rel_error": float(euler.precession_rate / -lam_fit[1] - 1),
+            "precession_rate_gyroscopic_rel_error": float(true.precession_rate / -lam_fit[1] - 1),
+            "za_2phi_half_range_measured_arcsec": float(abs(p_fit[1]) / ARCSEC),
+            "za_2phi_half_range_euler_arcsec": euler.inequalities()["za_half_range"] / ARCSEC,
+            "za_2phi_half_range_gyroscopic_arcsec": true.inequalities()["za_half_range"] / ARCSEC,
+            "xza_2phi_amplitude_measured_arcsec": float(abs(lam_fit[2]) / ARCSEC),
+            "xza_2phi_amplitude_euler_arcsec": euler.inequalities()["xza_amplitude"] / ARCSEC,
+            "xza_2phi_amplitude_gyroscopic_arcsec": true.inequalities()["xza_amplitude"] / ARCSEC,
+            "diurnal_nutation_measured_arcsec": float(math.hypot(p_fit[3], p_fit[4]) / ARCSEC),
+        })
+    else:
+        # §849: ZA's 2 phi term grows like |a| delta t; fit (c + g t) cos 2phi + (c' + g' t) sin 2phi.
+        p_fit = fit(dt, p, [one, c2, s2, dt * c2, dt * s2])
+        secular = euler.secular()
+        growth = math.hypot(p_fit[3], p_fit[4])
+        comparison.update({
+            "resonance_detected": True,
+            "resonance_message": str(resonance),
+            "za_2phi_growth_measured_arcsec_per_d": growth / ARCSEC,
+            "za_2phi_growth_euler_849_arcsec_per_d": secular["growth_rate"] / ARCSEC,
+            "za_2phi_growth_rel_error": growth / secular["growth_rate"] - 1,
+            "detuning_eps_aa_over_cc_minus_2delta_rad_per_d": true.eps_f - 2 * delta,
+        })
+    table = common.attitude_table(solution)
+    table["ZA"] = p * common.u().rad
+    table["XZA"] = lam * common.u().rad
+    figures = {"ZA": common.plot_series(dt, np.degrees(p), "days from start", "ZA [deg]"),
+               "XZA": common.plot_series(dt, np.degrees(lam), "days from start", "XZA [deg]")}
+    return common.result(scenario, table, {"comparison": comparison, "run": point}, figures, solution)
