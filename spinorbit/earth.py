@@ -1,0 +1,271 @@
+"""The rigid Earth under the Moon's and Sun's torques: precession and nutation (Euler ch. 16).
+
+Layer 2 (numpy, numba).  An oblate (optionally triaxial) rigid Earth with the
+IAU 2006 dynamical ellipticity H_d = (C - A)/C, driven by point masses through
+the ch. 16 P91 gravity-gradient torque (§815).  Moments are in units of C.
+Two integrations of the same physics, both as SpinSystems for a fixed-step
+integrator (rk8):
+
+* **full** -- Euler's equations (§813) with the daily spin resolved:
+  ``y = [q (body -> GCRS), omega (body axes, rad/d)]``;
+* **gyroscopic** -- only the angular momentum moves, dL/dt = N (the torque
+  evaluated for the figure axis recovered from L to second order in 1/Omega,
+  exact otherwise for an axisymmetric body):
+  ``y = [q_L, 0, 0, |L|/C]`` with q_L a twist-free frame whose z axis is L/|L|.
+
+Frames: positions and outputs in GCRS (geocentric ICRF axes).  Euler's
+equations hold in the dynamically non-rotating frame, which turns with respect
+to GCRS at the geodesic precession ``Omega_gp`` (prograde about the ecliptic
+pole, de Sitter), so the kinematics add ``Omega_gp`` to the body rate and the
+observed precession in longitude is 1.919883"/cy less than the dynamical one.
+
+Parameters of both right-hand sides: ``p = (moments, gm (n,), data, extra)``
+with ``extra = [Omega_gp (3, rad/d, GCRS), k_J2 (1/d)]``; the torque is scaled
+by (1 + k_J2 t), t in TDB days from J2000 (secular change of J2).
+"""
+import functools
+import math
+
+import numpy as np
+from numba import njit
+
+from .constants import ARCSEC, JULIAN_CENTURY_D
+from .dynamics import SpinSystem, euler_omega_dot
+from .errors import PhysicsError
+from .rotations import matrix_from_quat, quat_from_matrix, quat_rate
+from .torques import point_mass_torque
+
+H_D = 3.27379448e-3                      # (C - A)/C, IAU 2006 (Capitaine et al. 2003)
+ERA_RATE_RAD_D = 2 * math.pi * 1.00273781191135448   # Earth rotation angle rate, rad per UT1 day
+GEODESIC_PRECESSION_ARCSEC_CY = 1.919883  # rate of the dynamical frame w.r.t. GCRS, prograde
+J2 = 1.0826359e-3                        # IAU 2006 (P03)
+J2_RATE_PER_CY = -3.001e-9               # dJ2/dt, P03
+B_MINUS_A_OVER_C = 1.904e-5              # 4 C22 / (C/MR^2), EGM2008 C22 = 1.5745e-6, C/MR^2 = 0.3307
+A_AXIS_LONGITUDE_DEG = -14.93            # longitude of the axis of least moment
+
+
+def earth_moments(h_d=H_D, b_minus_a_over_c=0.0):
+    """(A, B, C)/C with (C - (A + B)/2)/C = h_d and (B - A)/C as given."""
+    return np.array([1.0 - h_d - b_minus_a_over_c / 2, 1.0 - h_d + b_minus_a_over_c / 2, 1.0])
+
+
+def extra_parameters(ecliptic_pole, geodesic=True, j2_rate=True):
+    """``extra`` = [Omega_gp (3), k_J2]: geodesic precession about ``ecliptic_pole`` (GCRS unit vector)."""
+    rate = GEODESIC_PRECESSION_ARCSEC_CY * ARCSEC / JULIAN_CENTURY_D if geodesic else 0.0
+    k = J2_RATE_PER_CY / J2 / JULIAN_CENTURY_D if j2_rate else 0.0
+    pole = np.asarray(ecliptic_pole, dtype=float)
+    return np.array([*(rate * pole / np.linalg.norm(pole)), k])
+
+
+# --- full model: Euler's equations with the daily spin ------------------------
+
+@functools.cache
+def make_full_rhs(positions):
+    """rhs(t, y, p) of Euler's equations (§813) + kinematics with geodesic precession.
+
+    ``positions(t, data) -> (n, 3)`` km, GCRS, relative to the geocentre.
+    """
+
+    @njit
+    def rhs(t, y, p):
+        moments, gm, data, extra = p
+        to_body = matrix_from_quat(y[:4]).T
+        r = positions(t, data)
+        torque = np.zeros(3)
+        for i in range(gm.shape[0]):
+            torque += point_mass_torque(moments, to_body @ r[i], gm[i])
+        torque *= 1.0 + extra[3] * t
+        dy = np.zeros_like(y)
+        dy[:4] = quat_rate(y[:4], y[4:7] + to_body @ extra[:3])
+        dy[4:7] = euler_omega_dot(moments, y[4:7], torque)
+        return dy
+
+    return rhs
+
+
+# --- gyroscopic model: the angular momentum direction -------------------------
+
+@njit(cache=True)
+def _cross(a, b):
+    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+
+
+@functools.cache
+def make_tidal_tensor(positions):
+    """tidal_tensor(t, p) = 3 (1 + k_J2 t) sum GM r r^T / r^5 (GCRS, 1/d^2).
+
+    For an axisymmetric body with figure axis z the torque of all the point
+    masses is then N = (C - A) (T z) x z (§815 summed over the masses).
+    """
+
+    @njit
+    def tidal_tensor(t, p):
+        gm, data, extra = p[1], p[2], p[3]
+        r = positions(t, data)
+        out = np.zeros((3, 3))
+        for i in range(gm.shape[0]):
+            s2 = r[i, 0] ** 2 + r[i, 1] ** 2 + r[i, 2] ** 2
+            k = 3.0 * gm[i] / (s2 * s2 * math.sqrt(s2))
+            for a in range(3):
+                for b in range(3):
+                    out[a, b] += k * r[i, a] * r[i, b]
+        return out * (1.0 + extra[3] * t)
+
+    return tidal_tensor
+
+
+@njit(cache=True)
+def _axis_torque(tensor, z, c_minus_a):
+    """(C - A) (T z) x z: inertial torque on an axisymmetric body with figure axis z."""
+    return c_minus_a * _cross(tensor @ z, z)
+
+
+@njit(cache=True)
+def _slow_figure_axis(t0, t_dot, ell, lc, moments):
+    """Figure axis on the forced solution, from the tidal tensor and its rate.
+
+    For an axisymmetric body dz/dt = (L x z)/A exactly; on the slow (forced)
+    solution z = ell - (ell x ell')/lam - ell''_perp/lam^2 + O(lam^-3), lam = |L|/A,
+    ell' = N_perp/|L|, ell''_perp = N'_perp/|L| (the Oppolzer terms).  N(ell) is
+    perpendicular to ell, so ell x ell' = ell x N/|L| and ell''_perp = N'/|L|.
+    """
+    a = 0.5 * (moments[0] + moments[1])
+    lam = lc * moments[2] / a
+    c_minus_a = moments[2] - a
+    n0 = _axis_torque(t0, ell, c_minus_a / (lc * lam))
+    n_dot = _axis_torque(t_dot, ell, c_minus_a / (lc * lam * lam))
+    z = ell - _cross(ell, n0) - n_dot
+    return z / math.sqrt(z @ z)
+
+
+_H_DIFF = 1.0 / 64.0      # d, central difference for the tensor rate
+
+
+@functools.cache
+def make_figure_axis(positions):
+    """figure_axis(t, ell, lc, p): figure axis (GCRS) from the unit L direction ``ell``, |L|/C = ``lc``."""
+    tidal_tensor = make_tidal_tensor(positions)
+
+    @njit
+    def figure_axis(t, ell, lc, p):
+        t_dot = (tidal_tensor(t + _H_DIFF, p) - tidal_tensor(t - _H_DIFF, p)) / (2.0 * _H_DIFF)
+        return _slow_figure_axis(tidal_tensor(t, p), t_dot, ell, lc, p[0])
+
+    return figure_axis
+
+
+@functools.cache
+def make_gyroscopic_rhs(positions):
+    """rhs(t, y, p) of dL/dt = N(z(L)) + Omega_gp x L for y = [q_L, 0, 0, |L|/C]."""
+    tidal_tensor = make_tidal_tensor(positions)
+
+    @njit
+    def rhs(t, y, p):
+        moments, extra = p[0], p[3]
+        ell = _third_axis(y)
+        lc = y[6]
+        t0 = tidal_tensor(t, p)
+        t_dot = (tidal_tensor(t + _H_DIFF, p) - tidal_tensor(t - _H_DIFF, p)) / (2.0 * _H_DIFF)
+        z = _slow_figure_axis(t0, t_dot, ell, lc, moments)
+        torque = _axis_torque(t0, z, moments[2] - 0.5 * (moments[0] + moments[1]))
+        ell_dot = (torque - (torque @ ell) * ell) / lc + _cross(extra[:3], ell)
+        w = _cross(ell, ell_dot)          # inertial rate of the twist-free L frame
+        dy = np.zeros_like(y)
+        dy[0] = -0.5 * (w[0] * y[1] + w[1] * y[2] + w[2] * y[3])      # dq/dt = (0, w) q / 2
+        dy[1] = 0.5 * (w[0] * y[0] + w[1] * y[3] - w[2] * y[2])
+        dy[2] = 0.5 * (w[1] * y[0] + w[2] * y[1] - w[0] * y[3])
+        dy[3] = 0.5 * (w[2] * y[0] + w[0] * y[2] - w[1] * y[1])
+        return dy
+
+    return rhs
+
+
+@njit(cache=True)
+def _third_axis(q):
+    """Third column of the rotation matrix of a unit quaternion (the frame's z axis)."""
+    w, x, y, z = q[0], q[1], q[2], q[3]
+    return np.array([2.0 * (x * z + w * y), 2.0 * (y * z - w * x), 1.0 - 2.0 * (x * x + y * y)])
+
+
+def figure_axes_from_gyroscopic(positions, t, y, params):
+    """Figure axes (len(t), 3) GCRS from gyroscopic states y (len(t), 7)."""
+    figure_axis = make_figure_axis(positions)
+    return np.array([figure_axis(ti, _third_axis(yi), yi[6], params)
+                     for ti, yi in zip(t, y)])
+
+
+# --- forced initial conditions ---------------------------------------------------
+
+def forced_angular_momentum(positions, t0, z0, spin_rate, params, iterations=4):
+    """Unit L direction and |L|/C whose forced figure axis is ``z0`` and whose omega.z = ``spin_rate``.
+
+    Solves z(ell) = z0 by fixed-point iteration (the Oppolzer offset L - z is ~10 mas).
+    """
+    figure_axis = make_figure_axis(positions)
+    z0 = np.asarray(z0, dtype=float) / np.linalg.norm(z0)
+    ell, lc = z0.copy(), spin_rate
+    for _ in range(iterations):
+        ell = ell + (z0 - figure_axis(t0, ell, lc, params))
+        ell /= np.linalg.norm(ell)
+        lc = spin_rate / float(ell @ z0)          # omega_z = L.z / C
+    return ell, lc
+
+
+def _frame(z, x_hint):
+    """Right-handed orthonormal columns (x, y, z) with z given and x nearest ``x_hint``."""
+    z = z / np.linalg.norm(z)
+    x = x_hint - (x_hint @ z) * z
+    x /= np.linalg.norm(x)
+    return np.column_stack([x, np.cross(z, x), z])
+
+
+def full_system(positions, params, t0, z0, x0, spin_rate=ERA_RATE_RAD_D, forced=True):
+    """SpinSystem of the full model started on figure axis ``z0`` (GCRS) with body x axis near ``x0``.
+
+    forced=True: omega_perp from the forced L (Oppolzer terms), so no free
+    nutation starts; forced=False: omega along the figure axis (starts one).
+    """
+    moments = params[0]
+    rot = _frame(np.asarray(z0, float), np.asarray(x0, float))
+    if forced:
+        ell, lc = forced_angular_momentum(positions, t0, z0, spin_rate, params)
+        omega = (rot.T @ (lc * moments[2] * ell)) / moments
+    else:
+        omega = np.array([0.0, 0.0, spin_rate])
+    y0 = np.concatenate([quat_from_matrix(rot), omega])
+    return SpinSystem(make_full_rhs(positions), params, t0, y0, moments, None, "earth (full)")
+
+
+def gyroscopic_system(positions, params, t0, z0, spin_rate=ERA_RATE_RAD_D):
+    """SpinSystem of the gyroscopic model whose forced figure axis at ``t0`` is ``z0`` (GCRS)."""
+    moments = params[0]
+    if abs(moments[1] - moments[0]) > 1e-12 * moments[2]:
+        raise PhysicsError(f"the gyroscopic model needs an axisymmetric Earth (A = B), got moments "
+                           f"{moments.tolist()}; use the full model for a triaxial Earth")
+    ell, lc = forced_angular_momentum(positions, t0, z0, spin_rate, params)
+    rot = _frame(ell, np.array([1.0, 0.0, 0.0]) if abs(ell[0]) < 0.9 else np.array([0.0, 1.0, 0.0]))
+    y0 = np.concatenate([quat_from_matrix(rot), [0.0, 0.0, lc]])
+    return SpinSystem(make_gyroscopic_rhs(positions), params, t0, y0, moments, None, "earth (gyroscopic)",
+                      {"figure_axes": functools.partial(figure_axes_from_gyroscopic, positions)})
+
+
+def figure_axes_from_full(y):
+    """Body z axes in GCRS (len, 3) from full-model states."""
+    return np.array([matrix_from_quat(yi[:4])[:, 2] for yi in y])
+
+
+def free_nutation_amplitude(t, omega_body, moments):
+    """Amplitude (rad) of the free (Euler) nutation, the angle between figure axis and L it adds.
+
+    Least-squares fit of m = (w_x + i w_y)/w_z to a + b exp(i sigma_E t) with the
+    Euler (Chandler, rigid) frequency sigma_E = w_z (C - A)/A in body axes
+    (ch. 15; ~305 d for the Earth).  tan(angle) = (A/C)|m| for an axisymmetric top.
+    Sample densely enough to resolve the forced nearly-diurnal terms (<= 0.25 d).
+    """
+    a, c = 0.5 * (moments[0] + moments[1]), moments[2]
+    w_z = float(np.mean(omega_body[:, 2]))
+    m = (omega_body[:, 0] + 1j * omega_body[:, 1]) / omega_body[:, 2]
+    sigma = w_z * (c - a) / a
+    design = np.column_stack([np.ones_like(t), np.exp(1j * sigma * (t - t[0]))])
+    coef = np.linalg.lstsq(design, m, rcond=None)[0]
+    return float(a / c * abs(coef[1]))

@@ -1,0 +1,211 @@
+"""The Earth's precession and nutation (Euler ch. 16 P91/P96) against IAU 2006/2000A (ERFA).
+
+A rigid oblate Earth (H_d from IAU 2006) under the Moon's and Sun's torques
+(DE421 geocentric positions, or Euler's circles), started at ``span.start`` on
+the IAU 2006/2000A pole with forced initial conditions (spinorbit.earth).
+Outputs the CIP X, Y in GCRS and its Fukushima-Williams angles; compares with
+ERFA ``bpn2xy(pnm06a)``, fits the precession rate and the main nutation terms,
+and puts Euler's P96 rate N cos n (§846) for circular orbits beside them.
+The rigid-minus-IAU differences of the nutation terms are the non-rigid
+response (MHB2000: fluid core, mantle anelasticity, oceans), not errors.
+"""
+import math
+
+import numpy as np
+
+from .. import earth
+from ..constants import ARCSEC, GM_KM3_D2, JULIAN_CENTURY_D, MAS
+from ..integrators import integrate
+from ..scenarios import Key
+from . import common
+
+SCHEMA = {
+    "earth.model": Key(type=str, default="gyroscopic", choices=("full", "gyroscopic")),
+    "earth.dynamical_ellipticity": Key(unit="", default=earth.H_D, help="(C - A)/C"),
+    "earth.b_minus_a_over_c": Key(unit="", default=0.0, help="triaxiality (full model only)"),
+    "earth.forced_start": Key(type=bool, default=True, help="Oppolzer terms in the initial omega"),
+    "earth.geodesic_precession": Key(type=bool, default=True),
+    "earth.j2_rate": Key(type=bool, default=True),
+    "orbit.source": Key(type=str, default="de421", choices=("de421", "circular")),
+    "orbit.planets": Key(type=bool, default=False, help="add the direct torques of Venus and Jupiter"),
+    "orbit.sample_step": Key(unit="d", default=0.25),
+    "comparison.gyroscopic_step": Key(unit="d", default=1.0,
+                                      help="rk8 step of the gyroscopic run compared with the full model"),
+    "comparison.free_nutation_span": Key(unit="d", default=610.0,
+                                         help="full model: span of the 0.125-d run fitted for the Euler period"),
+}
+
+# Euler's circles (P96): mean distance and sidereal period of the Moon and the Sun.
+CIRCLES = {"moon": (384400.0, 27.321661), "sun": (149597870.7, 365.256363)}
+
+
+def run(scenario):
+    from ..references import erfa_pole
+
+    t0, t = scenario.t_start, scenario.output_times()
+    orbits, plane_tilt = _orbits(scenario)
+    pole_ecl = erfa_pole.ecliptic_pole_j2000() if plane_tilt is None else \
+        np.array([0.0, -math.sin(plane_tilt), math.cos(plane_tilt)])
+    moments = earth.earth_moments(scenario["earth.dynamical_ellipticity"], scenario["earth.b_minus_a_over_c"])
+    extra = earth.extra_parameters(pole_ecl, scenario["earth.geodesic_precession"], scenario["earth.j2_rate"])
+    params = (moments, orbits.gm, orbits.data, extra)
+    z0 = erfa_pole.cip_vector(t0)
+    x0 = _a_axis(erfa_pole, t0, z0)
+    full = scenario["earth.model"] == "full"
+    system = (earth.full_system(orbits.kernel, params, t0, z0, x0, forced=scenario["earth.forced_start"])
+              if full else earth.gyroscopic_system(orbits.kernel, params, t0, z0))
+    solution, point = common.simulate_scenario(scenario, system, t)
+    z = earth.figure_axes_from_full(solution.y) if full else system.meta["figure_axes"](t, solution.y, params)
+
+    comparison, table, figures = _compare_with_erfa(erfa_pole, t, z, plane_tilt)
+    comparison.update(_p96(scenario, orbits, z, pole_ecl, t, plane_tilt))
+    if full:
+        comparison.update(_full_checks(scenario, orbits, params, t0, z0, x0, t, z))
+        figures["full_minus_gyroscopic"] = common.plot_series(
+            (t - t0) / 365.25, comparison.pop("_full_minus_gyro_mas"), "years from start",
+            "full - gyroscopic figure axis [mas]")
+    summary = {"comparison": comparison, "run": point,
+               "model": {"moments_over_C": moments.tolist(), "bodies": list(orbits.names),
+                         "geodesic_precession_arcsec_cy": -earth.GEODESIC_PRECESSION_ARCSEC_CY
+                         if scenario["earth.geodesic_precession"] else 0.0,
+                         "j2_rate_per_cy": earth.J2_RATE_PER_CY if scenario["earth.j2_rate"] else 0.0,
+                         "spin_rate_rad_d": earth.ERA_RATE_RAD_D,
+                         "orbit_interpolation_max_relative_error":
+                             None if getattr(orbits, "max_relative_error", None) is None
+                             else orbits.max_relative_error.tolist()}}
+    return common.result(scenario, table, summary, figures, solution)
+
+
+def _orbits(scenario):
+    """(orbit source, tilt of the circles' plane or None): DE421 sampled once, or Euler's circles."""
+    bodies = ("moon", "sun") + (("venus", "jupiter") if scenario["orbit.planets"] else ())
+    if scenario["orbit.source"] == "circular":
+        from ..orbits.analytic import CircularOrbits
+        from ..references.erfa_pole import EPS0_ARCSEC
+
+        tilt = EPS0_ARCSEC * ARCSEC      # circles in the J2000 ecliptic (Euler's hypothesis, §844)
+        names = bodies[:2]
+        return CircularOrbits(names, [GM_KM3_D2[b] for b in names], [CIRCLES[b][0] for b in names],
+                              [2 * math.pi / CIRCLES[b][1] for b in names], None, [tilt, tilt]), tilt
+    from ..orbits.sources import sample_orbits
+
+    margin = 1.0        # the gyroscopic rhs differences the torque at t +- 1/64 d
+    return sample_orbits("de421", "earth", bodies, scenario.t_start - margin, scenario.t_end + margin,
+                         scenario["orbit.sample_step"]), None
+
+
+def _a_axis(erfa_pole, t0, z0):
+    """Direction of the body x axis at t0: the A axis (longitude -14.93 deg) for a triaxial Earth."""
+    x_tirs = erfa_pole.terrestrial_x_axis(t0)
+    lon = math.radians(earth.A_AXIS_LONGITUDE_DEG)
+    return math.cos(lon) * x_tirs + math.sin(lon) * np.cross(z0, x_tirs)
+
+
+def _compare_with_erfa(erfa_pole, t, z, plane_tilt):
+    """Residuals vs ERFA, the fitted precession and nutation, the output table and plots."""
+    u = common.u()
+    from astropy.table import QTable
+
+    from ..scenarios import tdb_days_to_time
+
+    x_ref, y_ref = erfa_pole.cip_xy(t)
+    dx, dy = (z[:, 0] - x_ref) / MAS, (z[:, 1] - y_ref) / MAS
+    comparison = {"x_rms_mas": _rms(dx), "x_max_mas": float(np.abs(dx).max()),
+                  "y_rms_mas": _rms(dy), "y_max_mas": float(np.abs(dy).max())}
+    table = QTable()
+    table["time"] = tdb_days_to_time(t)
+    table["cip_x"] = (z[:, 0] * u.rad).to(u.arcsec)
+    table["cip_y"] = (z[:, 1] * u.rad).to(u.arcsec)
+    table["cip_x_minus_erfa"] = dx * u.mas
+    table["cip_y_minus_erfa"] = dy * u.mas
+    years = (t - t[0]) / 365.25
+    figures = {"residual_vs_erfa": common.plot_series(years, [dx, dy], "years from start",
+                                                      "model - IAU 2006/2000A [mas]", ["X", "Y"])}
+    if plane_tilt is not None:         # Euler's circles: IAU nutation does not apply
+        return comparison, table, figures
+
+    psi, eps = erfa_pole.pole_angles(t, z)
+    _, _, psi_bar, eps_a = erfa_pole.mean_angles(t)
+    dpsi_iau, deps_iau = erfa_pole.nutation(t)
+    fits = {name: erfa_pole.fit_precession_nutation(t, series) for name, series in
+            (("dpsi", psi - psi_bar), ("deps", eps - eps_a), ("dpsi_iau", dpsi_iau), ("deps_iau", deps_iau))}
+    rate = (fits["dpsi"]["poly"][1] - fits["dpsi_iau"]["poly"][1]) / ARCSEC
+    comparison.update({
+        "psi_rate_minus_iau_arcsec_cy": rate,
+        "psi_A_rate_arcsec_cy": erfa_pole.PSI_A_RATE_ARCSEC_CY + rate,
+        "psi_A_rate_iau2006_arcsec_cy": erfa_pole.PSI_A_RATE_ARCSEC_CY,
+        "obliquity_rate_minus_iau_arcsec_cy": (fits["deps"]["poly"][1] - fits["deps_iau"]["poly"][1]) / ARCSEC,
+    })
+    for term, (psi_pub, eps_pub) in erfa_pole.IAU2000A_MAIN_ARCSEC.items():
+        key = term.replace(" ", "").replace(".", "_")
+        model_psi, model_eps = fits["dpsi"]["sin"][term] / ARCSEC, fits["deps"]["cos"][term] / ARCSEC
+        iau_psi, iau_eps = fits["dpsi_iau"]["sin"][term] / ARCSEC, fits["deps_iau"]["cos"][term] / ARCSEC
+        comparison.update({
+            f"nutation_{key}_dpsi_model_arcsec": model_psi, f"nutation_{key}_dpsi_iau2000a_arcsec": psi_pub,
+            f"nutation_{key}_dpsi_model_minus_iau_mas": (model_psi - iau_psi) * 1000,
+            f"nutation_{key}_deps_model_arcsec": model_eps, f"nutation_{key}_deps_iau2000a_arcsec": eps_pub,
+            f"nutation_{key}_deps_model_minus_iau_mas": (model_eps - iau_eps) * 1000,
+        })
+    # Model mean pole = IAU mean pole + fitted polynomial difference; nutation about it.
+    big_t = (t / JULIAN_CENTURY_D)[:, None] ** np.arange(3)
+    psi_mean = psi_bar + big_t @ np.array(fits["dpsi"]["poly"])
+    eps_mean = eps_a + big_t @ np.array(fits["deps"]["poly"])
+    table["precession_longitude"] = (psi_mean * u.rad).to(u.arcsec)
+    table["obliquity"] = (eps_mean * u.rad).to(u.deg)
+    table["nutation_longitude"] = ((psi - psi_mean) * u.rad).to(u.arcsec)
+    table["nutation_obliquity"] = ((eps - eps_mean) * u.rad).to(u.arcsec)
+    figures["nutation"] = common.plot_series(
+        years, [(psi - psi_mean) / ARCSEC, dpsi_iau / ARCSEC, (eps - eps_mean) / ARCSEC, deps_iau / ARCSEC],
+        "years from start", "nutation [arcsec]", ["dpsi model", "dpsi IAU 2000A", "deps model", "deps IAU 2000A"])
+    return comparison, table, figures
+
+
+def _p96(scenario, orbits, z, pole_ecl, t, plane_tilt):
+    """Euler's P96 rate N cos n (§846) on circles beside the model's mean rate on the fixed ecliptic."""
+    from ..theory import SymmetricPrecession
+
+    moments = earth.earth_moments(scenario["earth.dynamical_ellipticity"])
+    n = math.acos(float(z[0] @ pole_ecl))
+    rate = 0.0
+    for name in ("moon", "sun"):
+        radius, period = CIRCLES[name]
+        big_n = 1.5 * GM_KM3_D2[name] * (moments[2] - moments[0]) / (earth.ERA_RATE_RAD_D * moments[2] * radius**3)
+        rate += SymmetricPrecession(earth.ERA_RATE_RAD_D, 2 * math.pi / period, big_n, n).precession_rate
+    # Longitude of the equator's node on the fixed ecliptic, fitted with the circles' 2-phi terms.
+    x_ecl = np.cross([0.0, 0.0, 1.0], pole_ecl)
+    x_ecl /= np.linalg.norm(x_ecl)
+    y_ecl = np.cross(pole_ecl, x_ecl)
+    node_lon = np.unwrap(np.arctan2(z @ x_ecl, -(z @ y_ecl)))
+    columns = [np.ones_like(t), t]
+    if plane_tilt is not None:
+        for name in ("moon", "sun"):
+            phase = 4 * math.pi * t / CIRCLES[name][1]
+            columns += [np.sin(phase), np.cos(phase)]
+    coef = np.linalg.lstsq(np.column_stack(columns), node_lon, rcond=None)[0]
+    model = -coef[1] * JULIAN_CENTURY_D / ARCSEC
+    if plane_tilt is None:
+        return {"p96_circles_precession_rate_arcsec_cy": rate * JULIAN_CENTURY_D / ARCSEC,
+                "fixed_ecliptic_precession_rate_arcsec_cy": model}
+    p96 = rate * JULIAN_CENTURY_D / ARCSEC
+    if scenario["earth.geodesic_precession"]:
+        p96 -= earth.GEODESIC_PRECESSION_ARCSEC_CY
+    return {"p96_precession_rate_arcsec_cy": p96, "model_precession_rate_arcsec_cy": model,
+            "model_minus_p96_arcsec_cy": model - p96}
+
+
+def _full_checks(scenario, orbits, params, t0, z0, x0, t, z_full):
+    """Full model: agreement with the gyroscopic model, and the free (Euler) nutation it started."""
+    gyro = earth.gyroscopic_system(orbits.kernel, params, t0, z0)
+    solution = integrate(gyro, t, "rk8", step=scenario["comparison.gyroscopic_step"])
+    diff = np.linalg.norm(z_full - gyro.meta["figure_axes"](t, solution.y, params), axis=1) / MAS
+    span = min(scenario["comparison.free_nutation_span"], t[-1] - t0)
+    t_dense = t0 + np.arange(0.0, span, 0.125)
+    system = earth.full_system(orbits.kernel, params, t0, z0, x0, forced=scenario["earth.forced_start"])
+    dense = integrate(system, t_dense, scenario["integrator.method"], **scenario.integrator_options())
+    return {"full_minus_gyroscopic_max_mas": float(diff.max()), "full_minus_gyroscopic_rms_mas": _rms(diff),
+            "free_nutation_amplitude_mas": earth.free_nutation_amplitude(t_dense, dense.omega, params[0]) / MAS,
+            "_full_minus_gyro_mas": diff}
+
+
+def _rms(x):
+    return float(np.sqrt(np.mean(np.square(x))))
