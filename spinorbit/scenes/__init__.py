@@ -10,6 +10,8 @@ from ..errors import ScenarioError
 
 SCENES = {
     "free_body": "spinorbit.scenes.free_body",
+    "earth_precession_nutation": "spinorbit.scenes.earth_precession_nutation",
+    "moon_libration": "spinorbit.scenes.moon_libration",
     "p92_start_from_rest": "spinorbit.scenes.p92_start_from_rest",
     "p93_planar_libration": "spinorbit.scenes.p93_planar_libration",
     "p94_forced_libration": "spinorbit.scenes.p94_forced_libration",
