@@ -1,0 +1,69 @@
+"""Quaternions, matrices and JPL 3-1-3 angles: round trips and kinematics (Euler ch. 15 §809-811)."""
+import math
+
+import numpy as np
+import pytest
+
+from spinorbit.rotations import (euler313_from_quat, matrix_from_euler313, matrix_from_quat,
+                                 omega_body_from_euler313_rates, quat_angle, quat_from_euler313,
+                                 quat_from_matrix, quat_multiply, quat_rate)
+from tests.units import arcsec, mas
+
+RNG = np.random.default_rng(7)
+
+
+def test_quaternion_matrix_round_trip():
+    for q in RNG.normal(size=(50, 4)):
+        q /= np.linalg.norm(q)
+        back = quat_from_matrix(matrix_from_quat(q))
+        assert quat_angle(q, back) < 1e-15 * 10
+        assert np.allclose(matrix_from_quat(q) @ matrix_from_quat(q).T, np.eye(3), atol=1e-15 * 10)
+
+
+@pytest.mark.parametrize("theta", [1.2, 0.4, 1e-3, 1e-9])
+def test_euler313_round_trip_down_to_small_theta(theta):
+    phi, psi = 0.7, 2.1
+    q = quat_from_euler313(phi, theta, psi)
+    back = euler313_from_quat(q)
+    assert back[1] == pytest.approx(theta, abs=1e-15 * 10)
+    assert quat_angle(q, quat_from_euler313(*back)) < 1e-6 * mas
+    if theta > 1e-6:                                                # phi and psi separately resolvable
+        assert back[0] == pytest.approx(phi, abs=1e-9) and back[2] == pytest.approx(psi, abs=1e-9)
+    else:                                                           # only phi + psi is defined
+        assert (back[0] + back[2]) % (2 * math.pi) == pytest.approx(phi + psi, abs=1e-8)
+
+
+def test_matrix_is_icrf_to_body():
+    """M = Rz(psi) Rx(theta) Rz(phi): a pure phi turns the body's x axis towards +y."""
+    m = matrix_from_euler313(0.3, 0.0, 0.0)
+    np.testing.assert_allclose(m.T @ [1, 0, 0], [math.cos(0.3), math.sin(0.3), 0], atol=1e-16)
+
+
+def test_body_rates_from_angle_rates_vs_finite_differences():
+    angles, rates = np.array([0.4, 0.9, 1.7]), np.array([0.03, -0.02, 0.25])
+    h = 1e-5
+    m_plus = matrix_from_euler313(*(angles + h * rates))
+    m_minus = matrix_from_euler313(*(angles - h * rates))
+    m_dot = (m_plus - m_minus) / (2 * h)
+    skew = matrix_from_euler313(*angles) @ m_dot.T                  # R^T R' = [omega_body]x with R = M^T
+    omega_fd = np.array([skew[2, 1], skew[0, 2], skew[1, 0]])
+    np.testing.assert_allclose(omega_body_from_euler313_rates(angles, rates), omega_fd, atol=1e-10)
+
+
+def test_quat_rate_integrates_a_steady_spin():
+    """dq/dt = q (0, w)/2 at constant w gives a rotation by |w| t about w."""
+    w, t, n = np.array([0.0, 0.0, 2.0]), 0.5, 2000
+    q = np.array([1.0, 0, 0, 0])
+    for _ in range(n):                                              # RK4
+        h = t / n
+        k1 = quat_rate(q, w); k2 = quat_rate(q + h / 2 * k1, w)
+        k3 = quat_rate(q + h / 2 * k2, w); k4 = quat_rate(q + h * k3, w)
+        q = q + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+    expected = np.array([math.cos(0.5), 0, 0, math.sin(0.5)])
+    assert quat_angle(q / np.linalg.norm(q), expected) < 1e-6 * arcsec
+
+
+def test_quat_angle_resolves_tiny_differences():
+    q = np.array([0.3, 0.5, -0.2, 0.7]) / np.linalg.norm([0.3, 0.5, -0.2, 0.7])
+    d = np.array([math.cos(5e-12), 0, math.sin(5e-12), 0])
+    assert quat_angle(q, -quat_multiply(q, d)) == pytest.approx(1e-11, rel=1e-6)
