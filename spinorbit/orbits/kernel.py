@@ -132,6 +132,8 @@ class DE421Arrays:
     def _barycentric(self, name, t):
         eph = self._eph
         state = lambda key: eph.position_and_velocity(key, J2000_JD, t)
+        if name == "solar_system_barycenter":
+            return np.zeros((3, t.size)), np.zeros((3, t.size))
         if name in ("earth", "moon"):
             emb_p, emb_v = state("earthmoon")
             moon_p, moon_v = state("moon")
@@ -139,7 +141,7 @@ class DE421Arrays:
             return emb_p - share * moon_p, emb_v - share * moon_v
         key = {"earth_moon_barycenter": "earthmoon"}.get(name, name)
         if key not in eph.names or key in ("librations", "nutations"):
-            raise ScenarioError("body", name, f"one of {sorted(NAIF)} except the barycentre")
+            raise ScenarioError("body", name, f"one of {sorted(NAIF)}")
         return state(key)
 
     def relative_states(self, target, center, t_tdb_days):

@@ -30,7 +30,8 @@ def de421_gm():
 class ReboundOrbits(HermiteOrbits):
     """``bodies`` relative to ``center``, integrated by REBOUND from ``t_start`` to ``t_end`` (TDB d).
 
-    kernel: the JPLKernel giving the initial barycentric states at t_start (default DE421).
+    kernel: the JPLKernel or DE421Arrays giving the initial barycentric states at t_start
+    (default: the DE421 .bsp).
     gr: REBOUNDx ``gr_full`` (all bodies, c in km/day); earth_j2: REBOUNDx
     ``gravitational_harmonics`` on the Earth, J2 and R_eq from the DE421 header, axis
     along ICRF z (the J2000 pole; precession moves it ~20"/yr, ignored).

@@ -38,9 +38,11 @@ def sample_orbits(source, center, bodies, t_start, t_end, step=None, measure=Tru
     if source in ("circular", "kepler"):
         return two_body_orbits(source, center, bodies, t_start)
     if source == "rebound":
+        from .kernel import open_ephemeris
         from .nbody import ReboundOrbits
 
-        orbits = ReboundOrbits(center, bodies, t_start, t_end, step)
+        start = open_ephemeris("de421", t_start, t_start)
+        orbits = ReboundOrbits(center, bodies, t_start, t_end, step, kernel=start)
         reference = None
     elif isinstance(source, str):
         from .interpolant import HermiteOrbits, grid
