@@ -58,8 +58,9 @@ class JPLKernel:
         self._parent = {}       # target code -> (center code, [segments])
         for seg in self._spk.segments:
             self._parent.setdefault(seg.target, (seg.center, []))[1].append(seg)
-        starts = [s.start_jd for s in self._spk.segments]
-        ends = [s.end_jd for s in self._spk.segments]
+        # a body may be split over consecutive segments (e.g. DE441): its cover is their union
+        starts = [min(s.start_jd for s in segs) for _, segs in self._parent.values()]
+        ends = [max(s.end_jd for s in segs) for _, segs in self._parent.values()]
         self.span = (max(starts) - J2000_JD, min(ends) - J2000_JD)
 
     def code(self, name):
