@@ -78,3 +78,53 @@ def test_degree3_torque_against_finite_difference_potential():
     numeric = np.array([(potential(r + h * e) - potential(r - h * e)) / (2 * h) for e in np.eye(3)])
     got = harmonic_gradient(r, C.radius_km, c_nm, s_nm, 3, 3)
     assert np.abs(got - numeric).max() < 1e-7 * np.abs(numeric).max()
+
+
+def test_core_state_carried_from_epoch():
+    """DE421's core angular velocity carried to JDEPOC itself is the header's OMGCX/Y/Z."""
+    got = ref.core_angular_velocity(C.epoch_tdb_d)
+    assert np.abs(got - C.omega_core0_rad_d).max() < 1e-15
+
+
+# --- the scene against DE421 on 5 years (2000-2005) ------------------------------------
+
+def _run(level, years=5):
+    from spinorbit.results import run_scenario
+
+    return run_scenario("scenarios/moon_libration.toml",
+                        [f"model.level={level}", 'span.start="2000-01-01T12:00:00"', f'span.end="{years} yr"',
+                         "output.plots=false", "integrator.estimate_error=false"])
+
+
+def test_level2_against_de421_5yr():
+    # measured 2000-2005: pole 6.80", longitude 1.33" (targets over 1900-2050: 12" / 2")
+    c = _run(2).summary["comparison"]
+    assert c["pole_error_max_arcsec"] * arcsec < 8.0 * arcsec
+    assert c["longitude_error_max_arcsec"] * arcsec < 1.6 * arcsec
+
+
+def test_level3_against_de421_5yr():
+    # measured 2000-2005: pole 0.66", longitude 0.032" (targets over 1900-2050: 3" / 0.1")
+    result = _run(3)
+    c = result.summary["comparison"]
+    assert c["pole_error_max_arcsec"] * arcsec < 0.8 * arcsec
+    assert c["longitude_error_max_arcsec"] * arcsec < 0.04 * arcsec
+    # the model's residual columns agree with the summary, and the angles with DE421
+    table = result.table
+    assert np.abs(table["longitude_error"].value).max() == pytest.approx(c["longitude_error_max_arcsec"])
+    assert np.abs(table["theta_minus_de421"].value).max() < 1.0
+
+
+def test_span_outside_source_raises():
+    from spinorbit.results import run_scenario
+
+    with pytest.raises(EphemerisRangeError):
+        run_scenario("scenarios/moon_libration.toml", ['span.start="1850-01-01T00:00:00"', 'span.end="1 yr"'])
+
+
+def test_bad_level_names_key():
+    from spinorbit.errors import ScenarioError
+    from spinorbit.results import run_scenario
+
+    with pytest.raises(ScenarioError, match="model.level"):
+        run_scenario("scenarios/moon_libration.toml", ["model.level=7", 'span.end="1900-02-01T00:00:00"'])

@@ -210,3 +210,30 @@ def pole_and_longitude_difference(m_a, m_b):
     rel = np.einsum("nij,nkj->nik", m_a, m_b)
     longitude = np.arctan2(rel[:, 0, 1] - rel[:, 1, 0], rel[:, 0, 0] + rel[:, 1, 1])
     return pole, longitude
+
+
+def core_angular_velocity(t_tdb_d, step_d=0.25):
+    """DE421's fluid-core angular velocity at TDB day ``t``, mantle axes, rad/day.
+
+    The header gives it at JDEPOC only (OMGCX/Y/Z).  DE421's core is spherical, so in
+    inertial axes its equation is C_c dw_c/dt = -k_v (w_c - w_m) (Folkner et al. 2014):
+    w_c relaxes towards the mantle's w_m with time constant C_c/k_v = IFAC/KVC (~128 yr).
+    Carried from JDEPOC to t with DE421's own mantle w_m: the exact linear solution,
+    w_c(t) = e^(-k dt) w_c0 + k int e^(-k (t - s)) w_m(s) ds, by the trapezoid rule on a
+    ``step_d`` grid (w_m varies monthly, so the quadrature error is ~(k step)^2, far below 1e-12).
+    """
+    c = moon_constants()
+    k = c.kv_over_c_per_d / c.core_c_over_c
+    t0 = c.epoch_tdb_d
+    m0, _ = orientation([t0])
+    wc = m0[0].T @ c.omega_core0_rad_d                           # ICRF
+    if t_tdb_d != t0:
+        n = max(2, int(np.ceil(abs(t_tdb_d - t0) / step_d)) + 1)
+        s = np.linspace(t0, t_tdb_d, n)
+        mats, omega = orientation(s)
+        w_inertial = np.einsum("nji,nj->ni", mats, omega)       # M^T w
+        weights = k * np.exp(-k * (t_tdb_d - s))[:, None]
+        integral = np.trapezoid(weights * w_inertial, s, axis=0)
+        wc = np.exp(-k * (t_tdb_d - t0)) * wc + integral
+    m_t, _ = orientation([t_tdb_d])
+    return m_t[0] @ wc

@@ -1,0 +1,133 @@
+"""Error against run time for the Moon (level 3: degree 2-4, core, tides) driven by DE421.
+
+Run: ``python benchmarks/bench_moon.py [--years 150] [--numpy-years 10]``.
+
+* rk8 at several steps and dop853 (compiled rhs) at several tolerances over
+  1900-01-05 + ``--years``: wall time (compilation excluded), max attitude error
+  (max of pole and longitude) against a converged run (rk8, h = 0.25 d) and against DE421;
+* the ratio against scipy ``solve_ivp`` DOP853 with a NumPy right-hand side (the same
+  rhs run with NUMBA_DISABLE_JIT=1, in a subprocess) at equal error, over ``--numpy-years``.
+Prints Markdown tables for benchmarks/RESULTS.md.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+SCENARIO = ROOT / "scenarios" / "moon_libration.toml"
+
+
+def build(years):
+    from spinorbit.scenarios import load_scenario
+    from spinorbit.scenes.moon_libration import build_system
+
+    scenario = load_scenario(SCENARIO, [f'span.end="{years} yr"'])
+    system, _ = build_system(scenario, "de421")
+    return scenario, system
+
+
+def attitudes(solution):
+    from spinorbit.scenes.moon_libration import model_angles
+
+    return model_angles(solution)[1]
+
+
+def error_arcsec(m_a, m_b):
+    from spinorbit.constants import ARCSEC
+    from spinorbit.references.moon_de421 import pole_and_longitude_difference
+
+    pole, lon = pole_and_longitude_difference(m_a, m_b)
+    return float(max(np.abs(pole).max(), np.abs(lon).max()) / ARCSEC)
+
+
+def numpy_run(years, rtol, out):
+    """Child process (NUMBA_DISABLE_JIT=1): scipy DOP853 on the pure NumPy rhs."""
+    from scipy.integrate import solve_ivp
+
+    scenario, system = build(years)
+    t_out = scenario.output_times()
+    fun = lambda t, y: system.rhs(t, y, system.params)
+    start = time.perf_counter()
+    sol = solve_ivp(fun, (system.t0, t_out[-1]), system.y0, method="DOP853", t_eval=t_out,
+                    rtol=rtol, atol=rtol * 1e-2)
+    wall = time.perf_counter() - start
+    np.savez(out, y=sol.y.T, wall=wall, nfev=sol.nfev)
+
+
+def compiled_rows(years):
+    from spinorbit.integrators import integrate
+    from spinorbit.scenes.moon_libration import reference_mats
+
+    scenario, system = build(years)
+    t_out = scenario.output_times()
+    ref = reference_mats(t_out)
+    converged = attitudes(integrate(system, t_out, "rk8", step=0.25))
+    rows = []
+    runs = [("rk8", dict(step=h)) for h in (4.0, 3.0, 2.0, 1.5, 1.0, 0.5)]
+    runs += [("dop853", dict(rtol=r, atol=r * 1e-2)) for r in (1e-8, 1e-9, 1e-10, 1e-11, 1e-12)]
+    for method, options in runs:
+        sol = integrate(system, t_out, method, **options)
+        m = attitudes(sol)
+        rows.append(dict(method=method + ("" if method == "rk8" else " + numba rhs"), options=options,
+                         wall_s=sol.wall_s, nfev=sol.nfev, error_vs_converged_arcsec=error_arcsec(m, converged),
+                         error_vs_de421_arcsec=error_arcsec(m, ref)))
+    return rows, converged, t_out
+
+
+def numpy_rows(years, converged_10):
+    rows = []
+    for rtol in (1e-9, 1e-10, 1e-11):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = Path(tmp) / "run.npz"
+            env = {**os.environ, "NUMBA_DISABLE_JIT": "1"}
+            subprocess.run([sys.executable, __file__, "--child", str(years), str(rtol), str(out)],
+                           check=True, env=env, cwd=ROOT)
+            data = np.load(out)
+            from spinorbit.rotations import matrix_from_quat
+
+            y = data["y"]
+            m = np.array([matrix_from_quat(q / np.linalg.norm(q)).T for q in y[:, :4]])
+            rows.append(dict(method="scipy DOP853 + NumPy rhs", options=dict(rtol=rtol), wall_s=float(data["wall"]),
+                             nfev=int(data["nfev"]), error_vs_converged_arcsec=error_arcsec(m, converged_10)))
+    return rows
+
+
+def table(rows, title):
+    lines = [f"**{title}**", "", "| method | options | wall [s] | rhs calls | error vs converged [\"] | error vs DE421 [\"] |",
+             "|---|---|---|---|---|---|"]
+    for r in rows:
+        opts = ", ".join(f"{k}={v:g}" for k, v in r["options"].items())
+        de = r.get("error_vs_de421_arcsec")
+        lines.append(f"| {r['method']} | {opts} | {r['wall_s']:.3g} | {r['nfev']} | "
+                     f"{r['error_vs_converged_arcsec']:.2g} | {'' if de is None else f'{de:.3g}'} |")
+    return "\n".join(lines)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--years", type=float, default=150.0)
+    parser.add_argument("--numpy-years", type=float, default=10.0)
+    parser.add_argument("--child", nargs=3)
+    parser.add_argument("--json")
+    args = parser.parse_args()
+    if args.child:
+        return numpy_run(float(args.child[0]), float(args.child[1]), args.child[2])
+    rows, _, _ = compiled_rows(args.years)
+    print(table(rows, f"Moon level 3, {args.years:g} yr from 1900-01-05, outputs daily"))
+    short, converged_short, _ = compiled_rows(args.numpy_years)
+    slow = numpy_rows(args.numpy_years, converged_short)
+    print()
+    print(table(short + slow, f"Moon level 3, {args.numpy_years:g} yr: compiled vs NumPy rhs"))
+    if args.json:
+        Path(args.json).write_text(json.dumps({"long": rows, "short": short + slow}, indent=1))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,302 @@
+"""The Moon's physical libration, integrated from DE421's state and compared with DE421.
+
+The Moon starts from DE421's orientation and rates at span.start (and, with a core,
+DE421's core angular velocity carried to that epoch), and turns under the Earth and
+the Sun of the chosen orbit source (Euler ch. 16 P91, §815, and the lunar model of
+spinorbit.moon).  Nothing is fitted.  Outputs: the JPL angles, residuals against
+DE421 (pole = tilt of the body z axis, longitude = rotation about it), the physical
+librations in longitude, latitude and node about the Cassini state, the sub-Earth
+point (optical + physical libration), and the main longitude terms fitted at fixed
+arguments beside the published amplitudes.
+"""
+import numpy as np
+
+from ..constants import ARCSEC, J2000_JD, JULIAN_CENTURY_D
+from ..errors import ScenarioError
+from ..scenarios import Key
+from . import common
+
+LEVELS = {
+    1: dict(degree=2, core=False, tides=False, bodies=("earth", "sun")),
+    2: dict(degree=4, core=False, tides=False, bodies=("earth", "sun")),
+    3: dict(degree=4, core=True, tides=True, bodies=("earth", "sun")),
+    4: dict(degree=4, core=True, tides=True, bodies=("earth", "sun", "venus", "jupiter", "mars", "saturn")),
+}
+LEVEL_NAMES = {1: "Euler: degree-2 Moon, Earth + Sun point masses",
+               2: "+ Moon degree 3 and 4", 3: "+ fluid core, tidal and rotational distortion",
+               4: "+ Venus, Mars, Jupiter, Saturn on the figure"}
+
+SCHEMA = {
+    "model.level": Key(type=int, default=3, help="1..4, see LEVEL_NAMES"),
+    "model.tides": Key(type=bool, default=True, help="tidal/rotational distortion at levels 3-4"),
+    "orbit.source": Key(type=str, default="de421", help="'de421', a .bsp name, or 'rebound'"),
+    "orbit.step": Key(unit="d", default=0.25, help="sampling step of the orbit interpolant"),
+    "compare.source": Key(type=str, default="", help="also run driven by this source and report the difference"),
+    "report.error_vs_runtime": Key(type=bool, default=False, help="rk8 steps and dop853 tolerances vs a converged run"),
+}
+
+# Eckhardt's physical libration in longitude tau as in Meeus (Astronomical Algorithms,
+# ch. 53): (name, period, published coefficient in arcsec, "sin"/"cos", argument of
+# (D, M, M', F, Omega, K1, K2)).  Meeus's K2 term (1780 yr, 0.83") cannot be told
+# from the trend over 150 yr and is left out.  The first five are the main terms compared in reports;
+# all are fitted together, with DE421's free libration in longitude (1056.16 d, Yang
+# et al. 2017) as a free sin/cos pair and a constant + linear trend.
+_DEG = 3600.0                                   # arcsec per degree
+TAU_TERMS = (
+    ("annual", "365.26 d", 0.02520 * _DEG, "sin", lambda d, m, mp, f, om, k1, k2: m),
+    ("1095 d", "1095.2 d", 0.00473 * _DEG, "sin", lambda d, m, mp, f, om, k1, k2: 2 * mp - 2 * f),
+    ("anomalistic month", "27.55 d", -0.00467 * _DEG, "sin", lambda d, m, mp, f, om, k1, k2: mp),
+    ("206 d", "205.9 d", 0.00276 * _DEG, "sin", lambda d, m, mp, f, om, k1, k2: 2 * mp - 2 * d),
+    ("18.6 yr", "6798 d", 0.00196 * _DEG, "sin", lambda d, m, mp, f, om, k1, k2: om),
+    ("K1 (Venus, 273 yr)", "273 yr", 0.00396 * _DEG, "sin", lambda d, m, mp, f, om, k1, k2: k1),
+    ("M'-F (also -0.00039 deg sin)", "6.0 yr", -0.00183 * _DEG, "cos", lambda d, m, mp, f, om, k1, k2: mp - f),
+    ("M'-2D", "31.8 d", 0.00115 * _DEG, "sin", lambda d, m, mp, f, om, k1, k2: mp - 2 * d),
+    ("M'-D", "411.8 d", -0.00096 * _DEG, "sin", lambda d, m, mp, f, om, k1, k2: mp - d),
+    ("2F-2D", "173.3 d", 0.00046 * _DEG, "sin", lambda d, m, mp, f, om, k1, k2: 2 * f - 2 * d),
+    ("M'-M-D", "8.85 yr", -0.00032 * _DEG, "sin", lambda d, m, mp, f, om, k1, k2: mp - m - d),
+    ("2M'-M-2D", "472 d", 0.00027 * _DEG, "sin", lambda d, m, mp, f, om, k1, k2: 2 * mp - m - 2 * d),
+)
+MAIN_TERMS = 5
+FREE_LONGITUDE_PERIOD_D = 1056.16
+INCLINATION_RAD = np.radians(1.54242)       # mean inclination of the lunar equator to the ecliptic
+
+
+def run(scenario):
+    level = scenario["model.level"]
+    if level not in LEVELS:
+        raise ScenarioError("model.level", level, f"one of {sorted(LEVELS)}")
+    t_out = scenario.output_times()
+    system, orbits = build_system(scenario, scenario["orbit.source"])
+    solution, point = common.simulate_scenario(scenario, system, t_out)
+    angles, mats = model_angles(solution)
+    ref_mats = reference_mats(solution.t)
+    comparison = residual_metrics(mats, ref_mats)
+    librations = physical_librations(solution.t, mats, orbits)
+    fit = fit_longitude_terms(solution.t, librations["tau"])
+    summary = {"comparison": comparison, "run": point, "model": {"level": level, "name": LEVEL_NAMES[level],
+               **{k: v for k, v in LEVELS[level].items() if k != "bodies"}, "bodies": list(orbits.names),
+               "tides": bool(system.meta["tides"])},
+               "orbits": {"source": scenario["orbit.source"], "step_d": scenario["orbit.step"],
+                          "max_error_km": _list(getattr(orbits, "max_error_km", None))},
+               "longitude_terms": fit}
+    figures = {}
+    other = scenario["compare.source"]
+    if other:
+        system_b, _ = build_system(scenario, other)
+        sol_b, _ = common.simulate_scenario(scenario, system_b, t_out)
+        pole, lon = _pole_lon(mats, model_angles(sol_b)[1])
+        comparison[f"pole_difference_vs_{other}_driven_max_arcsec"] = float(np.abs(pole).max() / ARCSEC)
+        comparison[f"longitude_difference_vs_{other}_driven_max_arcsec"] = float(np.abs(lon).max() / ARCSEC)
+        figures[f"difference_vs_{other}_driven"] = common.plot_series(
+            _years(solution.t), np.array([pole, lon]) / ARCSEC, "year (TDB)",
+            f"{scenario['orbit.source']} - {other} driven [arcsec]", ["pole", "longitude"])
+    if scenario["report.error_vs_runtime"]:
+        rows = error_vs_runtime(system, t_out, ref_mats)
+        summary["error_vs_runtime"] = rows
+        figures["error_vs_runtime"] = plot_error_vs_runtime(rows)
+    table = make_table(solution, angles, mats, ref_mats, librations)
+    years = _years(solution.t)
+    figures = {"residuals_vs_de421": common.plot_series(
+        years, np.array([table["pole_error"].value, table["longitude_error"].value]), "year (TDB)",
+        "model - DE421 [arcsec]", ["pole", "longitude"]),
+        "physical_libration": common.plot_series(
+            years, np.array([table[k].value for k in ("libration_longitude", "libration_latitude")]),
+            "year (TDB)", "physical libration [arcsec]", ["longitude tau", "latitude rho"]),
+        **figures}
+    return common.result(scenario, table, summary, figures, solution)
+
+
+def build_system(scenario, source):
+    """SpinSystem of the lunar model at the scenario's level, driven by ``source``."""
+    from ..dynamics import SpinSystem
+    from ..moon import make_moon_rhs, moon_params
+    from ..orbits.sources import sample_orbits
+    from ..references.moon_de421 import core_angular_velocity, librations, moon_constants, orientation
+    from ..rotations import quat_from_euler313
+
+    level = scenario["model.level"]
+    spec = LEVELS[level]
+    tides = spec["tides"] and scenario["model.tides"]
+    c = moon_constants()
+    t0, t1 = scenario.t_start, scenario.t_end
+    margin = 1.0                                                   # days: the tide looks back tau
+    orbits = sample_orbits(source, "moon", spec["bodies"], t0 - margin, t1 + margin, scenario["orbit.step"])
+    angles, _ = librations([t0])
+    _, omega = orientation([t0])
+    y0 = np.concatenate([quat_from_euler313(*angles[0]), omega[0]])
+    if spec["core"]:
+        y0 = np.concatenate([y0, core_angular_velocity(t0)])
+    rhs = make_moon_rhs(orbits.kernel, spec["degree"], spec["core"], tides)
+    n_mean = 2 * np.pi / 27.321661                                # sidereal month, rad/day
+    params = moon_params(c.moments, orbits.gm, orbits.data, c.c_nm, c.s_nm, c.radius_km, c.k2,
+                         c.gm_km3_d2["moon"], c.tau_d, c.kv_over_c_per_d, c.core_c_over_c, n_mean)
+    system = SpinSystem(rhs, params, t0, y0, c.moments, None, f"moon level {level}",
+                        {"tides": tides, "source": source})
+    return system, orbits
+
+
+def model_angles(solution):
+    """JPL angles (n, 3) rad and ICRF-to-body matrices (n, 3, 3) of a solution."""
+    from ..rotations import euler313_from_matrix, matrix_from_quat
+
+    mats = np.array([matrix_from_quat(q).T for q in solution.quaternion])
+    angles = np.array([euler313_from_matrix(m) for m in mats])
+    return angles, mats
+
+
+def reference_mats(t):
+    from ..references.moon_de421 import orientation
+
+    return orientation(t)[0]
+
+
+def _pole_lon(m_a, m_b):
+    from ..references.moon_de421 import pole_and_longitude_difference
+
+    return pole_and_longitude_difference(m_a, m_b)
+
+
+def residual_metrics(mats, ref_mats):
+    """Max and rms pole and longitude error against DE421, arcsec."""
+    pole, lon = _pole_lon(mats, ref_mats)
+    out = {}
+    for name, x in (("pole", pole), ("longitude", lon)):
+        out[f"{name}_error_max_arcsec"] = float(np.abs(x).max() / ARCSEC)
+        out[f"{name}_error_rms_arcsec"] = float(np.sqrt(np.mean(x**2)) / ARCSEC)
+    return out
+
+
+def fundamental_arguments(t):
+    """Mean elements of date (Meeus 47.2-47.7; Chapront et al.): L', D, M, M', F, Omega, rad."""
+    T = np.asarray(t) / JULIAN_CENTURY_D
+    poly = lambda *c: np.radians(sum(ci * T**i for i, ci in enumerate(c)))
+    lp = poly(218.3164477, 481267.88123421, -0.0015786, 1 / 538841, -1 / 65194000)
+    d = poly(297.8501921, 445267.1114034, -0.0018819, 1 / 545868, -1 / 113065000)
+    m = poly(357.5291092, 35999.0502909, -0.0001536, 1 / 24490000)
+    mp = poly(134.9633964, 477198.8675055, 0.0087414, 1 / 69699, -1 / 14712000)
+    f = poly(93.2720950, 483202.0175233, -0.0036539, -1 / 3526000, 1 / 863310000)
+    om = poly(125.0445479, -1934.1362891, 0.0020754, 1 / 467441, -1 / 60616000)
+    return lp, d, m, mp, f, om
+
+
+def physical_librations(t, mats, orbits):
+    """tau, rho, sigma (rad) about the Cassini state, and the sub-Earth point (Earth from ``orbits``).
+
+    The body angles are taken against the mean ecliptic and equinox of date (ERFA ecm06):
+    node phi_e, inclination theta_e, and phi_e + psi_e the prime meridian's longitude.
+    tau = phi_e + psi_e - (L' + 180 deg), rho = theta_e - I, sigma = phi_e - (Omega + 180 deg).
+    """
+    import erfa
+
+    from ..rotations import euler313_from_matrix
+
+    ecm = np.array([erfa.ecm06(J2000_JD, ti) for ti in t])       # ICRS -> ecliptic of date
+    ecl = np.array([euler313_from_matrix(m @ e.T) for m, e in zip(mats, ecm)])
+    lp, d, m, mp, f, om = fundamental_arguments(t)
+    wrap = lambda a: (a + np.pi) % (2 * np.pi) - np.pi
+    tau = wrap(ecl[:, 0] + ecl[:, 2] - lp - np.pi)
+    rho = ecl[:, 1] - INCLINATION_RAD
+    sigma = wrap(ecl[:, 0] - om - np.pi)
+    earth = orbits.positions(t)[:, 0]                              # Earth from the Moon, km, ICRF
+    u = np.einsum("nij,nj->ni", mats, earth / np.linalg.norm(earth, axis=1, keepdims=True))
+    return {"tau": tau, "rho": rho, "sigma": sigma,
+            "sub_earth_lon": np.arctan2(u[:, 1], u[:, 0]), "sub_earth_lat": np.arcsin(u[:, 2])}
+
+
+def fit_longitude_terms(t, tau):
+    """Least squares at fixed arguments: tau = c0 + c1 t + free pair + sum S_k f_k(a_k), arcsec.
+
+    Each published term's argument a_k is fixed (mean elements of date); its fitted
+    coefficient (of the published sin or cos) and the quadrature one are returned with
+    the published value.
+    """
+    t = np.asarray(t)
+    d, m, mp, f, om = fundamental_arguments(t)[1:]
+    big_t = t / JULIAN_CENTURY_D
+    k1, k2 = np.radians(119.75 + 131.849 * big_t), np.radians(72.56 + 20.186 * big_t)
+    free = 2 * np.pi * t / FREE_LONGITUDE_PERIOD_D
+    columns = [np.ones_like(t), (t - t.mean()) / JULIAN_CENTURY_D, np.sin(free), np.cos(free)]
+    for *_, kind, arg in TAU_TERMS:
+        a = arg(d, m, mp, f, om, k1, k2)
+        main, quad = (np.sin(a), np.cos(a)) if kind == "sin" else (np.cos(a), np.sin(a))
+        columns += [main, quad]
+    coef, *_ = np.linalg.lstsq(np.array(columns).T, tau / ARCSEC, rcond=None)
+    rows = []
+    for k, (name, period, published, kind, _) in enumerate(TAU_TERMS):
+        rows.append({"term": name, "period": period, "function": kind,
+                     "fitted_arcsec": float(coef[4 + 2 * k]), "quadrature_arcsec": float(coef[5 + 2 * k]),
+                     "published_arcsec": round(published, 2)})
+    free_amplitude = float(np.hypot(coef[2], coef[3]))
+    return {"main": rows[:MAIN_TERMS], "other": rows[MAIN_TERMS:],
+            "free_libration_1056d_amplitude_arcsec": free_amplitude}
+
+
+def make_table(solution, angles, mats, ref_mats, librations):
+    from ..references.moon_de421 import librations as de421_librations
+
+    units = common.u()
+    table = common.attitude_table(solution)
+    ref_angles, _ = de421_librations(solution.t)
+    for i, name in enumerate(("phi", "theta", "psi")):
+        table[name] = angles[:, i] * units.rad
+    pole, lon = _pole_lon(mats, ref_mats)
+    table["pole_error"] = pole / ARCSEC * units.arcsec
+    table["longitude_error"] = lon / ARCSEC * units.arcsec
+    wrap = lambda a: (a + np.pi) % (2 * np.pi) - np.pi
+    for i, name in enumerate(("phi", "theta", "psi")):
+        table[f"{name}_minus_de421"] = wrap(angles[:, i] - ref_angles[:, i]) / ARCSEC * units.arcsec
+    table["libration_longitude"] = librations["tau"] / ARCSEC * units.arcsec
+    table["libration_latitude"] = librations["rho"] / ARCSEC * units.arcsec
+    table["libration_node"] = librations["sigma"] / ARCSEC * units.arcsec
+    table["sub_earth_longitude"] = np.degrees(librations["sub_earth_lon"]) * units.deg
+    table["sub_earth_latitude"] = np.degrees(librations["sub_earth_lat"]) * units.deg
+    return table
+
+
+RK8_STEPS_D = (4.0, 2.0, 1.0, 0.5)
+DOP853_RTOLS = (1e-8, 1e-10, 1e-12)
+CONVERGED = ("rk8", {"step": 0.25})
+
+
+def error_vs_runtime(system, t_out, ref_mats):
+    """Wall time and max attitude error (vs a converged rk8 run and vs DE421), arcsec."""
+    from ..integrators import integrate
+
+    converged = model_angles(integrate(system, t_out, CONVERGED[0], **CONVERGED[1]))[1]
+    runs = [("rk8", {"step": h}) for h in RK8_STEPS_D]
+    runs += [("dop853", {"rtol": r, "atol": r * 1e-2}) for r in DOP853_RTOLS]
+    rows = []
+    for method, options in runs:
+        sol = integrate(system, t_out, method, **options)
+        mats = model_angles(sol)[1]
+        pole, lon = _pole_lon(mats, converged)
+        pole_r, lon_r = _pole_lon(mats, ref_mats)
+        rows.append({"method": method, **options, "wall_s": sol.wall_s, "rhs_evaluations": sol.nfev,
+                     "error_vs_converged_arcsec": float(max(np.abs(pole).max(), np.abs(lon).max()) / ARCSEC),
+                     "error_vs_de421_arcsec": float(max(np.abs(pole_r).max(), np.abs(lon_r).max()) / ARCSEC)})
+    return rows
+
+
+def plot_error_vs_runtime(rows):
+    def draw(fig):
+        ax = fig.add_subplot()
+        for method, marker in (("rk8", "o-"), ("dop853", "s--")):
+            sel = [r for r in rows if r["method"] == method]
+            ax.loglog([r["wall_s"] for r in sel], [max(r["error_vs_converged_arcsec"], 1e-9) for r in sel],
+                      marker, label=f"{method} vs converged")
+            ax.loglog([r["wall_s"] for r in sel], [r["error_vs_de421_arcsec"] for r in sel],
+                      marker, alpha=0.4, label=f"{method} vs DE421")
+        ax.set_xlabel("wall time [s]")
+        ax.set_ylabel("max attitude error [arcsec]")
+        ax.legend()
+        ax.grid(alpha=0.3, which="both")
+
+    return draw
+
+
+def _years(t):
+    return 2000.0 + np.asarray(t) / 365.25
+
+
+def _list(x):
+    return None if x is None else [float(v) for v in np.atleast_1d(x)]
