@@ -20,9 +20,9 @@ _GM_KM3_S2 = {
     "earth": 398600.436233,
     "moon": 4902.800076,
     "venus": 324858.592,
-    "jupiter": 126712767.858,   # Jupiter system barycentre
+    "jupiter": 126712764.800,   # Jupiter system barycentre
     "mars": 42828.375214,
-    "saturn": 37940626.063,
+    "saturn": 37940585.200,
     "mercury": 22032.090,
 }
 GM_KM3_D2 = {name: gm * DAY_S**2 for name, gm in _GM_KM3_S2.items()}
