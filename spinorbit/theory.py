@@ -116,7 +116,7 @@ class FreeRigidBody:
         """L-frame -> relabelled body frame, M = Rz(psi) Rx(theta) Rz(phi) with l = L_xyz/|L|."""
         l_xyz = (self.moments * omega)[self.perm] / self.l
         theta = math.acos(max(-1.0, min(1.0, l_xyz[2])))
-        psi = math.atan2(l_xyz[0], l_xyz[1])
+        psi = math.atan2(l_xyz[0] + 0.0, l_xyz[1] + 0.0)    # + 0.0: no signed zeros in a steady spin
         return matrix_from_euler313(phi, theta, psi)
 
     def _g(self, u):
