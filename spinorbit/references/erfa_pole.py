@@ -105,6 +105,15 @@ def pole_angles(t_tdb_d, pole_gcrs):
     return psi, eps
 
 
+def pole_from_angles(t_tdb_d, psi, eps):
+    """Unit pole in GCRS with Fukushima-Williams angles (psi, eps) at one time (inverse of pole_angles)."""
+    gamb, phib, _, _ = (float(a) for a in mean_angles(t_tdb_d))
+    x1, y2, z2 = np.sin(eps) * np.sin(psi), np.sin(eps) * np.cos(psi), np.cos(eps)
+    y1 = np.cos(phib) * y2 - np.sin(phib) * z2
+    z = np.sin(phib) * y2 + np.cos(phib) * z2
+    return np.array([np.cos(gamb) * x1 - np.sin(gamb) * y1, np.sin(gamb) * x1 + np.cos(gamb) * y1, z])
+
+
 def fundamental_arguments(t_tdb_d):
     """Delaunay arguments (l, l', F, D, Om), rad, shape (5, n) (IERS 2003, ERFA fa*03)."""
     import erfa

@@ -24,6 +24,9 @@ SCHEMA = {
     "earth.dynamical_ellipticity": Key(unit="", default=earth.H_D, help="(C - A)/C"),
     "earth.b_minus_a_over_c": Key(unit="", default=0.0, help="triaxiality (full model only)"),
     "earth.forced_start": Key(type=bool, default=True, help="Oppolzer terms in the initial omega"),
+    "earth.start_pole": Key(type=str, default="iau", choices=("iau", "iau_mean_plus_rigid_nutation"),
+                            help="initial figure axis: the IAU 2006/2000A pole, or the IAU mean pole plus "
+                                 "the rigid model's own nutation (from a first gyroscopic pass)"),
     "earth.geodesic_precession": Key(type=bool, default=True),
     "earth.j2_rate": Key(type=bool, default=True),
     "orbit.source": Key(type=str, default="de421", choices=("de421", "circular")),
@@ -50,6 +53,8 @@ def run(scenario):
     extra = earth.extra_parameters(pole_ecl, scenario["earth.geodesic_precession"], scenario["earth.j2_rate"])
     params = (moments, orbits.gm, orbits.data, extra)
     z0 = erfa_pole.cip_vector(t0)
+    if scenario["earth.start_pole"] != "iau" and plane_tilt is None:
+        z0 = _rigid_start(erfa_pole, orbits, params, t0, z0, t)
     x0 = _a_axis(erfa_pole, t0, z0)
     full = scenario["earth.model"] == "full"
     system = (earth.full_system(orbits.kernel, params, t0, z0, x0, forced=scenario["earth.forced_start"])
@@ -92,6 +97,24 @@ def _orbits(scenario):
     margin = 1.0        # the gyroscopic rhs differences the torque at t +- 1/64 d
     return sample_orbits("de421", "earth", bodies, scenario.t_start - margin, scenario.t_end + margin,
                          scenario["orbit.sample_step"]), None
+
+
+def _rigid_start(erfa_pole, orbits, params, t0, z0, t):
+    """IAU mean pole at t0 plus the rigid nutation there: IAU pole + (rigid - IAU) fitted periodic terms."""
+    gyro = earth.gyroscopic_system(orbits.kernel, params, t0, z0)
+    z = gyro.meta["figure_axes"](t, integrate(gyro, t, "rk8", step=2.0).y, params)
+    psi, eps = erfa_pole.pole_angles(t, z)
+    _, _, psi_bar, eps_a = erfa_pole.mean_angles(t)
+    dpsi, deps = erfa_pole.nutation(t)
+    args = erfa_pole.fundamental_arguments(np.array([t0]))[:, 0]
+    offsets = []
+    for model, iau in ((psi - psi_bar, dpsi), (eps - eps_a, deps)):
+        fit_m, fit_i = (erfa_pole.fit_precession_nutation(t, v) for v in (model, iau))
+        offsets.append(sum((fit_m["sin"][k] - fit_i["sin"][k]) * math.sin(np.dot(m, args))
+                           + (fit_m["cos"][k] - fit_i["cos"][k]) * math.cos(np.dot(m, args))
+                           for k, m in erfa_pole.NUTATION_ARGUMENTS.items()))
+    psi0, eps0 = (v[0] for v in erfa_pole.pole_angles(np.array([t0]), z0[None]))
+    return erfa_pole.pole_from_angles(t0, psi0 + offsets[0], eps0 + offsets[1])
 
 
 def _a_axis(erfa_pole, t0, z0):

@@ -1,0 +1,145 @@
+"""Error against run time for the Earth's precession-nutation: gyroscopic and full models.
+
+    python benchmarks/bench_earth.py            # writes benchmarks/earth_error_vs_time.{csv,png}
+
+Compiled rk8 (one core) at several steps, and scipy solve_ivp DOP853 with a
+NumPy right-hand side at several tolerances; error = max |figure axis - a
+converged run| in mas; wall time excludes compilation and is scaled to a
+simulated century.  DE421 Moon + Sun, geodesic precession and J2 rate on.
+"""
+import csv
+import math
+import time
+from pathlib import Path
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from spinorbit import earth
+from spinorbit.constants import MAS
+from spinorbit.integrators import integrate
+from spinorbit.orbits.sources import sample_orbits
+from spinorbit.references import erfa_pole
+
+OUT = Path(__file__).parent
+T0 = 0.0                                   # J2000
+SPANS = {"gyroscopic": 36525.0, "full": 3652.5}
+
+
+def setup(span):
+    orbits = sample_orbits("de421", "earth", ("moon", "sun"), T0 - 1, T0 + span + 1, 0.25, measure=False)
+    params = (earth.earth_moments(), orbits.gm, orbits.data,
+              earth.extra_parameters(erfa_pole.ecliptic_pole_j2000(), True, True))
+    z0 = erfa_pole.cip_vector(T0)
+    return orbits, params, z0, erfa_pole.terrestrial_x_axis(T0)
+
+
+def axes(model, system, orbits, params, t, y):
+    return earth.figure_axes_from_full(y) if model == "full" else system.meta["figure_axes"](t, y, params)
+
+
+def numpy_rhs(model, orbits, params):
+    """The same right-hand sides in plain NumPy (positions from the interpolant, one call per evaluation)."""
+    moments, gm, _, extra = params
+    c_minus_a = moments[2] - moments[0]
+
+    def tensor(t):
+        r = orbits.positions(np.array([t]))[0]
+        s = np.linalg.norm(r, axis=1)
+        return np.einsum("i,ij,ik->jk", 3 * gm / s**5, r, r) * (1 + extra[3] * t)
+
+    def quat_matrix(q):
+        w, x, y, z = q
+        return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                         [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                         [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+
+    def quat_rate(q, w_inertial):
+        w, x, y, z = q
+        a, b, c = w_inertial
+        return 0.5 * np.array([-a * x - b * y - c * z, a * w + b * z - c * y, b * w + c * x - a * z, c * w + a * y - b * x])
+
+    if model == "gyroscopic":
+        h = 1.0 / 64.0
+
+        def rhs(t, y):
+            ell, lc = quat_matrix(y[:4])[:, 2], y[6]
+            lam = lc / moments[0]
+            t_0, t_dot = tensor(t), (tensor(t + h) - tensor(t - h)) / (2 * h)
+            n0 = c_minus_a * np.cross(t_0 @ ell, ell)
+            n_dot = c_minus_a * np.cross(t_dot @ ell, ell)
+            z = ell - np.cross(ell, n0 / lc) / lam - n_dot / lc / lam**2
+            z /= np.linalg.norm(z)
+            torque = c_minus_a * np.cross(t_0 @ z, z)
+            ell_dot = (torque - (torque @ ell) * ell) / lc + np.cross(extra[:3], ell)
+            return np.concatenate([quat_rate(y[:4], np.cross(ell, ell_dot)), np.zeros(3)])
+    else:
+        def rhs(t, y):
+            rot = quat_matrix(y[:4])
+            omega = y[4:7]
+            torque_inertial = c_minus_a * np.cross(tensor(t) @ rot[:, 2], rot[:, 2])   # axisymmetric
+            torque = rot.T @ torque_inertial
+            omega_dot = (torque - np.cross(omega, moments * omega)) / moments
+            return np.concatenate([quat_rate(y[:4], rot @ omega + extra[:3]), omega_dot])
+    return rhs
+
+
+def main():
+    rows = []
+    for model, steps, tolerances in (("gyroscopic", [8.0, 4.0, 2.0, 1.0], [1e-8, 1e-10, 1e-12]),
+                                     ("full", [0.4, 0.2, 0.1, 0.05], [1e-9, 1e-11, 1e-13])):
+        span = SPANS[model]
+        orbits, params, z0, x0 = setup(span)
+        system = (earth.gyroscopic_system(orbits.kernel, params, T0, z0) if model == "gyroscopic"
+                  else earth.full_system(orbits.kernel, params, T0, z0, x0))
+        t = T0 + np.arange(0.0, span + 1e-9, 8.0)
+        reference = axes(model, system, orbits, params, t, integrate(system, t, "rk8", step=steps[-1] / 4).y)
+        scale = 36525.0 / span
+        for step in steps:
+            sol = integrate(system, t, "rk8", step=step)
+            err = np.linalg.norm(axes(model, system, orbits, params, t, sol.y) - reference, axis=1).max() / MAS
+            rows.append({"model": model, "method": "rk8 (numba)", "setting": f"step {step} d",
+                         "wall_s_per_century": sol.wall_s * scale, "error_mas": err})
+            print(rows[-1])
+        # scipy DOP853 + NumPy rhs over a tenth of the span (it is slow), error on that part.
+        short = t[t <= T0 + span / 10]
+        rhs = numpy_rhs(model, orbits, params)
+        for rtol in tolerances:
+            start = time.perf_counter()
+            sol = solve_ivp(rhs, (T0, short[-1]), system.y0, method="DOP853", t_eval=short, rtol=rtol, atol=rtol * 1e-3)
+            wall = time.perf_counter() - start
+            y = sol.y.T
+            y[:, :4] /= np.linalg.norm(y[:, :4], axis=1, keepdims=True)
+            err = np.linalg.norm(axes(model, system, orbits, params, short, y) - reference[:len(short)], axis=1).max() / MAS
+            rows.append({"model": model, "method": "scipy DOP853 + NumPy rhs", "setting": f"rtol {rtol:g}",
+                         "wall_s_per_century": wall * scale * 10, "error_mas": err})
+            print(rows[-1])
+    with open(OUT / "earth_error_vs_time.csv", "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+    plot(rows)
+
+
+def plot(rows):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for model in ("gyroscopic", "full"):
+        for method, marker in (("rk8 (numba)", "o-"), ("scipy DOP853 + NumPy rhs", "s--")):
+            pts = [(r["wall_s_per_century"], max(r["error_mas"], 1e-7)) for r in rows
+                   if r["model"] == model and r["method"] == method]
+            ax.loglog(*zip(*pts), marker, label=f"{model}, {method}")
+    ax.set_xlabel("wall time per simulated century [s] (one core)")
+    ax.set_ylabel("max figure-axis error [mas]")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(OUT / "earth_error_vs_time.png", dpi=110)
+
+
+if __name__ == "__main__":
+    main()
