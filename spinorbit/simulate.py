@@ -10,6 +10,7 @@ import numpy as np
 
 from .constants import ARCSEC
 from .integrators import get_method
+from .rotations import quat_angle
 
 
 def refined_options(method_cls, options):
@@ -23,12 +24,6 @@ def refined_options(method_cls, options):
     return refined
 
 
-def attitude_difference_arcsec(q_a, q_b):
-    """Rotation angle between two series of unit quaternions, arcsec."""
-    dot = np.abs(np.sum(q_a * q_b, axis=1)).clip(0, 1)
-    return 2 * np.arccos(dot) / ARCSEC
-
-
 def simulate(system, t_out, method="dop853", options=None, estimate_error=True):
     """Integrate; return (solution, {wall_s, integration_error_attitude_arcsec, ...})."""
     method_cls = get_method(method)
@@ -39,7 +34,7 @@ def simulate(system, t_out, method="dop853", options=None, estimate_error=True):
     if estimate_error:
         reference = method_cls(**refined_options(method_cls, options)).solve(system, t_out)
         point["integration_error_attitude_arcsec"] = float(
-            attitude_difference_arcsec(solution.quaternion, reference.quaternion).max())
+            quat_angle(solution.quaternion, reference.quaternion).max() / ARCSEC)
         scale = np.abs(reference.omega).max()
         point["integration_error_omega_rel"] = float(np.abs(solution.omega - reference.omega).max() / scale)
     return solution, point
