@@ -1,6 +1,6 @@
 """Attitude: quaternions, rotation matrices and JPL 3-1-3 Euler angles.
 
-Conventions (docs/CONVENTIONS.md):
+Conventions (docs/DEVELOPING.md):
 
 * A quaternion ``q = (w, x, y, z)`` (scalar first, unit norm) rotates body-frame
   vectors into the inertial frame: ``v_inertial = matrix_from_quat(q) @ v_body``.
