@@ -12,6 +12,7 @@ Quantities are strings with units, parsed by astropy (``"384400 km"``,
 Times are ISO strings in TDB; ``span.end`` may also be a duration from
 ``span.start`` (``"100 yr"``, ``"1073.15 d"``).
 """
+import datetime
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
@@ -140,6 +141,8 @@ class Scenario:
                 raise ScenarioError(key, value, spec.accepted())
             return value
         if spec.unit is None:
+            if spec.type is str and isinstance(value, (datetime.date, datetime.time)):
+                value = _toml_datetime_text(key, value)
             if spec.type is float and isinstance(value, int) and not isinstance(value, bool):
                 return float(value)
             if not isinstance(value, spec.type) or (spec.type is not bool and isinstance(value, bool)):
@@ -163,6 +166,13 @@ class Scenario:
         if not self["span.step"] > 0:
             raise ScenarioError("span.step", self.data["span"]["step"], "a positive duration")
         return start, end
+
+
+def _toml_datetime_text(key, value):
+    """An unquoted TOML date/datetime as ISO text; a time zone makes no sense for TDB."""
+    if getattr(value, "tzinfo", None) is not None:
+        raise ScenarioError(key, value.isoformat(), "a TDB time without a time-zone offset, e.g. 2000-01-01T12:00:00")
+    return value.isoformat()
 
 
 def parse_tdb_days(key, text):
