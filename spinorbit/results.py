@@ -6,6 +6,7 @@ the command line and by notebooks.
 from dataclasses import dataclass, field
 from typing import Callable
 
+from .errors import IntegrationError
 from .scenarios import Scenario, load_scenario
 
 
@@ -26,9 +27,25 @@ def run_scenario(scenario, overrides=()):
     """Run a scenario (a Scenario or a path to its TOML file) and return a RunResult."""
     if not isinstance(scenario, Scenario):
         scenario = load_scenario(scenario, overrides)
-    result = scenario.module.run(scenario)
+    try:
+        result = scenario.module.run(scenario)
+    except IntegrationError as exc:
+        if getattr(exc, "result", None) is None and getattr(exc, "partial", None) is not None:
+            exc.result = partial_result(scenario, exc)
+        raise
     result.summary = {**base_summary(scenario), **result.summary}
     return result
+
+
+def partial_result(scenario, exc):
+    """RunResult of the output an integrator produced before it failed (``exc.partial``, a Solution)."""
+    from .scenes.common import attitude_table
+
+    partial = exc.partial
+    run = {"method": partial.method, "wall_s": partial.wall_s, "rhs_evaluations": partial.nfev,
+           "steps": partial.nsteps, "failed_at_tdb_d": exc.t, "outputs_written": int(partial.t.size)}
+    table = attitude_table(partial) if partial.t.size else None
+    return RunResult(scenario, table, {**base_summary(scenario), "run": run}, {}, partial)
 
 
 def base_summary(scenario):

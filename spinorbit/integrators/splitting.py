@@ -170,6 +170,7 @@ class Strang(Integrator):
         if n_done < t_out.size:
             reason = "exceeded max_steps" if steps > self.settings["max_steps"] else "state became non-finite"
             err = IntegrationError(f"{self.name}: {reason}", t_fail, y[n_done - 1] if n_done else system.y0,
+                                   "Raise integrator.max_steps." if steps > self.settings["max_steps"] else
                                    "Reduce integrator.step, or use an adaptive method (dop853) to find the difficulty.")
             err.partial = solution
             raise err

@@ -17,6 +17,8 @@ SCENES = {
     "p94_forced_libration": "spinorbit.scenes.p94_forced_libration",
     "p95_near_principal_axis": "spinorbit.scenes.p95_near_principal_axis",
     "p96_precession": "spinorbit.scenes.p96_precession",
+    "stress_free_body": "spinorbit.scenes.stress_free_body",
+    "stress_separatrix": "spinorbit.scenes.stress_separatrix",
 }
 
 
