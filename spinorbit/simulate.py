@@ -20,7 +20,7 @@ def refined_options(method_cls, options):
         refined["step"] = refined["step"] / 2
     for tol in ("rtol", "atol"):
         if tol in refined:
-            refined[tol] = max(refined[tol] / 100, 1e-15 if tol == "rtol" else 0.0)
+            refined[tol] = max(refined[tol] / 100, 2.3e-14 if tol == "rtol" else 0.0)   # scipy floor: 100 eps
     return refined
 
 
