@@ -3,7 +3,7 @@
 Run: ``python benchmarks/bench_moon.py [--years 150] [--numpy-years 10]``.
 
 * rk8 at several steps and dop853 (compiled rhs) at several tolerances over
-  1900-01-05 + ``--years``: wall time (compilation excluded), max attitude error
+  1900-01-05 + ``--years``, outputs every 4 d: wall time (compilation excluded), max attitude error
   (max of pole and longitude) against a converged run (rk8, h = 0.25 d) and against DE421;
 * the ratio against scipy ``solve_ivp`` DOP853 with a NumPy right-hand side (the same
   rhs run with NUMBA_DISABLE_JIT=1, in a subprocess) at equal error, over ``--numpy-years``.
@@ -24,11 +24,14 @@ ROOT = Path(__file__).resolve().parents[1]
 SCENARIO = ROOT / "scenarios" / "moon_libration.toml"
 
 
+CADENCE_D = 4.0          # output every 4 d, so that rk8 steps up to 4 d are not capped by outputs
+
+
 def build(years):
     from spinorbit.scenarios import load_scenario
     from spinorbit.scenes.moon_libration import build_system
 
-    scenario = load_scenario(SCENARIO, [f'span.end="{years} yr"'])
+    scenario = load_scenario(SCENARIO, [f'span.end="{years} yr"', f'span.step="{CADENCE_D} d"'])
     system, _ = build_system(scenario, "de421")
     return scenario, system
 
@@ -70,7 +73,7 @@ def compiled_rows(years):
     ref = reference_mats(t_out)
     converged = attitudes(integrate(system, t_out, "rk8", step=0.25))
     rows = []
-    runs = [("rk8", dict(step=h)) for h in (4.0, 3.0, 2.0, 1.5, 1.0, 0.5)]
+    runs = [("rk8", dict(step=h)) for h in (4.0, 2.0, 1.0, 0.5)]
     runs += [("dop853", dict(rtol=r, atol=r * 1e-2)) for r in (1e-8, 1e-9, 1e-10, 1e-11, 1e-12)]
     for method, options in runs:
         sol = integrate(system, t_out, method, **options)
@@ -83,7 +86,7 @@ def compiled_rows(years):
 
 def numpy_rows(years, converged_10):
     rows = []
-    for rtol in (1e-9, 1e-10, 1e-11):
+    for rtol in (1e-8, 1e-9, 1e-10):
         with tempfile.TemporaryDirectory() as tmp:
             out = Path(tmp) / "run.npz"
             env = {**os.environ, "NUMBA_DISABLE_JIT": "1"}
@@ -120,7 +123,7 @@ def main():
     if args.child:
         return numpy_run(float(args.child[0]), float(args.child[1]), args.child[2])
     rows, _, _ = compiled_rows(args.years)
-    print(table(rows, f"Moon level 3, {args.years:g} yr from 1900-01-05, outputs daily"))
+    print(table(rows, f"Moon level 3, {args.years:g} yr from 1900-01-05, outputs every {CADENCE_D:g} d"))
     short, converged_short, _ = compiled_rows(args.numpy_years)
     slow = numpy_rows(args.numpy_years, converged_short)
     print()
