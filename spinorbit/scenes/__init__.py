@@ -19,6 +19,7 @@ SCENES = {
     "p96_precession": "spinorbit.scenes.p96_precession",
     "stress_free_body": "spinorbit.scenes.stress_free_body",
     "stress_separatrix": "spinorbit.scenes.stress_separatrix",
+    "stress_mercury": "spinorbit.scenes.stress_mercury",
 }
 
 
