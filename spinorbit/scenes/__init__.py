@@ -20,6 +20,7 @@ SCENES = {
     "stress_free_body": "spinorbit.scenes.stress_free_body",
     "stress_separatrix": "spinorbit.scenes.stress_separatrix",
     "stress_mercury": "spinorbit.scenes.stress_mercury",
+    "stress_hyperion": "spinorbit.scenes.stress_hyperion",
 }
 
 

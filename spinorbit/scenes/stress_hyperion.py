@@ -1,0 +1,197 @@
+"""Stress: Hyperion's chaotic tumbling, its maximal Lyapunov exponent measured, not assumed.
+
+Planar spin-orbit on a Kepler ellipse (e = 0.1, (B - A)/C = 0.26; Wisdom, Peale
+& Mignard 1984) and the full 3-D rigid body (Euler ch. 15 §808 + ch. 16 P91).
+
+Method (Benettin et al. 1980): a reference and a neighbour trajectory started
+d0 apart in the scaled phase space (theta, theta'/n) -- in 3-D (2 q, omega/n)
+-- are integrated together; every orbital period T their distance d is
+measured, ln(d/d0) accumulated and the neighbour pulled back to distance d0
+along the same direction.  lambda(t) = sum ln(d/d0) / t, in units of 1/T.
+For a regular orbit d grows at most linearly, so lambda(t) ~ ln(t)/t -> 0; a
+chaotic orbit gives a positive limit.
+
+The scene checks (a) a regular orbit (small (B - A)/C, synchronous start)
+whose lambda falls like ln t/t (halves from T to 2T) below ``lyapunov.regular_max``; (b) the nominal
+Hyperion start: lambda clearly positive and the same (within
+``lyapunov.rel_tol``) over two integration lengths (rk8) and with a second
+integrator (scipy DOP853); (c) the 3-D exponent of the same start (planar
+reference, neighbour displaced out of the plane too).  It maps lambda over a
+grid of initial (theta - f, theta'/n) at periapsis (PNG) and reports the
+chaotic fraction; and it checks the planar model against the 3-D body
+restricted to the plane once.
+"""
+import dataclasses
+import math
+
+import numpy as np
+
+from ..integrators import integrate
+from ..integrators.rk8 import RK8, _rk_fixed
+from ..rotations import quat_angle
+from ..scenarios import Key
+from . import common
+from .planar_spin_orbit import kepler_orbit, planar_params, planar_rhs, rigid_body_system, theta_from_quaternions
+
+SCHEMA = {
+    "body.moments": Key(unit="", size=3, help="principal moments A < B < C (3-D runs); (B - A)/C for planar"),
+    "orbit.gm": Key(unit="km3/d2", help="GM of Saturn"),
+    "orbit.a": Key(unit="km", help="semi-major axis"),
+    "orbit.e": Key(unit="", help="eccentricity"),
+    "lyapunov.start": Key(unit="", size=2, help="nominal start at periapsis: theta - f (rad), theta'/n"),
+    "lyapunov.orbits": Key(type=int, default=1000, help="length of the shorter nominal run, orbital periods"),
+    "lyapunov.orbits_3d": Key(type=int, default=300, help="length of the 3-D run, orbital periods"),
+    "lyapunov.steps_per_orbit": Key(type=int, default=128, help="rk8 steps per orbital period"),
+    "lyapunov.d0": Key(unit="", default=1e-8, help="separation after each renormalisation"),
+    "lyapunov.rel_tol": Key(unit="", default=0.1, help="pass: nominal exponents agree within this"),
+    "lyapunov.regular_gamma": Key(unit="", default=0.01, help="(B - A)/C of the regular check orbit"),
+    "lyapunov.regular_max": Key(unit="", default=0.01, help="pass: regular exponent after 2 x orbits below this, 1/T"),
+    "lyapunov.chaotic_min": Key(unit="", default=0.2, help="chaotic above this, 1/T (map; nominal must exceed it)"),
+    "map.grid": Key(unit="", size=2, default=np.array([36.0, 36.0]), help="points in theta - f and theta'/n"),
+    "map.rate_range": Key(unit="", size=2, default=np.array([0.0, 3.0]), help="theta'/n range"),
+    "map.orbits": Key(type=int, default=200, help="length of each map run, orbital periods"),
+}
+
+
+def planar_lyapunov(p, theta0, rate0, t0, period, orbits, steps, d0, method="rk8"):
+    """Running exponents (orbits, n_starts) in 1/T for starts theta0, rate0 (rad, rad/d), Benettin.
+
+    All starts and their neighbours are one state vector of planar_rhs copies
+    (they share the orbit); ``method`` "rk8" (compiled fixed step, ``steps`` per
+    period) or "dop853" (scipy, rtol 1e-12).
+    """
+    from scipy.integrate import solve_ivp
+
+    n = p[0]
+    theta0, rate0 = np.broadcast_arrays(np.atleast_1d(theta0).astype(float), np.atleast_1d(rate0).astype(float))
+    y = np.empty(4 * theta0.size)
+    y[0::4], y[1::4] = theta0, rate0
+    y[2::4], y[3::4] = theta0 + d0 / math.sqrt(2), rate0 + n * d0 / math.sqrt(2)
+    logs, running = np.zeros(theta0.size), np.empty((orbits, theta0.size))
+    t = t0
+    for k in range(orbits):
+        if method == "rk8":
+            y = _rk_fixed(planar_rhs, p, t, y, np.array([t + period]), period / steps, RK8.A, RK8.B, RK8.C,
+                          10**9)[0][0]
+        else:
+            y = solve_ivp(planar_rhs, (t, t + period), y, "DOP853", args=(p,), rtol=1e-12, atol=1e-12).y[:, -1]
+        t += period
+        d_theta, d_rate = y[2::4] - y[0::4], (y[3::4] - y[1::4]) / n
+        d = np.hypot(d_theta, d_rate)
+        logs += np.log(d / d0)
+        running[k] = logs / (k + 1)
+        y[2::4], y[3::4] = y[0::4] + d_theta * d0 / d, y[1::4] + n * d_rate * d0 / d
+    return running
+
+
+def rigid_body_lyapunov(system, period, orbits, steps, d0):
+    """Running exponent (orbits,) in 1/T of a 3-D SpinSystem, Benettin with distance |(2 dq, d omega/n)|."""
+    n = 2 * math.pi / period
+    weights = np.array([2, 2, 2, 2, 1 / n, 1 / n, 1 / n])
+    a, b = system.y0.copy(), system.y0 + d0 / weights / math.sqrt(7)
+    t, logs, running = system.t0, 0.0, np.empty(orbits)
+    for k in range(orbits):
+        a, b = (integrate(dataclasses.replace(system, t0=t, y0=y), [t, t + period], "rk8",
+                          step=period / steps).y[-1] for y in (a, b))
+        t += period
+        d = float(np.linalg.norm(weights * (b - a)))
+        logs += math.log(d / d0)
+        running[k] = logs / (k + 1)
+        b = a + (b - a) * d0 / d
+    return running
+
+
+def planar_vs_rigid_body(scenario, p, orbit, period, start):
+    """Max |theta_planar - theta_3D| (rad) over 5 orbits from the nominal start (3-D body kept in the plane)."""
+    t0, n = scenario.t_start, p[0]
+    t = t0 + np.linspace(0.0, 5 * period, 501)
+    system = rigid_body_system(scenario["body.moments"], orbit, t0, start[0], start[1] * n)
+    body = integrate(system, t, "rk8", step=period / 512)
+    planar = _rk_fixed(planar_rhs, p, t0, np.array([start[0], start[1] * n]), t, period / 512, RK8.A, RK8.B,
+                       RK8.C, 10**9)[0]
+    return float(np.abs(theta_from_quaternions(body.quaternion) - planar[:, 0]).max()), system
+
+
+def lyapunov_map(scenario, p, period):
+    """(theta grid, rate/n grid, exponent (n_rate, n_theta) in 1/T) at periapsis after map.orbits periods."""
+    n_theta, n_rate = (int(v) for v in scenario["map.grid"])
+    theta = (np.arange(n_theta) + 0.5) * math.pi / n_theta
+    lo, hi = scenario["map.rate_range"]
+    rate = lo + (np.arange(n_rate) + 0.5) * (hi - lo) / n_rate
+    th, rt = np.meshgrid(theta, rate)
+    running = planar_lyapunov(p, th.ravel(), rt.ravel() * p[0], scenario.t_start, period, scenario["map.orbits"],
+                              scenario["lyapunov.steps_per_orbit"] // 2, scenario["lyapunov.d0"])
+    return theta, rate, running[-1].reshape(th.shape)
+
+
+def plot_map(theta, rate, exponent, threshold):
+    def draw(fig):
+        ax = fig.add_subplot()
+        image = ax.pcolormesh(np.degrees(theta), rate, exponent, shading="nearest", cmap="magma")
+        ax.contour(np.degrees(theta), rate, exponent, [threshold], colors="cyan", linewidths=0.8)
+        fig.colorbar(image, ax=ax, label="Lyapunov exponent [1/orbital period]")
+        ax.set_xlabel("theta - f at periapsis [deg]")
+        ax.set_ylabel("dtheta/dt / n at periapsis")
+        ax.set_title(f"Hyperion-like, planar: chaotic (> {threshold:g}/T, cyan) vs regular")
+
+    return draw
+
+
+def run(scenario):
+    moments = scenario["body.moments"]
+    gamma = (moments[1] - moments[0]) / moments[2]
+    gm, a, e = scenario["orbit.gm"], scenario["orbit.a"], scenario["orbit.e"]
+    t0 = scenario.t_start
+    n = math.sqrt(gm / a**3)
+    period = 2 * math.pi / n
+    orbit = kepler_orbit(gm, a, e, t0)
+    p = planar_params(n, e, t0, gamma)
+    start = scenario["lyapunov.start"]
+    orbits, steps, d0 = scenario["lyapunov.orbits"], scenario["lyapunov.steps_per_orbit"], scenario["lyapunov.d0"]
+
+    planar_error, system = planar_vs_rigid_body(scenario, p, orbit, period, start)
+    regular = planar_lyapunov(planar_params(n, e, t0, scenario["lyapunov.regular_gamma"]), 0.0, n, t0, period,
+                              2 * orbits, steps, d0)[:, 0]
+    long_run = planar_lyapunov(p, start[0], start[1] * n, t0, period, 2 * orbits, steps, d0)[:, 0]
+    dop853 = planar_lyapunov(p, start[0], start[1] * n, t0, period, orbits, steps, d0, "dop853")[:, 0]
+    tilted = rigid_body_lyapunov(system, period, scenario["lyapunov.orbits_3d"], steps, d0)
+    theta, rate, exponent = lyapunov_map(scenario, p, period)
+
+    nominal = {"rk8_T": float(long_run[orbits - 1]), "rk8_2T": float(long_run[-1]), "dop853_T": float(dop853[-1])}
+    spread = max(nominal.values()) / min(nominal.values()) - 1
+    decay = float(regular[-1] / regular[orbits - 1])        # ln(t)/t: ~0.5 from T to 2T; chaos: ~1
+    chaotic = exponent > scenario["lyapunov.chaotic_min"]
+    comparison = {
+        "checks": "maximal Lyapunov exponent (Benettin two-trajectory renormalisation every orbit, 1/T): regular "
+                  "orbit below lyapunov.regular_max and decaying; nominal Hyperion start positive and equal within "
+                  "lyapunov.rel_tol over T and 2T (rk8) and with dop853; 3-D exponent; planar model vs 3-D body",
+        "b_minus_a_over_c": gamma,
+        "orbital_period_d": period,
+        "lyapunov_regular_per_T": float(regular[-1]),
+        "lyapunov_regular_ln_t_over_t_per_T": float(math.log(regular.size) / regular.size),
+        "lyapunov_regular_ratio_2T_over_T": decay,
+        "lyapunov_nominal_rk8_T_per_T": nominal["rk8_T"],
+        "lyapunov_nominal_rk8_2T_per_T": nominal["rk8_2T"],
+        "lyapunov_nominal_dop853_T_per_T": nominal["dop853_T"],
+        "lyapunov_nominal_rel_spread": spread,
+        "lyapunov_time_nominal_T": 1 / nominal["rk8_2T"],
+        "lyapunov_3d_per_T": float(tilted[-1]),
+        "lyapunov_3d_half_run_per_T": float(tilted[tilted.size // 2 - 1]),
+        "chaotic_fraction_of_map": float(chaotic.mean()),
+        "chaotic_fraction_above_half_threshold": float(np.mean(exponent > scenario["lyapunov.chaotic_min"] / 2)),
+        "chaotic_fraction_above_twice_threshold": float(np.mean(exponent > 2 * scenario["lyapunov.chaotic_min"])),
+        "map_exponent_median_regular_per_T": float(np.median(exponent[~chaotic])) if (~chaotic).any() else math.nan,
+        "map_exponent_median_chaotic_per_T": float(np.median(exponent[chaotic])) if chaotic.any() else math.nan,
+        "planar_vs_3d_theta_max_rad_5_orbits": planar_error,
+        "passed": bool(regular[-1] < scenario["lyapunov.regular_max"] and decay < 0.75
+                       and min(nominal.values()) > scenario["lyapunov.chaotic_min"]
+                       and spread < scenario["lyapunov.rel_tol"] and planar_error < 1e-8),
+    }
+    details = {"map": {"theta_minus_f_rad": theta, "rate_over_n": rate, "exponent_per_T": exponent},
+               "method": "Benettin et al. (1980): two trajectories, renormalised to d0 every orbital period"}
+    figures = {"lyapunov_map": plot_map(theta, rate, exponent, scenario["lyapunov.chaotic_min"]),
+               "lyapunov_running": common.plot_series(
+                   np.arange(1, regular.size + 1), [regular, long_run], "orbital periods",
+                   "running exponent [1/T]", ["regular (small (B-A)/C)", "Hyperion nominal"], logy=True)}
+    summary = {"comparison": comparison, "details": details, "run": {"method": "rk8,dop853"}}
+    return common.result(scenario, None, summary, figures, None)
