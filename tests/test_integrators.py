@@ -128,3 +128,22 @@ def test_bench_writes_work_precision_table(tmp_path):
     assert all(p.exists() for p in paths)
     assert min(r["error_rad"] for r in rows if r["method"] == "rk8") < 1e-9
     assert {r["method"] for r in rows} == {"rk8", "strang"}
+
+
+def test_rk8_step_does_not_depend_on_output_cadence():
+    """Outputs closer than the step come from DOP853's continuous extension, as accurate as the steps."""
+    from spinorbit.dynamics import torque_free_system
+    from spinorbit.rotations import quat_angle
+    from spinorbit.theory import FreeRigidBody
+
+    moments = np.array([2 / 3, 1.0, 2.0])
+    omega0 = np.array([math.sin(1.1), 0.0, math.cos(1.1)]) / moments
+    system = torque_free_system(moments, [1.0, 0, 0, 0], omega0)
+    exact = FreeRigidBody(moments, omega0, np.array([1.0, 0, 0, 0]))
+    coarse_t, fine_t = np.arange(0, 200, 0.4), np.arange(0, 200, 0.013)
+    coarse = integrate(system, coarse_t, "rk8", step=0.2)
+    fine = integrate(system, fine_t, "rk8", step=0.2)
+    assert fine.nsteps == math.ceil(fine_t[-1] / 0.2 - 1e-9)     # the step is not cut to the cadence
+    error_coarse = quat_angle(coarse.quaternion, exact.attitude(coarse_t)).max()
+    error_fine = quat_angle(fine.quaternion, exact.attitude(fine_t)).max()
+    assert error_coarse < 1e-9 and error_fine < 1.2 * error_coarse

@@ -15,3 +15,4 @@ class RK4(RK8):
     A = np.array([[0.0, 0.0, 0.0, 0.0], [0.5, 0.0, 0.0, 0.0], [0.0, 0.5, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]])
     B = np.array([1.0, 2.0, 2.0, 1.0]) / 6.0
     C = np.array([0.0, 0.5, 0.5, 1.0])
+    DENSE = None          # no continuous extension: steps land on the outputs
