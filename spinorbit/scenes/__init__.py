@@ -21,6 +21,7 @@ SCENES = {
     "stress_separatrix": "spinorbit.scenes.stress_separatrix",
     "stress_mercury": "spinorbit.scenes.stress_mercury",
     "stress_hyperion": "spinorbit.scenes.stress_hyperion",
+    "stress_fast_spin": "spinorbit.scenes.stress_fast_spin",
 }
 
 

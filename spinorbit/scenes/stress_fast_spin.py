@@ -1,0 +1,160 @@
+"""Stress: a fast, nearly symmetric spinner on a slow orbit (spin/orbit frequency ratio 1e5).
+
+An oblate body (A ~ B < C) spins at eps about its figure axis, at obliquity n
+to the plane of a point mass F on a uniform circle at delta = eps/ratio
+(Euler ch. 16 P96, §844-849).  Its figure axis regresses about the orbit pole
+at the averaged rate N cos n cc/aa (theory.SymmetricPrecession with the
+gyroscopic ratio aa/cc; N = (3/2) GM (aa - cc)/(eps cc s^3), cc = (A + B)/2,
+the B - A part averages out over the spin).  GM/s^3 is set by
+``stress.precession_over_orbit`` = N/delta (the orbit is prescribed, not Keplerian).
+
+Every run in ``stress.runs`` (one integrator and setting each) reports its
+cost (wall time without compilation, rhs/torque evaluations, scaled per orbit
+when it covers only ``span_fraction`` of the span) and its errors against a
+converged run (``stress.reference``): the maximal attitude difference, which
+includes the spin phase (6e5 rad per orbit, so rounding alone leaves ~1e-8 rad),
+and the maximal figure-axis difference (the precession and nutation P96
+describes); and the precession rate fitted over the span (linear + 2 phi
+terms, §847) against the closed form, which is first order in N/delta.
+Passes when the reference's figure axis agrees with the best other run to
+``stress.reference_agreement_max`` rad and every full-span run's rate is
+within ``stress.rate_rel_tol`` of the closed form.
+"""
+import math
+
+import numpy as np
+
+from ..dynamics import SpinSystem, make_point_mass_torque, make_rigid_body_rhs
+from ..errors import ScenarioError
+from ..integrators import get_method, integrate
+from ..rotations import matrix_from_quat, quat_angle
+from ..scenarios import Key
+from . import common
+from .p96_precession import figure_axis_angles, initial_state
+
+SCHEMA = {
+    "body.moments": Key(unit="", size=3, help="A <= B < C, nearly symmetric about C"),
+    "body.spin": Key(unit="rad/d", help="spin rate eps about the figure axis"),
+    "body.obliquity": Key(unit="rad", help="angle n of the figure axis from the orbit pole"),
+    "stress.spin_over_orbit": Key(unit="", default=1e5, help="eps/delta"),
+    "stress.precession_over_orbit": Key(unit="", default=1e-3, help="N/delta (sets GM/s^3)"),
+    "stress.runs": Key(type=list, help="[{method, step_d | rtol, span_fraction}] compared"),
+    "stress.reference": Key(type=list, help="[{method, step_d | rtol}]: the converged run"),
+    "stress.rate_rel_tol": Key(unit="", default=1e-3, help="pass: |rate/closed form - 1| for full-span runs"),
+    "stress.reference_agreement_max": Key(unit="", default=1e-9,
+                                          help="pass: figure-axis difference, reference vs best other run, rad"),
+}
+RADIUS = 1.0          # F's distance (length unit arbitrary: only GM/s^3 enters)
+
+
+def options(run, key="stress.runs"):
+    """(method, integrator options, span fraction) of one run table."""
+    unknown = set(run) - {"method", "step_d", "rtol", "span_fraction"}
+    if "method" not in run or unknown:
+        raise ScenarioError(key, run, "tables {method = ..., step_d = <days> | rtol = <float>, span_fraction = <0-1>}")
+    method = get_method(run["method"])
+    opts = {"step": float(run["step_d"])} if "step_d" in run else {}
+    if "rtol" in run:
+        opts.update(rtol=float(run["rtol"]), atol=float(run["rtol"]) * 1e-3)
+    return method.name, opts, float(run.get("span_fraction", 1.0))
+
+
+def label(method, opts):
+    return f"{method} " + ", ".join(f"{k}={v:.3g}" for k, v in opts.items() if k != "atol")
+
+
+def build_system(scenario):
+    """(SpinSystem, closed form, delta): the spinner started on Euler's forced solution (§844)."""
+    from ..orbits.analytic import CircularOrbits
+    from ..theory import SymmetricPrecession
+
+    body = common.rigid_body(scenario)
+    a_, b_, aa = body.moments
+    cc = 0.5 * (a_ + b_)
+    eps, n = scenario["body.spin"], scenario["body.obliquity"]
+    delta = eps / scenario["stress.spin_over_orbit"]
+    big_n = scenario["stress.precession_over_orbit"] * delta
+    gm = big_n * eps * cc * RADIUS**3 / (1.5 * (aa - cc))
+    theory = SymmetricPrecession(eps, delta, big_n, n, ratio=aa / cc)
+    e, f, _ = theory.coefficients()
+    q0, omega0 = initial_state(n, eps, e + f, 0.0)
+    t0 = scenario.t_start
+    orbit = CircularOrbits(("F",), [gm], [RADIUS], [delta], phase=[-delta * t0])
+    torque = make_point_mass_torque(orbit.kernel)
+    system = SpinSystem(make_rigid_body_rhs(torque), (body.moments, orbit.gm, orbit.data), t0,
+                        np.concatenate([q0, omega0]), body.moments, torque, "fast spinner, slow orbit")
+    return system, theory, delta
+
+
+def precession_rate(solution, t0, delta, eps_f):
+    """Mean regression rate of the figure axis (rad/d): fit XZA on [1, t, sin 2phi, cos 2phi, free nutation]."""
+    dt = solution.t - t0
+    _, lam = figure_axis_angles(solution)
+    phi = lam - delta * dt
+    columns = [np.ones_like(dt), dt, np.sin(2 * phi), np.cos(2 * phi), np.cos(eps_f * dt), np.sin(eps_f * dt)]
+    return float(-np.linalg.lstsq(np.column_stack(columns), lam, rcond=None)[0][1])
+
+
+def figure_axis(solution):
+    """Unit vectors (n, 3) of the body's z axis in inertial axes."""
+    return np.array([matrix_from_quat(q)[:, 2] for q in solution.quaternion])
+
+
+def run(scenario):
+    system, theory, delta = build_system(scenario)
+    t = scenario.output_times()
+    t0, span = scenario.t_start, scenario.t_end - scenario.t_start
+    closed_form = theory.precession_rate
+    ref_method, ref_opts, _ = options(scenario["stress.reference"][0], "stress.reference")
+    reference = integrate(system, t, ref_method, **ref_opts)
+    ref_axis = figure_axis(reference)
+    reference_rate = precession_rate(reference, t0, delta, theory.eps_f)
+    rows = []
+    for entry in scenario["stress.runs"]:
+        method, opts, fraction = options(entry)
+        keep = t <= t0 + fraction * span * (1 + 1e-12)
+        sol = integrate(system, t[keep], method, **opts)
+        full = fraction >= 1.0
+        rate = precession_rate(sol, t0, delta, theory.eps_f) if full else math.nan
+        rows.append({"run": label(method, opts), "method": method, "span_d": float(t[keep][-1] - t0),
+                     "wall_s": sol.wall_s, "wall_s_per_orbit": sol.wall_s / (sol.t[-1] - t0) * 2 * math.pi / delta,
+                     "rhs_evaluations": sol.nfev,
+                     "error_vs_converged_rad": float(quat_angle(sol.quaternion, reference.quaternion[keep]).max()),
+                     "axis_error_vs_converged_rad": float(np.linalg.norm(figure_axis(sol) - ref_axis[keep],
+                                                                         axis=1).max()),
+                     "precession_rate_rel_error": rate / closed_form - 1 if full else math.nan,
+                     "precession_rate_rel_diff_vs_converged": rate / reference_rate - 1 if full else math.nan})
+    full_rows = [r for r in rows if r["span_d"] >= span * (1 - 1e-9)]
+    agreement = min(r["axis_error_vs_converged_rad"] for r in full_rows)
+    rate_errors = [abs(r["precession_rate_rel_error"]) for r in full_rows]
+    comparison = {
+        "checks": "fast spinner (eps/delta = stress.spin_over_orbit) on a slow circle: per integrator cost and max "
+                  "attitude error vs a converged run, and the fitted precession rate vs P96's N cos n cc/aa; passes "
+                  "if the reference agrees with the best run to stress.reference_agreement_max and every full-span "
+                  "rate is within stress.rate_rel_tol",
+        "spin_over_orbit": scenario["stress.spin_over_orbit"],
+        "precession_rate_closed_form_rad_per_d": closed_form,
+        "precession_rate_reference_rel_error": reference_rate / closed_form - 1,
+        "reference": label(ref_method, ref_opts),
+        "reference_agreement_axis_rad": agreement,
+        "reference_agreement_attitude_rad": min(r["error_vs_converged_rad"] for r in full_rows),
+        "precession_rate_rel_error_max": max(rate_errors),
+        "winner_axis_error": winner(full_rows, "axis_error_vs_converged_rad", (1e-6, 1e-8, 1e-10)),
+        "winner_attitude_error": winner(full_rows, "error_vs_converged_rad", (1e-4, 1e-6, 1e-7)),
+        "passed": bool(agreement < scenario["stress.reference_agreement_max"]
+                       and max(rate_errors) < scenario["stress.rate_rel_tol"]),
+    }
+    return common.result(scenario, None, {"comparison": comparison, "details": {"runs": rows},
+                                          "run": {"method": ",".join(r["run"] for r in rows)}}, {}, None)
+
+
+def winner(rows, key, levels):
+    """The cheapest full-span run at each error level (``key`` <= level), as text."""
+    parts = []
+    for level in levels:
+        ok = [r for r in rows if r[key] <= level]
+        if ok:
+            best = min(ok, key=lambda r: r["wall_s"])
+            parts.append(f"<= {level:.0e} rad: {best['run']} ({best['wall_s']:.3g} s)")
+    return "; ".join(parts) or "no run below 1e-6 rad"
+
