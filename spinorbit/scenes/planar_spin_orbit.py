@@ -21,6 +21,7 @@ from numba import njit
 
 from ..dynamics import SpinSystem, make_point_mass_torque, make_rigid_body_rhs
 from ..orbits.analytic import KeplerOrbit, eccentric_anomaly
+from ..rotations import matrix_from_quat
 
 
 @njit(cache=True)
@@ -55,27 +56,17 @@ def kepler_orbit(gm, a, e, t0):
     return KeplerOrbit(("F",), [gm], [a], [e], mean_motion=[n], mean_anomaly=[-n * t0])
 
 
-def rigid_body_system(moments, orbit, t0, theta0, theta_dot0, tilt=0.0):
-    """Full 3-D rigid body turning about C at theta_dot0 with A at angle theta0 from periapsis.
-
-    ``tilt`` (rad) turns the body about its own axis A before it starts, moving C
-    off the orbit normal (the spin vector stays along the inertial z axis).
-    """
+def rigid_body_system(moments, orbit, t0, theta0, theta_dot0):
+    """Full 3-D rigid body turning about C (= inertial z) at theta_dot0 with A at angle theta0 from periapsis."""
     torque = make_point_mass_torque(orbit.kernel)
-    qz = np.array([math.cos(theta0 / 2), 0.0, 0.0, math.sin(theta0 / 2)])
-    qx = np.array([math.cos(tilt / 2), math.sin(tilt / 2), 0.0, 0.0])
-    from ..rotations import matrix_from_quat, quat_multiply
-
-    q0 = quat_multiply(qz, qx)
-    omega0 = matrix_from_quat(q0).T @ np.array([0.0, 0.0, theta_dot0])
+    q0 = np.array([math.cos(theta0 / 2), 0.0, 0.0, math.sin(theta0 / 2)])
+    omega0 = np.array([0.0, 0.0, theta_dot0])
     return SpinSystem(make_rigid_body_rhs(torque), (np.asarray(moments, float), orbit.gm, orbit.data), t0,
                       np.concatenate([q0, omega0]), np.asarray(moments, float), torque, "planar spin-orbit")
 
 
 def theta_from_quaternions(q):
     """Unwrapped angle (rad) of the body's A axis from the inertial x axis, projected on the x-y plane."""
-    from ..rotations import matrix_from_quat
-
     return np.unwrap(np.array([math.atan2(m[1, 0], m[0, 0]) for m in map(matrix_from_quat, q)]))
 
 
