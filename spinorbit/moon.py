@@ -6,17 +6,27 @@ Four levels, each adding physics to the one before:
    (Euler ch. 16 P91, §815: N = 3 GM/r^5 r x I r);
 2. + the Moon's degree-3 and degree-4 gravity field acting with every point mass:
    N = -M_A r x grad U_Moon(r) (Williams, Boggs & Folkner 2008; Folkner et al. 2014);
-3. + a spherical fluid core coupled by friction and the tidal and rotational distortion
-   of the mantle's moment of inertia (Folkner et al. 2014, IPN PR 42-196, lunar
-   orientation; the inertia tensor as corrected by Pavlov & Williams 2019):
+3. + a fluid core with an oblate core-mantle boundary, coupled by friction and by the
+   fluid's pressure on the boundary; the tidal and rotational distortion of the mantle's
+   moment of inertia; and the Earth's J2 acting on the Moon's degree-2 figure
+   (Folkner et al. 2014, IPN PR 42-196, §III.C "Lunar orientation", eqs. for the
+   mantle/core angular momentum, N_cmb, I_m and N_figM-figE; I_m as corrected by
+   Pavlov & Williams 2019, CMDA 131:?, correction to eq. 15 of Pavlov et al. 2016):
 
-   I_m = I~ - C_c 1 - k2 (M_E/M) (R^3/r^5) [x_i x_j - r^2 d_ij/3]
+   I_m = I~ - I_c - k2 (M_E/M) (R^3/r^5) [x_i x_j - r^2 d_ij/3]
                + k2 R^3/(3 GM) [w_i w_j - d_ij (w^2 - n^2)/3, zz: w_z^2 - (w^2 + 2 n^2)/3]
-   d(I_m w_m)/dt + w_m x I_m w_m = N_figure + N_cmb,   N_cmb = k_v (w_c - w_m)
-   C_c dw_c/dt + w_m x C_c w_c = -N_cmb                 (w_c in mantle axes)
+   I_c = diag(A_c, A_c, C_c),  A_c = C_c (1 - f_c)
+   d(I_m w_m)/dt + w_m x I_m w_m = N_figure + N_figM-figE + N_cmb
+   N_cmb = k_v (w_c - w_m) + (C_c - A_c) (z . w_c) (z x w_c)
+   I_c dw_c/dt + w_m x I_c w_c = -N_cmb                 (w_c in mantle axes, z = (0, 0, 1))
+   N_figM-figE = 15 GM_E J2E R_E^2 / (2 r^5) [(1 - 7 s^2) u x I u
+                 + 2 s (u x I p + p x I u) - (2/5) p x I p]   (u = r/r, p = Earth pole, s = u.p)
 
    x = the Earth's position in the mantle frame at t - tau (the tide raised a time
-   tau earlier, carried round with the mantle); w in the rotational term is taken at t;
+   tau earlier, carried round with the mantle); w in the rotational term is taken at t.
+   DE421 used f_c = COBLAT (its header's core oblateness, 3.8e-4): with it and the
+   Earth's J2 the model started at DE421's epoch (JDEPOC, where the header gives the
+   core's state) follows DE421 to 0.002" over 80 years; without them, to 1".
 4. (optional) further point masses (planets) acting on the figure.
 
 Units: km, rad/day, GM km^3/day^2, moments in units of M R^2 (R = gravity reference
@@ -30,7 +40,7 @@ from numba import njit
 from .rotations import matrix_from_quat, quat_rate
 
 # Layout of the float vector ``consts`` in the parameters (see moon_params).
-R_KM, K2_MASS_RATIO, K2_ROT, TAU_D, KV, C_CORE, N_MEAN = range(7)
+R_KM, K2_MASS_RATIO, K2_ROT, TAU_D, KV, C_CORE, N_MEAN, F_CORE, J2E_GM_R2 = range(9)
 
 
 @njit(cache=True)
@@ -84,6 +94,34 @@ def figure_torque(inertia, r_body, gm):
 
 
 @njit(cache=True)
+def oblate_earth_torque(inertia, r_body, pole_body, gm_j2_r2):
+    """Torque of the Earth's J2 on a degree-2 figure I (Folkner et al. 2014, N_figM-figE), per M R^2.
+
+    r_body: the Earth's position (km) and pole_body its unit pole, both in body axes;
+    gm_j2_r2 = GM_E J2E R_E^2 (km^5/d^2).  The torque -int x x grad U_J2 dm of the
+    Earth's degree-2 potential's gradient across the body (its Hessian against I).
+    """
+    r2 = r_body @ r_body
+    r = math.sqrt(r2)
+    u = r_body / r
+    s = u @ pole_body
+    iu, ip = inertia @ u, inertia @ pole_body
+    return 7.5 * gm_j2_r2 / (r2 * r2 * r) * ((1.0 - 7.0 * s * s) * np.cross(u, iu)
+                                             + 2.0 * s * (np.cross(u, ip) + np.cross(pole_body, iu))
+                                             - 0.4 * np.cross(pole_body, ip))
+
+
+@njit(cache=True)
+def interpolate_pole(t, pole):
+    """Unit vector at TDB day t, linear in a table pole = (grid [t0, h], (m, 3) samples)."""
+    grid, samples = pole
+    s = min(max((t - grid[0]) / grid[1], 0.0), samples.shape[0] - 1.000001)
+    k = int(s)
+    v = samples[k] + (s - k) * (samples[k + 1] - samples[k])
+    return v / math.sqrt(v @ v)
+
+
+@njit(cache=True)
 def harmonic_torque(r_body, gm, radius, c_nm, s_nm, n_min, n_max):
     """Torque per unit M R^2 of a point mass GM at r_body on the body's degree n_min..n_max field.
 
@@ -126,9 +164,10 @@ def make_moon_rhs(positions, degree=2, core=False, tides=False):
     """Compiled rhs(t, y, p) of the lunar model.
 
     ``positions(t, data) -> (n, 3)``: attracting bodies relative to the Moon, km, ICRF;
-    body 0 must be the Earth (it raises the tide).  ``degree``: 2, 3 or 4 (highest
-    degree of the Moon's field); ``core``: fluid core, y has 10 components;
-    ``tides``: tidal and rotational distortion.  p = moon_params(...).
+    body 0 must be the Earth (it raises the tide and carries J2).  ``degree``: 2, 3
+    or 4 (highest degree of the Moon's field); ``core``: fluid core, y has 10
+    components; ``tides``: tidal and rotational distortion.  p = moon_params(...);
+    the Earth's J2 acts on the figure when its constant is nonzero.
     """
     n_max = int(degree)
     with_core, with_tides = bool(core), bool(tides)
@@ -136,7 +175,7 @@ def make_moon_rhs(positions, degree=2, core=False, tides=False):
 
     @njit
     def rhs(t, y, p):
-        moments, gm, data, c_nm, s_nm, consts = p[0], p[1], p[2], p[3], p[4], p[5]
+        moments, gm, data, c_nm, s_nm, consts, pole = p
         q, omega = y[:4], y[4:7]
         to_body = matrix_from_quat(q).T
         inertia = np.diag(moments)
@@ -157,15 +196,20 @@ def make_moon_rhs(positions, degree=2, core=False, tides=False):
             torque += figure_torque(inertia, r_b, gm[i])
             if n_max >= 3:
                 torque += harmonic_torque(r_b, gm[i], consts[R_KM], c_nm, s_nm, 3, n_max)
+        if consts[J2E_GM_R2] != 0.0:
+            torque += oblate_earth_torque(inertia, to_body @ r_all[0], to_body @ interpolate_pole(t, pole),
+                                          consts[J2E_GM_R2])
         dy = np.empty_like(y)
         dy[:4] = quat_rate(q, omega)
-        if with_core:
+        if with_core:                  # torques act with the whole Moon's I; the mantle turns with I - I_c
             c_core = consts[C_CORE]
+            core_moments = np.array([c_core * (1.0 - consts[F_CORE]), c_core * (1.0 - consts[F_CORE]), c_core])
+            inertia = inertia - np.diag(core_moments)
             omega_c = y[7:10]
-            n_cmb = consts[KV] * (omega_c - omega)
-            inertia = inertia - c_core * np.eye(3)
+            n_cmb = consts[KV] * (omega_c - omega) + (c_core - core_moments[0]) * omega_c[2] * np.array(
+                [-omega_c[1], omega_c[0], 0.0])
             torque += n_cmb
-            dy[7:10] = -np.cross(omega, omega_c) - n_cmb / c_core
+            dy[7:10] = (-np.cross(omega, core_moments * omega_c) - n_cmb) / core_moments
         rhs_vec = torque - np.cross(omega, inertia @ omega) - inertia_rate @ omega
         dy[4:7] = np.linalg.solve(inertia, rhs_vec)
         return dy
@@ -173,17 +217,23 @@ def make_moon_rhs(positions, degree=2, core=False, tides=False):
     return rhs
 
 
+NO_POLE = (np.array([0.0, 1.0]), np.array([[0.0, 0.0, 1.0], [0.0, 0.0, 1.0]]))
+
+
 def moon_params(moments, gm, data, c_nm, s_nm, radius_km, k2=0.0, gm_moon=1.0, tau_d=0.0,
-                kv_over_c=0.0, core_c_over_c=0.0, n_mean=0.0):
+                kv_over_c=0.0, core_c_over_c=0.0, n_mean=0.0, core_flattening=0.0,
+                earth_j2_gm_r2=0.0, earth_pole=NO_POLE):
     """Parameter tuple of make_moon_rhs.
 
     moments: (A, B, C) of the whole undistorted Moon, M R^2; gm (n,) km^3/d^2 (gm[0] = Earth);
     data: the orbit kernel's data; c_nm, s_nm (5, 5) unnormalised; k2, tau_d (days);
-    kv_over_c: k_v / C (1/day); core_c_over_c: C_core / C; n_mean: mean motion, rad/day.
+    kv_over_c: k_v / C (1/day); core_c_over_c: C_core / C; n_mean: mean motion, rad/day;
+    core_flattening: f_c = (C_c - A_c)/C_c; earth_j2_gm_r2: GM_E J2E R_E^2 (km^5/d^2, 0 = off);
+    earth_pole: (grid [t0, h] TDB days, (m, 3) unit vectors ICRF), read by interpolate_pole.
     """
     moments = np.asarray(moments, dtype=float)
     c_total = moments[2]
-    consts = np.zeros(7)
+    consts = np.zeros(9)
     consts[R_KM] = radius_km
     consts[K2_MASS_RATIO] = k2 * gm[0] / gm_moon
     consts[K2_ROT] = k2 * radius_km**3 / (3.0 * gm_moon)
@@ -191,5 +241,8 @@ def moon_params(moments, gm, data, c_nm, s_nm, radius_km, k2=0.0, gm_moon=1.0, t
     consts[KV] = kv_over_c * c_total
     consts[C_CORE] = core_c_over_c * c_total
     consts[N_MEAN] = n_mean
+    consts[F_CORE] = core_flattening
+    consts[J2E_GM_R2] = earth_j2_gm_r2
+    pole = (np.asarray(earth_pole[0], dtype=float), np.ascontiguousarray(earth_pole[1], dtype=float))
     return (moments, np.asarray(gm, dtype=float), data, np.ascontiguousarray(c_nm, dtype=float),
-            np.ascontiguousarray(s_nm, dtype=float), consts)
+            np.ascontiguousarray(s_nm, dtype=float), consts, pole)

@@ -22,6 +22,7 @@ from functools import cache
 from pathlib import Path
 
 import numpy as np
+from numba import njit
 from numpy.polynomial import chebyshev
 
 from ..constants import J2000_JD
@@ -65,6 +66,9 @@ class MoonConstants:
     tau_d: float                  # TAUM, time delay of the lunar tide, days
     kv_over_c_per_d: float        # KVC = k_nu / C, core-mantle friction, 1/day
     core_c_over_c: float          # IFAC = C_core / C
+    core_flattening: float        # COBLAT = (C_c - A_c)/C_c, oblateness of the core-mantle boundary
+    earth_j2: float               # J2E, acting on the Moon's figure
+    earth_radius_km: float        # RE, J2E's reference radius
     gm_km3_d2: dict               # GM of sun, earth, moon (DE421), km^3/day^2
     au_km: float
     emrat: float                  # Earth/Moon mass ratio
@@ -101,7 +105,7 @@ def moon_constants():
         omega_core0_rad_d=np.array([h["OMGCX"], h["OMGCY"], h["OMGCZ"]]),
         beta=h["LBET"], gamma=h["LGAM"], j2=h["J2M"], c22=h["C22M"], c_nm=c_nm, s_nm=s_nm,
         radius_km=h["AM"], k2=h["K2M"], tau_d=h["TAUM"], kv_over_c_per_d=h["KVC"],
-        core_c_over_c=h["IFAC"],
+        core_c_over_c=h["IFAC"], core_flattening=h["COBLAT"], earth_j2=h["J2E"], earth_radius_km=h["RE"],
         gm_km3_d2={"sun": gm(h["GMS"]), "earth": gm(gmb * h["EMRAT"] / (1 + h["EMRAT"])),
                    "moon": gm(gmb / (1 + h["EMRAT"]))},
         au_km=au, emrat=h["EMRAT"],
@@ -215,25 +219,57 @@ def pole_and_longitude_difference(m_a, m_b):
 def core_angular_velocity(t_tdb_d, step_d=0.25):
     """DE421's fluid-core angular velocity at TDB day ``t``, mantle axes, rad/day.
 
-    The header gives it at JDEPOC only (OMGCX/Y/Z).  DE421's core is spherical, so in
-    inertial axes its equation is C_c dw_c/dt = -k_v (w_c - w_m) (Folkner et al. 2014):
-    w_c relaxes towards the mantle's w_m with time constant C_c/k_v = IFAC/KVC (~128 yr).
-    Carried from JDEPOC to t with DE421's own mantle w_m: the exact linear solution,
-    w_c(t) = e^(-k dt) w_c0 + k int e^(-k (t - s)) w_m(s) ds, by the trapezoid rule on a
-    ``step_d`` grid (w_m varies monthly, so the quadrature error is ~(k step)^2, far below 1e-12).
+    The header gives it at JDEPOC only (OMGCX/Y/Z).  Carried from JDEPOC to t by the
+    core's equation (Folkner et al. 2014) driven by DE421's own mantle, in inertial
+    axes: d(I_c w_c)/dt = -k_v (w_c - w_m) - (C_c - A_c) (z.w_c) (z x w_c), with
+    I_c = A_c 1 + (C_c - A_c) z z^T about the mantle pole z, A_c = C_c (1 - COBLAT);
+    k_v/C_c = KVC/IFAC (128 yr), free core precession (C_c - A_c)/C_c w ~ 200 yr.
+    Classical RK4 on a ``step_d`` grid of DE421 samples (steps of 2 step_d).
     """
     c = moon_constants()
-    k = c.kv_over_c_per_d / c.core_c_over_c
     t0 = c.epoch_tdb_d
     m0, _ = orientation([t0])
     wc = m0[0].T @ c.omega_core0_rad_d                           # ICRF
     if t_tdb_d != t0:
-        n = max(2, int(np.ceil(abs(t_tdb_d - t0) / step_d)) + 1)
+        n = 2 * max(1, int(np.ceil(abs(t_tdb_d - t0) / (2 * step_d)))) + 1
         s = np.linspace(t0, t_tdb_d, n)
         mats, omega = orientation(s)
         w_inertial = np.einsum("nji,nj->ni", mats, omega)       # M^T w
-        weights = k * np.exp(-k * (t_tdb_d - s))[:, None]
-        integral = np.trapezoid(weights * w_inertial, s, axis=0)
-        wc = np.exp(-k * (t_tdb_d - t0)) * wc + integral
+        wc = _carry_core(wc, s[1] - s[0], np.ascontiguousarray(mats[:, 2, :]), w_inertial,
+                         c.kv_over_c_per_d, c.core_c_over_c, c.core_flattening)
     m_t, _ = orientation([t_tdb_d])
     return m_t[0] @ wc
+
+
+@njit(cache=True)
+def _core_rate(L, z, wm, kv, c_c, a_c):
+    """d(I_c w_c)/dt and w_c for the core's angular momentum L about mantle pole z (inertial)."""
+    w = L / a_c - (c_c - a_c) / (a_c * c_c) * (z @ L) * z
+    return -kv * (w - wm) - (c_c - a_c) * (z @ w) * np.cross(z, w), w
+
+
+@njit(cache=True)
+def _carry_core(wc, h, pole, w_mantle, kv, c_c, f_c):
+    """RK4 of the core's angular momentum L = I_c w_c (units of C) over samples h apart."""
+    a_c = c_c * (1.0 - f_c)
+    L = a_c * wc + (c_c - a_c) * (pole[0] @ wc) * pole[0]
+    for k in range(0, pole.shape[0] - 2, 2):
+        k1 = _core_rate(L, pole[k], w_mantle[k], kv, c_c, a_c)[0]
+        k2 = _core_rate(L + h * k1, pole[k + 1], w_mantle[k + 1], kv, c_c, a_c)[0]
+        k3 = _core_rate(L + h * k2, pole[k + 1], w_mantle[k + 1], kv, c_c, a_c)[0]
+        k4 = _core_rate(L + 2 * h * k3, pole[k + 2], w_mantle[k + 2], kv, c_c, a_c)[0]
+        L = L + (2 * h / 6.0) * (k1 + 2 * k2 + 2 * k3 + k4)
+    return _core_rate(L, pole[-1], w_mantle[-1], kv, c_c, a_c)[1]
+
+
+def earth_pole(t_start, t_end, step_d=50.0):
+    """The Earth's mean pole of date in ICRF (IAU 1976 precession, ERFA pmat76) sampled
+    every ``step_d`` days over [t_start, t_end] TDB days: (grid [t0, h], (m, 3)) for
+    spinorbit.moon.interpolate_pole.  DE421 turned the Earth with IAU 1976 precession
+    (plus nutation, whose 9" is far below what the J2 torque on the Moon can feel)."""
+    import erfa
+
+    m = max(2, int(np.ceil((t_end - t_start) / step_d)) + 1)
+    t = t_start + step_d * np.arange(m)
+    pole = np.array([erfa.pmat76(J2000_JD, ti)[2] for ti in t])
+    return np.array([t_start, step_d]), pole
