@@ -23,7 +23,8 @@ LEVELS = {
     4: dict(degree=4, core=True, tides=True, bodies=("earth", "sun", "venus", "jupiter", "mars", "saturn")),
 }
 LEVEL_NAMES = {1: "Euler: degree-2 Moon, Earth + Sun point masses",
-               2: "+ Moon degree 3 and 4", 3: "+ fluid core, tidal and rotational distortion",
+               2: "+ Moon degree 3 and 4",
+               3: "+ oblate fluid core, tidal and rotational distortion, Earth's J2 on the figure",
                4: "+ Venus, Mars, Jupiter, Saturn on the figure"}
 
 SCHEMA = {
@@ -111,7 +112,7 @@ def build_system(scenario, source):
     from ..dynamics import SpinSystem
     from ..moon import make_moon_rhs, moon_params
     from ..orbits.sources import sample_orbits
-    from ..references.moon_de421 import core_angular_velocity, librations, moon_constants, orientation
+    from ..references.moon_de421 import core_angular_velocity, earth_pole, librations, moon_constants, orientation
     from ..rotations import quat_from_euler313
 
     level = scenario["model.level"]
@@ -128,8 +129,11 @@ def build_system(scenario, source):
         y0 = np.concatenate([y0, core_angular_velocity(t0)])
     rhs = make_moon_rhs(orbits.kernel, spec["degree"], spec["core"], tides)
     n_mean = 2 * np.pi / 27.321661                                # sidereal month, rad/day
+    # levels 3-4 (DE421's model): oblate core and the Earth's J2 on the figure
+    de = dict(core_flattening=c.core_flattening, earth_j2_gm_r2=orbits.gm[0] * c.earth_j2 * c.earth_radius_km**2,
+              earth_pole=earth_pole(t0 - margin, t1 + margin)) if spec["core"] else {}
     params = moon_params(c.moments, orbits.gm, orbits.data, c.c_nm, c.s_nm, c.radius_km, c.k2,
-                         c.gm_km3_d2["moon"], c.tau_d, c.kv_over_c_per_d, c.core_c_over_c, n_mean)
+                         c.gm_km3_d2["moon"], c.tau_d, c.kv_over_c_per_d, c.core_c_over_c, n_mean, **de)
     system = SpinSystem(rhs, params, t0, y0, c.moments, None, f"moon level {level}",
                         {"tides": tides, "source": source})
     return system, orbits
