@@ -87,27 +87,53 @@ def test_a_bsp_dropped_into_ephemerides_is_found_by_name(tmp_path, monkeypatch):
     assert np.abs(orbits.positions([1.0])[0] - expected).max() < 0.01    # km
 
 
-def test_hermite_error_on_a_circle_is_the_h4_bound():
-    """Cubic Hermite error at mid-points = r (omega h)^4 / 384 (4th-derivative remainder)."""
+def test_hermite_error_on_a_circle_is_the_h6_bound():
+    """Quintic Hermite error at mid-points = r (omega h)^6 / 46080 (6th-derivative remainder)."""
     radius, rate, step = 384400.0, 2 * math.pi / 27.32, 0.25
     circle = CircularOrbits(("earth",), [1.0], [radius], [rate], inclination=[0.3])
     t = grid(0.0, 60.0, step)
-    vel = np.array([np.cross([0, -math.sin(0.3), math.cos(0.3)], p) * rate for p in circle.positions(t)[:, 0]])
-    orbits = HermiteOrbits(("earth",), [1.0], 0.0, step, circle.positions(t).transpose(1, 0, 2), vel[None])
-    err = orbits.measure_error(circle.positions)[0]
-    bound = radius * (rate * step) ** 4 / 384
-    assert 0.99 * bound < err < 1.001 * bound        # km (bound = 0.0121 km)
+    pos = circle.positions(t).transpose(1, 0, 2)
+    vel = np.array([np.cross([0, -math.sin(0.3), math.cos(0.3)], p) * rate for p in pos[0]])[None]
+    bound = radius * (rate * step) ** 6 / 46080                     # km (3.0e-7 km)
+    exact = HermiteOrbits(("earth",), [1.0], 0.0, step, pos, vel, accelerations=-rate**2 * pos)
+    assert 0.99 * bound < exact.measure_error(circle.positions)[0] < 1.01 * bound     # measured 1.0004
+    # accelerations differenced from the velocities: one-sided stencils at the ends cost a little
+    derived = HermiteOrbits(("earth",), [1.0], 0.0, step, pos, vel)
+    assert derived.measure_error(circle.positions)[0] < 1.5 * bound                   # measured 1.28
+
+
+def test_derived_accelerations_match_the_chebyshev_second_derivative():
+    """Accelerations differenced from DE421 velocity samples vs the series' own 2nd derivative (numpy chebder)."""
+    from jplephem.spk import SPK
+    from numpy.polynomial import chebyshev
+
+    from spinorbit.constants import J2000_JD
+
+    orbits = sample_orbits("de421", "moon", ("earth",), 0.0, 365.25, measure=False)
+    spk = SPK.open(str(kernel_module.kernel_path("de421")))
+
+    def acceleration(segment, t):
+        start, length, coef = segment.load_array()
+        index, offset = np.divmod(t + J2000_JD - start, length)
+        c = coef[:, index.astype(int)].transpose(2, 0, 1)
+        return chebyshev.chebval(2 * offset / length - 1, chebyshev.chebder(c, 2), tensor=False).T \
+            * (2 / length) ** 2
+
+    t = orbits.span[0] + orbits.step * np.arange(orbits.data[1].shape[1])
+    truth = acceleration(spk[3, 399], t) - acceleration(spk[3, 301], t)       # Earth from the Moon
+    rel = np.linalg.norm(orbits.data[3][0] - truth, axis=1) / np.linalg.norm(truth, axis=1)
+    assert rel.max() < 5e-8                    # measured 1.8e-8 (ends), 1.2e-8 inside
 
 
 def test_de421_interpolation_error_is_within_the_stated_bound():
-    """Moon-centred Earth and Sun at 0.25 d: |dr|/r < 1e-7 (torque error < 3e-7), measured 5.6e-8."""
+    """Moon-centred Earth and Sun at 0.25 d: |dr|/r < 1e-11 (torque error < 5e-11), measured 3.7e-12."""
     orbits = sample_orbits("de421", "moon", ("earth", "sun"), 0.0, 365.25)
-    assert np.all(orbits.max_error_km < 0.03)                 # km; measured 0.020, 0.020
-    assert orbits.max_relative_error[0] < 1e-7                # measured 5.6e-8
-    assert orbits.max_relative_error[1] < 1e-9                # measured 1.3e-10
+    assert np.all(orbits.max_error_km < 5e-6)                 # km; measured 1.33e-6, 1.33e-6
+    assert orbits.max_relative_error[0] < 1e-11               # measured 3.7e-12
+    assert orbits.max_relative_error[1] < 3e-14               # measured 8.7e-15
     t = np.linspace(0.1, 365.0, 97)
     truth = JPLKernel().relative_states("earth", "moon", t)[0]
-    assert angle(orbits.positions(t)[:, 0], truth).max() < 0.02 * arcsec
+    assert angle(orbits.positions(t)[:, 0], truth).max() < 2e-6 * arcsec      # measured 3.9e-7"
 
 
 def test_kepler_matches_a_numerical_two_body_run():

@@ -6,7 +6,7 @@ and importing only its own library:
 * ``analytic``  — uniform circle (Euler's hypothesis, ch. 16 P93/P96) and Kepler ellipse;
 * ``kernel``    — JPL SPK kernels through jplephem (DE421 from skyfield-data by default);
 * ``nbody``     — REBOUND N-body runs (+ REBOUNDx gr_full and Earth J2);
-* ``interpolant`` — the dense cubic-Hermite interpolant built once per run.
+* ``interpolant`` — the dense quintic-Hermite interpolant built once per run.
 
 Positions are km in inertial axes (ICRF for real ephemerides), relative to the
 spinning body's centre, at TDB days from J2000.0.

@@ -1,10 +1,20 @@
-"""Cubic Hermite interpolant of sampled positions and velocities, built once per run.
+"""Quintic Hermite interpolant of sampled positions, velocities and accelerations, built once per run.
 
 The hot loop reads positions through the numba function :func:`hermite_positions`
 (about a microsecond per call), never through an ephemeris reader.  Samples are
 on a uniform TDB-day grid; outside it the kernel returns NaN (so the integrator
 stops with IntegrationError) and :meth:`HermiteOrbits.positions` raises
-EphemerisRangeError.  The interpolation error is O(h^4): max |x''''| h^4 / 384.
+EphemerisRangeError.
+
+Each interval matches position, velocity and acceleration at both knots, so the
+interpolant is C2 and its error is O(h^6): |x^(6)| h^6 / 46080 at mid-interval
+(remainder x^(6)/6! (t - t_k)^3 (t - t_k+1)^3).  The cubic Hermite used before
+(C1, O(h^4)) jumped in the second derivative at every knot, which cost rk8 its
+eighth order once a step spanned several knots: Moon and Earth runs stalled near
+1e-3" and 0.3 mas (benchmarks/RESULTS.md gives both).  Accelerations not given
+are derived from the velocity samples by 7-point (sixth-order) differences, so
+every source (JPL kernel, REBOUND) gets the same interpolant; on DE421 they match
+the Chebyshev series' own second derivative to ~1e-8 relative (tests/test_orbits.py).
 """
 import math
 
@@ -16,8 +26,8 @@ from ..errors import EphemerisRangeError, ScenarioError
 
 @njit(cache=True)
 def hermite_positions(t, data):
-    """data = (grid [t0, h], positions (n, m, 3) km, velocities (n, m, 3) km/d) -> (n, 3) km."""
-    grid, pos, vel = data
+    """data = (grid [t0, h], positions (n, m, 3) km, velocities km/d, accelerations km/d^2) -> (n, 3) km."""
+    grid, pos, vel, acc = data
     n, m = pos.shape[0], pos.shape[1]
     h = grid[1]
     s = (t - grid[0]) / h
@@ -28,13 +38,42 @@ def hermite_positions(t, data):
     k = min(int(s), m - 2)
     x = s - k
     x1 = 1.0 - x
-    h00, h01 = (1.0 + 2.0 * x) * x1 * x1, x * x * (3.0 - 2.0 * x)
-    h10, h11 = x * x1 * x1 * h, -x * x * x1 * h
+    x3, y3 = x * x * x, x1 * x1 * x1
+    p0, p1 = y3 * (1.0 + 3.0 * x + 6.0 * x * x), x3 * (1.0 + 3.0 * x1 + 6.0 * x1 * x1)
+    v0, v1 = h * x * y3 * (1.0 + 3.0 * x), -h * x3 * x1 * (1.0 + 3.0 * x1)
+    a0, a1 = 0.5 * h * h * x * x * y3, 0.5 * h * h * x3 * x1 * x1
     for i in range(n):
         for j in range(3):
-            out[i, j] = (h00 * pos[i, k, j] + h10 * vel[i, k, j]
-                         + h01 * pos[i, k + 1, j] + h11 * vel[i, k + 1, j])
+            out[i, j] = (p0 * pos[i, k, j] + v0 * vel[i, k, j] + a0 * acc[i, k, j]
+                         + p1 * pos[i, k + 1, j] + v1 * vel[i, k + 1, j] + a1 * acc[i, k + 1, j])
     return out
+
+
+def _weights(offsets):
+    """First-derivative weights on integer ``offsets``, exact for polynomials of degree < len(offsets)."""
+    rhs = np.zeros(len(offsets))
+    rhs[1] = 1.0
+    return np.linalg.solve(np.vander(offsets, len(offsets), increasing=True).T, rhs)
+
+
+def derivative(samples, step, width=7):
+    """d/dt of ``samples`` (n, m, 3) on a uniform grid of ``step`` days, ``width``-point differences.
+
+    Centred stencils (order width - 1) inside, one-sided ones of the same width
+    at the ends; fewer than ``width`` samples use them all.
+    """
+    m = samples.shape[1]
+    width = min(width, m)
+    half = width // 2
+    out = np.empty_like(samples)
+    centred = _weights(np.arange(width) - half)
+    inner = range(half, m - (width - 1 - half))
+    out[:, inner.start:inner.stop] = sum(w * samples[:, i:i + len(inner)] for i, w in enumerate(centred))
+    for k in (*range(inner.start), *range(inner.stop, m)):
+        first = min(max(k - half, 0), m - width)
+        weights = _weights(np.arange(first, first + width) - k)
+        out[:, k] = np.tensordot(weights, samples[:, first:first + width], axes=(0, 1))
+    return out / step
 
 
 @njit(cache=True)
@@ -48,27 +87,31 @@ def _positions_many(ts, data):
 class HermiteOrbits:
     """Bodies sampled every ``step`` days from ``t_start``: an OrbitSource.
 
-    positions, velocities: arrays (n_bodies, n_samples, 3), km and km/day, in the
-    source's inertial axes, relative to the spinning body.  gm: km^3/day^2.
+    positions, velocities and (optional) accelerations: arrays (n_bodies, n_samples, 3),
+    km, km/day, km/day^2, in the source's inertial axes, relative to the spinning body;
+    accelerations default to :func:`derivative` of the velocities.  gm: km^3/day^2.
     """
 
     kernel = staticmethod(hermite_positions)
 
-    def __init__(self, names, gm, t_start, step, positions, velocities, source="samples"):
+    def __init__(self, names, gm, t_start, step, positions, velocities, source="samples", accelerations=None):
         pos = np.ascontiguousarray(positions, dtype=float)
         vel = np.ascontiguousarray(velocities, dtype=float)
         self.names = tuple(names)
         self.gm = np.asarray(gm, dtype=float).reshape(len(self.names))
         if pos.ndim != 3 or pos.shape != vel.shape or pos.shape[0] != len(self.names) \
-                or pos.shape[1] < 2 or pos.shape[2] != 3:
-            raise ScenarioError("positions/velocities", f"shapes {pos.shape}, {vel.shape}",
+                or pos.shape[1] < 2 or pos.shape[2] != 3 \
+                or (accelerations is not None and np.shape(accelerations) != pos.shape):
+            raise ScenarioError("positions/velocities/accelerations",
+                                f"shapes {pos.shape}, {vel.shape}, {np.shape(accelerations)}",
                                 f"equal shapes ({len(self.names)}, n_samples >= 2, 3)")
         if not step > 0:
             raise ScenarioError("step", step, "a positive step in days")
         self.source = source
         self.step = float(step)
         self.span = (float(t_start), float(t_start) + (pos.shape[1] - 1) * self.step)
-        self.data = (np.array([float(t_start), self.step]), pos, vel)
+        acc = derivative(vel, self.step) if accelerations is None else accelerations
+        self.data = (np.array([float(t_start), self.step]), pos, vel, np.ascontiguousarray(acc, dtype=float))
         self.max_error_km = None          # set by measure_error()
         self.max_relative_error = None
 
