@@ -7,13 +7,15 @@ the scene's closed form or a converged run (:func:`converged_error`).
 
 Every registered method that ``supports`` the system is run on a ladder of
 settings: fixed-step and splitting methods at steps halving from a quarter of
-the shortest time scale (or the output spacing), adaptive methods at
-rtol = 1e-3 ... 1e-13 (atol = rtol/1000).  A method's ladder stops when a run
+the shortest time scale (capped at the output spacing for methods that land on
+every output; rk8 is not, it interpolates with its continuous extension),
+adaptive methods at rtol = 1e-3 ... 1e-13 (atol = rtol/1000).  A method's ladder stops when a run
 takes longer than ``budget_s``, fails, or reaches the rounding floor.
 Wall times exclude one-off compilation (each integrator warms up first).
 """
 import csv
 import math
+import shlex
 from pathlib import Path
 
 import numpy as np
@@ -41,18 +43,25 @@ def converged_error(system, t_out, step, method="rk8"):
 
 
 def time_scale(system):
-    """Shortest time scale of the free motion, 2 pi / |omega0| (time units)."""
+    """Shortest time scale of the motion (time units): ``system.meta["time_scale"]`` where the
+    scene gives one (e.g. a gyroscopic model, whose state holds no spin), else 2 pi / |omega0|."""
+    if "time_scale" in system.meta:
+        return float(system.meta["time_scale"])
     rate = float(np.linalg.norm(system.y0[4:7]))
-    return 2 * math.pi / rate if rate > 0 else float(system.meta.get("time_scale", 1.0))
+    return 2 * math.pi / rate if rate > 0 else 1.0
 
 
 def ladder(cls, system, t_out, n=14):
-    """Settings for one method, coarse to fine."""
+    """Settings for one method, coarse to fine: steps from a quarter of the time scale, halving.
+
+    Methods that land on every output time (all but rk8, which has dense output)
+    start at most at the output spacing, so that the step shown is the step taken.
+    """
     if cls.kind == "adaptive":
         return [{"rtol": 10.0**-k, "atol": 10.0**-k * 1e-3} for k in range(3, 14)]
-    spacing = np.diff(t_out)
     h0 = time_scale(system) / 4
-    if spacing.size:
+    spacing = np.diff(t_out)
+    if getattr(cls, "DENSE", None) is None and spacing.size:
         h0 = min(h0, float(np.median(spacing)))
     return [{"step": h0 / 2**k} for k in range(n)]
 
@@ -94,9 +103,9 @@ def fastest_at(rows, level):
     return best
 
 
-def markdown(rows, title, command):
+def markdown(rows, title, command, note=""):
     lines = [f"# Work-precision: {title}", "", f"Command: `{command}`. Wall times exclude compilation; "
-             "error = max attitude error over the outputs, rad.", "",
+             "error = max attitude error over the outputs, rad." + (f" {note}" if note else ""), "",
              "| method | order | setting | wall_s | rhs evaluations | error [rad] |", "|---|---|---|---|---|---|"]
     for r in rows:
         lines.append(f"| {r['method']} | {r['order'] or '-'} | {r['setting']} | {r['wall_s']:.3g} | "
@@ -131,7 +140,7 @@ def plot(rows, path, title):
     plt.close(fig)
 
 
-def write(rows, out, title, command):
+def write(rows, out, title, command, note=""):
     """work_precision.csv, .md and .png in ``out``; returns the paths."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -140,7 +149,7 @@ def write(rows, out, title, command):
         writer = csv.DictWriter(f, COLUMNS)
         writer.writeheader()
         writer.writerows(rows)
-    paths[1].write_text(markdown(rows, title, command))
+    paths[1].write_text(markdown(rows, title, command, note))
     plot(rows, paths[2], title)
     return paths
 
@@ -154,6 +163,10 @@ def bench_scenario(path, methods=None, out=None, budget_s=10.0, overrides=()):
         raise ScenarioError("scene.kind", scenario.kind, "a scene kind whose module defines build() for benchmarking")
     system, t_out, error = scenario.module.build(scenario)
     rows = bench_system(system, t_out, error, methods, budget_s)
-    command = f"spinorbit bench {path}" + (f" --methods {','.join(methods)}" if methods else "")
+    command = " ".join(["spinorbit bench", str(path), *(f"--set {shlex.quote(o)}" for o in overrides),
+                        *([f"--methods {','.join(methods)}"] if methods else [])])
     title = scenario["scene.title"] or scenario.name
-    return rows, write(rows, out or Path("runs") / f"{scenario.name}-bench", title, command)
+    agreement = system.meta.get("reference_agreement_rad")
+    note = "" if agreement is None else (f"Reference: a converged run (agrees with one at half its step "
+                                         f"to {agreement:.1e} rad).")
+    return rows, write(rows, out or Path("runs") / f"{scenario.name}-bench", title, command, note)

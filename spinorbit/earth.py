@@ -60,24 +60,37 @@ def extra_parameters(ecliptic_pole, geodesic=True, j2_rate=True):
 # --- full model: Euler's equations with the daily spin ------------------------
 
 @functools.cache
-def make_full_rhs(positions):
-    """rhs(t, y, p) of Euler's equations (§813) + kinematics with geodesic precession.
+def make_full_torque(positions):
+    """torque(t, y, p): body-frame torque of the point masses (§815), scaled by (1 + k_J2 t).
 
     ``positions(t, data) -> (n, 3)`` km, GCRS, relative to the geocentre.
     """
 
     @njit
-    def rhs(t, y, p):
+    def torque(t, y, p):
         moments, gm, data, extra = p
         to_body = matrix_from_quat(y[:4]).T
         r = positions(t, data)
-        torque = np.zeros(3)
+        total = np.zeros(3)
         for i in range(gm.shape[0]):
-            torque += point_mass_torque(moments, to_body @ r[i], gm[i])
-        torque *= 1.0 + extra[3] * t
+            total += point_mass_torque(moments, to_body @ r[i], gm[i])
+        return total * (1.0 + extra[3] * t)
+
+    return torque
+
+
+@functools.cache
+def make_full_rhs(positions):
+    """rhs(t, y, p) of Euler's equations (§813) + kinematics with geodesic precession."""
+    torque = make_full_torque(positions)
+
+    @njit
+    def rhs(t, y, p):
+        extra = p[3]
+        to_body = matrix_from_quat(y[:4]).T
         dy = np.zeros_like(y)
         dy[:4] = quat_rate(y[:4], y[4:7] + to_body @ extra[:3])
-        dy[4:7] = euler_omega_dot(moments, y[4:7], torque)
+        dy[4:7] = euler_omega_dot(p[0], y[4:7], torque(t, y, p))
         return dy
 
     return rhs
@@ -233,7 +246,10 @@ def full_system(positions, params, t0, z0, x0, spin_rate=ERA_RATE_RAD_D, forced=
     else:
         omega = np.array([0.0, 0.0, spin_rate])
     y0 = np.concatenate([quat_from_matrix(rot), omega])
-    return SpinSystem(make_full_rhs(positions), params, t0, y0, moments, None, "earth (full)")
+    # a rigid body under an external torque, its Euler equations in the frame turning at
+    # Omega_gp w.r.t. GCRS: splitting methods take the torque and that frame rate
+    return SpinSystem(make_full_rhs(positions), params, t0, y0, moments, make_full_torque(positions),
+                      "earth (full)", {"frame_rate": params[3][:3].copy()})
 
 
 def gyroscopic_system(positions, params, t0, z0, spin_rate=ERA_RATE_RAD_D):

@@ -28,6 +28,13 @@ Free-flow splittings (option ``free_flow``):
     it fails for a fast, nearly symmetric spinner (measured in
     benchmarks/RESULTS.md and tests/test_integrators.py).
 
+Frame rate: where the body's equations hold in a frame turning at a constant
+rate ``Omega`` (rad/d, inertial axes) with respect to the axes of q (the Earth's
+geodesic precession: ``system.meta["frame_rate"]``), q' gains Omega q / 2.  Its flow
+``q <- exp(Omega h / 2) q`` is a left multiplication, which commutes with the free
+flow's right multiplications and leaves the body momentum alone, so the drift
+applies both exactly and the orders are unchanged.
+
 Methods: ``strang`` (K(h/2) D(h) K(h/2), order 2), ``yoshida4`` (triple-jump
 composition of Strang, order 4, Yoshida 1990) and ``suzuki4`` (five-stage
 composition, order 4, Suzuki 1990; smaller error constant).  All are symplectic
@@ -92,8 +99,23 @@ def _free_flow(q, l, moments, h, symmetric, s, i, j):
         _axis_rotation(q, l, 0, 1.0 / moments[0], 0.5 * h)
 
 
+@njit(cache=True)
+def _turn_frame(q, rate, h):
+    """In place: q <- exp(rate h / 2) q, the exact flow of q' = (0, rate) q / 2 (rate inertial, constant)."""
+    norm = math.sqrt(rate[0] ** 2 + rate[1] ** 2 + rate[2] ** 2)
+    if norm == 0.0:
+        return
+    s = math.sin(0.5 * norm * h) / norm
+    b0, b1, b2, b3 = math.cos(0.5 * norm * h), s * rate[0], s * rate[1], s * rate[2]
+    a0, a1, a2, a3 = q[0], q[1], q[2], q[3]
+    q[0] = b0 * a0 - b1 * a1 - b2 * a2 - b3 * a3
+    q[1] = b0 * a1 + b1 * a0 + b2 * a3 - b3 * a2
+    q[2] = b0 * a2 - b1 * a3 + b2 * a0 + b3 * a1
+    q[3] = b0 * a3 + b1 * a2 - b2 * a1 + b3 * a0
+
+
 @njit
-def _split_loop(torque, params, moments, t0, y0, t_out, h, gammas, symmetric, axes, max_steps):
+def _split_loop(torque, params, moments, t0, y0, t_out, h, gammas, symmetric, axes, frame_rate, max_steps):
     """Fixed step <= h landing on every output time; returns (y_out, n_done, steps, nfev, t_fail)."""
     s, i, j = axes[0], axes[1], axes[2]
     y_out = np.empty((t_out.shape[0], 7))
@@ -113,6 +135,7 @@ def _split_loop(torque, params, moments, t0, y0, t_out, h, gammas, symmetric, ax
                 for m in range(3):
                     l[m] += 0.5 * sub * n_torque[m]
                 _free_flow(q, l, moments, sub, symmetric, s, i, j)
+                _turn_frame(q, frame_rate, sub)
                 t += sub
                 for m in range(4):
                     y[m] = q[m]
@@ -160,8 +183,9 @@ class Strang(Integrator):
         if flow not in FREE_FLOWS:
             raise ScenarioError("integrator.free_flow", flow, f"one of {list(FREE_FLOWS)}")
         moments = np.asarray(system.moments, dtype=float)
+        frame_rate = np.asarray(system.meta.get("frame_rate", np.zeros(3)), dtype=float)
         args = (system.torque, system.params, moments, float(system.t0), system.y0, t_out, h, self.gammas,
-                flow == "symmetric", np.array(symmetric_axes(moments)), int(self.settings["max_steps"]))
+                flow == "symmetric", np.array(symmetric_axes(moments)), frame_rate, int(self.settings["max_steps"]))
         _split_loop(*args[:5], t_out[:1], *args[6:])          # compile outside the timed region
         start = time.perf_counter()
         y, n_done, steps, nfev, t_fail = _split_loop(*args)

@@ -46,19 +46,8 @@ def run(scenario):
     from ..references import erfa_pole
 
     t0, t = scenario.t_start, scenario.output_times()
-    orbits, plane_tilt = _orbits(scenario)
-    pole_ecl = erfa_pole.ecliptic_pole_j2000() if plane_tilt is None else \
-        np.array([0.0, -math.sin(plane_tilt), math.cos(plane_tilt)])
-    moments = earth.earth_moments(scenario["earth.dynamical_ellipticity"], scenario["earth.b_minus_a_over_c"])
-    extra = earth.extra_parameters(pole_ecl, scenario["earth.geodesic_precession"], scenario["earth.j2_rate"])
-    params = (moments, orbits.gm, orbits.data, extra)
-    z0 = erfa_pole.cip_vector(t0)
-    if scenario["earth.start_pole"] != "iau" and plane_tilt is None:
-        z0 = _rigid_start(erfa_pole, orbits, params, t0, z0, t)
-    x0 = _a_axis(erfa_pole, t0, z0)
-    full = scenario["earth.model"] == "full"
-    system = (earth.full_system(orbits.kernel, params, t0, z0, x0, forced=scenario["earth.forced_start"])
-              if full else earth.gyroscopic_system(orbits.kernel, params, t0, z0))
+    system, orbits, params, (z0, x0, pole_ecl, plane_tilt) = build_system(scenario, t)
+    moments, full = params[0], scenario["earth.model"] == "full"
     solution, point = common.simulate_scenario(scenario, system, t)
     z = earth.figure_axes_from_full(solution.y) if full else system.meta["figure_axes"](t, solution.y, params)
 
@@ -79,6 +68,55 @@ def run(scenario):
                              None if getattr(orbits, "max_relative_error", None) is None
                              else orbits.max_relative_error.tolist()}}
     return common.result(scenario, table, summary, figures, solution)
+
+
+def build_system(scenario, t):
+    """(SpinSystem, orbits, params, (z0, x0, ecliptic pole, tilt of the circles or None)) of the scenario.
+
+    ``t``: output times (TDB d), used only by the rigid start (a first gyroscopic pass).
+    """
+    from ..references import erfa_pole
+
+    t0 = scenario.t_start
+    orbits, plane_tilt = _orbits(scenario)
+    pole_ecl = erfa_pole.ecliptic_pole_j2000() if plane_tilt is None else \
+        np.array([0.0, -math.sin(plane_tilt), math.cos(plane_tilt)])
+    moments = earth.earth_moments(scenario["earth.dynamical_ellipticity"], scenario["earth.b_minus_a_over_c"])
+    extra = earth.extra_parameters(pole_ecl, scenario["earth.geodesic_precession"], scenario["earth.j2_rate"])
+    params = (moments, orbits.gm, orbits.data, extra)
+    z0 = erfa_pole.cip_vector(t0)
+    if scenario["earth.start_pole"] != "iau" and plane_tilt is None:
+        z0 = _rigid_start(erfa_pole, orbits, params, t0, z0, t)
+    x0 = _a_axis(erfa_pole, t0, z0)
+    system = (earth.full_system(orbits.kernel, params, t0, z0, x0, forced=scenario["earth.forced_start"])
+              if scenario["earth.model"] == "full" else earth.gyroscopic_system(orbits.kernel, params, t0, z0))
+    return system, orbits, params, (z0, x0, pole_ecl, plane_tilt)
+
+
+# rk8 steps of the converged runs that ``spinorbit bench`` measures errors against (days)
+BENCH_REFERENCE_STEP_D = {"full": 0.05, "gyroscopic": 0.5}
+HALF_MONTH_D = 13.66                   # shortest period of the lunisolar torque (inertial axes)
+
+
+def build(scenario):
+    """For ``spinorbit bench``: (system, output times, error vs a converged run, rad).
+
+    The error is the max attitude angle from a converged rk8 run (bench.converged_error
+    at 0.05 d for the full model, 0.5 d for the gyroscopic one, each checked against
+    half that step; the agreement is kept in system.meta["reference_agreement_rad"]):
+    integration error only, not the difference from IAU 2006/2000A.  For the full model
+    the attitude includes the daily rotation phase; for the gyroscopic model it is the
+    twist-free frame of L.  Splitting methods run the full model only (a rigid body
+    under the Moon's and Sun's torques; the gyroscopic state is L alone).
+    """
+    from ..bench import converged_error
+
+    t_out = scenario.output_times()
+    system = build_system(scenario, t_out)[0]
+    system.meta["time_scale"] = HALF_MONTH_D
+    error, agreement = converged_error(system, t_out, BENCH_REFERENCE_STEP_D[scenario["earth.model"]])
+    system.meta["reference_agreement_rad"] = agreement
+    return system, t_out, error
 
 
 def _orbits(scenario):

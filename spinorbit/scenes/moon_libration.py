@@ -134,9 +134,66 @@ def build_system(scenario, source):
               earth_pole=earth_pole(t0 - margin, t1 + margin)) if spec["core"] else {}
     params = moon_params(c.moments, orbits.gm, orbits.data, c.c_nm, c.s_nm, c.radius_km, c.k2,
                          c.gm_km3_d2["moon"], c.tau_d, c.kv_over_c_per_d, c.core_c_over_c, n_mean, **de)
-    system = SpinSystem(rhs, params, t0, y0, c.moments, None, f"moon level {level}",
+    # levels 1-2 are one rigid body under an external torque (splitting methods can run them);
+    # levels 3-4 carry the core's state and a time-varying inertia: no separable torque
+    torque = None if spec["core"] else rigid_torque(orbits.kernel, spec["degree"])
+    system = SpinSystem(rhs, params, t0, y0, c.moments, torque, f"moon level {level}",
                         {"tides": tides, "source": source})
     return system, orbits
+
+
+def rigid_torque(positions, degree):
+    """Body-frame torque (per M R^2) of levels 1-2 with the parameters of moon_params.
+
+    The same terms as make_moon_rhs without core and distortion: the degree-2 figure
+    torque of each point mass (Euler ch. 16 P91, §815) plus, for degree 3-4, the
+    torque of the Moon's higher field.
+    """
+    from numba import njit
+
+    from ..moon import R_KM, figure_torque, harmonic_torque
+    from ..rotations import matrix_from_quat
+
+    n_max = int(degree)
+
+    @njit
+    def torque(t, y, p):
+        moments, gm, data, c_nm, s_nm, consts = p[0], p[1], p[2], p[3], p[4], p[5]
+        to_body = matrix_from_quat(y[:4]).T
+        inertia = np.diag(moments)
+        r_all = positions(t, data)
+        total = np.zeros(3)
+        for i in range(gm.shape[0]):
+            r_b = to_body @ r_all[i]
+            total += figure_torque(inertia, r_b, gm[i])
+            if n_max >= 3:
+                total += harmonic_torque(r_b, gm[i], consts[R_KM], c_nm, s_nm, 3, n_max)
+        return total
+
+    return torque
+
+
+BENCH_REFERENCE_STEP_D = 0.5
+
+
+def build(scenario):
+    """For ``spinorbit bench``: (system, output times, error vs a converged run, rad).
+
+    The error of a solution is its max attitude angle from a converged rk8 run at
+    h = 0.5 d (bench.converged_error, checked against h = 0.25 d; the agreement is
+    kept in system.meta["reference_agreement_rad"]), not from DE421: this measures
+    integration error only.  Splitting methods run at levels 1-2 only.
+    """
+    from ..bench import converged_error
+
+    level = scenario["model.level"]
+    if level not in LEVELS:
+        raise ScenarioError("model.level", level, f"one of {sorted(LEVELS)}")
+    system, _ = build_system(scenario, scenario["orbit.source"])
+    t_out = scenario.output_times()
+    error, agreement = converged_error(system, t_out, BENCH_REFERENCE_STEP_D)
+    system.meta["reference_agreement_rad"] = agreement
+    return system, t_out, error
 
 
 def model_angles(solution):
