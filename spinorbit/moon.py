@@ -9,9 +9,11 @@ Four levels, each adding physics to the one before:
 3. + a fluid core with an oblate core-mantle boundary, coupled by friction and by the
    fluid's pressure on the boundary; the tidal and rotational distortion of the mantle's
    moment of inertia; and the Earth's J2 acting on the Moon's degree-2 figure
-   (Folkner et al. 2014, IPN PR 42-196, §III.C "Lunar orientation", eqs. for the
-   mantle/core angular momentum, N_cmb, I_m and N_figM-figE; I_m as corrected by
-   Pavlov & Williams 2019, CMDA 131:?, correction to eq. 15 of Pavlov et al. 2016):
+   (Folkner et al. 2014, IPN PR 42-196, §III "Lunar orientation": mantle and core
+   equations (34)-(35), moments of inertia (36)-(41), point-mass torque (43), figure-
+   figure torque (44), equation numbers as cited by PlanetaryEphemeris.jl; I_m as in
+   Pavlov, Williams & Suvorkin 2016, CMDA 126:61, eq. (15) with the zz element
+   corrected in Pavlov & Williams 2019, doi:10.1007/s10569-019-9939-8):
 
    I_m = I~ - I_c - k2 (M_E/M) (R^3/r^5) [x_i x_j - r^2 d_ij/3]
                + k2 R^3/(3 GM) [w_i w_j - d_ij (w^2 - n^2)/3, zz: w_z^2 - (w^2 + 2 n^2)/3]
@@ -24,9 +26,16 @@ Four levels, each adding physics to the one before:
 
    x = the Earth's position in the mantle frame at t - tau (the tide raised a time
    tau earlier, carried round with the mantle); w in the rotational term is taken at t.
-   DE421 used f_c = COBLAT (its header's core oblateness, 3.8e-4): with it and the
-   Earth's J2 the model started at DE421's epoch (JDEPOC, where the header gives the
-   core's state) follows DE421 to 0.002" over 80 years; without them, to 1".
+   The torques act with the whole Moon's distorted I; the mantle turns with I - I_c.
+
+   What limited the pole (measured against DE421 over 1900-2050, benchmarks/RESULTS.md):
+   DE421's core is oblate (header COBLAT, f_c = 3.8e-4).  Its pressure torque couples
+   the core's free precession (~200 yr) to the mantle; with a spherical core the pole
+   is off by 1.24" (0.82" rms), with the oblate core and the Earth's J2 (0.16" alone)
+   by 0.0036" (0.0021" rms), longitude 0.0005".  From DE421's own epoch (JDEPOC,
+   where the header gives the core state) to 2050: 0.003".  The published forms
+   matter: the uncorrected zz element (w^2 - n^2) or leaving out dI/dt w moves the
+   pole by 3.3"; the rotational term as a whole by 0.07".
 4. (optional) further point masses (planets) acting on the figure.
 
 Units: km, rad/day, GM km^3/day^2, moments in units of M R^2 (R = gravity reference
