@@ -3,10 +3,14 @@
 Run: ``python benchmarks/bench_moon.py [--years 150] [--numpy-years 10]``.
 
 * rk8 at several steps and dop853 (compiled rhs) at several tolerances over
-  1900-01-05 + ``--years``, outputs every 4 d: wall time (compilation excluded), max attitude error
-  (max of pole and longitude) against a converged run (rk8, h = 0.25 d) and against DE421;
+  1900-01-05 + ``--years``, outputs every 2 d (rk8's step is independent of them: dense
+  output): wall time (compilation excluded), max attitude error (max of pole and
+  longitude) against a converged run (rk8, h = 0.25 d) and against DE421;
 * the ratio against scipy ``solve_ivp`` DOP853 with a NumPy right-hand side (the same
-  rhs run with NUMBA_DISABLE_JIT=1, in a subprocess) at equal error, over ``--numpy-years``.
+  rhs run with NUMBA_DISABLE_JIT=1, in a subprocess) at equal error, over ``--numpy-years``:
+  the fastest run of each method reaching each error level.
+Level 3 carries the core's state, so the splitting methods cannot run it (their
+work-precision on levels 1-2: ``spinorbit bench scenarios/moon_libration_level2.toml``).
 Prints Markdown tables for benchmarks/RESULTS.md.
 """
 import argparse
@@ -24,7 +28,8 @@ ROOT = Path(__file__).resolve().parents[1]
 SCENARIO = ROOT / "scenarios" / "moon_libration.toml"
 
 
-CADENCE_D = 4.0          # output every 4 d, so that rk8 steps up to 4 d are not capped by outputs
+CADENCE_D = 2.0          # output every 2 d, as the scenario
+LEVELS_ARCSEC = (0.2, 0.002, 2e-5)    # ~1e-6, 1e-8, 1e-10 rad
 
 
 def build(years):
@@ -73,8 +78,8 @@ def compiled_rows(years):
     ref = reference_mats(t_out)
     converged = attitudes(integrate(system, t_out, "rk8", step=0.25))
     rows = []
-    runs = [("rk8", dict(step=h)) for h in (4.0, 2.0, 1.0, 0.5)]
-    runs += [("dop853", dict(rtol=r, atol=r * 1e-2)) for r in (1e-8, 1e-9, 1e-10, 1e-11, 1e-12)]
+    runs = [("rk8", dict(step=h)) for h in (6.0, 4.0, 3.0, 2.0, 1.0)]
+    runs += [("dop853", dict(rtol=r, atol=r * 1e-2)) for r in (1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11)]
     for method, options in runs:
         sol = integrate(system, t_out, method, **options)
         m = attitudes(sol)
@@ -86,7 +91,7 @@ def compiled_rows(years):
 
 def numpy_rows(years, converged_10):
     rows = []
-    for rtol in (1e-8, 1e-9, 1e-10):
+    for rtol in (1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11):
         with tempfile.TemporaryDirectory() as tmp:
             out = Path(tmp) / "run.npz"
             env = {**os.environ, "NUMBA_DISABLE_JIT": "1"}
@@ -113,6 +118,20 @@ def table(rows, title):
     return "\n".join(lines)
 
 
+def level_table(rows):
+    """Fastest run of each method reaching each error level, and scipy + NumPy's time over it."""
+    names = list(dict.fromkeys(r["method"] for r in rows))
+    lines = ["| error <= | " + " | ".join(names) + " |", "|---|" + "---|" * len(names)]
+    for level in LEVELS_ARCSEC:
+        best = {m: min((r["wall_s"] for r in rows if r["method"] == m and r["error_vs_converged_arcsec"] <= level),
+                       default=None) for m in names}
+        base = best.get("scipy DOP853 + NumPy rhs")
+        cells = ["-" if best[m] is None else f"{best[m]:.3g}" + (f" (x{base / best[m]:.0f})" if base else "")
+                 for m in names]
+        lines.append(f"| {level:g}\" ({level * 4.848e-6:.0e} rad) | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--years", type=float, default=150.0)
@@ -128,6 +147,8 @@ def main():
     slow = numpy_rows(args.numpy_years, converged_short)
     print()
     print(table(short + slow, f"Moon level 3, {args.numpy_years:g} yr: compiled vs NumPy rhs"))
+    print()
+    print(level_table(short + slow))
     if args.json:
         Path(args.json).write_text(json.dumps({"long": rows, "short": short + slow}, indent=1))
 
