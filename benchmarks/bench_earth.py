@@ -2,10 +2,14 @@
 
     python benchmarks/bench_earth.py            # writes benchmarks/earth_error_vs_time.{csv,png}
 
-Compiled rk8 (one core) at several steps, and scipy solve_ivp DOP853 with a
-NumPy right-hand side at several tolerances; error = max |figure axis - a
+Compiled rk8 (one core) at several steps, the structure-preserving splittings
+(full model only: a rigid body under an external torque; symmetric-exact free
+flow, geodesic precession as an exact frame rotation), and scipy solve_ivp DOP853
+with a NumPy right-hand side at several tolerances; error = max |figure axis - a
 converged run| in mas; wall time excludes compilation and is scaled to a
-simulated century.  DE421 Moon + Sun, geodesic precession and J2 rate on.
+simulated century.  DE421 Moon + Sun (quintic Hermite, 0.25 d), geodesic
+precession and J2 rate on.  Prints the rows and, per model, the fastest run of
+each method reaching each error level with scipy + NumPy's time over it.
 """
 import csv
 import math
@@ -24,6 +28,9 @@ from spinorbit.references import erfa_pole
 OUT = Path(__file__).parent
 T0 = 0.0                                   # J2000
 SPANS = {"gyroscopic": 36525.0, "full": 3652.5}
+SPLITTINGS = {"strang": [0.5, 0.25, 0.125, 0.0625, 0.03125], "yoshida4": [0.5, 0.25, 0.125, 0.0625, 0.03125],
+              "suzuki4": [0.5, 0.25, 0.125, 0.0625, 0.03125]}
+LEVELS_MAS = (200.0, 2.0, 0.02, 2e-4)          # ~1e-6, 1e-8, 1e-10, 1e-12 rad
 
 
 def setup(span):
@@ -86,7 +93,7 @@ def numpy_rhs(model, orbits, params):
 
 def main():
     rows = []
-    for model, steps, tolerances in (("gyroscopic", [8.0, 4.0, 2.0, 1.0], [1e-8, 1e-10, 1e-12]),
+    for model, steps, tolerances in (("gyroscopic", [16.0, 8.0, 4.0, 2.0, 1.0], [1e-7, 1e-8, 1e-10, 1e-12]),
                                      ("full", [0.4, 0.2, 0.1, 0.05], [1e-9, 1e-11, 1e-13])):
         span = SPANS[model]
         orbits, params, z0, x0 = setup(span)
@@ -95,10 +102,13 @@ def main():
         t = T0 + np.arange(0.0, span + 1e-9, 8.0)
         reference = axes(model, system, orbits, params, t, integrate(system, t, "rk8", step=steps[-1] / 4).y)
         scale = 36525.0 / span
-        for step in steps:
-            sol = integrate(system, t, "rk8", step=step)
+        runs = [("rk8", "rk8 (numba)", step) for step in steps]
+        if model == "full":
+            runs += [(name, f"{name} (numba)", step) for name, hs in SPLITTINGS.items() for step in hs]
+        for method, label, step in runs:
+            sol = integrate(system, t, method, step=step)
             err = np.linalg.norm(axes(model, system, orbits, params, t, sol.y) - reference, axis=1).max() / MAS
-            rows.append({"model": model, "method": "rk8 (numba)", "setting": f"step {step} d",
+            rows.append({"model": model, "method": label, "setting": f"step {step} d",
                          "wall_s_per_century": sol.wall_s * scale, "error_mas": err})
             print(rows[-1])
         # scipy DOP853 + NumPy rhs over a tenth of the span (it is slow), error on that part.
@@ -119,6 +129,28 @@ def main():
         writer.writeheader()
         writer.writerows(rows)
     plot(rows)
+    print()
+    print(tables(rows))
+
+
+def tables(rows):
+    """Markdown: every run, then the fastest run per method reaching each error level (ratio = scipy / it)."""
+    lines = ["| model | method | setting | s / century | error mas |", "|---|---|---|---|---|"]
+    lines += [f"| {r['model']} | {r['method']} | {r['setting']} | {r['wall_s_per_century']:.3g} | "
+              f"{r['error_mas']:.2g} |" for r in rows]
+    for model in SPANS:
+        sel = [r for r in rows if r["model"] == model]
+        names = list(dict.fromkeys(r["method"] for r in sel))
+        lines += ["", f"{model}: fastest s / century reaching each error (x = scipy DOP853 + NumPy rhs / it)", "",
+                  "| error <= | " + " | ".join(names) + " |", "|---|" + "---|" * len(names)]
+        for level in LEVELS_MAS:
+            best = {m: min((r["wall_s_per_century"] for r in sel if r["method"] == m and r["error_mas"] <= level),
+                           default=None) for m in names}
+            base = best.get("scipy DOP853 + NumPy rhs")
+            cells = ["-" if best[m] is None else f"{best[m]:.3g}" + (f" (x{base / best[m]:.0f})" if base else "")
+                     for m in names]
+            lines.append(f"| {level:g} mas ({level * MAS:.0e} rad) | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
 
 
 def plot(rows):
@@ -129,9 +161,10 @@ def plot(rows):
 
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for model in ("gyroscopic", "full"):
-        for method, marker in (("rk8 (numba)", "o-"), ("scipy DOP853 + NumPy rhs", "s--")):
+        for method in dict.fromkeys(r["method"] for r in rows if r["model"] == model):
             pts = [(r["wall_s_per_century"], max(r["error_mas"], 1e-7)) for r in rows
                    if r["model"] == model and r["method"] == method]
+            marker = "s--" if method.startswith("scipy") else ("^-" if model == "full" and "rk8" not in method else "o-")
             ax.loglog(*zip(*pts), marker, label=f"{model}, {method}")
     ax.set_xlabel("wall time per simulated century [s] (one core)")
     ax.set_ylabel("max figure-axis error [mas]")

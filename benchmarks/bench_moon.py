@@ -1,6 +1,6 @@
-"""Error against run time for the Moon (level 3: degree 2-4, core, tides) driven by DE421.
+"""Error against run time for the Moon (default level 3: degree 2-4, core, tides) driven by DE421.
 
-Run: ``python benchmarks/bench_moon.py [--years 150] [--numpy-years 10]``.
+Run: ``python benchmarks/bench_moon.py [--years 150] [--numpy-years 10] [--level 3]``.
 
 * rk8 at several steps and dop853 (compiled rhs) at several tolerances over
   1900-01-05 + ``--years``, outputs every 2 d (rk8's step is independent of them: dense
@@ -9,8 +9,8 @@ Run: ``python benchmarks/bench_moon.py [--years 150] [--numpy-years 10]``.
 * the ratio against scipy ``solve_ivp`` DOP853 with a NumPy right-hand side (the same
   rhs run with NUMBA_DISABLE_JIT=1, in a subprocess) at equal error, over ``--numpy-years``:
   the fastest run of each method reaching each error level.
-Level 3 carries the core's state, so the splitting methods cannot run it (their
-work-precision on levels 1-2: ``spinorbit bench scenarios/moon_libration_level2.toml``).
+Level 3 carries the core's state, so the splitting methods cannot run it; at
+``--level 1`` or ``2`` (a rigid body under a torque) suzuki4, yoshida4 and strang run too.
 Prints Markdown tables for benchmarks/RESULTS.md.
 """
 import argparse
@@ -32,11 +32,17 @@ CADENCE_D = 2.0          # output every 2 d, as the scenario
 LEVELS_ARCSEC = (0.2, 0.002, 2e-5)    # ~1e-6, 1e-8, 1e-10 rad
 
 
+LEVEL = [3]               # model level (--level)
+SPLITTINGS = {"suzuki4": (2.0, 1.0, 0.5, 0.25, 0.125), "yoshida4": (2.0, 1.0, 0.5, 0.25, 0.125),
+              "strang": (1.0, 0.25, 0.0625, 0.015625)}
+
+
 def build(years):
     from spinorbit.scenarios import load_scenario
     from spinorbit.scenes.moon_libration import build_system
 
-    scenario = load_scenario(SCENARIO, [f'span.end="{years} yr"', f'span.step="{CADENCE_D} d"'])
+    scenario = load_scenario(SCENARIO, [f'span.end="{years} yr"', f'span.step="{CADENCE_D} d"',
+                                        f"model.level={LEVEL[0]}"])
     system, _ = build_system(scenario, "de421")
     return scenario, system
 
@@ -80,10 +86,12 @@ def compiled_rows(years):
     rows = []
     runs = [("rk8", dict(step=h)) for h in (6.0, 4.0, 3.0, 2.0, 1.0)]
     runs += [("dop853", dict(rtol=r, atol=r * 1e-2)) for r in (1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11)]
+    if system.torque is not None:        # levels 1-2: a rigid body under a torque, the splittings run
+        runs += [(name, dict(step=h)) for name, steps in SPLITTINGS.items() for h in steps]
     for method, options in runs:
         sol = integrate(system, t_out, method, **options)
         m = attitudes(sol)
-        rows.append(dict(method=method + ("" if method == "rk8" else " + numba rhs"), options=options,
+        rows.append(dict(method=method + (" + numba rhs" if method == "dop853" else ""), options=options,
                          wall_s=sol.wall_s, nfev=sol.nfev, error_vs_converged_arcsec=error_arcsec(m, converged),
                          error_vs_de421_arcsec=error_arcsec(m, ref)))
     return rows, converged, t_out
@@ -95,7 +103,8 @@ def numpy_rows(years, converged_10):
         with tempfile.TemporaryDirectory() as tmp:
             out = Path(tmp) / "run.npz"
             env = {**os.environ, "NUMBA_DISABLE_JIT": "1"}
-            subprocess.run([sys.executable, __file__, "--child", str(years), str(rtol), str(out)],
+            subprocess.run([sys.executable, __file__, "--level", str(LEVEL[0]), "--child", str(years), str(rtol),
+                            str(out)],
                            check=True, env=env, cwd=ROOT)
             data = np.load(out)
             from spinorbit.rotations import matrix_from_quat
@@ -136,17 +145,19 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--years", type=float, default=150.0)
     parser.add_argument("--numpy-years", type=float, default=10.0)
+    parser.add_argument("--level", type=int, default=3)
     parser.add_argument("--child", nargs=3)
     parser.add_argument("--json")
     args = parser.parse_args()
+    LEVEL[0] = args.level
     if args.child:
         return numpy_run(float(args.child[0]), float(args.child[1]), args.child[2])
     rows, _, _ = compiled_rows(args.years)
-    print(table(rows, f"Moon level 3, {args.years:g} yr from 1900-01-05, outputs every {CADENCE_D:g} d"))
+    print(table(rows, f"Moon level {args.level}, {args.years:g} yr from 1900-01-05, outputs every {CADENCE_D:g} d"))
     short, converged_short, _ = compiled_rows(args.numpy_years)
     slow = numpy_rows(args.numpy_years, converged_short)
     print()
-    print(table(short + slow, f"Moon level 3, {args.numpy_years:g} yr: compiled vs NumPy rhs"))
+    print(table(short + slow, f"Moon level {args.level}, {args.numpy_years:g} yr: compiled vs NumPy rhs"))
     print()
     print(level_table(short + slow))
     if args.json:
