@@ -169,6 +169,43 @@ def distortion(omega, r_del, v_del, consts):
     return tide + consts[K2_ROT] * rot, tide_rate
 
 
+@njit(cache=True)
+def external_torque(t, inertia, to_body, r_all, gm, c_nm, s_nm, consts, pole, n_max):
+    """Body-frame torque (per M R^2) of the point masses at ``r_all`` (km, ICRF) on the Moon.
+
+    The degree-2 figure torque of each mass (Euler ch. 16 P91, §815, with the
+    instantaneous inertia), the Moon's degree 3..n_max field, and the Earth's
+    J2 (body 0) acting on the lunar figure when its constant is nonzero.
+    """
+    torque = np.zeros(3)
+    for i in range(gm.shape[0]):
+        r_b = to_body @ r_all[i]
+        torque += figure_torque(inertia, r_b, gm[i])
+        if n_max >= 3:
+            torque += harmonic_torque(r_b, gm[i], consts[R_KM], c_nm, s_nm, 3, n_max)
+    if consts[J2E_GM_R2] != 0.0:
+        torque += oblate_earth_torque(inertia, to_body @ r_all[0], to_body @ interpolate_pole(t, pole),
+                                      consts[J2E_GM_R2])
+    return torque
+
+
+def make_rigid_moon_torque(positions, degree=2):
+    """torque(t, y, p) of a rigid Moon (no core, no distortion), p = moon_params(...).
+
+    The same terms as make_moon_rhs; exposed so that splitting integrators can
+    alternate the free flow with torque kicks (levels 1-2).
+    """
+    n_max = int(degree)
+
+    @njit
+    def torque(t, y, p):
+        moments, gm, data, c_nm, s_nm, consts, pole = p
+        to_body = matrix_from_quat(y[:4]).T
+        return external_torque(t, np.diag(moments), to_body, positions(t, data), gm, c_nm, s_nm, consts, pole, n_max)
+
+    return torque
+
+
 def make_moon_rhs(positions, degree=2, core=False, tides=False):
     """Compiled rhs(t, y, p) of the lunar model.
 
@@ -198,16 +235,7 @@ def make_moon_rhs(positions, degree=2, core=False, tides=False):
             v_del = rotate_about(to_body @ vel_i, axis, wn * tau) - np.cross(omega, r_del)
             delta, inertia_rate = distortion(omega, r_del, v_del, consts)
             inertia = inertia + delta
-        r_all = positions(t, data)
-        torque = np.zeros(3)
-        for i in range(gm.shape[0]):
-            r_b = to_body @ r_all[i]
-            torque += figure_torque(inertia, r_b, gm[i])
-            if n_max >= 3:
-                torque += harmonic_torque(r_b, gm[i], consts[R_KM], c_nm, s_nm, 3, n_max)
-        if consts[J2E_GM_R2] != 0.0:
-            torque += oblate_earth_torque(inertia, to_body @ r_all[0], to_body @ interpolate_pole(t, pole),
-                                          consts[J2E_GM_R2])
+        torque = external_torque(t, inertia, to_body, positions(t, data), gm, c_nm, s_nm, consts, pole, n_max)
         dy = np.empty_like(y)
         dy[:4] = quat_rate(q, omega)
         if with_core:                  # torques act with the whole Moon's I; the mantle turns with I - I_c

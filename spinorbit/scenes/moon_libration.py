@@ -110,7 +110,7 @@ def run(scenario):
 def build_system(scenario, source):
     """SpinSystem of the lunar model at the scenario's level, driven by ``source``."""
     from ..dynamics import SpinSystem
-    from ..moon import make_moon_rhs, moon_params
+    from ..moon import make_moon_rhs, make_rigid_moon_torque, moon_params
     from ..orbits.sources import sample_orbits
     from ..references.moon_de421 import core_angular_velocity, earth_pole, librations, moon_constants, orientation
     from ..rotations import quat_from_euler313
@@ -136,41 +136,10 @@ def build_system(scenario, source):
                          c.gm_km3_d2["moon"], c.tau_d, c.kv_over_c_per_d, c.core_c_over_c, n_mean, **de)
     # levels 1-2 are one rigid body under an external torque (splitting methods can run them);
     # levels 3-4 carry the core's state and a time-varying inertia: no separable torque
-    torque = None if spec["core"] else rigid_torque(orbits.kernel, spec["degree"])
+    torque = None if spec["core"] else make_rigid_moon_torque(orbits.kernel, spec["degree"])
     system = SpinSystem(rhs, params, t0, y0, c.moments, torque, f"moon level {level}",
                         {"tides": tides, "source": source})
     return system, orbits
-
-
-def rigid_torque(positions, degree):
-    """Body-frame torque (per M R^2) of levels 1-2 with the parameters of moon_params.
-
-    The same terms as make_moon_rhs without core and distortion: the degree-2 figure
-    torque of each point mass (Euler ch. 16 P91, §815) plus, for degree 3-4, the
-    torque of the Moon's higher field.
-    """
-    from numba import njit
-
-    from ..moon import R_KM, figure_torque, harmonic_torque
-    from ..rotations import matrix_from_quat
-
-    n_max = int(degree)
-
-    @njit
-    def torque(t, y, p):
-        moments, gm, data, c_nm, s_nm, consts = p[0], p[1], p[2], p[3], p[4], p[5]
-        to_body = matrix_from_quat(y[:4]).T
-        inertia = np.diag(moments)
-        r_all = positions(t, data)
-        total = np.zeros(3)
-        for i in range(gm.shape[0]):
-            r_b = to_body @ r_all[i]
-            total += figure_torque(inertia, r_b, gm[i])
-            if n_max >= 3:
-                total += harmonic_torque(r_b, gm[i], consts[R_KM], c_nm, s_nm, 3, n_max)
-        return total
-
-    return torque
 
 
 BENCH_REFERENCE_STEP_D = 0.5
