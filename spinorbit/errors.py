@@ -26,10 +26,15 @@ class EphemerisRangeError(SpinorbitError, ValueError):
     def __init__(self, source, requested, span, unit="TDB days from J2000"):
         self.source, self.requested, self.span = source, requested, span
         super().__init__(
-            f"{source} covers {span[0]:.6g} to {span[1]:.6g} {unit}; "
+            f"{source} covers {span[0]:.6g} to {span[1]:.6g} {unit} ({_epochs(span)}); "
             f"asked for {requested}. Shorten [span], or choose a source that covers it "
             "(a larger .bsp in ephemerides/, or orbit.source = 'rebound')."
         )
+
+
+def _epochs(span_days):
+    """Julian epochs of a span in TDB days from J2000, e.g. 'J1899.92 to J2200.08'."""
+    return " to ".join(f"J{2000.0 + t / 365.25:.2f}" for t in span_days)
 
 
 class IntegrationError(SpinorbitError, RuntimeError):
