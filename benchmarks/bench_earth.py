@@ -12,7 +12,6 @@ precession and J2 rate on.  Prints the rows and, per model, the fastest run of
 each method reaching each error level with scipy + NumPy's time over it.
 """
 import csv
-import math
 import time
 from pathlib import Path
 

@@ -6,7 +6,6 @@ import pytest
 
 from spinorbit.dynamics import euler_omega_dot
 from spinorbit.integrators import integrate
-from spinorbit.rotations import quat_angle
 from spinorbit.scenarios import load_scenario
 
 SCENARIOS = Path(__file__).parent.parent / "scenarios"

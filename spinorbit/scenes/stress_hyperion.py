@@ -28,7 +28,6 @@ import numpy as np
 
 from ..integrators import integrate
 from ..integrators.rk8 import RK8, _rk_fixed
-from ..rotations import quat_angle
 from ..scenarios import Key
 from . import common
 from .planar_spin_orbit import kepler_orbit, planar_params, planar_rhs, rigid_body_system, theta_from_quaternions
