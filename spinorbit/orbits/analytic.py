@@ -12,6 +12,12 @@ from numba import njit
 from ..errors import ScenarioError
 
 
+
+def _per_body(n, *values):
+    """Each value as a float array of one entry per body (None -> zeros)."""
+    return [np.zeros(n) if v is None else np.asarray(v, dtype=float).reshape(n) for v in values]
+
+
 @njit(cache=True)
 def _circle_positions(t, data):
     """data = (radius (n,), rate (n,), phase (n,), inclination (n,)) -> (n, 3)."""
@@ -45,10 +51,8 @@ class CircularOrbits:
 
     def __post_init__(self):
         n = len(self.names)
-        as_array = lambda v, default: np.full(n, default) if v is None else np.asarray(v, dtype=float).reshape(n)
-        self.gm = as_array(self.gm, 0.0)
-        self.radius, self.rate = as_array(self.radius, 0.0), as_array(self.rate, 0.0)
-        self.phase, self.inclination = as_array(self.phase, 0.0), as_array(self.inclination, 0.0)
+        self.gm, self.radius, self.rate, self.phase, self.inclination = _per_body(
+            n, self.gm, self.radius, self.rate, self.phase, self.inclination)
         if np.any(self.radius <= 0):
             raise ScenarioError("orbit.radius", self.radius.tolist(), "positive distances")
         self.data = (self.radius, self.rate, self.phase, self.inclination)
@@ -112,17 +116,15 @@ class KeplerOrbit:
 
     def __post_init__(self):
         n = len(self.names)
-        as_array = lambda v: np.zeros(n) if v is None else np.asarray(v, dtype=float).reshape(n)
-        self.gm, self.a, self.e = as_array(self.gm), as_array(self.a), as_array(self.e)
+        self.gm, self.a, self.e = _per_body(n, self.gm, self.a, self.e)
         if np.any(self.a <= 0):
             raise ScenarioError("orbit.a", self.a.tolist(), "positive semi-major axes")
         if np.any((self.e < 0) | (self.e >= 1)):
             raise ScenarioError("orbit.e", self.e.tolist(), "eccentricities in [0, 1)")
         if self.mean_motion is None:
             self.mean_motion = np.sqrt(self.gm / self.a**3)
-        self.mean_motion = as_array(self.mean_motion)
-        self.mean_anomaly, self.periapsis = as_array(self.mean_anomaly), as_array(self.periapsis)
-        self.inclination, self.node = as_array(self.inclination), as_array(self.node)
+        self.mean_motion, self.mean_anomaly, self.periapsis, self.inclination, self.node = _per_body(
+            n, self.mean_motion, self.mean_anomaly, self.periapsis, self.inclination, self.node)
         cw, sw = np.cos(self.periapsis), np.sin(self.periapsis)
         ci, si = np.cos(self.inclination), np.sin(self.inclination)
         co, so = np.cos(self.node), np.sin(self.node)
@@ -170,10 +172,8 @@ class UnevenCircle:
 
     def __post_init__(self):
         n = len(self.names)
-        as_array = lambda v: np.zeros(n) if v is None else np.asarray(v, dtype=float).reshape(n)
-        self.gm, self.f, self.delta = as_array(self.gm), as_array(self.f), as_array(self.delta)
-        self.alpha, self.beta, self.a_freq = as_array(self.alpha), as_array(self.beta), as_array(self.a_freq)
-        self.phase = as_array(self.phase)
+        self.gm, self.f, self.delta, self.alpha, self.beta, self.a_freq, self.phase = _per_body(
+            n, self.gm, self.f, self.delta, self.alpha, self.beta, self.a_freq, self.phase)
         if np.any(self.f <= 0):
             raise ScenarioError("orbit.f", self.f.tolist(), "positive mean distances")
         if np.any(np.abs(self.beta) >= 1):
