@@ -19,6 +19,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from spinorbit import earth
+from spinorbit.bench import fastest_at
 from spinorbit.constants import MAS
 from spinorbit.integrators import integrate
 from spinorbit.orbits.sources import sample_orbits
@@ -143,10 +144,9 @@ def tables(rows):
         lines += ["", f"{model}: fastest s / century reaching each error (x = scipy DOP853 + NumPy rhs / it)", "",
                   "| error <= | " + " | ".join(names) + " |", "|---|" + "---|" * len(names)]
         for level in LEVELS_MAS:
-            best = {m: min((r["wall_s_per_century"] for r in sel if r["method"] == m and r["error_mas"] <= level),
-                           default=None) for m in names}
+            best = fastest_at(sel, level, error="error_mas", wall="wall_s_per_century")
             base = best.get("scipy DOP853 + NumPy rhs")
-            cells = ["-" if best[m] is None else f"{best[m]:.3g}" + (f" (x{base / best[m]:.0f})" if base else "")
+            cells = ["-" if m not in best else f"{best[m]:.3g}" + (f" (x{base / best[m]:.0f})" if base else "")
                      for m in names]
             lines.append(f"| {level:g} mas ({level * MAS:.0e} rad) | " + " | ".join(cells) + " |")
     return "\n".join(lines)

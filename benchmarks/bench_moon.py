@@ -129,13 +129,14 @@ def table(rows, title):
 
 def level_table(rows):
     """Fastest run of each method reaching each error level, and scipy + NumPy's time over it."""
+    from spinorbit.bench import fastest_at
+
     names = list(dict.fromkeys(r["method"] for r in rows))
     lines = ["| error <= | " + " | ".join(names) + " |", "|---|" + "---|" * len(names)]
     for level in LEVELS_ARCSEC:
-        best = {m: min((r["wall_s"] for r in rows if r["method"] == m and r["error_vs_converged_arcsec"] <= level),
-                       default=None) for m in names}
+        best = fastest_at(rows, level, error="error_vs_converged_arcsec")
         base = best.get("scipy DOP853 + NumPy rhs")
-        cells = ["-" if best[m] is None else f"{best[m]:.3g}" + (f" (x{base / best[m]:.0f})" if base else "")
+        cells = ["-" if m not in best else f"{best[m]:.3g}" + (f" (x{base / best[m]:.0f})" if base else "")
                  for m in names]
         lines.append(f"| {level:g}\" ({level * 4.848e-6:.0e} rad) | " + " | ".join(cells) + " |")
     return "\n".join(lines)

@@ -94,12 +94,12 @@ def bench_system(system, t_out, error, methods=None, budget_s=10.0):
     return [row for name in names for row in run_method(name, system, t_out, error, budget_s)]
 
 
-def fastest_at(rows, level):
-    """{method: least wall time with error <= level}."""
+def fastest_at(rows, level, error="error_rad", wall="wall_s"):
+    """{method: least ``wall`` over rows whose ``error`` is <= level}."""
     best = {}
     for row in rows:
-        if row["error_rad"] <= level:
-            best[row["method"]] = min(best.get(row["method"], math.inf), row["wall_s"])
+        if row[error] <= level:
+            best[row["method"]] = min(best.get(row["method"], math.inf), row[wall])
     return best
 
 
