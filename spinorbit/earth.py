@@ -30,10 +30,9 @@ import numpy as np
 from numba import njit
 
 from .constants import ARCSEC, JULIAN_CENTURY_D
-from .dynamics import SpinSystem, euler_omega_dot
+from .dynamics import SpinSystem, euler_omega_dot, make_point_mass_torque
 from .errors import PhysicsError
 from .rotations import matrix_from_quat, quat_from_matrix, quat_rate
-from .torques import point_mass_torque
 
 H_D = 3.27379448e-3                      # (C - A)/C, IAU 2006 (Capitaine et al. 2003)
 ERA_RATE_RAD_D = 2 * math.pi * 1.00273781191135448   # Earth rotation angle rate, rad per UT1 day
@@ -66,15 +65,11 @@ def make_full_torque(positions):
     ``positions(t, data) -> (n, 3)`` km, GCRS, relative to the geocentre.
     """
 
+    point_masses = make_point_mass_torque(positions)     # reads p[0..2] = (moments, gm, data)
+
     @njit
     def torque(t, y, p):
-        moments, gm, data, extra = p
-        to_body = matrix_from_quat(y[:4]).T
-        r = positions(t, data)
-        total = np.zeros(3)
-        for i in range(gm.shape[0]):
-            total += point_mass_torque(moments, to_body @ r[i], gm[i])
-        return total * (1.0 + extra[3] * t)
+        return point_masses(t, y, p) * (1.0 + p[3][3] * t)
 
     return torque
 
