@@ -108,6 +108,14 @@ def torque_free_system(moments, q0, omega0, t0=0.0):
                       moments, _no_torque, "free body")
 
 
+def point_mass_system(moments, orbit, q0, omega0, t0=0.0, name="rigid body under point masses"):
+    """A rigid body under the P91 torque (§815) of the point masses of an orbit source."""
+    moments = np.asarray(moments, dtype=float)
+    torque = make_point_mass_torque(orbit.kernel)
+    return SpinSystem(make_rigid_body_rhs(torque), (moments, orbit.gm, orbit.data), t0,
+                      np.concatenate([q0, omega0]), moments, torque, name)
+
+
 def kinetic_energy(moments, omega):
     """T = (A w_x^2 + B w_y^2 + C w_z^2)/2 for omega of shape (..., 3)."""
     return 0.5 * np.sum(moments * omega**2, axis=-1)
@@ -137,6 +145,6 @@ def invariant_drift(moments, y):
 
 __all__ = [
     "SpinSystem", "euler_omega_dot", "make_rigid_body_rhs", "make_point_mass_torque",
-    "torque_free_system", "torque_free_rhs", "kinetic_energy", "angular_momentum_inertial",
+    "point_mass_system", "torque_free_system", "torque_free_rhs", "kinetic_energy", "angular_momentum_inertial",
     "invariant_drift", "rotate_to_body",
 ]

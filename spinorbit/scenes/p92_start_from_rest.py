@@ -10,7 +10,7 @@ import math
 import numpy as np
 
 from ..constants import ARCSEC
-from ..dynamics import SpinSystem, make_point_mass_torque, make_rigid_body_rhs
+from ..dynamics import point_mass_system
 from ..scenarios import Key
 from . import common
 
@@ -32,9 +32,7 @@ def run(scenario):
     # F fixed (rate 0) at u: a circle point (cos a, sin a cos i, sin a sin i).
     orbit = CircularOrbits(("F",), [gm], [s], [0.0], phase=[math.acos(u[0])],
                            inclination=[math.atan2(u[2], u[1])])
-    torque = make_point_mass_torque(orbit.kernel)
-    system = SpinSystem(make_rigid_body_rhs(torque), (body.moments, orbit.gm, orbit.data), scenario.t_start,
-                        np.array([1.0, 0, 0, 0, 0, 0, 0]), body.moments, torque, "body at rest")
+    system = point_mass_system(body.moments, orbit, [1.0, 0, 0, 0], np.zeros(3), scenario.t_start, "body at rest")
     t = scenario.output_times()
     solution, point = common.simulate_scenario(scenario, system, t)
 

@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from ..constants import ARCSEC
-from ..dynamics import SpinSystem, make_point_mass_torque, make_rigid_body_rhs
+from ..dynamics import point_mass_system
 from ..rotations import matrix_from_quat
 from ..scenarios import Key
 from . import common
@@ -27,12 +27,9 @@ SCHEMA = {
 
 def planar_system(moments, orbit, t0, zeta0, zeta_dot0, delta):
     """Body turning about z with A at angle (delta t0 - zeta0) from x; omega_z = delta - zeta' (§825)."""
-    torque = make_point_mass_torque(orbit.kernel)
     lam = delta * t0 - zeta0
     q0 = np.array([math.cos(lam / 2), 0.0, 0.0, math.sin(lam / 2)])
-    y0 = np.concatenate([q0, [0.0, 0.0, delta - zeta_dot0]])
-    return SpinSystem(make_rigid_body_rhs(torque), (moments, orbit.gm, orbit.data), t0, y0,
-                      moments, torque, "planar libration")
+    return point_mass_system(moments, orbit, q0, [0.0, 0.0, delta - zeta_dot0], t0, "planar libration")
 
 
 def zeta_from_solution(solution, f_longitude):

@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from ..dynamics import SpinSystem, make_point_mass_torque, make_rigid_body_rhs
+from ..dynamics import point_mass_system
 from ..errors import ScenarioError
 from ..scenarios import Key
 from . import common
@@ -44,9 +44,7 @@ def run(scenario):
     orbit = CircularOrbits(("F",), [gm], [s], [0.0], phase=[math.acos(u[0])],
                            inclination=[math.atan2(u[2], u[1])])
     omega0 = gamma * np.array([math.sin(alpha) * math.cos(rho), math.sin(alpha) * math.sin(rho), math.cos(alpha)])
-    torque = make_point_mass_torque(orbit.kernel)
-    system = SpinSystem(make_rigid_body_rhs(torque), (body.moments, orbit.gm, orbit.data), scenario.t_start,
-                        np.concatenate([[1.0, 0, 0, 0], omega0]), body.moments, torque, "near principal axis")
+    system = point_mass_system(body.moments, orbit, [1.0, 0, 0, 0], omega0, scenario.t_start, "near principal axis")
     t = scenario.output_times()
     solution, point = common.simulate_scenario(scenario, system, t)
 

@@ -17,7 +17,7 @@ import math
 import numpy as np
 
 from ..constants import ARCSEC
-from ..dynamics import SpinSystem, make_point_mass_torque, make_rigid_body_rhs
+from ..dynamics import point_mass_system
 from ..errors import ResonanceError
 from ..rotations import matrix_from_quat
 from ..scenarios import Key
@@ -77,9 +77,7 @@ def run(scenario):
         x0, resonance = 0.0, exc
     q0, omega0 = initial_state(n, eps, x0, 0.0)
     orbit = CircularOrbits(("F",), [gm], [s], [delta], phase=[-delta * t0])
-    torque = make_point_mass_torque(orbit.kernel)
-    system = SpinSystem(make_rigid_body_rhs(torque), (body.moments, orbit.gm, orbit.data), t0,
-                        np.concatenate([q0, omega0]), body.moments, torque, "symmetric spinner")
+    system = point_mass_system(body.moments, orbit, q0, omega0, t0, "symmetric spinner")
     t = scenario.output_times()
     solution, point = common.simulate_scenario(scenario, system, t)
 

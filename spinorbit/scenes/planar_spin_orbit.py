@@ -19,7 +19,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..dynamics import SpinSystem, make_point_mass_torque, make_rigid_body_rhs
+from ..dynamics import point_mass_system
 from ..orbits.analytic import KeplerOrbit, eccentric_anomaly
 from ..rotations import matrix_from_quat
 
@@ -58,11 +58,8 @@ def kepler_orbit(gm, a, e, t0):
 
 def rigid_body_system(moments, orbit, t0, theta0, theta_dot0):
     """Full 3-D rigid body turning about C (= inertial z) at theta_dot0 with A at angle theta0 from periapsis."""
-    torque = make_point_mass_torque(orbit.kernel)
     q0 = np.array([math.cos(theta0 / 2), 0.0, 0.0, math.sin(theta0 / 2)])
-    omega0 = np.array([0.0, 0.0, theta_dot0])
-    return SpinSystem(make_rigid_body_rhs(torque), (np.asarray(moments, float), orbit.gm, orbit.data), t0,
-                      np.concatenate([q0, omega0]), np.asarray(moments, float), torque, "planar spin-orbit")
+    return point_mass_system(moments, orbit, q0, [0.0, 0.0, theta_dot0], t0, "planar spin-orbit")
 
 
 def theta_from_quaternions(q):

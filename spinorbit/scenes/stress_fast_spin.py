@@ -24,7 +24,7 @@ import math
 
 import numpy as np
 
-from ..dynamics import SpinSystem, make_point_mass_torque, make_rigid_body_rhs
+from ..dynamics import point_mass_system
 from ..errors import ScenarioError
 from ..integrators import get_method, integrate
 from ..rotations import matrix_from_quat, quat_angle
@@ -80,9 +80,7 @@ def build_system(scenario):
     q0, omega0 = initial_state(n, eps, e + f, 0.0)
     t0 = scenario.t_start
     orbit = CircularOrbits(("F",), [gm], [RADIUS], [delta], phase=[-delta * t0])
-    torque = make_point_mass_torque(orbit.kernel)
-    system = SpinSystem(make_rigid_body_rhs(torque), (body.moments, orbit.gm, orbit.data), t0,
-                        np.concatenate([q0, omega0]), body.moments, torque, "fast spinner, slow orbit")
+    system = point_mass_system(body.moments, orbit, q0, omega0, t0, "fast spinner, slow orbit")
     return system, theory, delta
 
 

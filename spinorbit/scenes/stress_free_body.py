@@ -23,8 +23,7 @@ import math
 
 import numpy as np
 
-from ..dynamics import (SpinSystem, invariant_drift, kinetic_energy, make_point_mass_torque, make_rigid_body_rhs,
-                        torque_free_system)
+from ..dynamics import invariant_drift, kinetic_energy, point_mass_system, torque_free_system
 from ..errors import ScenarioError
 from ..integrators import integrate
 from ..rotations import quat_angle, quat_multiply
@@ -105,16 +104,14 @@ def degenerate(scenario):
     from ..orbits.analytic import CircularOrbits
 
     orbit = CircularOrbits(("F",), [1.0], [1.0], [0.7], inclination=[0.4])
-    torque = make_point_mass_torque(orbit.kernel)
     omega0 = np.array([0.3, -0.2, 2.0])
     t = np.linspace(0.0, 100.0, 201)
     rows = {}
     for label, moments in (("sphere", np.ones(3)), ("a_eq_b_1e-12", np.array([1.0, 1.0 + 1e-12, 1.3]))):
         if label == "sphere":
-            system = SpinSystem(make_rigid_body_rhs(torque), (moments, orbit.gm, orbit.data), 0.0,
-                                np.concatenate([Q0, omega0]), moments, torque)
+            system = point_mass_system(moments, orbit, Q0, omega0)
             exact = _exp(omega0 * t[:, None])              # uniform rotation about a fixed axis
-            torque_max = float(np.abs([torque(ti, system.y0, system.params) for ti in t]).max())
+            torque_max = float(np.abs([system.torque(ti, system.y0, system.params) for ti in t]).max())
         else:
             system = torque_free_system(moments, Q0, omega0)
             exact = axisymmetric_attitude(np.array([1.0, 1.0, 1.3]), omega0, Q0, t, 2)
