@@ -15,6 +15,7 @@ from typing import Callable
 import numpy as np
 from numba import njit
 
+from .linker import link, template
 from .rotations import matrix_from_quat, quat_rate, rotate_to_body
 from .torques import point_mass_torque
 
@@ -35,25 +36,35 @@ def _no_torque(t, y, p):
     return np.zeros(3)
 
 
+@template("torque")
+def rigid_body_rhs(t, y, p):
+    """dy/dt of a rigid body under ``torque(t, y, p)`` (body frame); ``p[0]`` = principal moments (A, B, C)."""
+    moments = p[0]
+    dy = np.zeros_like(y)
+    dy[:4] = quat_rate(y[:4], y[4:7])
+    dy[4:7] = euler_omega_dot(moments, y[4:7], torque(t, y, p))
+    return dy
+
+
 def make_rigid_body_rhs(torque):
     """Compiled right-hand side dy/dt = rhs(t, y, p) for a rigid body under ``torque``.
 
-    ``torque(t, y, p)`` is a numba function returning the body-frame torque;
-    ``p[0]`` must be the principal moments (A, B, C).
+    ``torque(t, y, p)`` is a module-level numba function returning the body-frame
+    torque; ``p[0]`` must be the principal moments (A, B, C).
     """
-
-    @njit
-    def rhs(t, y, p):
-        moments = p[0]
-        dy = np.zeros_like(y)
-        dy[:4] = quat_rate(y[:4], y[4:7])
-        dy[4:7] = euler_omega_dot(moments, y[4:7], torque(t, y, p))
-        return dy
-
-    return rhs
+    return link(rigid_body_rhs, torque=torque)
 
 
-torque_free_rhs = make_rigid_body_rhs(_no_torque)
+@template("positions")
+def point_masses_torque(t, y, p):
+    """Body-frame torque of the point masses at ``positions(t, data)``; p = (moments, gm (n,), data)."""
+    moments, gm, data = p[0], p[1], p[2]
+    r_inertial = positions(t, data)
+    to_body = matrix_from_quat(y[:4]).T
+    total = np.zeros(3)
+    for i in range(gm.shape[0]):
+        total += point_mass_torque(moments, to_body @ r_inertial[i], gm[i])
+    return total
 
 
 def make_point_mass_torque(positions):
@@ -63,18 +74,7 @@ def make_point_mass_torque(positions):
     position relative to the body's centre (km, inertial axes) at TDB day t.
     Parameters: ``p = (moments, gm (n,), data)`` (Euler ch. 16 P91, §815).
     """
-
-    @njit
-    def torque(t, y, p):
-        moments, gm, data = p[0], p[1], p[2]
-        r_inertial = positions(t, data)
-        to_body = matrix_from_quat(y[:4]).T
-        total = np.zeros(3)
-        for i in range(gm.shape[0]):
-            total += point_mass_torque(moments, to_body @ r_inertial[i], gm[i])
-        return total
-
-    return torque
+    return link(point_masses_torque, positions=positions)
 
 
 @dataclass
@@ -104,7 +104,7 @@ class SpinSystem:
 def torque_free_system(moments, q0, omega0, t0=0.0):
     """A free rigid body (Euler ch. 15 §808)."""
     moments = np.asarray(moments, dtype=float)
-    return SpinSystem(torque_free_rhs, (moments,), t0, np.concatenate([q0, omega0]),
+    return SpinSystem(make_rigid_body_rhs(_no_torque), (moments,), t0, np.concatenate([q0, omega0]),
                       moments, _no_torque, "free body")
 
 
@@ -145,6 +145,6 @@ def invariant_drift(moments, y):
 
 __all__ = [
     "SpinSystem", "euler_omega_dot", "make_rigid_body_rhs", "make_point_mass_torque",
-    "point_mass_system", "torque_free_system", "torque_free_rhs", "kinetic_energy", "angular_momentum_inertial",
+    "point_mass_system", "torque_free_system", "kinetic_energy", "angular_momentum_inertial",
     "invariant_drift", "rotate_to_body",
 ]

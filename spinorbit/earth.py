@@ -32,6 +32,7 @@ from numba import njit
 from .constants import ARCSEC, JULIAN_CENTURY_D
 from .dynamics import SpinSystem, euler_omega_dot, make_point_mass_torque
 from .errors import PhysicsError
+from .linker import link, template
 from .rotations import matrix_from_quat, quat_from_matrix, quat_rate
 
 H_D = 3.27379448e-3                      # (C - A)/C, IAU 2006 (Capitaine et al. 2003)
@@ -58,37 +59,34 @@ def extra_parameters(ecliptic_pole, geodesic=True, j2_rate=True):
 
 # --- full model: Euler's equations with the daily spin ------------------------
 
-@functools.cache
+@template("point_masses")
+def full_torque(t, y, p):
+    """Body-frame torque of the point masses (§815, reading p[0..2]) scaled by (1 + k_J2 t)."""
+    return point_masses(t, y, p) * (1.0 + p[3][3] * t)
+
+
 def make_full_torque(positions):
     """torque(t, y, p): body-frame torque of the point masses (§815), scaled by (1 + k_J2 t).
 
     ``positions(t, data) -> (n, 3)`` km, GCRS, relative to the geocentre.
     """
-
-    point_masses = make_point_mass_torque(positions)     # reads p[0..2] = (moments, gm, data)
-
-    @njit
-    def torque(t, y, p):
-        return point_masses(t, y, p) * (1.0 + p[3][3] * t)
-
-    return torque
+    return link(full_torque, point_masses=make_point_mass_torque(positions))
 
 
-@functools.cache
+@template("torque")
+def full_rhs(t, y, p):
+    """Euler's equations (§813) + kinematics in the frame turning at Omega_gp = p[3][:3] w.r.t. GCRS."""
+    extra = p[3]
+    to_body = matrix_from_quat(y[:4]).T
+    dy = np.zeros_like(y)
+    dy[:4] = quat_rate(y[:4], y[4:7] + to_body @ extra[:3])
+    dy[4:7] = euler_omega_dot(p[0], y[4:7], torque(t, y, p))
+    return dy
+
+
 def make_full_rhs(positions):
     """rhs(t, y, p) of Euler's equations (§813) + kinematics with geodesic precession."""
-    torque = make_full_torque(positions)
-
-    @njit
-    def rhs(t, y, p):
-        extra = p[3]
-        to_body = matrix_from_quat(y[:4]).T
-        dy = np.zeros_like(y)
-        dy[:4] = quat_rate(y[:4], y[4:7] + to_body @ extra[:3])
-        dy[4:7] = euler_omega_dot(p[0], y[4:7], torque(t, y, p))
-        return dy
-
-    return rhs
+    return link(full_rhs, torque=make_full_torque(positions))
 
 
 # --- gyroscopic model: the angular momentum direction -------------------------
@@ -98,28 +96,28 @@ def _cross(a, b):
     return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
 
 
-@functools.cache
+@template("positions")
+def tidal_tensor(t, p):
+    """3 (1 + k_J2 t) sum GM r r^T / r^5 (GCRS, 1/d^2) of the point masses at ``positions``."""
+    gm, data, extra = p[1], p[2], p[3]
+    r = positions(t, data)
+    out = np.zeros((3, 3))
+    for i in range(gm.shape[0]):
+        s2 = r[i, 0] ** 2 + r[i, 1] ** 2 + r[i, 2] ** 2
+        k = 3.0 * gm[i] / (s2 * s2 * math.sqrt(s2))
+        for a in range(3):
+            for b in range(3):
+                out[a, b] += k * r[i, a] * r[i, b]
+    return out * (1.0 + extra[3] * t)
+
+
 def make_tidal_tensor(positions):
     """tidal_tensor(t, p) = 3 (1 + k_J2 t) sum GM r r^T / r^5 (GCRS, 1/d^2).
 
     For an axisymmetric body with figure axis z the torque of all the point
     masses is then N = (C - A) (T z) x z (§815 summed over the masses).
     """
-
-    @njit
-    def tidal_tensor(t, p):
-        gm, data, extra = p[1], p[2], p[3]
-        r = positions(t, data)
-        out = np.zeros((3, 3))
-        for i in range(gm.shape[0]):
-            s2 = r[i, 0] ** 2 + r[i, 1] ** 2 + r[i, 2] ** 2
-            k = 3.0 * gm[i] / (s2 * s2 * math.sqrt(s2))
-            for a in range(3):
-                for b in range(3):
-                    out[a, b] += k * r[i, a] * r[i, b]
-        return out * (1.0 + extra[3] * t)
-
-    return tidal_tensor
+    return link(tidal_tensor, positions=positions)
 
 
 @njit(cache=True)
@@ -149,43 +147,41 @@ def _slow_figure_axis(t0, t_dot, ell, lc, moments):
 _H_DIFF = 1.0 / 64.0      # d, central difference for the tensor rate
 
 
-@functools.cache
+@template("tensor")
+def figure_axis(t, ell, lc, p):
+    """Figure axis (GCRS) on the forced solution from the unit L direction ``ell``, |L|/C = ``lc``."""
+    t_dot = (tensor(t + _H_DIFF, p) - tensor(t - _H_DIFF, p)) / (2.0 * _H_DIFF)
+    return _slow_figure_axis(tensor(t, p), t_dot, ell, lc, p[0])
+
+
 def make_figure_axis(positions):
     """figure_axis(t, ell, lc, p): figure axis (GCRS) from the unit L direction ``ell``, |L|/C = ``lc``."""
-    tidal_tensor = make_tidal_tensor(positions)
-
-    @njit
-    def figure_axis(t, ell, lc, p):
-        t_dot = (tidal_tensor(t + _H_DIFF, p) - tidal_tensor(t - _H_DIFF, p)) / (2.0 * _H_DIFF)
-        return _slow_figure_axis(tidal_tensor(t, p), t_dot, ell, lc, p[0])
-
-    return figure_axis
+    return link(figure_axis, tensor=make_tidal_tensor(positions))
 
 
-@functools.cache
+@template("tensor")
+def gyroscopic_rhs(t, y, p):
+    """dL/dt = N(z(L)) + Omega_gp x L for y = [q_L, 0, 0, |L|/C]."""
+    moments, extra = p[0], p[3]
+    ell = _third_axis(y)
+    lc = y[6]
+    t0 = tensor(t, p)
+    t_dot = (tensor(t + _H_DIFF, p) - tensor(t - _H_DIFF, p)) / (2.0 * _H_DIFF)
+    z = _slow_figure_axis(t0, t_dot, ell, lc, moments)
+    torque = _axis_torque(t0, z, moments[2] - 0.5 * (moments[0] + moments[1]))
+    ell_dot = (torque - (torque @ ell) * ell) / lc + _cross(extra[:3], ell)
+    w = _cross(ell, ell_dot)          # inertial rate of the twist-free L frame
+    dy = np.zeros_like(y)
+    dy[0] = -0.5 * (w[0] * y[1] + w[1] * y[2] + w[2] * y[3])      # dq/dt = (0, w) q / 2
+    dy[1] = 0.5 * (w[0] * y[0] + w[1] * y[3] - w[2] * y[2])
+    dy[2] = 0.5 * (w[1] * y[0] + w[2] * y[1] - w[0] * y[3])
+    dy[3] = 0.5 * (w[2] * y[0] + w[0] * y[2] - w[1] * y[1])
+    return dy
+
+
 def make_gyroscopic_rhs(positions):
     """rhs(t, y, p) of dL/dt = N(z(L)) + Omega_gp x L for y = [q_L, 0, 0, |L|/C]."""
-    tidal_tensor = make_tidal_tensor(positions)
-
-    @njit
-    def rhs(t, y, p):
-        moments, extra = p[0], p[3]
-        ell = _third_axis(y)
-        lc = y[6]
-        t0 = tidal_tensor(t, p)
-        t_dot = (tidal_tensor(t + _H_DIFF, p) - tidal_tensor(t - _H_DIFF, p)) / (2.0 * _H_DIFF)
-        z = _slow_figure_axis(t0, t_dot, ell, lc, moments)
-        torque = _axis_torque(t0, z, moments[2] - 0.5 * (moments[0] + moments[1]))
-        ell_dot = (torque - (torque @ ell) * ell) / lc + _cross(extra[:3], ell)
-        w = _cross(ell, ell_dot)          # inertial rate of the twist-free L frame
-        dy = np.zeros_like(y)
-        dy[0] = -0.5 * (w[0] * y[1] + w[1] * y[2] + w[2] * y[3])      # dq/dt = (0, w) q / 2
-        dy[1] = 0.5 * (w[0] * y[0] + w[1] * y[3] - w[2] * y[2])
-        dy[2] = 0.5 * (w[1] * y[0] + w[2] * y[1] - w[0] * y[3])
-        dy[3] = 0.5 * (w[2] * y[0] + w[0] * y[2] - w[1] * y[1])
-        return dy
-
-    return rhs
+    return link(gyroscopic_rhs, tensor=make_tidal_tensor(positions))
 
 
 @njit(cache=True)

@@ -46,6 +46,7 @@ import math
 import numpy as np
 from numba import njit
 
+from .linker import link, template
 from .rotations import matrix_from_quat, quat_rate
 
 # Layout of the float vector ``consts`` in the parameters (see moon_params).
@@ -189,21 +190,58 @@ def external_torque(t, inertia, to_body, r_all, gm, c_nm, s_nm, consts, pole, n_
     return torque
 
 
+@template("positions", "N_MAX")
+def rigid_moon_torque(t, y, p):
+    """Body-frame torque (per M R^2) on a rigid Moon (no core, no distortion); p = moon_params(...)."""
+    moments, gm, data, c_nm, s_nm, consts, pole = p
+    to_body = matrix_from_quat(y[:4]).T
+    return external_torque(t, np.diag(moments), to_body, positions(t, data), gm, c_nm, s_nm, consts, pole, N_MAX)
+
+
 def make_rigid_moon_torque(positions, degree=2):
     """torque(t, y, p) of a rigid Moon (no core, no distortion), p = moon_params(...).
 
     The same terms as make_moon_rhs; exposed so that splitting integrators can
     alternate the free flow with torque kicks (levels 1-2).
     """
-    n_max = int(degree)
+    return link(rigid_moon_torque, positions=positions, N_MAX=int(degree))
 
-    @njit
-    def torque(t, y, p):
-        moments, gm, data, c_nm, s_nm, consts, pole = p
-        to_body = matrix_from_quat(y[:4]).T
-        return external_torque(t, np.diag(moments), to_body, positions(t, data), gm, c_nm, s_nm, consts, pole, n_max)
 
-    return torque
+_DT_DIFF = 1e-3        # days, central difference for the Earth's velocity at t - tau
+
+
+@template("positions", "N_MAX", "WITH_CORE", "WITH_TIDES")
+def moon_rhs(t, y, p):
+    """dy/dt of the lunar model; y = [q, w_m] or [q, w_m, w_c]; p = moon_params(...)."""
+    moments, gm, data, c_nm, s_nm, consts, pole = p
+    q, omega = y[:4], y[4:7]
+    to_body = matrix_from_quat(q).T
+    inertia = np.diag(moments)
+    inertia_rate = np.zeros((3, 3))
+    if WITH_TIDES:
+        tau = consts[TAU_D]
+        wn = math.sqrt(omega @ omega)
+        axis = omega / wn
+        r_del = rotate_about(to_body @ positions(t - tau, data)[0], axis, wn * tau)
+        vel_i = (positions(t - tau + _DT_DIFF, data)[0] - positions(t - tau - _DT_DIFF, data)[0]) / (2 * _DT_DIFF)
+        v_del = rotate_about(to_body @ vel_i, axis, wn * tau) - np.cross(omega, r_del)
+        delta, inertia_rate = distortion(omega, r_del, v_del, consts)
+        inertia = inertia + delta
+    torque = external_torque(t, inertia, to_body, positions(t, data), gm, c_nm, s_nm, consts, pole, N_MAX)
+    dy = np.empty_like(y)
+    dy[:4] = quat_rate(q, omega)
+    if WITH_CORE:                  # torques act with the whole Moon's I; the mantle turns with I - I_c
+        c_core = consts[C_CORE]
+        core_moments = np.array([c_core * (1.0 - consts[F_CORE]), c_core * (1.0 - consts[F_CORE]), c_core])
+        inertia = inertia - np.diag(core_moments)
+        omega_c = y[7:10]
+        n_cmb = consts[KV] * (omega_c - omega) + (c_core - core_moments[0]) * omega_c[2] * np.array(
+            [-omega_c[1], omega_c[0], 0.0])
+        torque += n_cmb
+        dy[7:10] = (-np.cross(omega, core_moments * omega_c) - n_cmb) / core_moments
+    rhs_vec = torque - np.cross(omega, inertia @ omega) - inertia_rate @ omega
+    dy[4:7] = np.linalg.solve(inertia, rhs_vec)
+    return dy
 
 
 def make_moon_rhs(positions, degree=2, core=False, tides=False):
@@ -215,43 +253,7 @@ def make_moon_rhs(positions, degree=2, core=False, tides=False):
     components; ``tides``: tidal and rotational distortion.  p = moon_params(...);
     the Earth's J2 acts on the figure when its constant is nonzero.
     """
-    n_max = int(degree)
-    with_core, with_tides = bool(core), bool(tides)
-    dt_diff = 1e-3        # days, central difference for the Earth's velocity at t - tau
-
-    @njit
-    def rhs(t, y, p):
-        moments, gm, data, c_nm, s_nm, consts, pole = p
-        q, omega = y[:4], y[4:7]
-        to_body = matrix_from_quat(q).T
-        inertia = np.diag(moments)
-        inertia_rate = np.zeros((3, 3))
-        if with_tides:
-            tau = consts[TAU_D]
-            wn = math.sqrt(omega @ omega)
-            axis = omega / wn
-            r_del = rotate_about(to_body @ positions(t - tau, data)[0], axis, wn * tau)
-            vel_i = (positions(t - tau + dt_diff, data)[0] - positions(t - tau - dt_diff, data)[0]) / (2 * dt_diff)
-            v_del = rotate_about(to_body @ vel_i, axis, wn * tau) - np.cross(omega, r_del)
-            delta, inertia_rate = distortion(omega, r_del, v_del, consts)
-            inertia = inertia + delta
-        torque = external_torque(t, inertia, to_body, positions(t, data), gm, c_nm, s_nm, consts, pole, n_max)
-        dy = np.empty_like(y)
-        dy[:4] = quat_rate(q, omega)
-        if with_core:                  # torques act with the whole Moon's I; the mantle turns with I - I_c
-            c_core = consts[C_CORE]
-            core_moments = np.array([c_core * (1.0 - consts[F_CORE]), c_core * (1.0 - consts[F_CORE]), c_core])
-            inertia = inertia - np.diag(core_moments)
-            omega_c = y[7:10]
-            n_cmb = consts[KV] * (omega_c - omega) + (c_core - core_moments[0]) * omega_c[2] * np.array(
-                [-omega_c[1], omega_c[0], 0.0])
-            torque += n_cmb
-            dy[7:10] = (-np.cross(omega, core_moments * omega_c) - n_cmb) / core_moments
-        rhs_vec = torque - np.cross(omega, inertia @ omega) - inertia_rate @ omega
-        dy[4:7] = np.linalg.solve(inertia, rhs_vec)
-        return dy
-
-    return rhs
+    return link(moon_rhs, positions=positions, N_MAX=int(degree), WITH_CORE=bool(core), WITH_TIDES=bool(tides))
 
 
 NO_POLE = (np.array([0.0, 1.0]), np.array([[0.0, 0.0, 1.0], [0.0, 0.0, 1.0]]))

@@ -1,6 +1,6 @@
 """Compiled fixed-step classical Runge-Kutta of order 4 (Kutta 1901): the cheap baseline.
 
-Same compiled loop as rk8 (``rk8._rk_fixed``) with the classical tableau; four
+Same compiled loop as rk8 (``rk8.rk_fixed``) with the classical tableau; four
 right-hand-side calls per step.
 """
 import numpy as np

@@ -13,15 +13,15 @@ II.6); otherwise the step is shortened slightly to land on every output.
 import time
 
 import numpy as np
-from numba import njit
 from scipy.integrate._ivp import dop853_coefficients as _dop853
 
 from ..errors import IntegrationError, ScenarioError
+from ..linker import link, template
 from .base import Integrator, Solution, normalise_quaternions
 
 
-@njit
-def _rk_step(rhs, params, t, y, dt, a, b, c, k, ys):
+@template("rhs")
+def rk_step(params, t, y, dt, a, b, c, k, ys):
     """One explicit Runge-Kutta step of size dt; fills the stages k; returns the new state."""
     n_stages, dim = b.shape[0], y.shape[0]
     for s in range(n_stages):
@@ -41,8 +41,8 @@ def _rk_step(rhs, params, t, y, dt, a, b, c, k, ys):
     return y_new
 
 
-@njit
-def _rk_fixed(rhs, params, t0, y0, t_out, h, a, b, c, max_steps):
+@template("rk_step")
+def rk_fixed(params, t0, y0, t_out, h, a, b, c, max_steps):
     """Integrate with fixed step <= h, landing exactly on every output time.
 
     Returns (y_out, n_done, steps, t_fail): n_done < len(t_out) when the state
@@ -60,7 +60,7 @@ def _rk_fixed(rhs, params, t0, y0, t_out, h, a, b, c, max_steps):
         n_sub = int(np.ceil(span / h - 1e-12)) if span > 0 else 0
         dt = span / n_sub if n_sub > 0 else 0.0
         for _ in range(n_sub):
-            y = _rk_step(rhs, params, t, y, dt, a, b, c, k, ys)
+            y = rk_step(params, t, y, dt, a, b, c, k, ys)
             t += dt
             steps += 1
             if steps > max_steps or not np.all(np.isfinite(y)):
@@ -70,8 +70,8 @@ def _rk_fixed(rhs, params, t0, y0, t_out, h, a, b, c, max_steps):
     return y_out, t_out.shape[0], steps, t
 
 
-@njit
-def _rk8_dense(rhs, params, t0, y0, t_out, h, a, b, c, a_ext, c_ext, d, max_steps):
+@template("rhs", "rk_step")
+def rk8_dense(params, t0, y0, t_out, h, a, b, c, a_ext, c_ext, d, max_steps):
     """Uniform steps h (the last one shortened to end on t_out[-1]); outputs inside a
     step from the DOP853 continuous extension (order 7).  Returns as _rk_fixed, plus
     the number of extra rhs calls the extension made."""
@@ -91,7 +91,7 @@ def _rk8_dense(rhs, params, t0, y0, t_out, h, a, b, c, a_ext, c_ext, d, max_step
         i += 1
     while i < t_out.shape[0]:
         dt = min(h, t_out[-1] - t)
-        y_new = _rk_step(rhs, params, t, y, dt, a, b, c, k, ys)
+        y_new = rk_step(params, t, y, dt, a, b, c, k, ys)
         steps += 1
         if steps > max_steps or not np.all(np.isfinite(y_new)):
             return y_out, i, steps, t, extra
@@ -127,6 +127,28 @@ def _rk8_dense(rhs, params, t0, y0, t_out, h, a, b, c, a_ext, c_ext, d, max_step
     return y_out, t_out.shape[0], steps, t, extra
 
 
+def _landing_shortens(t_out, t0, h):
+    """True when landing on every output would shorten the step by more than 10 %."""
+    spans = np.diff(np.concatenate([[t0], t_out]))
+    spans = spans[spans > 0]
+    return spans.size > 0 and bool(np.min(spans / np.ceil(spans / h - 1e-12)) < 0.9 * h)
+
+
+def fixed_step(rhs, params, t0, y0, t_out, step, max_steps=10**9):
+    """States (len(t_out), dim) of y' = rhs(t, y, params) from (t0, y0), any state layout.
+
+    The compiled RK8 loop with steps <= ``step`` landing on every output time;
+    IntegrationError if the state becomes non-finite or max_steps runs out.
+    """
+    loop = link(rk_fixed, rk_step=link(rk_step, rhs=rhs))
+    y, n_done, steps, t_fail = loop(params, float(t0), np.asarray(y0, dtype=float), np.asarray(t_out, dtype=float),
+                                    float(step), RK8.A, RK8.B, RK8.C, max_steps)
+    if n_done < len(t_out):
+        raise IntegrationError("rk8: state became non-finite or exceeded max_steps", t_fail, y0,
+                               "Reduce the step.")
+    return y
+
+
 class RK8(Integrator):
     """Fixed-step 8th-order explicit Runge-Kutta, compiled; option ``step`` (time units, days)."""
 
@@ -146,12 +168,15 @@ class RK8(Integrator):
         if not h > 0:
             raise ScenarioError("integrator.step", h, "a positive step in days")
         max_steps = int(self.settings["max_steps"])
-        head = (system.rhs, system.params, float(system.t0), system.y0)
-        dense = self.DENSE is not None and t_out.size > 1 and np.min(np.diff(t_out)) < h
+        head = (system.params, float(system.t0), system.y0)
+        step = link(rk_step, rhs=system.rhs)
+        dense = self.DENSE is not None and _landing_shortens(t_out, system.t0, h)
         if dense:
-            run = lambda times: _rk8_dense(*head, times, h, self.A, self.B, self.C, *self.DENSE, max_steps)
+            loop = link(rk8_dense, rhs=system.rhs, rk_step=step)
+            run = lambda times: loop(*head, times, h, self.A, self.B, self.C, *self.DENSE, max_steps)
         else:
-            run = lambda times: (*_rk_fixed(*head, times, h, self.A, self.B, self.C, max_steps), 0)
+            loop = link(rk_fixed, rk_step=step)
+            run = lambda times: (*loop(*head, times, h, self.A, self.B, self.C, max_steps), 0)
         run(t_out[:1])                                   # compile outside the timed region
         start = time.perf_counter()
         y, n_done, steps, t_fail, extra = run(t_out)

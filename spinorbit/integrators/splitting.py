@@ -48,6 +48,7 @@ import numpy as np
 from numba import njit
 
 from ..errors import IntegrationError, ScenarioError
+from ..linker import link, template
 from .base import Integrator, Solution
 
 FREE_FLOWS = ("symmetric", "axes")
@@ -133,8 +134,8 @@ def _turn_frame(q, rate, h):
     q[3] = b0 * a3 + b1 * a2 - b2 * a1 + b3 * a0
 
 
-@njit
-def _split_loop(torque, params, moments, t0, y0, t_out, h, gammas, symmetric, axes, frame_rate, max_steps):
+@template("torque")
+def split_loop(params, moments, t0, y0, t_out, h, gammas, symmetric, axes, frame_rate, max_steps):
     """Fixed step <= h landing on every output time; returns (y_out, n_done, steps, nfev, t_fail)."""
     s, i, j = axes[0], axes[1], axes[2]
     y_out = np.empty((t_out.shape[0], 7))
@@ -202,11 +203,12 @@ class Strang(Integrator):
             raise ScenarioError("integrator.free_flow", flow, f"one of {list(FREE_FLOWS)}")
         moments = np.asarray(system.moments, dtype=float)
         frame_rate = np.asarray(system.meta.get("frame_rate", np.zeros(3)), dtype=float)
-        args = (system.torque, system.params, moments, float(system.t0), system.y0, t_out, h, self.gammas,
+        loop = link(split_loop, torque=system.torque)
+        args = (system.params, moments, float(system.t0), system.y0, t_out, h, self.gammas,
                 flow == "symmetric", np.array(symmetric_axes(moments)), frame_rate, int(self.settings["max_steps"]))
-        _split_loop(*args[:5], t_out[:1], *args[6:])          # compile outside the timed region
+        loop(*args[:4], t_out[:1], *args[5:])          # compile outside the timed region
         start = time.perf_counter()
-        y, n_done, steps, nfev, t_fail = _split_loop(*args)
+        y, n_done, steps, nfev, t_fail = loop(*args)
         wall = time.perf_counter() - start
         solution = Solution(t_out[:n_done], y[:n_done], self.name, nfev, steps, wall, dict(self.settings))
         if n_done < t_out.size:

@@ -27,7 +27,7 @@ import math
 import numpy as np
 
 from ..integrators import integrate
-from ..integrators.rk8 import RK8, _rk_fixed
+from ..integrators.rk8 import fixed_step
 from ..scenarios import Key
 from . import common
 from .planar_spin_orbit import kepler_orbit, planar_params, planar_rhs, rigid_body_system, theta_from_quaternions
@@ -70,8 +70,7 @@ def planar_lyapunov(p, theta0, rate0, t0, period, orbits, steps, d0, method="rk8
     t = t0
     for k in range(orbits):
         if method == "rk8":
-            y = _rk_fixed(planar_rhs, p, t, y, np.array([t + period]), period / steps, RK8.A, RK8.B, RK8.C,
-                          10**9)[0][0]
+            y = fixed_step(planar_rhs, p, t, y, [t + period], period / steps)[0]
         else:
             y = solve_ivp(planar_rhs, (t, t + period), y, "DOP853", args=(p,), rtol=1e-12, atol=1e-12).y[:, -1]
         t += period
@@ -106,8 +105,7 @@ def planar_vs_rigid_body(scenario, p, orbit, period, start):
     t = t0 + np.linspace(0.0, 5 * period, 501)
     system = rigid_body_system(scenario["body.moments"], orbit, t0, start[0], start[1] * n)
     body = integrate(system, t, "rk8", step=period / 512)
-    planar = _rk_fixed(planar_rhs, p, t0, np.array([start[0], start[1] * n]), t, period / 512, RK8.A, RK8.B,
-                       RK8.C, 10**9)[0]
+    planar = fixed_step(planar_rhs, p, t0, [start[0], start[1] * n], t, period / 512)
     return float(np.abs(theta_from_quaternions(body.quaternion) - planar[:, 0]).max()), system
 
 
