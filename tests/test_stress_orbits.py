@@ -9,12 +9,12 @@ from spinorbit.results import run_scenario
 STRESS = Path(__file__).parent.parent / "scenarios" / "stress"
 
 
-def summary(name):
-    return run_scenario(STRESS / f"{name}.toml").summary
+def summary(name, *overrides):
+    return run_scenario(STRESS / f"{name}.toml", overrides).summary
 
 
-def comparison(name):
-    return summary(name)["comparison"]
+def comparison(name, *overrides):
+    return summary(name, *overrides)["comparison"]
 
 
 def test_mercury_88d_libration():
@@ -30,15 +30,18 @@ def test_mercury_88d_libration():
 
 def test_hyperion_lyapunov_measured():
     """e = 0.1: a regular orbit ((B - A)/C = 0.01, synchronous) decays like ln t/t to below 0.01/T; Hyperion's
-    (B - A)/C = 0.26 start is chaotic, its exponent the same within 10% over 1000 and 2000 periods (rk8) and
-    with DOP853; the planar model matches the 3-D body in the plane; the map has a chaotic zone."""
-    c = comparison("hyperion")
+    (B - A)/C = 0.26 start is chaotic: the mean exponent of an ensemble of 16 starts around it is the same over
+    500 and 1000 periods (rk8) and with DOP853 within 4 standard errors of the ensemble (a finite-time exponent
+    follows the rounding, so only its statistics can be compared across machines and methods); the planar model
+    matches the 3-D body in the plane; the map has a chaotic zone."""
+    c = comparison("hyperion", "lyapunov.orbits=500", "map.grid=[12, 12]", "map.orbits=100")
     assert c["lyapunov_regular_per_T"] < 0.01
     assert c["lyapunov_regular_per_T"] < 2 * c["lyapunov_regular_ln_t_over_t_per_T"]
     assert c["lyapunov_regular_ratio_2T_over_T"] < 0.75
     for key in ("rk8_T", "rk8_2T", "dop853_T"):
         assert c[f"lyapunov_nominal_{key}_per_T"] > 0.2           # Lyapunov time of a few periods at most
-    assert c["lyapunov_nominal_rel_spread"] < 0.1
+    for pair in ("rk8_T_vs_rk8_2T", "rk8_T_vs_dop853_T"):
+        assert c[f"lyapunov_nominal_{pair}_sigmas"] < 4.0
     assert c["lyapunov_3d_per_T"] > 0.2
     assert c["planar_vs_3d_theta_max_rad_5_orbits"] < 1e-8
     assert 0.3 < c["chaotic_fraction_of_map"] < 0.9

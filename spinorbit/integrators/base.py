@@ -10,8 +10,9 @@ Contract for subclass authors (numbered so reviews can point at it):
    raises ScenarioError naming ``integrator.<key>`` and the accepted names.
 3. ``solve(system, t_out)`` integrates a :class:`~spinorbit.dynamics.SpinSystem`
    from ``system.t0`` and returns a :class:`Solution` holding the state at every
-   time in ``t_out`` (sorted ascending, ``t_out[0] >= system.t0``), with the
-   quaternion renormalised.
+   time in ``t_out`` (running away from ``system.t0`` in one direction: ascending
+   for a forward run, descending for a backward one), with the quaternion
+   renormalised.
 4. ``supports(system)`` says whether the method can run this system (e.g. a
    splitting method needs ``system.torque``); ``solve`` raises ScenarioError
    otherwise.
@@ -69,12 +70,21 @@ class Integrator:
 
     def _check_times(self, system, t_out):
         t_out = np.asarray(t_out, dtype=float)
-        if t_out.ndim != 1 or t_out.size == 0 or np.any(np.diff(t_out) < 0) or t_out[0] < system.t0:
-            raise ScenarioError("span", f"{t_out.size} output times", "ascending times starting at or after t0")
+        forward = t_out.size > 0 and t_out[-1] >= system.t0
+        steps = np.diff(np.concatenate([[system.t0], t_out])) * (1 if forward else -1)
+        if t_out.ndim != 1 or t_out.size == 0 or not np.all(np.isfinite(t_out)) or np.any(steps < 0):
+            raise ScenarioError("span", f"{t_out.size} output times",
+                                "finite times running away from t0 in one direction (forward or backward)")
         if not self.supports(system):
             raise ScenarioError("integrator.method", self.name,
                                 f"a method that supports system '{system.name}' (this one needs a rigid body with an external torque)")
         return t_out
+
+
+def output_chunks(n, count=200):
+    """Consecutive slices of range(n), at most ``count`` of them: the pieces a loop resumes over."""
+    edges = np.linspace(0, n, min(n, count) + 1).round().astype(int)
+    return [slice(a, b) for a, b in zip(edges[:-1], edges[1:])]
 
 
 def check_finite(y, t, method, partial=None):

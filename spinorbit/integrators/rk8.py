@@ -9,6 +9,7 @@ The step does not depend on the output cadence: where outputs are closer
 than the step, they come from DOP853's 7th-order continuous extension (four
 more rhs calls in each step that holds an output, Hairer, Norsett & Wanner
 II.6); otherwise the step is shortened slightly to land on every output.
+A span that ends before its start is integrated backward with the step negated.
 """
 import time
 
@@ -17,7 +18,8 @@ from scipy.integrate._ivp import dop853_coefficients as _dop853
 
 from ..errors import IntegrationError, ScenarioError
 from ..linker import link, template
-from .base import Integrator, Solution, normalise_quaternions
+from ..progress import progress
+from .base import Integrator, Solution, normalise_quaternions, output_chunks
 
 
 @template("rhs")
@@ -43,7 +45,7 @@ def rk_step(params, t, y, dt, a, b, c, k, ys):
 
 @template("rk_step")
 def rk_fixed(params, t0, y0, t_out, h, a, b, c, max_steps):
-    """Integrate with fixed step <= h, landing exactly on every output time.
+    """Integrate with steps of at most |h|, landing exactly on every output time (either direction).
 
     Returns (y_out, n_done, steps, t_fail): n_done < len(t_out) when the state
     became non-finite or max_steps ran out (then t_fail is where).
@@ -57,7 +59,7 @@ def rk_fixed(params, t0, y0, t_out, h, a, b, c, max_steps):
     steps = 0
     for i in range(t_out.shape[0]):
         span = t_out[i] - t
-        n_sub = int(np.ceil(span / h - 1e-12)) if span > 0 else 0
+        n_sub = int(np.ceil(abs(span) / abs(h) - 1e-12)) if span != 0.0 else 0
         dt = span / n_sub if n_sub > 0 else 0.0
         for _ in range(n_sub):
             y = rk_step(params, t, y, dt, a, b, c, k, ys)
@@ -71,32 +73,29 @@ def rk_fixed(params, t0, y0, t_out, h, a, b, c, max_steps):
 
 
 @template("rhs", "rk_step")
-def rk8_dense(params, t0, y0, t_out, h, a, b, c, a_ext, c_ext, d, max_steps):
-    """Uniform steps h (the last one shortened to end on t_out[-1]); outputs inside a
-    step from the DOP853 continuous extension (order 7).  Returns as _rk_fixed, plus
-    the number of extra rhs calls the extension made."""
-    dim = y0.shape[0]
+def rk8_dense(params, t_origin, y, steps, i, y_out, t_out, h, a, b, c, a_ext, c_ext, d, max_steps):
+    """Steps of h (signed; the last one shortened to end on t_out[-1]) on the grid t_origin + steps h,
+    from state ``y`` after ``steps`` steps, filling ``y_out`` from index i; outputs inside a step from
+    the DOP853 continuous extension (order 7).  Stops after ``max_steps`` steps in all, so that a
+    caller can resume exactly where it stopped.  Returns (i, steps, t, y, extra rhs calls, ok)."""
+    dim = y.shape[0]
     n_stages = b.shape[0]
-    y_out = np.empty((t_out.shape[0], dim))
     k = np.empty((n_stages + 4, dim))
     ys = np.empty(dim)
     f = np.empty((7, dim))
-    y = y0.copy()
-    t = t0
-    steps = 0
+    t = t_origin + steps * h
     extra = 0
-    i = 0
-    while i < t_out.shape[0] and t_out[i] <= t0:
-        y_out[i] = y0
+    while i < t_out.shape[0] and (t_out[i] - t) * h <= 0.0:
+        y_out[i] = y
         i += 1
-    while i < t_out.shape[0]:
-        dt = min(h, t_out[-1] - t)
+    while i < t_out.shape[0] and steps < max_steps:
+        dt = h if abs(h) < abs(t_out[-1] - t) else t_out[-1] - t
         y_new = rk_step(params, t, y, dt, a, b, c, k, ys)
         steps += 1
-        if steps > max_steps or not np.all(np.isfinite(y_new)):
-            return y_out, i, steps, t, extra
-        t_new = t + dt if dt < h else t0 + steps * h     # no drift of the step grid
-        if t_out[i] <= t_new:
+        if not np.all(np.isfinite(y_new)):
+            return i, steps, t, y, extra, False
+        t_new = t + dt if dt != h else t_origin + steps * h     # no drift of the step grid
+        if (t_out[i] - t_new) * h <= 0.0:
             extra += 4
             k[n_stages] = rhs(t_new, y_new, params)
             for s in range(3):                           # the three extra stages
@@ -115,7 +114,7 @@ def rk8_dense(params, t0, y0, t_out, h, a, b, c, a_ext, c_ext, d, max_steps):
                 for j in range(n_stages + 4):
                     if d[r, j] != 0.0:
                         f[3 + r] += dt * d[r, j] * k[j]
-            while i < t_out.shape[0] and t_out[i] <= t_new:
+            while i < t_out.shape[0] and (t_out[i] - t_new) * h <= 0.0:
                 x = (t_out[i] - t) / dt
                 value = np.zeros(dim)
                 for r in range(6, -1, -1):               # Horner form of scipy's Dop853DenseOutput
@@ -124,13 +123,14 @@ def rk8_dense(params, t0, y0, t_out, h, a, b, c, a_ext, c_ext, d, max_steps):
                 y_out[i] = y + value
                 i += 1
         y, t = y_new, t_new
-    return y_out, t_out.shape[0], steps, t, extra
+    return i, steps, t, y, extra, True
 
 
 def _landing_shortens(t_out, t0, h):
     """True when landing on every output would shorten the step by more than 10 %."""
-    spans = np.diff(np.concatenate([[t0], t_out]))
+    spans = np.abs(np.diff(np.concatenate([[t0], t_out])))
     spans = spans[spans > 0]
+    h = abs(h)
     return spans.size > 0 and bool(np.min(spans / np.ceil(spans / h - 1e-12)) < 0.9 * h)
 
 
@@ -167,27 +167,66 @@ class RK8(Integrator):
         h = float(self.settings["step"])
         if not h > 0:
             raise ScenarioError("integrator.step", h, "a positive step in days")
-        max_steps = int(self.settings["max_steps"])
-        head = (system.params, float(system.t0), system.y0)
+        h = h if t_out[-1] >= system.t0 else -h
         step = link(rk_step, rhs=system.rhs)
-        dense = self.DENSE is not None and _landing_shortens(t_out, system.t0, h)
-        if dense:
-            loop = link(rk8_dense, rhs=system.rhs, rk_step=step)
-            run = lambda times: loop(*head, times, h, self.A, self.B, self.C, *self.DENSE, max_steps)
+        if self.DENSE is not None and _landing_shortens(t_out, system.t0, h):
+            run = self._dense(link(rk8_dense, rhs=system.rhs, rk_step=step), system, t_out, h)
         else:
-            loop = link(rk_fixed, rk_step=step)
-            run = lambda times: (*loop(*head, times, h, self.A, self.B, self.C, max_steps), 0)
-        run(t_out[:1])                                   # compile outside the timed region
+            run = self._landing(link(rk_fixed, rk_step=step), system, t_out, h)
         start = time.perf_counter()
-        y, n_done, steps, t_fail, extra = run(t_out)
+        y, n_done, steps, t_fail, extra = run()
         wall = time.perf_counter() - start
         solution = Solution(t_out[:n_done], normalise_quaternions(y[:n_done]), self.name,
                             steps * len(self.B) + extra, steps, wall, dict(self.settings))
         if n_done < t_out.size:
-            reason = "exceeded max_steps" if steps > max_steps else "state became non-finite"
-            err = IntegrationError(f"{self.name}: {reason}", t_fail, y[n_done - 1] if n_done else system.y0,
-                                   "Raise integrator.max_steps." if steps > max_steps else
+            over = steps >= int(self.settings["max_steps"])
+            err = IntegrationError(f"{self.name}: {'exceeded max_steps' if over else 'state became non-finite'}",
+                                   t_fail, y[n_done - 1] if n_done else system.y0,
+                                   "Raise integrator.max_steps." if over else
                                    "Reduce integrator.step, or use an adaptive method (dop853) to find the difficulty.")
             err.partial = solution
             raise err
         return solution
+
+    def _dense(self, loop, system, t_out, h):
+        """run() of the uniform-step loop, resumed every few hundredth of the run for the progress bar."""
+        max_steps = int(self.settings["max_steps"])
+        tableau = (self.A, self.B, self.C, *self.DENSE)
+        y_out = np.empty((t_out.size, system.y0.size))
+        t0 = float(system.t0)
+        loop(system.params, t0, system.y0, 0, 0, y_out, t_out[:1], h, *tableau, 0)    # compile outside the timing
+        chunk = max(1, int(abs(t_out[-1] - t0) / abs(h)) // 200)
+
+        def run():
+            i, steps, y, extra, ok, t = 0, 0, system.y0, 0, True, t0
+            with progress(self.name, t0, float(t_out[-1])) as advance_to:
+                while ok and i < t_out.size and steps < max_steps:
+                    i, steps, t, y, more, ok = loop(system.params, t0, y, steps, i, y_out, t_out, h, *tableau,
+                                                    min(steps + chunk, max_steps))
+                    extra += more
+                    advance_to(t)
+            return y_out, i, steps, t, extra
+
+        return run
+
+    def _landing(self, loop, system, t_out, h):
+        """run() of the loop that lands on every output, resumed at outputs for the progress bar."""
+        max_steps = int(self.settings["max_steps"])
+        tableau = (self.A, self.B, self.C)
+        loop(system.params, float(system.t0), system.y0, t_out[:1], h, *tableau, 0)   # compile
+
+        def run():
+            y_out = np.empty((t_out.size, system.y0.size))
+            t, y, steps, n_done = float(system.t0), system.y0, 0, 0
+            with progress(self.name, t, float(t_out[-1])) as advance_to:
+                for part in output_chunks(t_out.size):
+                    states, n, more, t_fail = loop(system.params, t, y, t_out[part], h, *tableau, max_steps - steps)
+                    y_out[part.start:part.start + n] = states[:n]
+                    steps, n_done = steps + more, n_done + n
+                    if n < part.stop - part.start:
+                        return y_out, n_done, steps, t_fail, 0
+                    t, y = float(t_out[part.stop - 1]), states[-1]
+                    advance_to(t)
+            return y_out, n_done, steps, t, 0
+
+        return run

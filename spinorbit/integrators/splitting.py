@@ -49,7 +49,8 @@ from numba import njit
 
 from ..errors import IntegrationError, ScenarioError
 from ..linker import link, template
-from .base import Integrator, Solution
+from ..progress import progress
+from .base import Integrator, Solution, output_chunks
 
 FREE_FLOWS = ("symmetric", "axes")
 
@@ -135,20 +136,20 @@ def _turn_frame(q, rate, h):
 
 
 @template("torque")
-def split_loop(params, moments, t0, y0, t_out, h, gammas, symmetric, axes, frame_rate, max_steps):
-    """Fixed step <= h landing on every output time; returns (y_out, n_done, steps, nfev, t_fail)."""
+def split_loop(params, moments, t, q, l, lc, n_torque, t_out, y_out, h, gammas, symmetric, axes, frame_rate,
+               max_steps):
+    """Fixed steps of at most h landing on every output time (either direction), from time t.
+
+    The state q, l (with its compensation lc) and the last torque n_torque are
+    updated in place, so that a caller can resume exactly.  Returns
+    (n_done, steps, nfev, t).
+    """
     s, i, j = axes[0], axes[1], axes[2]
-    y_out = np.empty((t_out.shape[0], 7))
-    y = y0[:7].copy()
-    q = y0[:4].copy()
-    l = moments * y0[4:7]
-    lc = np.zeros(3)                                   # compensation of the sums into l (see _axis_rotation)
-    t = t0
-    n_torque = torque(t, y, params)
-    nfev, steps = 1, 0
+    y = np.empty(7)
+    nfev, steps = 0, 0
     for k in range(t_out.shape[0]):
         span = t_out[k] - t
-        n_sub = int(np.ceil(span / h - 1e-12)) if span > 0 else 0
+        n_sub = int(np.ceil(abs(span) / h - 1e-12)) if span != 0.0 else 0
         dt = span / n_sub if n_sub > 0 else 0.0
         for _ in range(n_sub):
             for g in gammas:
@@ -162,19 +163,19 @@ def split_loop(params, moments, t0, y0, t_out, h, gammas, symmetric, axes, frame
                     y[m] = q[m]
                 for m in range(3):
                     y[4 + m] = l[m] / moments[m]
-                n_torque = torque(t, y, params)
+                n_torque[:] = torque(t, y, params)
                 nfev += 1
                 for m in range(3):
                     _add(l, lc, m, 0.5 * sub * n_torque[m])
             steps += 1
             if steps > max_steps or not (np.all(np.isfinite(l)) and np.all(np.isfinite(q))):
-                return y_out, k, steps, nfev, t
+                return k, steps, nfev, t
         t = t_out[k]
         q /= math.sqrt(q[0] ** 2 + q[1] ** 2 + q[2] ** 2 + q[3] ** 2)   # rotations keep |q| = 1 to rounding
         y_out[k, :4] = q
         for m in range(3):
             y_out[k, 4 + m] = (l[m] - lc[m]) / moments[m]
-    return y_out, t_out.shape[0], steps, nfev, t
+    return t_out.shape[0], steps, nfev, t
 
 
 def symmetric_axes(moments):
@@ -204,11 +205,23 @@ class Strang(Integrator):
         moments = np.asarray(system.moments, dtype=float)
         frame_rate = np.asarray(system.meta.get("frame_rate", np.zeros(3)), dtype=float)
         loop = link(split_loop, torque=system.torque)
-        args = (system.params, moments, float(system.t0), system.y0, t_out, h, self.gammas,
-                flow == "symmetric", np.array(symmetric_axes(moments)), frame_rate, int(self.settings["max_steps"]))
-        loop(*args[:4], t_out[:1], *args[5:])          # compile outside the timed region
+        t0, q, l, lc = float(system.t0), system.y0[:4].copy(), moments * system.y0[4:7], np.zeros(3)
+        n_torque = system.torque(t0, system.y0[:7], system.params)     # compiles outside the timing
+        fixed = (h, self.gammas, flow == "symmetric", np.array(symmetric_axes(moments)), frame_rate)
+        max_steps = int(self.settings["max_steps"])
+        y = np.empty((t_out.size, 7))
+        loop(system.params, moments, t0, q, l, lc, n_torque, t_out[:0], y[:0], *fixed, max_steps)
         start = time.perf_counter()
-        y, n_done, steps, nfev, t_fail = loop(*args)
+        t, nfev, steps, n_done = t0, 1, 0, 0
+        with progress(self.name, t0, float(t_out[-1])) as advance_to:
+            for part in output_chunks(t_out.size):
+                n, more, calls, t = loop(system.params, moments, t, q, l, lc, n_torque, t_out[part],
+                                         y[part], *fixed, max_steps - steps)
+                n_done, steps, nfev = n_done + n, steps + more, nfev + calls
+                if n < part.stop - part.start:
+                    break
+                advance_to(t)
+        t_fail = t
         wall = time.perf_counter() - start
         solution = Solution(t_out[:n_done], y[:n_done], self.name, nfev, steps, wall, dict(self.settings))
         if n_done < t_out.size:
