@@ -4,6 +4,7 @@ Input mistakes print one line ``error: <key>: got ...; expected ...`` and exit 2
 an integration that fails writes what it has and exits 3.
 """
 import argparse
+import os
 import sys
 from pathlib import Path
 
@@ -14,6 +15,7 @@ SCENARIO_DIR = Path("scenarios")
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="spinorbit", description="Couple orbit and spin (Euler, Theoria motus ch. 16).")
+    parser.add_argument("--quiet", action="store_true", help="no progress bars on stderr")
     sub = parser.add_subparsers(dest="command", required=True)
     run = sub.add_parser("run", help="run a scenario and write a run directory")
     run.add_argument("scenario", help="path to a scenario .toml file")
@@ -36,6 +38,8 @@ def main(argv=None):
     listing = sub.add_parser("list", help="list the scenarios in a folder")
     listing.add_argument("folder", nargs="?", default=str(SCENARIO_DIR))
     args = parser.parse_args(argv)
+    if args.quiet:
+        os.environ["SPINORBIT_QUIET"] = "1"          # read by spinorbit.progress, here and in Dask workers
     try:
         if args.command == "run":
             return _run(args)

@@ -121,7 +121,7 @@ def test_gyroscopic_model_against_erfa_over_20_years():
     c = result.summary["comparison"]
     # Measured 2000-2020: X 25.0, Y 21.9 mas rms (100 yr: 24.8/22.1); bounds = the targets 40/25 mas.
     assert c["x_rms_mas"] * mas < 40 * mas and c["y_rms_mas"] * mas < 25 * mas
-    # Rigid 18.6-yr term (DESIGN.md §4: about -17.281"/+9.228"); the ~75/23 mas from IAU 2000A
+    # Rigid 18.6-yr term (rigid theories such as REN-2000: about -17.281"/+9.228"); the ~75/23 mas from IAU 2000A
     # is the non-rigid response (MHB2000).
     assert c["nutation_18_6yr_dpsi_model_arcsec"] * arcsec == pytest.approx(-17.281 * arcsec, abs=5 * mas)
     assert c["nutation_18_6yr_deps_model_arcsec"] * arcsec == pytest.approx(9.228 * arcsec, abs=5 * mas)

@@ -75,7 +75,7 @@ def test_splitting_keeps_invariants_of_free_body(method):
 
 def test_symmetric_free_flow_beats_axes_splitting_for_fast_nearly_symmetric_spinner():
     """Earth-like spinner (C-A)/C = 3.3e-3, B-A = 1e-5 A, 1 rev/d, distant perturber: the three-axis
-    Strang splitting's error grows with the spin, the symmetric-exact one does not (DESIGN.md §5)."""
+    Strang splitting's error grows with the spin, the symmetric-exact one does not."""
     orbit = CircularOrbits(("sun",), gm=[2.96e-4], radius=[1.0], rate=[0.0172], inclination=[0.41])
     torque = make_point_mass_torque(orbit.kernel)
     moments = np.array([1.0, 1.00001, 1.0033])

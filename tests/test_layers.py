@@ -8,7 +8,7 @@ import pytest
 
 PACKAGE = Path(__file__).parents[1] / "spinorbit"
 LAYERS = {
-    "constants": 0, "errors": 0, "rotations": 0,
+    "constants": 0, "errors": 0, "rotations": 0, "linker": 0, "progress": 0,
     "bodies": 1, "torques": 1, "orbits": 1,
     "dynamics": 2, "integrators": 2, "theory": 2, "moon": 2, "earth": 2,
     "simulate": 3,

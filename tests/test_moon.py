@@ -27,7 +27,7 @@ def test_body_rates_at_epoch_equal_header():
 
 
 def test_moments_match_published():
-    # DESIGN §4: A, B, C = 0.3930197, 0.3931092, 0.3932677 M R^2; C/MR^2 = 4 C22/gamma = 0.393268
+    # DE421 header (LBET, LGAM, C22M): A, B, C = 0.3930197, 0.3931092, 0.3932677 M R^2; C/MR^2 = 4 C22/gamma = 0.393268
     assert np.allclose(C.moments, [0.3930197, 0.3931092, 0.3932677], rtol=0, atol=1e-7)
     assert C.c_mr2 == pytest.approx(4 * C.c22 / C.gamma, rel=1e-9)
 

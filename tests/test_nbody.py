@@ -1,10 +1,12 @@
 """REBOUND (IAS15 + gr_full + Earth J2) against DE421: the Moon's geocentric direction.
 
-Measured from J2000 (max over the span): 1 yr 0.32", 10 yr 3.19", 50 yr 13.0", 100 yr 19.0".
-DE421 adds tides (the secular lunar acceleration), the lunar figure and asteroids.
+Measured from J2000 (max over the span): 1 yr 0.32", 10 yr 3.19", 50 yr 13.0", 100 yr 19.0"
+(the longer spans: python benchmarks/bench_rebound_drift.py).  DE421 adds tides (the secular
+lunar acceleration), the lunar figure and asteroids, which REBOUND's run lacks: the drift is
+physics missing from the N-body model, so the bounds sit above the measured values by the
+margin of that physics, not of rounding (IAS15 is at its floor, ~1e-15 per orbit).
 """
 import numpy as np
-import pytest
 
 from spinorbit.constants import JULIAN_YEAR_D
 from spinorbit.orbits.kernel import DE421Arrays
@@ -32,17 +34,11 @@ def test_gm_from_the_de421_header_match_the_constants():
 
 def test_rebound_moon_after_1_yr():
     angle, distance = moon_error(1)
-    assert angle < 0.5 * arcsec        # measured 0.32" (DESIGN.md: ~0.4")
+    assert angle < 0.5 * arcsec        # measured 0.32"
     assert distance < 1.0              # km; measured 0.55
 
 
 def test_rebound_moon_after_10_yr():
     angle, distance = moon_error(10)
-    assert angle < 4 * arcsec          # measured 3.19" (DESIGN.md: ~4")
+    assert angle < 4 * arcsec          # measured 3.19"
     assert distance < 8.0              # km; measured 5.6
-
-
-@pytest.mark.slow
-def test_rebound_moon_after_100_yr():
-    angle, _ = moon_error(100)
-    assert angle < 25 * arcsec         # measured 19.0" (DESIGN.md: ~26"); ~2.5 min

@@ -8,6 +8,7 @@ km, days, G = 1 with masses given as GM (km^3/day^2), DE421 values.
 import numpy as np
 
 from ..constants import DAY_S
+from ..progress import progress
 from .interpolant import HermiteOrbits, grid
 from .kernel import JPLKernel, de421_constants
 
@@ -73,9 +74,12 @@ class ReboundOrbits(HermiteOrbits):
         c = BODIES.index(center)
         pos = np.empty((len(bodies), times.size, 3))
         vel = np.empty_like(pos)
-        for k, t in enumerate(times):
-            sim.integrate(t - t_start, exact_finish_time=1)
-            sim.serialize_particle_data(xyz=xyz, vxvyvz=vxyz)
-            pos[:, k] = xyz[index] - xyz[c]
-            vel[:, k] = vxyz[index] - vxyz[c]
+        with progress("rebound", times[0], times[-1]) as advance_to:
+            for k, t in enumerate(times):
+                sim.integrate(t - t_start, exact_finish_time=1)
+                sim.serialize_particle_data(xyz=xyz, vxvyvz=vxyz)
+                pos[:, k] = xyz[index] - xyz[c]
+                vel[:, k] = vxyz[index] - vxyz[c]
+                if k % 256 == 0:
+                    advance_to(t)
         super().__init__(bodies, [gm[b] for b in bodies], t_start, step, pos, vel, source="rebound")
