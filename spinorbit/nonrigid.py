@@ -107,6 +107,11 @@ def celestial_period_days(sigma):
     return 1.0 / ((1.0 + sigma.real) * SIDEREAL_PER_SOLAR_DAY)
 
 
+def wobble_period_days(sigma):
+    """Period (solar days) in the terrestrial frame of a wobble of frequency sigma (cpsd)."""
+    return 1.0 / (sigma.real * SIDEREAL_PER_SOLAR_DAY)
+
+
 # Luni-solar arguments (multipliers of l, l', F, D, Om) of the nutation terms above ~1 mas, ordered as
 # in IERS TN36 Table 5.3a; the terms the non-rigid response is applied to.
 LUNISOLAR_ARGUMENTS = (

@@ -209,18 +209,18 @@ def _nonrigid_summary(erfa_pole, t, z_rigid, z):
         psi, eps = erfa_pole.pole_angles(t, pole)
         fits[name] = [erfa_pole.fit_precession_nutation(t, v, arguments) for v in (psi - psi_bar, eps - eps_a)]
     fits["iau2000a"] = [erfa_pole.fit_precession_nutation(t, v, arguments) for v in (dpsi_iau, deps_iau)]
-    terms = {}
-    for term, m in NONRIGID_TABLE_TERMS.items():
-        key = str(m)
-        columns = {"dpsi_in": (0, "sin"), "dpsi_out": (0, "cos"), "deps_in": (1, "cos"), "deps_out": (1, "sin")}
-        terms[term] = {part: {model: fits[model][i][trig][key] / MAS for model in fits}
-                       for part, (i, trig) in columns.items()}
+    columns = {"dpsi_in": (0, "sin"), "dpsi_out": (0, "cos"), "deps_in": (1, "cos"), "deps_out": (1, "sin")}
+    terms = {term: {part: {model: fits[model][i][trig][str(m)] / MAS for model in fits}
+                    for part, (i, trig) in columns.items()}
+             for term, m in NONRIGID_TABLE_TERMS.items()}
     cw, fcn = nonrigid.normal_modes()
-    return {"rigid_x_rms_mas": _rms((z_rigid[:, 0] - x_ref) / MAS), "rigid_y_rms_mas": _rms((z_rigid[:, 1] - y_ref) / MAS),
+    return {"rigid_x_rms_mas": _rms((z_rigid[:, 0] - x_ref) / MAS),
+            "rigid_y_rms_mas": _rms((z_rigid[:, 1] - y_ref) / MAS),
             "terms_mas": terms,
             "fcn_period_model_d": nonrigid.celestial_period_days(fcn),
             "fcn_period_mhb2000_d": nonrigid.celestial_period_days(nonrigid.PUBLISHED_FCN_CPSD),
-            "chandler_period_model_d": 1.0 / (cw.real * nonrigid.SIDEREAL_PER_SOLAR_DAY)}
+            "chandler_period_model_d": nonrigid.wobble_period_days(cw),
+            "chandler_period_mhb2000_d": nonrigid.wobble_period_days(nonrigid.PUBLISHED_CHANDLER_CPSD)}
 
 
 def _compare_with_erfa(erfa_pole, t, z, plane_tilt):
