@@ -46,7 +46,7 @@ class EarthParameters:
 
 
 # e: the rigid model's H_d = (C - A)/C as (C - A)/A, 0.0032845474 (MHB 2002 quote e = 0.0032845479).
-# e_f, K_CMB: MHB 2002 estimates from VLBI nutation data (e_f 3.8 % above hydrostatic; K_CMB's
+# e_f, K_CMB: MHB 2002 estimates from VLBI nutation data (e_f above its hydrostatic value; K_CMB's
 # imaginary part is the electromagnetic dissipation at the core-mantle boundary).
 # kappa, xi, gamma, beta: elastic compliances of PREM (Mathews et al. 1991), as used by MHB 2002.
 # A_f/A: PREM's fluid outer core (Dziewonski & Anderson 1981 density polynomials integrated in
@@ -67,13 +67,13 @@ SIDEREAL_PER_SOLAR_DAY = ERA_RATE_RAD_D / (2.0 * np.pi)
 
 
 def _matrices(sigma, p):
-    """(M, rhs) of the two-layer equations at terrestrial frequencies sigma (cpsd), shapes (n, 2, 2), (n, 2)."""
+    """(M, rhs) of the two-layer equations at terrestrial frequencies sigma (cpsd): shapes (..., 2, 2), (..., 2)."""
     s = np.atleast_1d(np.asarray(sigma, dtype=complex))
     m = np.empty(s.shape + (2, 2), dtype=complex)
-    m[:, 0, 0] = s - p.e + (1 + s) * p.kappa
-    m[:, 0, 1] = (1 + s) * (p.a_f + p.xi)
-    m[:, 1, 0] = s * (1 + p.gamma)
-    m[:, 1, 1] = 1 + s * (1 + p.beta) + p.e_f + p.k_cmb
+    m[..., 0, 0] = s - p.e + (1 + s) * p.kappa
+    m[..., 0, 1] = (1 + s) * (p.a_f + p.xi)
+    m[..., 1, 0] = s * (1 + p.gamma)
+    m[..., 1, 1] = 1 + s * (1 + p.beta) + p.e_f + p.k_cmb
     rhs = np.stack([(1 + s) * p.kappa - p.e, s * p.gamma], axis=-1)
     return m, rhs
 
@@ -85,9 +85,9 @@ def transfer(sigma, p=MHB2000):
     """
     m, rhs = _matrices(sigma, p)
     if p.a_f == 0.0:                       # no core: the mantle equation alone
-        wobble = rhs[:, 0] / m[:, 0, 0]
+        wobble = rhs[..., 0] / m[..., 0, 0]
     else:
-        wobble = np.linalg.solve(m, rhs[..., None])[:, 0, 0]
+        wobble = np.linalg.solve(m, rhs[..., None])[..., 0, 0]
     s = np.atleast_1d(np.asarray(sigma, dtype=complex))
     ratio = wobble * (p.e - s) / p.e
     return ratio.reshape(np.shape(sigma))
