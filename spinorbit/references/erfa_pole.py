@@ -106,12 +106,12 @@ def pole_angles(t_tdb_d, pole_gcrs):
 
 
 def pole_from_angles(t_tdb_d, psi, eps):
-    """Unit pole in GCRS with Fukushima-Williams angles (psi, eps) at one time (inverse of pole_angles)."""
-    gamb, phib, _, _ = (float(a) for a in mean_angles(t_tdb_d))
+    """Unit pole(s) in GCRS, (3,) or (n, 3), with Fukushima-Williams angles (psi, eps) (inverse of pole_angles)."""
+    gamb, phib, _, _ = mean_angles(t_tdb_d)
     x1, y2, z2 = np.sin(eps) * np.sin(psi), np.sin(eps) * np.cos(psi), np.cos(eps)
     y1 = np.cos(phib) * y2 - np.sin(phib) * z2
     z = np.sin(phib) * y2 + np.cos(phib) * z2
-    return np.array([np.cos(gamb) * x1 - np.sin(gamb) * y1, np.sin(gamb) * x1 + np.cos(gamb) * y1, z])
+    return np.stack([np.cos(gamb) * x1 - np.sin(gamb) * y1, np.sin(gamb) * x1 + np.cos(gamb) * y1, z], axis=-1)
 
 
 def fundamental_arguments(t_tdb_d):
@@ -120,6 +120,15 @@ def fundamental_arguments(t_tdb_d):
 
     t = np.asarray(t_tdb_d, dtype=float) / JULIAN_CENTURY_D
     return np.array([erfa.fal03(t), erfa.falp03(t), erfa.faf03(t), erfa.fad03(t), erfa.faom03(t)])
+
+
+def argument_phases(t_tdb_d, multipliers):
+    """Phases (K, n), rad, and rates (K,), rad/d, of the arguments sum_j m_kj F_j (Delaunay F_j)."""
+    m = np.asarray(multipliers, dtype=float)
+    t = np.asarray(t_tdb_d, dtype=float)
+    step = np.diff(fundamental_arguments(np.array([t.mean() - 0.5, t.mean() + 0.5])), axis=1)[:, 0]
+    rates = m @ ((step + np.pi) % (2 * np.pi) - np.pi)
+    return m @ fundamental_arguments(t), rates
 
 
 def fit_precession_nutation(t_tdb_d, values, terms=NUTATION_ARGUMENTS):

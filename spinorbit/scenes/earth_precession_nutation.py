@@ -7,14 +7,17 @@ Outputs the CIP X, Y in GCRS and its Fukushima-Williams angles; compares with
 ERFA ``bpn2xy(pnm06a)``, fits the precession rate and the main nutation terms,
 and puts Euler's P96 rate N cos n (§846) for circular orbits beside them.
 The rigid-minus-IAU differences of the nutation terms are the non-rigid
-response (MHB2000: fluid core, mantle anelasticity, oceans), not errors.
+response (MHB2000: fluid core, mantle anelasticity, oceans), not errors;
+``earth.nonrigid = true`` applies that response (spinorbit.nonrigid: elastic
+mantle and fluid core) to the integrated rigid nutation, term by term.
 """
 import math
 
 import numpy as np
 
-from .. import earth
+from .. import earth, nonrigid
 from ..constants import ARCSEC, GM_KM3_D2, JULIAN_CENTURY_D, MAS
+from ..errors import ScenarioError
 from ..integrators import integrate
 from ..scenarios import Key
 from . import common
@@ -29,6 +32,9 @@ SCHEMA = {
                                  "the rigid model's own nutation (from a first gyroscopic pass)"),
     "earth.geodesic_precession": Key(type=bool, default=True),
     "earth.j2_rate": Key(type=bool, default=True),
+    "earth.nonrigid": Key(type=bool, default=False,
+                          help="multiply the integrated rigid nutation, term by term, by the response of an "
+                               "elastic mantle with a fluid core (spinorbit.nonrigid, MHB2000 parameters)"),
     "orbit.source": Key(type=str, default="de421", choices=("de421", "circular")),
     "orbit.planets": Key(type=bool, default=False, help="add the direct torques of Venus and Jupiter"),
     "orbit.sample_step": Key(unit="d", default=0.25),
@@ -37,6 +43,10 @@ SCHEMA = {
     "comparison.free_nutation_span": Key(unit="d", default=610.0,
                                          help="full model: span of the 0.125-d run fitted for the Euler period"),
 }
+
+# Nutation terms of the non-rigid table: name -> multipliers of (l, l', F, D, Om).
+NONRIGID_TABLE_TERMS = {"18.6 yr": (0, 0, 0, 0, 1), "9.3 yr": (0, 0, 0, 0, 2), "1 yr": (0, 1, 0, 0, 0),
+                        "0.5 yr": (0, 0, 2, -2, 2), "27.55 d": (1, 0, 0, 0, 0), "13.66 d": (0, 0, 2, 0, 2)}
 
 # Euler's circles (P96): mean distance and sidereal period of the Moon and the Sun.
 CIRCLES = {"moon": (384400.0, 27.321661), "sun": (149597870.7, 365.256363)}
@@ -50,6 +60,9 @@ def run(scenario):
     moments, full = params[0], scenario["earth.model"] == "full"
     solution, point = common.simulate_scenario(scenario, system, t)
     z = earth.figure_axes_from_full(solution.y) if full else system.meta["figure_axes"](t, solution.y, params)
+    z_rigid = z
+    if scenario["earth.nonrigid"]:
+        z = _nonrigid_pole(erfa_pole, t, z)
 
     comparison, table, figures = _compare_with_erfa(erfa_pole, t, z, plane_tilt)
     comparison.update(_p96(scenario, orbits, z, pole_ecl, t, plane_tilt))
@@ -67,6 +80,8 @@ def run(scenario):
                          "orbit_interpolation_max_relative_error":
                              None if getattr(orbits, "max_relative_error", None) is None
                              else orbits.max_relative_error.tolist()}}
+    if scenario["earth.nonrigid"]:
+        summary["nonrigid"] = _nonrigid_summary(erfa_pole, t, z_rigid, z)
     return common.result(scenario, table, summary, figures, solution)
 
 
@@ -79,6 +94,9 @@ def build_system(scenario, t):
 
     t0 = scenario.t_start
     orbits, plane_tilt = _orbits(scenario)
+    if scenario["earth.nonrigid"] and plane_tilt is not None:
+        raise ScenarioError("earth.nonrigid", True, 'false with orbit.source = "circular" (the non-rigid '
+                                                    'response is applied on the luni-solar arguments of DE421)')
     pole_ecl = erfa_pole.ecliptic_pole_j2000() if plane_tilt is None else \
         np.array([0.0, -math.sin(plane_tilt), math.cos(plane_tilt)])
     moments = earth.earth_moments(scenario["earth.dynamical_ellipticity"], scenario["earth.b_minus_a_over_c"])
@@ -160,6 +178,49 @@ def _a_axis(erfa_pole, t0, z0):
     x_tirs = erfa_pole.terrestrial_x_axis(t0)
     lon = math.radians(earth.A_AXIS_LONGITUDE_DEG)
     return math.cos(lon) * x_tirs + math.sin(lon) * np.cross(z0, x_tirs)
+
+
+def _nonrigid_pole(erfa_pole, t, z):
+    """Figure axes (n, 3) of the non-rigid Earth: the rigid nutation (x, y) = (dpsi sin eps_A, deps) about
+    the IAU 2006 mean pole, times the two-layer response term by term (spinorbit.nonrigid)."""
+    psi, eps = erfa_pole.pole_angles(t, z)
+    _, _, psi_bar, eps_a = erfa_pole.mean_angles(t)
+    phases, rates = erfa_pole.argument_phases(t, nonrigid.LUNISOLAR_ARGUMENTS)
+    sin_eps = np.sin(eps_a)
+    x, y = nonrigid.nonrigid_nutation(t, (psi - psi_bar) * sin_eps, eps - eps_a, phases, rates)
+    return erfa_pole.pole_from_angles(t, psi_bar + x / sin_eps, eps_a + y)
+
+
+def _nonrigid_summary(erfa_pole, t, z_rigid, z):
+    """The rigid and non-rigid main terms beside IAU 2000A (mas), the rigid residuals, the model's free modes.
+
+    Terms: dpsi = sum(in sin arg + out cos arg), deps = sum(in cos arg + out sin arg), as in IAU 2000A,
+    fitted over the run on the nonrigid.LUNISOLAR_ARGUMENTS it resolves (with a quadratic), the same way
+    for the three columns: a term unresolved from a listed one (1 yr: 365.22 d; 0.5 yr: 182.63 d) is in it.
+    """
+    x_ref, y_ref = erfa_pole.cip_xy(t)
+    _, _, psi_bar, eps_a = erfa_pole.mean_angles(t)
+    dpsi_iau, deps_iau = erfa_pole.nutation(t)
+    _, rates = erfa_pole.argument_phases(t, nonrigid.LUNISOLAR_ARGUMENTS)
+    keep = nonrigid.resolvable(rates, t[-1] - t[0])
+    arguments = {str(m): m for m, k in zip(nonrigid.LUNISOLAR_ARGUMENTS, keep) if k}
+    fits = {}
+    for name, pole in (("rigid", z_rigid), ("nonrigid", z)):
+        psi, eps = erfa_pole.pole_angles(t, pole)
+        fits[name] = [erfa_pole.fit_precession_nutation(t, v, arguments) for v in (psi - psi_bar, eps - eps_a)]
+    fits["iau2000a"] = [erfa_pole.fit_precession_nutation(t, v, arguments) for v in (dpsi_iau, deps_iau)]
+    columns = {"dpsi_in": (0, "sin"), "dpsi_out": (0, "cos"), "deps_in": (1, "cos"), "deps_out": (1, "sin")}
+    terms = {term: {part: {model: fits[model][i][trig][str(m)] / MAS for model in fits}
+                    for part, (i, trig) in columns.items()}
+             for term, m in NONRIGID_TABLE_TERMS.items()}
+    cw, fcn = nonrigid.normal_modes()
+    return {"rigid_x_rms_mas": _rms((z_rigid[:, 0] - x_ref) / MAS),
+            "rigid_y_rms_mas": _rms((z_rigid[:, 1] - y_ref) / MAS),
+            "terms_mas": terms,
+            "fcn_period_model_d": nonrigid.celestial_period_days(fcn),
+            "fcn_period_mhb2000_d": nonrigid.celestial_period_days(nonrigid.PUBLISHED_FCN_CPSD),
+            "chandler_period_model_d": nonrigid.wobble_period_days(cw),
+            "chandler_period_mhb2000_d": nonrigid.wobble_period_days(nonrigid.PUBLISHED_CHANDLER_CPSD)}
 
 
 def _compare_with_erfa(erfa_pole, t, z, plane_tilt):

@@ -1,0 +1,171 @@
+"""The non-rigid Earth's nutation: an elastic mantle with a fluid core, as a transfer function.
+
+Layer 2 (numpy).  The rigid Earth's forced nutation, decomposed into circular
+terms on the luni-solar arguments, is multiplied term by term by the ratio of
+the non-rigid to the rigid response at each term's frequency (the route of
+MHB2000: Mathews, Herring & Buffett 2002, JGR 107(B4) 2068, whose transfer
+function gives IAU 2000A from a rigid-Earth series; IERS Conventions 2010, TN36 §5.5.1).
+
+The response is that of the two-layer Earth of Sasao, Okubo & Saito (1980) in
+the form of Mathews, Buffett, Herring & Shapiro (1991, JGR 96, 8219): the
+angular momentum of the whole Earth and of the fluid core in the terrestrial
+frame, linearised, with time dependence exp(i sigma Omega t), sigma in cycles
+per sidereal day (cpsd).  m = mantle wobble, m_f = the core's differential
+wobble, phi = the tidal forcing (the rigid Earth's wobble is e phi / (e - sigma)):
+
+    [sigma - e + (1 + sigma) kappa] m + (1 + sigma)(A_f/A + xi) m_f = [(1 + sigma) kappa - e] phi
+    sigma (1 + gamma) m + [1 + sigma (1 + beta) + e_f + K_CMB] m_f = sigma gamma phi
+
+(kappa, xi, gamma, beta: the mantle's and the core's deformation compliances,
+c/A = kappa (m - phi) + xi m_f, c_f/A_f = gamma (m - phi) + beta m_f; K_CMB the
+core-mantle coupling constant).  A circular nutation of celestial frequency nu
+(cpsd, prograde > 0) is a wobble of sigma = nu - 1, and the nutation amplitude
+ratio is the wobble ratio.  Its two normal modes are the Chandler wobble and the
+free core nutation (FCN).  Left out: the solid inner core (free inner-core
+nutation), ocean tides, mantle anelasticity and the nonlinear terms of MHB2000.
+"""
+from dataclasses import dataclass
+
+import numpy as np
+
+from .earth import ERA_RATE_RAD_D, H_D
+
+
+@dataclass(frozen=True)
+class EarthParameters:
+    """Basic Earth parameters of the two-layer model (dimensionless)."""
+
+    e: float              # dynamical ellipticity (C - A)/A of the whole Earth
+    e_f: float            # dynamical ellipticity of the fluid core
+    a_f: float            # A_f / A, fluid core over whole Earth
+    kappa: float          # mantle compliances (elastic)
+    xi: float
+    gamma: float          # core compliances (elastic)
+    beta: float
+    k_cmb: complex        # core-mantle boundary coupling constant
+
+
+# e: the rigid model's H_d = (C - A)/C as (C - A)/A, 0.0032845474 (MHB 2002 quote e = 0.0032845479).
+# e_f, K_CMB: MHB 2002 estimates from VLBI nutation data (e_f above its hydrostatic value; K_CMB's
+# imaginary part is the electromagnetic dissipation at the core-mantle boundary).
+# kappa, xi, gamma, beta: elastic compliances of PREM (Mathews et al. 1991), as used by MHB 2002.
+# A_f/A: PREM's fluid outer core (Dziewonski & Anderson 1981 density polynomials integrated in
+# spherical shells, 1221.5-3480 km: 9.066e36 kg m^2) over the Earth's A = C (1 - H_d), with
+# C/(M a^2) = 0.3307, GM = 398600.4418 km^3/s^2, a = 6378.1366 km: 8.008e37 kg m^2.
+MHB2000 = EarthParameters(e=H_D / (1.0 - H_D), e_f=0.0026456, a_f=0.1132,
+                          kappa=1.0340e-3, xi=2.2204e-4, gamma=1.9662e-3, beta=6.1600e-4,
+                          k_cmb=2.23e-5 - 1.85e-5j)
+RIGID = EarthParameters(e=H_D / (1.0 - H_D), e_f=0.0, a_f=0.0, kappa=0.0, xi=0.0, gamma=0.0, beta=0.0,
+                        k_cmb=0.0)
+
+# MHB2000 normal modes, cpsd, terrestrial frame, in this module's convention: IERS Conventions 2010
+# Tables 6.4 and 7.1 list them for tidal frequencies (-0.0026010 - 0.0001361i, 1.0023181 + 0.000025i),
+# i.e. as -conj(sigma).  FCN period in space: -1/(0.0023181 * 1.0027379) = -430.21 solar days.
+PUBLISHED_CHANDLER_CPSD = 0.0026010 + 0.0001361j
+PUBLISHED_FCN_CPSD = -1.0023181 + 0.000025j
+SIDEREAL_PER_SOLAR_DAY = ERA_RATE_RAD_D / (2.0 * np.pi)
+
+
+def _matrices(sigma, p):
+    """(M, rhs) of the two-layer equations at terrestrial frequencies sigma (cpsd): shapes (..., 2, 2), (..., 2)."""
+    s = np.atleast_1d(np.asarray(sigma, dtype=complex))
+    m = np.empty(s.shape + (2, 2), dtype=complex)
+    m[..., 0, 0] = s - p.e + (1 + s) * p.kappa
+    m[..., 0, 1] = (1 + s) * (p.a_f + p.xi)
+    m[..., 1, 0] = s * (1 + p.gamma)
+    m[..., 1, 1] = 1 + s * (1 + p.beta) + p.e_f + p.k_cmb
+    rhs = np.stack([(1 + s) * p.kappa - p.e, s * p.gamma], axis=-1)
+    return m, rhs
+
+
+def transfer(sigma, p=MHB2000):
+    """Non-rigid / rigid nutation amplitude at terrestrial frequency sigma (cpsd), complex, same shape as sigma.
+
+    Equals 1 at sigma = -1 (precession) and for the RIGID parameters.
+    """
+    m, rhs = _matrices(sigma, p)
+    if p.a_f == 0.0:                       # no core: the mantle equation alone
+        wobble = rhs[..., 0] / m[..., 0, 0]
+    else:
+        wobble = np.linalg.solve(m, rhs[..., None])[..., 0, 0]
+    s = np.atleast_1d(np.asarray(sigma, dtype=complex))
+    ratio = wobble * (p.e - s) / p.e
+    return ratio.reshape(np.shape(sigma))
+
+
+def normal_modes(p=MHB2000):
+    """(Chandler wobble, free core nutation) terrestrial frequencies, cpsd: the roots of det M(sigma)."""
+    mantle = np.poly1d([1 + p.kappa, p.kappa - p.e])
+    core = np.poly1d([1 + p.beta, 1 + p.e_f + p.k_cmb])
+    det = mantle * core - np.poly1d([1.0, 1.0]) * (p.a_f + p.xi) * np.poly1d([1 + p.gamma, 0.0])
+    roots = sorted(det.roots, key=lambda r: r.real)
+    return complex(roots[1]), complex(roots[0])
+
+
+def celestial_period_days(sigma):
+    """Period (solar days) in space of a wobble of terrestrial frequency sigma (cpsd); < 0 retrograde."""
+    return 1.0 / ((1.0 + sigma.real) * SIDEREAL_PER_SOLAR_DAY)
+
+
+def wobble_period_days(sigma):
+    """Period (solar days) in the terrestrial frame of a wobble of frequency sigma (cpsd)."""
+    return 1.0 / (sigma.real * SIDEREAL_PER_SOLAR_DAY)
+
+
+# Luni-solar arguments (multipliers of l, l', F, D, Om) of the nutation terms above ~1 mas, ordered as
+# in IERS TN36 Table 5.3a; the terms the non-rigid response is applied to.
+LUNISOLAR_ARGUMENTS = (
+    (0, 0, 0, 0, 1), (0, 0, 2, -2, 2), (0, 0, 2, 0, 2), (0, 0, 0, 0, 2), (0, 1, 0, 0, 0),
+    (0, 1, 2, -2, 2), (1, 0, 0, 0, 0), (0, 0, 2, 0, 1), (1, 0, 2, 0, 2), (0, -1, 2, -2, 2),
+    (0, 0, 2, -2, 1), (-1, 0, 2, 0, 2), (-1, 0, 0, 2, 0), (1, 0, 0, 0, 1), (-1, 0, 0, 0, 1),
+    (-1, 0, 2, 2, 2), (1, 0, 2, 0, 1), (-2, 0, 2, 0, 1), (0, 0, 0, 2, 0), (0, 0, 2, 2, 2),
+    (-2, 0, 0, 2, 0), (2, 0, 2, 0, 2), (1, 0, 2, -2, 2), (-1, 0, 2, 0, 1), (2, 0, 0, 0, 0),
+    (0, 0, 2, 0, 0), (0, 1, 0, 0, 1), (-1, 0, 0, 2, 1), (0, 2, 2, -2, 2), (0, 0, -2, 2, 0),
+    (1, 0, 0, -2, 1), (0, -1, 0, 0, 1), (-1, 0, 2, 2, 1), (0, 2, 0, 0, 0), (1, 0, 2, 2, 2),
+    (-2, 0, 2, 0, 0), (0, 1, 2, 0, 2), (0, 0, 2, 2, 1), (0, -1, 2, 0, 2), (0, 0, 0, 2, 1),
+    (1, 0, 2, -2, 1), (2, 0, 2, -2, 2), (-2, 0, 0, 2, 1), (2, 0, 2, 0, 1), (0, -1, 2, -2, 1),
+)
+
+
+def resolvable(rates, span_d):
+    """Mask of the arguments kept, in order, for a fit over ``span_d`` days: each must beat by more than half
+    a cycle over the span against the quadratic (rate 0) and, with either sign, against every argument kept
+    before it (e.g. l' and 2F - 2D + 2Om - l', annual both, beat in ~10^4 yr: the second is dropped and
+    the first's term carries both)."""
+    kept = []
+    for k, rate in enumerate(rates):
+        others = [0.0] + [rates[j] for j in kept] + [-rates[j] for j in kept]
+        if all(abs(rate - other) * span_d > np.pi for other in others):
+            kept.append(k)
+    mask = np.zeros(len(rates), dtype=bool)
+    mask[kept] = True
+    return mask
+
+
+def circular_terms(t_d, x, y, phases, rates):
+    """Least-squares decomposition of z = x + i y on exp(+-i phase_k) plus a quadratic in time.
+
+    ``t_d`` (n,) days; ``x, y`` (n,) rad; ``phases`` (K, n) rad; ``rates`` (K,) rad/d.
+    Returns (amplitudes (2K,) complex, celestial frequencies (2K,) cpsd, basis (n, 2K)):
+    z ~ poly + basis @ amplitudes.  In the plane (x, y) = (dpsi sin eps, deps) a positive
+    rotation is prograde, so exp(i phase) turns at +rate and exp(-i phase) at -rate.
+    """
+    centuries = (t_d - t_d.mean()) / 36525.0
+    basis = np.hstack([np.exp(1j * phases).T, np.exp(-1j * phases).T])
+    design = np.column_stack([np.ones_like(centuries), centuries, centuries**2, basis])
+    coef = np.linalg.lstsq(design, x + 1j * y, rcond=None)[0]
+    nu = np.concatenate([rates, -rates]) / ERA_RATE_RAD_D
+    return coef[3:], nu, basis
+
+
+def nonrigid_nutation(t_d, x, y, phases, rates, p=MHB2000):
+    """Non-rigid (x, y) from the rigid (x, y) = (dpsi sin eps, deps), rad, term by term.
+
+    Each circular term c exp(+-i phase) of the arguments the span resolves becomes
+    T(nu - 1) c exp(+-i phase); what the terms do not capture (the quadratic, the
+    smaller terms) is kept as it is (T = 1).
+    """
+    keep = resolvable(rates, t_d[-1] - t_d[0])
+    amplitudes, nu, basis = circular_terms(t_d, x, y, phases[keep], rates[keep])
+    dz = basis @ ((transfer(nu - 1.0, p) - 1.0) * amplitudes)
+    return x + dz.real, y + dz.imag
