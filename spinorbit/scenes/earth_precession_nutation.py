@@ -92,7 +92,7 @@ def run(scenario):
     if full:
         comparison.update(_full_checks(scenario, orbits, params, t0, z0, x0, t, z))
         figures["full_minus_gyroscopic"] = common.plot_series(
-            (t - t0) / 365.25, comparison.pop("_full_minus_gyro_mas"), "years from start",
+            common.decimal_year(t), comparison.pop("_full_minus_gyro_mas"), "year (TDB)",
             "full - gyroscopic figure axis [mas]")
     summary = {"comparison": comparison, "run": point,
                "model": {"moments_over_C": moments.tolist(), "bodies": list(orbits.names),
@@ -215,9 +215,9 @@ def _compare_with_erfa(erfa_pole, t, z, plane_tilt):
     table["cip_y"] = (z[:, 1] * u.rad).to(u.arcsec)
     table["cip_x_minus_erfa"] = dx * u.mas
     table["cip_y_minus_erfa"] = dy * u.mas
-    years = (t - t[0]) / 365.25
-    figures = {"residual_vs_erfa": common.plot_series(years, [dx, dy], "years from start",
-                                                      "model - IAU 2006/2000A [mas]", ["X", "Y"])}
+    years = common.decimal_year(t)
+    figures = {"residual_vs_erfa": common.plot_series(years, [dx, dy], "year (TDB)",
+                                                      "CIP model - IAU 2006/2000A [mas]", ["X", "Y"])}
     if plane_tilt is not None:         # Euler's circles: IAU nutation does not apply
         return comparison, table, figures
 
@@ -251,9 +251,12 @@ def _compare_with_erfa(erfa_pole, t, z, plane_tilt):
     table["obliquity"] = (eps_mean * u.rad).to(u.deg)
     table["nutation_longitude"] = ((psi - psi_mean) * u.rad).to(u.arcsec)
     table["nutation_obliquity"] = ((eps - eps_mean) * u.rad).to(u.arcsec)
-    figures["nutation"] = common.plot_series(
-        years, [(psi - psi_mean) / ARCSEC, dpsi_iau / ARCSEC, (eps - eps_mean) / ARCSEC, deps_iau / ARCSEC],
-        "years from start", "nutation [arcsec]", ["dpsi model", "dpsi IAU 2000A", "deps model", "deps IAU 2000A"])
+    dpsi, deps = (psi - psi_mean) / ARCSEC, (eps - eps_mean) / ARCSEC
+    figures["nutation"] = common.plot_panels(years, [
+        ([dpsi, dpsi_iau / ARCSEC], ["rigid model", "IAU 2000A"], "Δψ [arcsec]"),
+        ([deps, deps_iau / ARCSEC], ["rigid model", "IAU 2000A"], "Δε [arcsec]"),
+        ([(dpsi - dpsi_iau / ARCSEC) * 1000, (deps - deps_iau / ARCSEC) * 1000], ["Δψ", "Δε"],
+         "model - IAU [mas]")], "year (TDB)")
     return comparison, table, figures
 
 

@@ -140,6 +140,8 @@ def run(scenario):
         "physical_libration": common.plot_series(
             years, np.array([table[k].value for k in ("libration_longitude", "libration_latitude")]),
             "year (TDB)", "physical libration [arcsec]", ["longitude tau", "latitude rho"]),
+        "libration_spectrum": plot_spectrum(solution.t, librations["tau"], fit),
+        "libration_zoom_vs_de421": plot_zoom(solution.t, librations, ref_mats, orbits),
         **figures}
     return common.result(scenario, table, summary, figures, solution)
 
@@ -359,6 +361,71 @@ def plot_error_vs_runtime(rows):
         ax.grid(alpha=0.3, which="both")
 
     return draw
+
+
+ZOOM_D = 730.5                      # the last two years of the run, against DE421
+
+
+def amplitude_spectrum(t, x):
+    """(period d, amplitude) of x(t): Hann-windowed, 4x zero-padded FFT of the detrended series on a
+    uniform grid; a sinusoid of amplitude a shows a peak of height ~a at its period."""
+    grid = np.linspace(t[0], t[-1], t.size)
+    y = np.interp(grid, t, x)
+    y = y - np.polyval(np.polyfit(grid, y, 1), grid)
+    window = np.hanning(y.size)
+    n = 4 * y.size
+    amplitude = 2 * np.abs(np.fft.rfft(y * window, n)) / window.sum()
+    frequency = np.fft.rfftfreq(n, grid[1] - grid[0])
+    return 1 / frequency[1:], amplitude[1:]
+
+
+def _period_d(text):
+    value, unit = text.split()
+    return float(value) * (365.25 if unit == "yr" else 1.0)
+
+
+def plot_spectrum(t, tau, fit):
+    """Physical libration in longitude: amplitude against period, the published (Meeus/Eckhardt)
+    and fitted terms marked."""
+    period, amplitude = amplitude_spectrum(t, tau / ARCSEC)
+    span = t[-1] - t[0]
+    rows = [r for r in fit["main"] + fit["other"] if _period_d(r["period"]) <= span / 2]   # resolved terms
+
+    def draw(fig):
+        ax = fig.add_subplot()
+        keep = period <= span
+        ax.loglog(period[keep], amplitude[keep], lw=0.7, color="0.3", label="model tau spectrum")
+        p = [_period_d(r["period"]) for r in rows]
+        ax.scatter(p, [abs(r["published_arcsec"]) for r in rows], marker="o", facecolors="none",
+                   edgecolors="C3", s=40, label="published (Eckhardt, in Meeus ch. 53)", zorder=3)
+        ax.scatter(p, [abs(r["fitted_arcsec"]) for r in rows], marker="x", color="C0", s=30,
+                   label="fitted at fixed arguments", zorder=3)
+        for r, pi in zip(rows, p):
+            if r not in fit["main"]:
+                continue
+            ax.annotate(r["term"], (pi, abs(r["published_arcsec"])), textcoords="offset points",
+                        xytext=(4, 6), fontsize=7)
+        ax.set_xlabel("period [d]")
+        ax.set_ylabel("amplitude of tau [arcsec]")
+        ax.set_ylim(1e-3, None)
+        ax.legend(fontsize=8, loc="lower right")
+        ax.grid(alpha=0.3, which="both")
+
+    return draw
+
+
+def plot_zoom(t, librations, ref_mats, orbits):
+    """The last two years (or the whole run if shorter): tau and rho of the model with DE421's."""
+    keep = t >= t[-1] - ZOOM_D
+    ref = physical_librations(t[keep], ref_mats[keep], orbits)
+    years = _years(t[keep])
+    tau, rho = librations["tau"][keep] / ARCSEC, librations["rho"][keep] / ARCSEC
+    tau_ref, rho_ref = ref["tau"] / ARCSEC, ref["rho"] / ARCSEC
+    return common.plot_panels(years, [
+        ([tau, tau_ref], ["model", "DE421"], "longitude tau [arcsec]"),
+        ([rho, rho_ref], ["model", "DE421"], "latitude rho [arcsec]"),
+        ([(tau - tau_ref) * 1000, (rho - rho_ref) * 1000], ["tau", "rho"], "model - DE421 [mas]")],
+        "year (TDB)")
 
 
 def _years(t):
