@@ -37,7 +37,7 @@ def write_plots(result, out):
     summary = result.summary
     span = summary.get("span", {}).get("years", "")
     for name, draw in result.figures.items():
-        fig = plt.figure(figsize=(8, 4.5))
+        fig = plt.figure(figsize=getattr(draw, "figsize", (8, 4.5)))
         draw(fig)
         fig.suptitle(f"{summary.get('scene', '')}: {name.replace('_', ' ')} ({span})", fontsize=11)
         fig.tight_layout()
@@ -57,7 +57,7 @@ def report_markdown(summary, plots):
         lines += [f"Error: {summary['error']}", ""]
     if "verdict" in summary:
         lines += verdict_markdown(summary["verdict"])
-    lines += ["## Figures", "", "| quantity | value |", "|---|---|"]
+    lines += ["## Numbers", "", "| quantity | value |", "|---|---|"]
     tables = []
     for key, value in _flat({k: v for k, v in summary.items() if k not in SKIP}):
         if isinstance(value, list) and value and all(isinstance(row, dict) for row in value):

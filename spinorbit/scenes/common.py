@@ -81,6 +81,7 @@ def plot_panels(x, panels, xlabel):
             ax.grid(alpha=0.3)
         np.atleast_1d(axes)[-1].set_xlabel(xlabel)
 
+    draw.figsize = (8, 1.0 + 2.2 * len(panels))          # read by reports.write_plots
     return draw
 
 

@@ -422,9 +422,9 @@ def plot_zoom(t, librations, ref_mats, orbits):
     tau, rho = librations["tau"][keep] / ARCSEC, librations["rho"][keep] / ARCSEC
     tau_ref, rho_ref = ref["tau"] / ARCSEC, ref["rho"] / ARCSEC
     return common.plot_panels(years, [
-        ([tau, tau_ref], ["model", "DE421"], "longitude tau [arcsec]"),
-        ([rho, rho_ref], ["model", "DE421"], "latitude rho [arcsec]"),
-        ([(tau - tau_ref) * 1000, (rho - rho_ref) * 1000], ["tau", "rho"], "model - DE421 [mas]")],
+        ([tau, tau_ref], ["model", "DE421"], "longitude τ [arcsec]"),
+        ([rho, rho_ref], ["model", "DE421"], "latitude ρ [arcsec]"),
+        ([(tau - tau_ref) * 1000, (rho - rho_ref) * 1000], ["τ", "ρ"], "model − DE421 [mas]")],
         "year (TDB)")
 
 
