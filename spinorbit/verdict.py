@@ -134,4 +134,4 @@ def _describe(check):
 
 
 def _num(x):
-    return f"{x:.2g}" if x != 0 and (abs(x) < 1e-3 or abs(x) >= 1e5) else f"{x:.4g}"
+    return f"{x:.2g}" if abs(x) < 1 else f"{x:.4g}"
