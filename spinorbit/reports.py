@@ -39,7 +39,8 @@ def write_plots(result, out):
     for name, draw in result.figures.items():
         fig = plt.figure(figsize=getattr(draw, "figsize", (8, 4.5)))
         draw(fig)
-        fig.suptitle(f"{summary.get('scene', '')}: {name.replace('_', ' ')} ({span})", fontsize=11)
+        title = getattr(draw, "title", name.replace("_", " "))
+        fig.suptitle(f"{summary.get('scene', '')}: {title} ({span})", fontsize=11)
         fig.tight_layout()
         paths.append(_atomic(out / f"{name}.png", lambda p: fig.savefig(p, dpi=110, format="png")))
         plt.close(fig)

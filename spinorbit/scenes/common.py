@@ -85,6 +85,12 @@ def plot_panels(x, panels, xlabel):
     return draw
 
 
+def titled(draw, title):
+    """Give a drawing function the plot title reports.write_plots puts above it (with scene and span)."""
+    draw.title = title
+    return draw
+
+
 def decimal_year(t):
     """TDB days from J2000 -> Julian epoch (decimal year), for time axes."""
     return 2000.0 + np.asarray(t) / 365.25

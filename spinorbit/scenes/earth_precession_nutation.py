@@ -218,8 +218,8 @@ def _compare_with_erfa(erfa_pole, t, z, plane_tilt):
     table["cip_x_minus_erfa"] = dx * u.mas
     table["cip_y_minus_erfa"] = dy * u.mas
     years = common.decimal_year(t)
-    figures = {"residual_vs_erfa": common.plot_series(years, [dx, dy], "year (TDB)",
-                                                      "CIP model - IAU 2006/2000A [mas]", ["X", "Y"])}
+    figures = {"residual_vs_erfa": common.titled(common.plot_series(
+        years, [dx, dy], "year (TDB)", "CIP model - IAU 2006/2000A [mas]", ["X", "Y"]), "CIP X, Y minus IAU 2006/2000A")}
     if plane_tilt is not None:         # Euler's circles: IAU nutation does not apply
         return comparison, table, figures
 
@@ -254,11 +254,11 @@ def _compare_with_erfa(erfa_pole, t, z, plane_tilt):
     table["nutation_longitude"] = ((psi - psi_mean) * u.rad).to(u.arcsec)
     table["nutation_obliquity"] = ((eps - eps_mean) * u.rad).to(u.arcsec)
     dpsi, deps = (psi - psi_mean) / ARCSEC, (eps - eps_mean) / ARCSEC
-    figures["nutation"] = common.plot_panels(years, [
+    figures["nutation"] = common.titled(common.plot_panels(years, [
         ([dpsi, dpsi_iau / ARCSEC], ["rigid model", "IAU 2000A"], "Δψ [arcsec]"),
         ([deps, deps_iau / ARCSEC], ["rigid model", "IAU 2000A"], "Δε [arcsec]"),
         ([(dpsi - dpsi_iau / ARCSEC) * 1000, (deps - deps_iau / ARCSEC) * 1000], ["Δψ", "Δε"],
-         "model - IAU [mas]")], "year (TDB)")
+         "model - IAU [mas]")], "year (TDB)"), "nutation in longitude Δψ and obliquity Δε vs IAU 2000A")
     return comparison, table, figures
 
 

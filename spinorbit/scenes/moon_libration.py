@@ -134,14 +134,16 @@ def run(scenario):
         figures["error_vs_runtime"] = plot_error_vs_runtime(rows)
     table = make_table(solution, angles, mats, ref_mats, librations)
     years = _years(solution.t)
-    figures = {"residuals_vs_de421": common.plot_series(
+    figures = {"residuals_vs_de421": common.titled(common.plot_series(
         years, np.array([table["pole_error"].value, table["longitude_error"].value]), "year (TDB)",
-        "model - DE421 [arcsec]", ["pole", "longitude"]),
-        "physical_libration": common.plot_series(
+        "model - DE421 [arcsec]", ["pole", "longitude"]), "pole and longitude, model minus DE421"),
+        "physical_libration": common.titled(common.plot_series(
             years, np.array([table[k].value for k in ("libration_longitude", "libration_latitude")]),
-            "year (TDB)", "physical libration [arcsec]", ["longitude tau", "latitude rho"]),
-        "libration_spectrum": plot_spectrum(solution.t, librations["tau"], fit),
-        "libration_zoom_vs_de421": plot_zoom(solution.t, librations, ref_mats, orbits),
+            "year (TDB)", "physical libration [arcsec]", ["longitude τ", "latitude ρ"]), "physical libration"),
+        "libration_spectrum": common.titled(plot_spectrum(solution.t, librations["tau"], fit),
+                                            "libration in longitude τ, amplitude spectrum"),
+        "libration_zoom_vs_de421": common.titled(plot_zoom(solution.t, librations, ref_mats, orbits),
+                                                 "the last two years, model and DE421"),
         **figures}
     return common.result(scenario, table, summary, figures, solution)
 
