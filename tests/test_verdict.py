@@ -49,9 +49,10 @@ def test_headline_names_figure_tolerance_reference_and_span():
 
 def test_every_shipped_scene_declares_its_comparison():
     for path in sorted(SCENARIOS.rglob("*.toml")):
-        spec = spec_of(load_scenario(path), {})
-        assert spec is not None and spec.checks and spec.reference, path.name
-        assert all(c.source for c in spec.checks if c.metric != "passed") or spec.checks, path.name
+        for comparison in ({}, {"resonance_detected": True}):
+            spec = spec_of(load_scenario(path), comparison)
+            assert spec.reference and spec.checks and all(isinstance(c, Check) for c in spec.checks), path.name
+            assert all(c.source for c in spec.checks), path.name
 
 
 def test_title_follows_the_span():

@@ -42,7 +42,7 @@ def verdict(scenario, comparison):
     if comparison.get("resonance_detected"):
         return Verdict("Euler's singular solution (§849)", (
             Check("2φ growth relative", "za_2phi_growth_rel_error", 0.01, "",
-                  "§849 is first order in the detuning and in N/delta")))
+                  "§849 is first order in the detuning and in N/delta"),))
     return Verdict("Euler's P96 closed forms (§846-847)", (
         Check("precession rate relative", "precession_rate_gyroscopic_rel_error", 2e-3, "", _SECOND_ORDER),
         Check("ZA 2φ relative", "za_2phi_half_range_measured_arcsec", 5e-3, "", _SECOND_ORDER,
