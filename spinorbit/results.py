@@ -38,7 +38,8 @@ def run_scenario(scenario, overrides=()):
     from .verdict import evaluate, spec_of
 
     summary = {**base_summary(scenario), **result.summary, "status": "ok"}
-    summary["verdict"] = evaluate(spec_of(scenario, summary.get("comparison")), summary.get("comparison"), scenario.t_end - scenario.t_start,
+    comparison = summary.get("comparison", {})
+    summary["verdict"] = evaluate(spec_of(scenario, comparison), comparison, scenario.t_end - scenario.t_start,
                                   scenario.name, span_label(scenario))
     summary["provenance"] = provenance(scenario)
     result.summary = summary

@@ -2,9 +2,8 @@
 
 A scene declares ``VERDICT``, a ``Verdict``, or a function ``verdict(scenario, comparison)
 -> Verdict`` when the question depends on the scenario's settings (or, for P96, on whether
-the run met the resonance), naming the reference, and ``Check``s
-on keys of ``summary["comparison"]`` with a tolerance in the metric's unit and the
-source of that tolerance.  ``evaluate`` turns it into ``summary["verdict"]``:
+the run met the resonance), naming the reference, and ``Check``s on keys of
+``summary["comparison"]`` with a tolerance in the metric's unit and its source.  ``evaluate`` turns it into ``summary["verdict"]``:
 
     {"result": "pass" | "fail" | "not-compared", "reference": ..., "checks": [...], "headline": ...}
 
@@ -54,16 +53,10 @@ def spec_of(scenario, comparison=None):
 
 def evaluate(spec, comparison, span_d, name="", span_label=""):
     """``summary["verdict"]`` of a run from its spec, comparison dict and span (days)."""
-    if spec is None:
-        checks = []
-        result = NOT_COMPARED
-        reference = None
-    else:
-        checks = [_check(c, comparison or {}, span_d) for c in spec.checks]
-        results = {c["result"] for c in checks}
-        result = FAIL if FAIL in results else PASS if PASS in results else NOT_COMPARED
-        reference = spec.reference
-    verdict = {"result": result, "reference": reference, "checks": checks}
+    checks = [] if spec is None else [_check(c, comparison or {}, span_d) for c in spec.checks]
+    results = {c["result"] for c in checks}
+    result = FAIL if FAIL in results else PASS if PASS in results else NOT_COMPARED
+    verdict = {"result": result, "reference": None if spec is None else spec.reference, "checks": checks}
     if spec is not None and spec.note:
         verdict["note"] = spec.note
     verdict["headline"] = headline(name, verdict, span_label)
