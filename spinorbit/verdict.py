@@ -113,7 +113,7 @@ def _describe(check):
     if check["result"] == NOT_COMPARED:
         return f"{label} not compared ({check['reason']})"
     if isinstance(figure, bool):
-        return f"{label} {'yes' if figure else 'no'}"
+        return f"{label} {'met' if figure else 'not met'}"
     ok = check["result"] == PASS
     tol = f"{_num(check['tolerance'])}{unit}"
     if "expected" in check:

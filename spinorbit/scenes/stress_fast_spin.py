@@ -33,7 +33,7 @@ from ..verdict import Check, Verdict
 from . import common
 from .p96_precession import figure_axis_angles, initial_state
 
-VERDICT = Verdict("a converged suzuki4 run and P96's N cos n", (Check("criteria met", "passed", source="the scene's criteria: converged runs agree < stress.reference_agreement_max, every rate within stress.rate_rel_tol of P96"),))
+VERDICT = Verdict("a converged suzuki4 run and P96's N cos n", (Check("its criteria", "passed", source="the scene's criteria: converged runs agree < stress.reference_agreement_max, every rate within stress.rate_rel_tol of P96"),))
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="A <= B < C, nearly symmetric about C"),

@@ -32,7 +32,7 @@ from ..verdict import Check, Verdict
 from . import common
 
 CASES = ("flip", "degenerate", "shapes", "long_run")
-VERDICT = Verdict("the case's closed form or invariant", (Check("criteria met", "passed", source="the case's criteria (module docstring; benchmarks/RESULTS.md, stress scenes)"),))
+VERDICT = Verdict("the case's closed form or invariant", (Check("its criteria", "passed", source="the case's criteria (module docstring; benchmarks/RESULTS.md, stress scenes)"),))
 
 SCHEMA = {
     "stress.case": Key(type=str, choices=CASES),

@@ -33,7 +33,7 @@ from ..verdict import Check, Verdict
 from . import common
 from .planar_spin_orbit import kepler_orbit, planar_params, planar_rhs, rigid_body_system, theta_from_quaternions
 
-VERDICT = Verdict('Benettin exponents: regular vs chaotic, two integrators', (Check("criteria met", "passed", source="the scene's criteria: regular exponent < lyapunov.regular_max and decaying, chaotic > lyapunov.chaotic_min, integrators within lyapunov.rel_tol, planar = 3-D to 1e-8 rad"),))
+VERDICT = Verdict('Benettin exponents: regular vs chaotic, two integrators', (Check("its criteria", "passed", source="the scene's criteria: regular exponent < lyapunov.regular_max and decaying, chaotic > lyapunov.chaotic_min, integrators within lyapunov.rel_tol, planar = 3-D to 1e-8 rad"),))
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A < B < C (3-D runs); (B - A)/C for planar"),

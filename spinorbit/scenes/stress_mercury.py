@@ -29,7 +29,7 @@ from .planar_spin_orbit import forcing_coefficients, kepler_orbit, rigid_body_sy
 
 MARGOT_2007_ARCSEC = (35.8, 2.0)
 HARMONICS = 6          # fitted harmonics of M; the initial rate sums the linear forced solution to k = 24
-VERDICT = Verdict('linear theory and Margot et al. (2007)', (Check("criteria met", "passed", source="the scene's criteria: 88-d amplitude within stress.linear_rel_tol of linear theory and stress.series_rel_tol of the e^4 series"),))
+VERDICT = Verdict('linear theory and Margot et al. (2007)', (Check("its criteria", "passed", source="the scene's criteria: 88-d amplitude within stress.linear_rel_tol of linear theory and stress.series_rel_tol of the e^4 series"),))
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A < B < C; (B - A)/C sets the libration"),

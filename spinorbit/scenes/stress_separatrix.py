@@ -20,7 +20,7 @@ from ..verdict import Check, Verdict
 from . import common
 from .p93_planar_libration import crossing_times, planar_system, zeta_from_solution
 
-VERDICT = Verdict('§826 closed form', (Check("criteria met", "passed", source="the scene's criteria: side of the separatrix and time to 90 deg within stress.time_rel_tol"),))
+VERDICT = Verdict('§826 closed form', (Check("its criteria", "passed", source="the scene's criteria: side of the separatrix and time to 90 deg within stress.time_rel_tol"),))
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A < B <= C"),
