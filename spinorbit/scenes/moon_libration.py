@@ -423,10 +423,12 @@ def plot_zoom(t, librations, ref_mats, orbits):
     years = _years(t[keep])
     tau, rho = librations["tau"][keep] / ARCSEC, librations["rho"][keep] / ARCSEC
     tau_ref, rho_ref = ref["tau"] / ARCSEC, ref["rho"] / ARCSEC
+    diff = np.array([tau - tau_ref, rho - rho_ref])
+    scale, unit = (1000.0, "mas") if np.abs(diff).max() < 1.0 else (1.0, "arcsec")
     return common.plot_panels(years, [
         ([tau, tau_ref], ["model", "DE421"], "longitude τ [arcsec]"),
         ([rho, rho_ref], ["model", "DE421"], "latitude ρ [arcsec]"),
-        ([(tau - tau_ref) * 1000, (rho - rho_ref) * 1000], ["τ", "ρ"], "model − DE421 [mas]")],
+        (diff * scale, ["τ", "ρ"], f"model − DE421 [{unit}]")],
         "year (TDB)")
 
 
