@@ -33,7 +33,16 @@ from ..verdict import Check, Verdict
 from . import common
 from .planar_spin_orbit import kepler_orbit, planar_params, planar_rhs, rigid_body_system, theta_from_quaternions
 
-VERDICT = Verdict('Benettin exponents: regular vs chaotic, two integrators', (Check("its criteria", "passed", source="the scene's criteria: regular exponent < lyapunov.regular_max and decaying, chaotic > lyapunov.chaotic_min, integrators within lyapunov.rel_tol, planar = 3-D to 1e-8 rad"),))
+
+
+def verdict(scenario, comparison):
+    """The exponents' agreement between integrators and run lengths, the regular orbit, and all criteria."""
+    return Verdict("Benettin exponents, rk8 and dop853", (
+        Check("regular exponent", "lyapunov_regular_per_T", scenario["lyapunov.regular_max"], "/T",
+              "a regular orbit's exponent falls like ln t/t (lyapunov.regular_max)"),
+        Check("nominal spread", "lyapunov_nominal_rel_spread", scenario["lyapunov.rel_tol"], "",
+              "two integrators and two run lengths must give one exponent (lyapunov.rel_tol)"),
+        Check("all criteria", "passed", source="module docstring: (a)-(d)")))
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A < B < C (3-D runs); (B - A)/C for planar"),
