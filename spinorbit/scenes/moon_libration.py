@@ -40,10 +40,11 @@ LEVEL_NAMES = {1: "Euler: degree-2 Moon, Earth + Sun point masses",
                4: "+ Venus, Mars, Jupiter, Saturn on the figure"}
 
 # Targets (max over the run, arcsec) against DE421 per level: (pole, longitude, source).
-_RIGID = ("level 2 target: a rigid Moon lacks DE421's fluid core and tidal/rotational distortion, "
-          "which move the pole by arcseconds (benchmarks/RESULTS.md, level-3 ablations)")
-_DE421_MODEL = ("level 3 target: the same equations as DE421 (Folkner et al. 2014); 0.1\" is about the spread "
-                "between JPL's DE421 and DE440 lunar orientations")
+_RIGID = ("project target for level 2 (pole 12\", longitude 2\"): a rigid Moon lacks DE421's fluid core "
+          "and tidal/rotational distortion, which move the pole by arcseconds (benchmarks/RESULTS.md, level-3 ablations)")
+_DE421_MODEL = ("project target for level 3 (pole 0.1\", longitude 0.01\"): the same equations as DE421 "
+                "(Folkner et al. 2014), so only what they leave open remains; 0.1\" is about the spread between "
+                "JPL's DE421 and DE440 lunar orientations")
 TOLERANCES = {1: (12.0, 2.0, _RIGID), 2: (12.0, 2.0, _RIGID), 3: (0.1, 0.01, _DE421_MODEL),
               4: (0.1, 0.01, _DE421_MODEL)}
 
