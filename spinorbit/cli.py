@@ -1,7 +1,12 @@
 """Command line: ``spinorbit run | list | bench``.
 
-Input mistakes print one line ``error: <key>: got ...; expected ...`` and exit 2;
-an integration that fails writes what it has and exits 3.
+``run`` prints the verdict first: ``<scene>: pass | fail | not-compared — <figure> <= <tolerance>
+... vs <reference> (<span>)`` (spinorbit.verdict), then the comparison metrics.
+
+Exit codes: 0 the run finished (whatever its verdict); 2 bad input (one line
+``error: <key>: got ...; expected ...``); 3 the integration failed (what it has is
+written); 4 with ``run --strict``, the run finished but its verdict is ``fail``;
+1 ``sweep`` with failed runs.
 """
 import argparse
 import os
@@ -11,6 +16,7 @@ from pathlib import Path
 from .errors import IntegrationError, SpinorbitError
 
 SCENARIO_DIR = Path("scenarios")
+EXIT_VERDICT_FAIL = 4
 
 
 def main(argv=None):
@@ -22,6 +28,7 @@ def main(argv=None):
     run.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
                      help="override a scenario key by dotted path (repeatable)")
     run.add_argument("--out", help="run directory (default runs/<scenario name>)")
+    run.add_argument("--strict", action="store_true", help=f"exit {EXIT_VERDICT_FAIL} when the verdict is 'fail'")
     sweep = sub.add_parser("sweep", help="run a parameter sweep / ensemble on Dask (local cluster by default)")
     sweep.add_argument("scenario")
     sweep.add_argument("--vary", action="append", required=True, metavar="KEY=V1,V2,...",
@@ -72,10 +79,14 @@ def _run(args):
             print(f"partial output written to {out}/", file=sys.stderr)
         raise
     write_run(result, out)
-    print(f"{scenario.name}: wrote {out}/ (summary.json, timeseries.ecsv, report.md)")
+    verdict = result.summary["verdict"]
+    print(verdict["headline"])
+    if verdict.get("note"):
+        print(f"  ({verdict['note']})")
+    print(f"wrote {out}/ (summary.json, timeseries.ecsv, report.md)")
     for key, value in result.summary.get("comparison", {}).items():
         print(f"  {key} = {value:.6g}" if isinstance(value, float) else f"  {key} = {value}")
-    return 0
+    return EXIT_VERDICT_FAIL if args.strict and verdict["result"] == "fail" else 0
 
 
 def _sweep(args):

@@ -34,27 +34,80 @@ def write_plots(result, out):
     import matplotlib.pyplot as plt
 
     paths = []
+    summary = result.summary
+    span = summary.get("span", {}).get("years", "")
     for name, draw in result.figures.items():
-        fig = plt.figure(figsize=(8, 4.5))
+        fig = plt.figure(figsize=getattr(draw, "figsize", (8, 4.5)))
         draw(fig)
+        title = getattr(draw, "title", name.replace("_", " "))
+        fig.suptitle(f"{summary.get('scene', '')}: {title} ({span})", fontsize=11)
         fig.tight_layout()
         paths.append(_atomic(out / f"{name}.png", lambda p: fig.savefig(p, dpi=110, format="png")))
         plt.close(fig)
     return paths
 
 
+SKIP = ("scene", "kind", "title", "status", "error", "verdict", "provenance")
+
+
 def report_markdown(summary, plots):
     lines = [f"# {summary.get('title') or summary['scene']}", "",
-             f"Scene `{summary['scene']}` (kind `{summary['kind']}`), status **{summary['status']}**.", ""]
+             f"Scene `{summary['scene']}` (kind `{summary['kind']}`), status **{summary['status']}** "
+             "(the run finished; the verdict says whether the result meets its tolerance).", ""]
     if "error" in summary:
         lines += [f"Error: {summary['error']}", ""]
-    lines += ["| quantity | value |", "|---|---|"]
-    for key, value in _flat(summary):
-        if key not in ("scene", "kind", "title", "status", "error"):
+    if "verdict" in summary:
+        lines += verdict_markdown(summary["verdict"])
+    lines += ["## Numbers", "", "| quantity | value |", "|---|---|"]
+    tables = []
+    for key, value in _flat({k: v for k, v in summary.items() if k not in SKIP}):
+        if isinstance(value, list) and value and all(isinstance(row, dict) for row in value):
+            tables.append((key, value))
+        else:
             lines.append(f"| {key} | {_fmt(value)} |")
     lines.append("")
+    for key, rows in tables:
+        lines += [f"### {key}", "", *rows_markdown(rows), ""]
     lines += [f"![{p.stem}]({p.name})" for p in plots]
+    if "provenance" in summary:
+        lines += ["", "## Provenance", "", "| item | value |", "|---|---|"]
+        lines += [f"| {key} | {_fmt(value)} |" for key, value in _flat(summary["provenance"])
+                  if not key.startswith("settings.")]
+        lines.append("")
     return "\n".join(lines) + "\n"
+
+
+def verdict_markdown(verdict):
+    """The headline and one row per check: figure, tolerance, result, where the tolerance comes from."""
+    lines = [f"**Verdict: {verdict['result']}** — {verdict['headline'].split(' — ', 1)[-1]}", ""]
+    if verdict.get("note"):
+        lines += [f"Note: {verdict['note']}.", ""]
+    if verdict["checks"]:
+        lines += ["| check | figure | tolerance | result | tolerance from |", "|---|---|---|---|---|"]
+        for c in verdict["checks"]:
+            figure = c.get("reason") if c["figure"] is None else _fmt(c["figure"])
+            if "expected" in c and c["figure"] is not None:
+                figure = f"{_fmt(c['expected'] + c['figure'])} (expected {_fmt(c['expected'])})"
+            lines.append(f"| {c['label']} | {figure} | {_fmt(c['tolerance'])}{c['unit']} | {c['result']} | "
+                         f"{c['source']} |")
+        lines.append("")
+    return lines
+
+
+def rows_markdown(rows):
+    """A list of dicts as a table; a ``fitted_X`` beside a ``published_X`` gets a difference column."""
+    columns = list(dict.fromkeys(k for row in rows for k in row))
+    pairs = [c for c in columns if c.startswith("fitted_") and "published_" + c[len("fitted_"):] in columns]
+    header = columns + [f"fitted − published ({c[len('fitted_'):]})" for c in pairs]
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    for row in rows:
+        cells = [_fmt(row.get(c, "")) for c in columns]
+        for c in pairs:
+            fitted, published = row.get(c), row.get("published_" + c[len("fitted_"):])
+            both = all(isinstance(v, (int, float)) for v in (fitted, published))
+            cells.append(_fmt(float(fitted) - float(published)) if both else "")
+        lines.append("| " + " | ".join(cells) + " |")
+    return lines
 
 
 def _flat(d, prefix=""):

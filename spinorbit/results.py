@@ -3,6 +3,7 @@
 Edge module (imports astropy).  ``run_scenario`` is the one entry point used by
 the command line and by notebooks.
 """
+import re
 from dataclasses import dataclass, field
 from typing import Callable
 
@@ -33,7 +34,17 @@ def run_scenario(scenario, overrides=()):
         if getattr(exc, "result", None) is None and getattr(exc, "partial", None) is not None:
             exc.result = partial_result(scenario, exc)
         raise
-    result.summary = {**base_summary(scenario), **result.summary}
+    from .provenance import provenance
+    from .verdict import evaluate, spec_of
+
+    summary = {**base_summary(scenario), **result.summary, "status": "ok"}
+    comparison = summary.get("comparison", {})
+    summary["verdict"] = evaluate(spec_of(scenario, comparison), comparison, scenario.t_end - scenario.t_start,
+                                  scenario.name, span_label(scenario))
+    summary["provenance"] = provenance(scenario)
+    result.summary = summary
+    if result.table is not None:
+        result.table.meta.update({"scene": scenario.name, "title": summary["title"], **summary["provenance"]})
     return result
 
 
@@ -45,15 +56,44 @@ def partial_result(scenario, exc):
     run = {"method": partial.method, "wall_s": partial.wall_s, "rhs_evaluations": partial.nfev,
            "steps": partial.nsteps, "failed_at_tdb_d": exc.t, "outputs_written": int(partial.t.size)}
     table = attitude_table(partial) if partial.t.size else None
-    return RunResult(scenario, table, {**base_summary(scenario), "run": run}, {}, partial)
+    from .provenance import provenance
+
+    summary = {**base_summary(scenario), "run": run, "status": "failed", "provenance": provenance(scenario)}
+    return RunResult(scenario, table, summary, {}, partial)
 
 
 def base_summary(scenario):
     return {
         "scene": scenario.name,
         "kind": scenario.kind,
-        "title": scenario["scene.title"],
+        "title": title_for_span(scenario["scene.title"], scenario),
         "span": {"start_tdb": scenario["span.start"], "end": scenario["span.end"],
-                 "step_d": scenario["span.step"]},
+                 "step_d": scenario["span.step"], "years": span_label(scenario)},
         "integrator": {"method": scenario["integrator.method"], **scenario.integrator_options()},
     }
+
+
+JULIAN_YEAR_D = 365.25
+
+
+def span_label(scenario):
+    """The run's span for titles: calendar years "1900–2050" (Julian epochs), or its length in days."""
+    length = scenario.t_end - scenario.t_start
+    if length < JULIAN_YEAR_D:
+        return f"{length:.4g} d"
+    y0, y1 = (2000.0 + t / JULIAN_YEAR_D for t in (scenario.t_start, scenario.t_end))
+    digits = 0 if length >= 2 * JULIAN_YEAR_D else 1
+    return f"{y0:.{digits}f}–{y1:.{digits}f}"
+
+
+_YEAR_RANGE = re.compile(r"\b\d{4}\s*[-–]\s*\d{4}\b")
+_DURATION = re.compile(r"\b\d+(\.\d+)? yr\b")
+
+
+def title_for_span(title, scenario):
+    """The scene title with its year range (or "10 yr") replaced by the span actually run."""
+    if _YEAR_RANGE.search(title):
+        return _YEAR_RANGE.sub(span_label(scenario), title, count=1)
+    if _DURATION.search(title):
+        return _DURATION.sub(f"{(scenario.t_end - scenario.t_start) / JULIAN_YEAR_D:.3g} yr", title, count=1)
+    return title

@@ -44,7 +44,7 @@ def run_member(scenario_path, overrides, out_dir):
     try:
         result = run_scenario(scenario_path, overrides)
         write_run(result, out_dir)
-        record.update(status="ok", **_flat_metrics(result.summary))
+        record.update(status="ok", verdict=result.summary["verdict"]["result"], **_flat_metrics(result.summary))
     except SpinorbitError as exc:
         record.update(status="failed", error=str(exc))
     return record

@@ -67,6 +67,35 @@ def plot_series(x, ys, xlabel, ylabel, labels=None, logy=False):
     return draw
 
 
+def plot_panels(x, panels, xlabel):
+    """A drawing function: stacked panels sharing x; ``panels`` = [(ys, labels, ylabel), ...];
+    the second curve of a panel is drawn dashed over the first (a reference overlaid)."""
+
+    def draw(fig):
+        axes = fig.subplots(len(panels), 1, sharex=True)
+        for ax, (ys, labels, ylabel) in zip(np.atleast_1d(axes), panels):
+            for i, (y, label) in enumerate(zip(np.atleast_2d(ys), labels)):
+                ax.plot(x, y, lw=1.2 if i == 0 else 0.9, ls="-" if i == 0 else "--", label=label)
+            ax.set_ylabel(ylabel)
+            ax.legend(fontsize=8, loc="upper right")
+            ax.grid(alpha=0.3)
+        np.atleast_1d(axes)[-1].set_xlabel(xlabel)
+
+    draw.figsize = (8, 1.0 + 2.2 * len(panels))          # read by reports.write_plots
+    return draw
+
+
+def titled(draw, title):
+    """Give a drawing function the plot title reports.write_plots puts above it (with scene and span)."""
+    draw.title = title
+    return draw
+
+
+def decimal_year(t):
+    """TDB days from J2000 -> Julian epoch (decimal year), for time axes."""
+    return 2000.0 + np.asarray(t) / 365.25
+
+
 def plot_omega(solution):
     return plot_series(solution.t - solution.t[0], solution.omega.T, "days from start",
                        "body angular velocity [rad/d]", ["x", "y", "z"])

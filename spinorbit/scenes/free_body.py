@@ -13,6 +13,7 @@ from ..dynamics import invariant_drift, torque_free_system
 from ..errors import PhysicsError, ScenarioError
 from ..rotations import quat_angle, quat_from_euler313
 from ..scenarios import Key
+from ..verdict import Check, Verdict
 from . import common
 
 SCHEMA = {
@@ -20,6 +21,13 @@ SCHEMA = {
     "body.omega0": Key(unit="rad/d", size=3, help="initial body angular velocity"),
     "body.attitude0": Key(unit="rad", size=3, default=np.zeros(3), help="initial JPL 3-1-3 angles"),
 }
+
+VERDICT = Verdict("Euler's closed form", (
+    Check("attitude", "attitude_max_error_vs_closed_form_rad", 1e-10, " rad",
+          "dop853 at rtol 1e-13 over 100 periods: rounding and tolerance floor ~1e-11 rad (benchmarks/RESULTS.md)"),
+    Check("ω relative", "omega_max_rel_error_vs_closed_form", 1e-10, "",
+          "same floor, relative to |omega0|"),
+))
 
 
 def build(scenario):

@@ -8,12 +8,24 @@ DE421 (pole = tilt of the body z axis, longitude = rotation about it), the physi
 librations in longitude, latitude and node about the Cassini state, the sub-Earth
 point (optical + physical libration), and the main longitude terms fitted at fixed
 arguments beside the published amplitudes.
+
+Verdict (``verdict``): max pole and longitude error against DE421, at the project's
+target for the level: level 2 (rigid Moon, degree 2-4) pole <= 12", longitude <= 2";
+levels 3-4 (DE421's own lunar model) pole <= 0.1", longitude <= 0.01".  Level 1,
+Euler's degree-2 Moon, is held to the level-2 target and fails it: it lacks the
+Moon's degree-3 field, which level 2 adds.  Driven by REBOUND the run is still
+held to DE421 at its level's tolerance and fails (pole 0.33", longitude 19.8"
+over 50 yr): REBOUND's lunar orbit drifts from DE421's (3" after 10 yr) and the
+libration in longitude follows the orbit.  A tolerance fitted to that drift would
+pass a result that does not reproduce DE421, so none is given; the
+DE421-driven difference (``compare.source``) is reported beside it.
 """
 import numpy as np
 
 from ..constants import ARCSEC, J2000_JD, JULIAN_CENTURY_D
 from ..errors import ScenarioError
 from ..scenarios import Key
+from ..verdict import Check, Verdict
 from . import common
 
 LEVELS = {
@@ -26,6 +38,32 @@ LEVEL_NAMES = {1: "Euler: degree-2 Moon, Earth + Sun point masses",
                2: "+ Moon degree 3 and 4",
                3: "+ oblate fluid core, tidal and rotational distortion, Earth's J2 on the figure",
                4: "+ Venus, Mars, Jupiter, Saturn on the figure"}
+
+# Targets (max over the run, arcsec) against DE421 per level: (pole, longitude, source).
+_RIGID = ("project target for level 2 (pole 12\", longitude 2\"): a rigid Moon lacks DE421's fluid core "
+          "and tidal/rotational distortion, which move the pole by arcseconds (benchmarks/RESULTS.md, level-3 ablations)")
+_DE421_MODEL = ("project target for level 3 (pole 0.1\", longitude 0.01\"): the same equations as DE421 "
+                "(Folkner et al. 2014), so only what they leave open remains; 0.1\" is about the spread between "
+                "JPL's DE421 and DE440 lunar orientations")
+TOLERANCES = {1: (12.0, 2.0, _RIGID), 2: (12.0, 2.0, _RIGID), 3: (0.1, 0.01, _DE421_MODEL),
+              4: (0.1, 0.01, _DE421_MODEL)}
+
+
+def verdict(scenario, comparison):
+    """Pole and longitude against DE421 at the level's tolerance (see the module docstring)."""
+    level, source = scenario["model.level"], scenario["orbit.source"]
+    pole, lon, why = TOLERANCES.get(level, TOLERANCES[3])
+    notes = []
+    if level == 1:
+        notes.append("Euler's degree-2 Moon is held to the level-2 target; the Moon's degree-3 field it lacks "
+                     "is what level 2 adds")
+    if source != "de421":
+        notes.append(f"orbits from {source}: the libration follows that orbit's departure from DE421's "
+                     "(REBOUND's lunar orbit drifts ~3\" in 10 yr)")
+    checks = (Check("pole", "pole_error_max_arcsec", pole, "″", why),
+              Check("longitude", "longitude_error_max_arcsec", lon, "″", why))
+    return Verdict("DE421", checks, "; ".join(notes))
+
 
 SCHEMA = {
     "model.level": Key(type=int, default=3, help="1..4, see LEVEL_NAMES"),
@@ -97,12 +135,16 @@ def run(scenario):
         figures["error_vs_runtime"] = plot_error_vs_runtime(rows)
     table = make_table(solution, angles, mats, ref_mats, librations)
     years = _years(solution.t)
-    figures = {"residuals_vs_de421": common.plot_series(
+    figures = {"residuals_vs_de421": common.titled(common.plot_series(
         years, np.array([table["pole_error"].value, table["longitude_error"].value]), "year (TDB)",
-        "model - DE421 [arcsec]", ["pole", "longitude"]),
-        "physical_libration": common.plot_series(
+        "model - DE421 [arcsec]", ["pole", "longitude"]), "pole and longitude, model minus DE421"),
+        "physical_libration": common.titled(common.plot_series(
             years, np.array([table[k].value for k in ("libration_longitude", "libration_latitude")]),
-            "year (TDB)", "physical libration [arcsec]", ["longitude tau", "latitude rho"]),
+            "year (TDB)", "physical libration [arcsec]", ["longitude τ", "latitude ρ"]), "physical libration"),
+        "libration_spectrum": common.titled(plot_spectrum(solution.t, librations["tau"], fit),
+                                            "libration in longitude τ, amplitude spectrum"),
+        "libration_zoom_vs_de421": common.titled(plot_zoom(solution.t, librations, ref_mats, orbits),
+                                                 "the last two years, model and DE421"),
         **figures}
     return common.result(scenario, table, summary, figures, solution)
 
@@ -322,6 +364,73 @@ def plot_error_vs_runtime(rows):
         ax.grid(alpha=0.3, which="both")
 
     return draw
+
+
+ZOOM_D = 730.5                      # the last two years of the run, against DE421
+
+
+def amplitude_spectrum(t, x):
+    """(period d, amplitude) of x(t): Hann-windowed, 4x zero-padded FFT of the detrended series on a
+    uniform grid; a sinusoid of amplitude a shows a peak of height ~a at its period."""
+    grid = np.linspace(t[0], t[-1], t.size)
+    y = np.interp(grid, t, x)
+    y = y - np.polyval(np.polyfit(grid, y, 1), grid)
+    window = np.hanning(y.size)
+    n = 4 * y.size
+    amplitude = 2 * np.abs(np.fft.rfft(y * window, n)) / window.sum()
+    frequency = np.fft.rfftfreq(n, grid[1] - grid[0])
+    return 1 / frequency[1:], amplitude[1:]
+
+
+def _period_d(text):
+    value, unit = text.split()
+    return float(value) * (365.25 if unit == "yr" else 1.0)
+
+
+def plot_spectrum(t, tau, fit):
+    """Physical libration in longitude: amplitude against period, the published (Meeus/Eckhardt)
+    and fitted terms marked."""
+    period, amplitude = amplitude_spectrum(t, tau / ARCSEC)
+    span = t[-1] - t[0]
+    rows = [r for r in fit["main"] + fit["other"] if _period_d(r["period"]) <= span / 2]   # resolved terms
+
+    def draw(fig):
+        ax = fig.add_subplot()
+        keep = period <= span
+        ax.loglog(period[keep], amplitude[keep], lw=0.7, color="0.3", label="model tau spectrum")
+        p = [_period_d(r["period"]) for r in rows]
+        ax.scatter(p, [abs(r["published_arcsec"]) for r in rows], marker="o", facecolors="none",
+                   edgecolors="C3", s=40, label="published (Eckhardt, in Meeus ch. 53)", zorder=3)
+        ax.scatter(p, [abs(r["fitted_arcsec"]) for r in rows], marker="x", color="C0", s=30,
+                   label="fitted at fixed arguments", zorder=3)
+        for r, pi in zip(rows, p):
+            if r not in fit["main"]:
+                continue
+            ax.annotate(r["term"], (pi, abs(r["published_arcsec"])), textcoords="offset points",
+                        xytext=(4, 6), fontsize=7)
+        ax.set_xlabel("period [d]")
+        ax.set_ylabel("amplitude of tau [arcsec]")
+        ax.set_ylim(1e-3, None)
+        ax.legend(fontsize=8, loc="lower right")
+        ax.grid(alpha=0.3, which="both")
+
+    return draw
+
+
+def plot_zoom(t, librations, ref_mats, orbits):
+    """The last two years (or the whole run if shorter): tau and rho of the model with DE421's."""
+    keep = t >= t[-1] - ZOOM_D
+    ref = physical_librations(t[keep], ref_mats[keep], orbits)
+    years = _years(t[keep])
+    tau, rho = librations["tau"][keep] / ARCSEC, librations["rho"][keep] / ARCSEC
+    tau_ref, rho_ref = ref["tau"] / ARCSEC, ref["rho"] / ARCSEC
+    diff = np.array([tau - tau_ref, rho - rho_ref])
+    scale, unit = (1000.0, "mas") if np.abs(diff).max() < 1.0 else (1.0, "arcsec")
+    return common.plot_panels(years, [
+        ([tau, tau_ref], ["model", "DE421"], "longitude τ [arcsec]"),
+        ([rho, rho_ref], ["model", "DE421"], "latitude ρ [arcsec]"),
+        (diff * scale, ["τ", "ρ"], f"model − DE421 [{unit}]")],
+        "year (TDB)")
 
 
 def _years(t):

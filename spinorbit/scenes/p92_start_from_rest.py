@@ -12,6 +12,7 @@ import numpy as np
 from ..constants import ARCSEC
 from ..dynamics import point_mass_system
 from ..scenarios import Key
+from ..verdict import Check, Verdict
 from . import common
 
 SCHEMA = {
@@ -20,6 +21,11 @@ SCHEMA = {
     "orbit.radius": Key(unit="km", help="distance s of F"),
     "force.direction": Key(unit="", size=3, help="direction of F in body principal axes"),
 }
+
+VERDICT = Verdict("Euler's first motion (§821-823)", (
+    Check("axis", "axis_error_arcsec", 1e-3, "″", "omega(t)/t turns by O(t): ~1e-4 of the 1e-4 d first step"),
+    Check("rate relative", "rate_rel_error", 1e-9, "", "omega(t)/t = d gamma'/dt + O(t^2) for a body at rest"),
+))
 
 
 def run(scenario):

@@ -11,6 +11,7 @@ import numpy as np
 from ..constants import ARCSEC
 from ..errors import ScenarioError
 from ..scenarios import Key
+from ..verdict import Check, Verdict
 from . import common
 from .p93_planar_libration import planar_system, zeta_from_solution
 
@@ -23,6 +24,11 @@ SCHEMA = {
     "orbit.beta": Key(unit="", help="amplitude of the inequality of 1/s^3"),
     "orbit.frequency": Key(unit="rad/d", help="Euler's A, the frequency of the inequality"),
 }
+
+VERDICT = Verdict("Euler's forced libration to second order (§835)", (
+    Check("zeta relative", "zeta_error_second_order_rel", 3e-4, "",
+          "the neglected terms O(alpha beta^2, n zeta^3) relative to the amplitude"),
+))
 
 
 def run(scenario):

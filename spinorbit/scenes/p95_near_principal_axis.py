@@ -16,6 +16,7 @@ import numpy as np
 from ..dynamics import point_mass_system
 from ..errors import ScenarioError
 from ..scenarios import Key
+from ..verdict import Check, Verdict
 from . import common
 
 SCHEMA = {
@@ -27,6 +28,12 @@ SCHEMA = {
     "orbit.radius": Key(unit="km", help="distance s of F"),
     "force.direction": Key(unit="", size=3, help="(cos AF, cos BF, cos CF) in Euler's axes A (= our z), B, C"),
 }
+
+VERDICT = Verdict("Euler's pole rates (§843a)", (
+    Check("pole shift relative", "pole_shift_rel_error", 2e-3, "",
+          "O((aa - cc)/cc gamma' t) over 0.002 d: the free rotation §840 drops"),
+    Check("spin change", "spin_rel_change", 1e-9, "", "§841: gamma' constant; integration floor"),
+))
 
 
 def run(scenario):

@@ -21,6 +21,7 @@ from ..dynamics import point_mass_system
 from ..errors import ResonanceError
 from ..rotations import matrix_from_quat
 from ..scenarios import Key
+from ..verdict import Check, Verdict
 from . import common
 
 SCHEMA = {
@@ -31,6 +32,23 @@ SCHEMA = {
     "orbit.radius": Key(unit="km", help="distance s of F"),
     "orbit.rate": Key(unit="rad/d", help="angular speed delta of F"),
 }
+
+_SECOND_ORDER = "Euler's theory is first order in N/delta and drops eps aa/cc - eps; 2e-3 covers the remainder"
+
+
+def verdict(scenario, comparison):
+    """Away from resonance: rate and 2 phi terms vs the closed form; where theory.SymmetricPrecession
+    finds eps aa/cc = 2 delta (``resonance_detected``): §849's growth."""
+    if comparison.get("resonance_detected"):
+        return Verdict("Euler's singular solution (§849)", (
+            Check("2φ growth relative", "za_2phi_growth_rel_error", 0.01, "",
+                  "§849 is first order in the detuning and in N/delta"),))
+    return Verdict("Euler's P96 closed forms (§846-847)", (
+        Check("precession rate relative", "precession_rate_gyroscopic_rel_error", 2e-3, "", _SECOND_ORDER),
+        Check("ZA 2φ relative", "za_2phi_half_range_measured_arcsec", 5e-3, "", _SECOND_ORDER,
+              versus="za_2phi_half_range_gyroscopic_arcsec", relative=True),
+        Check("XZA 2φ relative", "xza_2phi_amplitude_measured_arcsec", 5e-3, "", _SECOND_ORDER,
+              versus="xza_2phi_amplitude_gyroscopic_arcsec", relative=True)))
 
 
 def initial_state(n, eps, x0, y0):

@@ -29,8 +29,19 @@ from ..errors import ScenarioError
 from ..integrators import get_method, integrate
 from ..rotations import matrix_from_quat, quat_angle
 from ..scenarios import Key
+from ..verdict import Check, Verdict
 from . import common
 from .p96_precession import figure_axis_angles, initial_state
+
+
+
+def verdict(scenario, comparison):
+    """Converged runs agree, and every full-span run's precession rate matches P96's N cos n."""
+    return Verdict("a converged suzuki4 run; P96's N cos n", (
+        Check("converged runs agree", "reference_agreement_axis_rad", scenario["stress.reference_agreement_max"],
+              " rad", "stress.reference_agreement_max: the figure axis of two converged runs"),
+        Check("rate vs P96", "precession_rate_rel_error_max", scenario["stress.rate_rel_tol"], "",
+              "P96 is first order in N/delta = 1e-3 (stress.rate_rel_tol)")))
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="A <= B < C, nearly symmetric about C"),

@@ -28,9 +28,12 @@ from ..errors import ScenarioError
 from ..integrators import integrate
 from ..rotations import quat_angle, quat_multiply
 from ..scenarios import Key
+from ..verdict import Check, Verdict
 from . import common
 
 CASES = ("flip", "degenerate", "shapes", "long_run")
+VERDICT = Verdict("the case's closed form or invariant", (Check("its criteria", "passed", source="the case's criteria (module docstring; benchmarks/RESULTS.md, stress scenes)"),))
+
 SCHEMA = {
     "stress.case": Key(type=str, choices=CASES),
     "body.moments": Key(unit="", size=3, default=np.array([0.3, 0.35, 0.4]), help="A <= B <= C (flip, long_run)"),

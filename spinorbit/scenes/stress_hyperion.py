@@ -36,8 +36,22 @@ import numpy as np
 from ..integrators import integrate
 from ..integrators.rk8 import fixed_step
 from ..scenarios import Key
+from ..verdict import Check, Verdict
 from . import common
 from .planar_spin_orbit import kepler_orbit, planar_params, planar_rhs, rigid_body_system, theta_from_quaternions
+
+
+def verdict(scenario, comparison):
+    """The exponents' agreement between integrators and run lengths, the regular orbit, and all criteria."""
+    return Verdict("Benettin exponents, rk8 and dop853", (
+        Check("regular exponent", "lyapunov_regular_per_T", scenario["lyapunov.regular_max"], "/T",
+              "a regular orbit's exponent falls like ln t/t (lyapunov.regular_max)"),
+        *(Check(f"ensemble means, {pair.replace('_vs_', ' vs ').replace('_', ' ')}",
+                f"lyapunov_nominal_{pair}_sigmas", scenario["lyapunov.max_sigma"], " sigma",
+                "two integrators and two run lengths must give one mean exponent, within the ensemble's own "
+                "standard errors (lyapunov.max_sigma)") for pair in ("rk8_T_vs_rk8_2T", "rk8_T_vs_dop853_T")),
+        Check("all criteria", "passed", source="module docstring: (a)-(d)")))
+
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A < B < C (3-D runs); (B - A)/C for planar"),

