@@ -13,7 +13,7 @@ import numpy as np
 
 from ..constants import ARCSEC, J2000_JD, JULIAN_CENTURY_D
 from ..errors import ScenarioError
-from ..scenarios import Key
+from ..scenarios import SAMPLE_STEP, Key
 from . import common
 
 LEVELS = {
@@ -28,10 +28,10 @@ LEVEL_NAMES = {1: "Euler: degree-2 Moon, Earth + Sun point masses",
                4: "+ Venus, Mars, Jupiter, Saturn on the figure"}
 
 SCHEMA = {
-    "model.level": Key(type=int, default=3, help="1..4, see LEVEL_NAMES"),
+    "model.level": Key(type=int, default=3, min=1, max=4, help="1..4, see LEVEL_NAMES"),
     "model.tides": Key(type=bool, default=True, help="tidal/rotational distortion at levels 3-4"),
     "orbit.source": Key(type=str, default="de421", help="'de421', a .bsp name, or 'rebound'"),
-    "orbit.step": Key(unit="d", default=0.25, help="sampling step of the orbit interpolant"),
+    "orbit.step": Key(**SAMPLE_STEP, default=0.25, help="sampling step of the orbit interpolant"),
     "compare.source": Key(type=str, default="", help="also run driven by this source and report the difference"),
     "report.error_vs_runtime": Key(type=bool, default=False, help="rk8 steps and dop853 tolerances vs a converged run"),
 }

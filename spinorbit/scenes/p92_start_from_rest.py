@@ -11,13 +11,13 @@ import numpy as np
 
 from ..constants import ARCSEC
 from ..dynamics import point_mass_system
-from ..scenarios import Key
+from ..scenarios import DISTANCE, GM, Key
 from . import common
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A <= B <= C, any unit"),
-    "orbit.gm": Key(unit="km3/d2", help="GM of the centre of forces"),
-    "orbit.radius": Key(unit="km", help="distance s of F"),
+    "orbit.gm": Key(**GM, help="GM of the centre of forces"),
+    "orbit.radius": Key(**DISTANCE, help="distance s of F"),
     "force.direction": Key(unit="", size=3, help="direction of F in body principal axes"),
 }
 

@@ -13,15 +13,15 @@ import numpy as np
 from ..constants import ARCSEC
 from ..dynamics import point_mass_system
 from ..rotations import matrix_from_quat
-from ..scenarios import Key
+from ..scenarios import DISTANCE, GM, RATE, Key
 from . import common
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A < B <= C, any unit"),
-    "orbit.gm": Key(unit="km3/d2", help="GM of the centre of forces"),
-    "orbit.radius": Key(unit="km", help="distance s of F"),
-    "orbit.rate": Key(unit="rad/d", help="angular speed delta of F"),
-    "libration.energy_over_n": Key(unit="", help="Euler's constant C in units of n: -1, 0, 1 or > 1"),
+    "orbit.gm": Key(**GM, help="GM of the centre of forces"),
+    "orbit.radius": Key(**DISTANCE, help="distance s of F"),
+    "orbit.rate": Key(**RATE, help="angular speed delta of F"),
+    "libration.energy_over_n": Key(unit="", min=-1.0, max=1e6, help="Euler's constant C in units of n: -1, 0, 1 or > 1"),
 }
 
 

@@ -20,16 +20,16 @@ from ..constants import ARCSEC
 from ..dynamics import point_mass_system
 from ..errors import ResonanceError
 from ..rotations import matrix_from_quat
-from ..scenarios import Key
+from ..scenarios import ANGLE, DISTANCE, GM, RATE, SPIN, Key
 from . import common
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments cc = cc < aa (symmetric, oblate)"),
-    "body.spin": Key(unit="rad/d", help="spin rate eps about the figure axis"),
-    "body.obliquity": Key(unit="rad", help="initial angle n between the figure axis A and the orbit pole Z"),
-    "orbit.gm": Key(unit="km3/d2", help="GM of the centre of forces"),
-    "orbit.radius": Key(unit="km", help="distance s of F"),
-    "orbit.rate": Key(unit="rad/d", help="angular speed delta of F"),
+    "body.spin": Key(**SPIN, help="spin rate eps about the figure axis"),
+    "body.obliquity": Key(**ANGLE, help="initial angle n between the figure axis A and the orbit pole Z"),
+    "orbit.gm": Key(**GM, help="GM of the centre of forces"),
+    "orbit.radius": Key(**DISTANCE, help="distance s of F"),
+    "orbit.rate": Key(**RATE, help="angular speed delta of F"),
 }
 
 

@@ -28,15 +28,15 @@ import numpy as np
 
 from ..integrators import integrate
 from ..integrators.rk8 import RK8, _rk_fixed
-from ..scenarios import Key
+from ..scenarios import DISTANCE, GM, Key
 from . import common
 from .planar_spin_orbit import kepler_orbit, planar_params, planar_rhs, rigid_body_system, theta_from_quaternions
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A < B < C (3-D runs); (B - A)/C for planar"),
-    "orbit.gm": Key(unit="km3/d2", help="GM of Saturn"),
-    "orbit.a": Key(unit="km", help="semi-major axis"),
-    "orbit.e": Key(unit="", help="eccentricity"),
+    "orbit.gm": Key(**GM, help="GM of Saturn"),
+    "orbit.a": Key(**DISTANCE, help="semi-major axis"),
+    "orbit.e": Key(unit="", min=0.0, max=0.99, help="eccentricity"),
     "lyapunov.start": Key(unit="", size=2, help="nominal start at periapsis: theta - f (rad), theta'/n"),
     "lyapunov.orbits": Key(type=int, default=1000, help="length of the shorter nominal run, orbital periods"),
     "lyapunov.orbits_3d": Key(type=int, default=300, help="length of the 3-D run, orbital periods"),

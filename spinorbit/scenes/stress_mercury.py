@@ -22,7 +22,7 @@ import math
 import numpy as np
 
 from ..constants import ARCSEC
-from ..scenarios import Key
+from ..scenarios import DISTANCE, GM, Key
 from . import common
 from .planar_spin_orbit import forcing_coefficients, kepler_orbit, rigid_body_system, theta_from_quaternions
 
@@ -30,9 +30,9 @@ MARGOT_2007_ARCSEC = (35.8, 2.0)
 HARMONICS = 6          # fitted harmonics of M; the initial rate sums the linear forced solution to k = 24
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A < B < C; (B - A)/C sets the libration"),
-    "orbit.gm": Key(unit="km3/d2", help="GM of the Sun"),
-    "orbit.a": Key(unit="km", help="semi-major axis"),
-    "orbit.e": Key(unit="", help="eccentricity"),
+    "orbit.gm": Key(**GM, help="GM of the Sun"),
+    "orbit.a": Key(**DISTANCE, help="semi-major axis"),
+    "orbit.e": Key(unit="", min=0.0, max=0.99, help="eccentricity"),
     "stress.linear_rel_tol": Key(unit="", default=1e-3, help="pass: |measured/linear theory - 1|"),
     "stress.series_rel_tol": Key(unit="", default=1e-2, help="pass: |measured/Margot series - 1|"),
 }
