@@ -71,6 +71,8 @@ def _run(args):
     print(f"{scenario.name}: wrote {out}/ (summary.json, timeseries.ecsv, report.md)")
     for key, value in result.summary.get("comparison", {}).items():
         print(f"  {key} = {value:.6g}" if isinstance(value, float) else f"  {key} = {value}")
+    for key, reason in result.summary.get("not_measured", {}).items():
+        print(f"  {key}: {reason}")
     return 0
 
 

@@ -3,6 +3,7 @@
 Edge module (imports astropy).  ``run_scenario`` is the one entry point used by
 the command line and by notebooks.
 """
+import math
 from dataclasses import dataclass, field
 from typing import Callable
 
@@ -33,8 +34,33 @@ def run_scenario(scenario, overrides=()):
         if getattr(exc, "result", None) is None and getattr(exc, "partial", None) is not None:
             exc.result = partial_result(scenario, exc)
         raise
-    result.summary = {**base_summary(scenario), **result.summary}
+    result.summary = mark_unmeasured({**base_summary(scenario), **result.summary})
     return result
+
+
+def mark_unmeasured(summary):
+    """Replace every non-finite number in ``summary`` by None, with its reason in ``summary["not_measured"]``.
+
+    A scene that knows why a value cannot be measured sets it to None and gives the
+    reason itself (``not_measured[dotted key] = reason``); any NaN or inf left is
+    caught here, so summary.json is always valid JSON and never holds NaN.
+    """
+    reasons = dict(summary.get("not_measured", {}))
+
+    def clean(value, name):
+        if hasattr(value, "tolist"):              # numpy arrays and scalars
+            value = value.tolist()
+        if isinstance(value, dict):
+            return {k: clean(v, f"{name}.{k}" if name else str(k)) for k, v in value.items()}
+        if isinstance(value, (list, tuple)):
+            return [clean(v, name) for v in value]
+        if isinstance(value, float) and not math.isfinite(value):
+            reasons.setdefault(name, f"the computed value was {value} (not a measurement)")
+            return None
+        return value
+
+    cleaned = clean({k: v for k, v in summary.items() if k != "not_measured"}, "")
+    return {**cleaned, "not_measured": reasons} if reasons else cleaned
 
 
 def partial_result(scenario, exc):
@@ -45,7 +71,7 @@ def partial_result(scenario, exc):
     run = {"method": partial.method, "wall_s": partial.wall_s, "rhs_evaluations": partial.nfev,
            "steps": partial.nsteps, "failed_at_tdb_d": exc.t, "outputs_written": int(partial.t.size)}
     table = attitude_table(partial) if partial.t.size else None
-    return RunResult(scenario, table, {**base_summary(scenario), "run": run}, {}, partial)
+    return RunResult(scenario, table, mark_unmeasured({**base_summary(scenario), "run": run}), {}, partial)
 
 
 def base_summary(scenario):
