@@ -20,6 +20,8 @@ def main(argv=None):
     run.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
                      help="override a scenario key by dotted path (repeatable)")
     run.add_argument("--out", help="run directory (default runs/<scenario name>)")
+    run.add_argument("--force", action="store_true",
+                     help="overwrite files in --out that spinorbit did not write (others are kept)")
     sweep = sub.add_parser("sweep", help="run a parameter sweep / ensemble on Dask (local cluster by default)")
     sweep.add_argument("scenario")
     sweep.add_argument("--vary", action="append", required=True, metavar="KEY=V1,V2,...",
@@ -55,19 +57,22 @@ def main(argv=None):
 def _run(args):
     from .reports import write_run
     from .results import run_scenario
+    from .rundir import RunDirectory
     from .scenarios import load_scenario
 
     scenario = load_scenario(args.scenario, args.overrides)
     out = Path(args.out or Path("runs") / scenario.name)
-    try:
-        result = run_scenario(scenario)
-    except IntegrationError as exc:
-        partial = getattr(exc, "result", None)
-        if partial is not None:
-            write_run(partial, out, status="failed", error=exc)
-            print(f"partial output written to {out}/", file=sys.stderr)
-        raise
-    write_run(result, out)
+    with RunDirectory(out, force=args.force) as run_dir:        # locked; foreign files refused up front
+        try:
+            result = run_scenario(scenario)
+        except IntegrationError as exc:
+            partial = getattr(exc, "result", None)
+            if partial is not None:
+                where = run_dir.fail(lambda d: write_run(partial, d, status="failed", error=exc))
+                kept = "" if where == run_dir.out else f"; the previous run in {out}/ is kept"
+                print(f"partial output written to {where}/{kept}", file=sys.stderr)
+            raise
+        run_dir.commit(lambda d: write_run(result, d))
     print(f"{scenario.name}: wrote {out}/ (summary.json, timeseries.ecsv, report.md)")
     for key, value in result.summary.get("comparison", {}).items():
         print(f"  {key} = {value:.6g}" if isinstance(value, float) else f"  {key} = {value}")
