@@ -106,11 +106,13 @@ COMMON_SCHEMA = {
     "output.plots": Key(type=bool, default=True),
 }
 # integrator.<option> keys are passed to the chosen method, which checks their names;
-# the known ones are checked here first (scipy would silently raise rtol below 100 eps).
+# the known ones are checked here first.  scipy silently raises rtol below 100 eps, and
+# looser than 1e-3 (scipy's own default) an attitude run is nonsense (rtol 0.1 on
+# p93_bounded: zeta off by 62 deg); atol below 1e-20 is under the rounding of any state.
 OPEN_TABLES = ("integrator",)
 INTEGRATOR_OPTIONS = {
-    "rtol": Key(unit="", min=100 * EPS, max=0.1, help="relative tolerance"),
-    "atol": Key(unit="", min=1e-20, max=0.1, help="absolute tolerance"),
+    "rtol": Key(unit="", min=100 * EPS, max=1e-3, help="relative tolerance"),
+    "atol": Key(unit="", min=1e-20, max=1e-3, help="absolute tolerance"),
     "max_step": Key(unit="", positive=True, help="largest step, days"),
     "step": Key(unit="d", positive=True, count="integrator steps", help="fixed step"),
 }
@@ -310,18 +312,21 @@ def _to_float(key, value, unit):
             example = value if len(str(value)) <= 20 else 1.0
             raise ScenarioError(key, value, f"a quantity with a unit convertible to '{unit}', e.g. \"{example} {unit}\"")
         return _finite_float(key, value)
-    try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("error")          # astropy's unit warnings: refuse, do not print
+    example = f'"1.0 {unit}"' if unit else "1.0"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")          # astropy's unit and overflow warnings: refuse, do not print
+        try:
             quantity = u.Quantity(value)
-    except (TypeError, ValueError, ArithmeticError, LookupError, RecursionError, Warning):
-        raise ScenarioError(key, value, f"a quantity such as \"1.0 {unit or ''}\"".replace(' "', ' "')) from None
-    if not quantity.isscalar:
-        raise ScenarioError(key, value, f"a single quantity such as \"1.0 {unit or ''}\"")
-    try:
-        return float(quantity.to_value(unit or u.dimensionless_unscaled, equivalencies=u.dimensionless_angles() if unit and "rad" in unit else []))
-    except (u.UnitsError, TypeError, ValueError):
-        raise ScenarioError(key, value, f"units convertible to '{unit or 'dimensionless'}'") from None
+        except (TypeError, ValueError, ArithmeticError, LookupError, RecursionError, Warning):
+            raise ScenarioError(key, value, f"a quantity such as {example}") from None
+        if not quantity.isscalar:
+            raise ScenarioError(key, value, f"a single quantity such as {example}")
+        try:
+            return float(quantity.to_value(unit or u.dimensionless_unscaled, equivalencies=u.dimensionless_angles() if unit and "rad" in unit else []))
+        except (u.UnitsError, TypeError, ValueError):
+            raise ScenarioError(key, value, f"units convertible to '{unit or 'dimensionless'}'") from None
+        except (ArithmeticError, Warning):
+            raise ScenarioError(key, value, "a finite quantity (this one overflows)") from None
 
 
 def _finite_float(key, value):
