@@ -39,7 +39,7 @@ LIMITS = {"output rows": (1_000_000, 200), "orbit samples": (10_000_000, 150),
           "integrator steps": (100_000_000, 0)}
 EPS = float(np.finfo(float).eps)
 # Plausible ranges scenes share, in internal units: Key(**GM, help=...).
-GM = dict(unit="km3/d2", positive=True, max=1e24)        # up to ~1000 solar masses
+GM = dict(unit="km3/d2", positive=True, max=1e22)        # up to ~10 solar masses
 DISTANCE = dict(unit="km", min=1.0, max=1e12)            # 1 km to ~7000 au
 RATE = dict(unit="rad/d", min=-1e3, max=1e3)             # orbital rates (Phobos: 20 rad/d)
 SPIN = dict(unit="rad/d", min=-1e6, max=1e6)             # spin rates (a pulsar-fast 1e6 rad/d is absurd)
