@@ -35,8 +35,9 @@ REQUIRED = object()
 MAX_DEPTH = 8                  # nesting of tables and arrays in a scenario
 MAX_TEXT = 10_000              # characters in a string value
 # What a step over the span may ask for: count limit and bytes per item (estimate).
+# Compiled fixed-step methods take ~1-10 us a step; scipy's adaptive ones ~100 us (Python per stage).
 LIMITS = {"output rows": (1_000_000, 200), "orbit samples": (10_000_000, 150),
-          "integrator steps": (100_000_000, 0)}
+          "integrator steps": (100_000_000, 0), "adaptive steps (at max_step)": (1_000_000, 0)}
 EPS = float(np.finfo(float).eps)
 # Plausible ranges scenes share, in internal units: Key(**GM, help=...).
 GM = dict(unit="km3/d2", positive=True, max=1e22)        # up to ~10 solar masses
@@ -113,10 +114,16 @@ OPEN_TABLES = ("integrator",)
 INTEGRATOR_OPTIONS = {
     "rtol": Key(unit="", min=100 * EPS, max=1e-3, help="relative tolerance"),
     "atol": Key(unit="", min=1e-20, max=1e-3, help="absolute tolerance"),
-    "max_step": Key(unit="", positive=True, help="largest step, days"),
+    "max_step": Key(unit="", positive=True, count="adaptive steps (at max_step)", help="largest step, days"),
     "step": Key(unit="d", positive=True, count="integrator steps", help="fixed step"),
 }
 MIN_SPAN_D = 1e-6              # shortest span, days (0.0864 s)
+# Cycles a run may have to follow: any rate key (rad/d) times the span, and the torque's own
+# time-scale sqrt(3 GM/s^3) when a scene has orbit.gm and a distance.  The fast-spin stress
+# scene follows 1e5 spin cycles (a compiled splitting method); dop853 costs ~10 ms per cycle
+# (p93 at orbit.rate = 1000 rad/d: 3200 cycles in 45 s), so 2e5 cycles is about half an hour.
+MAX_CYCLES = 2e5
+DISTANCE_KEYS = ("orbit.radius", "orbit.f", "orbit.a")
 
 
 class Scenario:
@@ -140,6 +147,7 @@ class Scenario:
         self._options = self._integrator_options()
         self.t_start, self.t_end = self._span()
         self._check_counts()
+        self._check_cycles()
         from .integrators import get_method
 
         get_method(self["integrator.method"])(**self.integrator_options())   # checks method and options now
@@ -236,8 +244,8 @@ class Scenario:
         """Refuse a step that would ask for too many rows, samples or steps over the span."""
         span = abs(self.t_end - self.t_start)
         steps = [(key, spec, self.values[key]) for key, spec in self.schema.items() if spec.count]
-        if "step" in self._options:
-            steps.append(("integrator.step", INTEGRATOR_OPTIONS["step"], self._options["step"]))
+        steps += [(f"integrator.{name}", INTEGRATOR_OPTIONS[name], self._options[name])
+                  for name in ("step", "max_step") if name in self._options]
         for key, spec, step in steps:
             limit, item_bytes = LIMITS[spec.count]
             n = span / step + 1
@@ -247,6 +255,23 @@ class Scenario:
                 raise ScenarioError(key, _lookup(self.data, key, spec) if _has(self.data, key) else step,
                                     f"a step giving at most {limit:,} {spec.count} over the {span:.6g} d span "
                                     f"(this one gives {count}{memory}); lengthen {key} or shorten the span")
+
+
+    def _check_cycles(self):
+        """Refuse rates (and GM over distance^3) that would make the run follow more than MAX_CYCLES cycles."""
+        span = abs(self.t_end - self.t_start)
+        rates = [(key, float(np.linalg.norm(self.values[key])), "") for key, spec in self.schema.items()
+                 if spec.unit == "rad/d" and self.values[key] is not None]
+        distance = next((key for key in DISTANCE_KEYS if key in self.values), None)
+        if "orbit.gm" in self.values and distance:
+            torque_rate = math.sqrt(3 * self.values["orbit.gm"] / self.values[distance] ** 3)
+            rates.append((distance, torque_rate, f" (sqrt(3 orbit.gm/{distance}^3) = {torque_rate:.3g} rad/d)"))
+        for key, rate, how in rates:
+            cycles = rate * span / (2 * math.pi)
+            if cycles > MAX_CYCLES:
+                raise ScenarioError(key, _lookup(self.data, key, Key()) if _has(self.data, key) else rate,
+                                    f"a value giving at most {MAX_CYCLES:.0e} cycles over the {span:.6g} d span "
+                                    f"(this one gives {cycles:.3g}{how}); change {key} or shorten the span")
 
 
 def check_depth(data, where, limit=MAX_DEPTH):

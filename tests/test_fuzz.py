@@ -163,6 +163,7 @@ def test_the_issue_cases_each_name_their_key(capsys):
         'span.step="inf d"': "span.step", 'orbit.gm="1e30 km3/s2"': "orbit.gm", 'orbit.radius="inf km"': "orbit.radius",
         'orbit.rate="1e9 deg/d"': "orbit.rate", "scene.kind={a = 1}": "scene.kind",
         "integrator.rtol=" + "9" * 5000: "integrator.rtol", "body.moments=[nan, 1, 1]": "body.moments",
+        'orbit.radius="1 km"': "orbit.radius", "integrator.max_step=1e-6": "integrator.max_step",
     }
     for assignment, key in cases.items():
         assert main(["run", str(SCENE_FILES["p93_bounded"]), "--out", "unused", "--set", assignment]) == 2
