@@ -111,8 +111,12 @@ def _list(folder):
         print(f"no scenarios in {folder}/")
         return 0
     for path in files:
-        scene = tomllib.loads(path.read_text()).get("scene", {})
-        print(f"{str(path.relative_to(folder)):48s} {scene.get('kind', '?'):28s} {scene.get('title', '')}")
+        try:
+            scene = tomllib.loads(path.read_bytes().decode("utf-8")).get("scene", {})
+        except (UnicodeDecodeError, ValueError, RecursionError):     # TOMLDecodeError is a ValueError
+            scene = {"title": "(not a readable UTF-8 TOML file)"}
+        scene = scene if isinstance(scene, dict) else {}
+        print(f"{str(path.relative_to(folder)):48s} {str(scene.get('kind', '?')):28s} {str(scene.get('title', ''))[:80]}")
     return 0
 
 

@@ -32,6 +32,10 @@ class RunDirectory:
     """``with RunDirectory(out) as run: run.commit(write)``; ``write(path)`` fills a directory."""
 
     def __init__(self, out, force=False):
+        try:
+            str(out).encode("utf-8")
+        except UnicodeEncodeError as exc:          # undecodable bytes from the command line
+            raise ScenarioError("--out", str(out), f"a UTF-8 path (a byte that is not UTF-8 at offset {exc.start})") from None
         self.out = Path(out).resolve()
         self.force = force
         parent, name = self.out.parent, self.out.name

@@ -396,12 +396,20 @@ def _lookup(data, key, spec):
     return node
 
 
+def _is_utf8(text):
+    """False for command-line text holding undecodable bytes (surrogate escapes)."""
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError:
+        return False
+    return True
+
+
 def apply_override(data, assignment):
     """Apply one ``--set dotted.key=value`` (value parsed as TOML, else taken as a string)."""
-    try:
-        assignment.encode("utf-8")
-    except UnicodeEncodeError as exc:      # undecodable bytes in the command line
-        raise ScenarioError("--set", assignment, f"UTF-8 text (a byte that is not UTF-8 at offset {exc.start})") from None
+    if not _is_utf8(assignment):
+        offset = next(i for i, c in enumerate(assignment) if not _is_utf8(c))
+        raise ScenarioError("--set", assignment, f"UTF-8 text (a byte that is not UTF-8 at offset {offset})")
     if "=" not in assignment:
         raise ScenarioError("--set", assignment, "key=value, e.g. span.end=2030-01-01")
     key, text = (s.strip() for s in assignment.split("=", 1))
@@ -423,8 +431,8 @@ def apply_override(data, assignment):
 def load_scenario(path, overrides=()):
     """Read and validate a scenario file; ``overrides`` are ``key=value`` strings."""
     path = Path(path)
-    if not path.is_file():
-        raise ScenarioError("scenario", str(path), "an existing .toml file (see `spinorbit list`)")
+    if not path.is_file() or not _is_utf8(str(path)):
+        raise ScenarioError("scenario", str(path), "an existing .toml file with a UTF-8 name (see `spinorbit list`)")
     raw = path.read_bytes()
     try:
         text = raw.decode("utf-8")
