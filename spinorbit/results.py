@@ -28,8 +28,11 @@ def run_scenario(scenario, overrides=()):
     """Run a scenario (a Scenario or a path to its TOML file) and return a RunResult."""
     if not isinstance(scenario, Scenario):
         scenario = load_scenario(scenario, overrides)
+    import numpy as np
+
     try:
-        result = scenario.module.run(scenario)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):   # NaN/inf are reported as not measured
+            result = scenario.module.run(scenario)
     except IntegrationError as exc:
         if getattr(exc, "result", None) is None and getattr(exc, "partial", None) is not None:
             exc.result = partial_result(scenario, exc)

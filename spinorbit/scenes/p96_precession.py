@@ -118,9 +118,24 @@ def run(scenario):
             "za_2phi_growth_rel_error": growth / secular["growth_rate"] - 1,
             "detuning_eps_aa_over_cc_minus_2delta_rad_per_d": true.eps_f - 2 * delta,
         })
+    not_measured = _unsupported(comparison, dt[-1], delta)
     table = common.attitude_table(solution)
     table["ZA"] = p * common.u().rad
     table["XZA"] = lam * common.u().rad
     figures = {"ZA": common.plot_series(dt, np.degrees(p), "days from start", "ZA [deg]"),
                "XZA": common.plot_series(dt, np.degrees(lam), "days from start", "XZA [deg]")}
-    return common.result(scenario, table, {"comparison": comparison, "run": point}, figures, solution)
+    summary = {"comparison": comparison, "run": point, **({"not_measured": not_measured} if not_measured else {})}
+    return common.result(scenario, table, summary, figures, solution)
+
+
+def _unsupported(comparison, span_d, delta):
+    """Blank the fitted values (None, with the reason) when the span is shorter than one orbit of F:
+    the fit cannot then tell the precession from the 2 phi inequality."""
+    orbit_d = 2 * math.pi / abs(delta) if delta else math.inf
+    if span_d >= orbit_d:
+        return {}
+    reason = (f"not measured: the {span_d:.6g} d span is shorter than one orbit of F ({orbit_d:.6g} d), "
+              "so the fit cannot separate the precession from the 2 phi inequality; lengthen span.end")
+    fitted = [key for key in comparison if "measured" in key or key.endswith("rel_error")]
+    comparison.update(dict.fromkeys(fitted))
+    return {f"comparison.{key}": reason for key in fitted}
