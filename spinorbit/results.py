@@ -7,6 +7,8 @@ import math
 from dataclasses import dataclass, field
 from typing import Callable
 
+import numpy as np
+
 from .errors import IntegrationError
 from .scenarios import Scenario, load_scenario
 
@@ -28,8 +30,6 @@ def run_scenario(scenario, overrides=()):
     """Run a scenario (a Scenario or a path to its TOML file) and return a RunResult."""
     if not isinstance(scenario, Scenario):
         scenario = load_scenario(scenario, overrides)
-    import numpy as np
-
     try:
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):   # NaN/inf are reported as not measured
             result = scenario.module.run(scenario)

@@ -13,11 +13,11 @@ Times are ISO strings in TDB; ``span.end`` may also be a duration from
 ``span.start`` (``"100 yr"``, ``"1073.15 d"``).
 
 Beyond types and units, every number must be finite and inside its key's
-plausible range (``Key.min``/``Key.max``), tolerances inside (0, 1), and a
-step over the span must not ask for more output rows, orbit samples or
-integrator steps than ``LIMITS`` allows: the run is refused up front with the
-estimate, instead of hanging or filling the memory.  Files must be UTF-8 and
-nest at most ``MAX_DEPTH`` levels.
+plausible range (``Key.min``/``Key.max``), tolerances inside [100 eps, 1e-3];
+a step over the span must not ask for more output rows, orbit samples or
+integrator steps than ``LIMITS`` allows, nor a rate for more than ``MAX_CYCLES``
+cycles: the run is refused up front with the estimate, instead of hanging or
+filling the memory.  Files must be UTF-8 and nest at most ``MAX_DEPTH`` levels.
 """
 import datetime
 import math
@@ -43,7 +43,7 @@ EPS = float(np.finfo(float).eps)
 GM = dict(unit="km3/d2", positive=True, max=1e22)        # up to ~10 solar masses
 DISTANCE = dict(unit="km", min=1.0, max=1e12)            # 1 km to ~7000 au
 RATE = dict(unit="rad/d", min=-1e3, max=1e3)             # orbital rates (Phobos: 20 rad/d)
-SPIN = dict(unit="rad/d", min=-1e6, max=1e6)             # spin rates (a pulsar-fast 1e6 rad/d is absurd)
+SPIN = dict(unit="rad/d", min=-1e6, max=1e6)             # spin rates, up to ~160 000 turns a day
 ANGLE = dict(unit="rad", min=-2 * math.pi, max=2 * math.pi)
 SAMPLE_STEP = dict(unit="d", positive=True, max=10.0, count="orbit samples")
 
