@@ -57,7 +57,8 @@ class Key:
     ``choices``: accepted strings; ``type``: python type for non-quantities.
     ``min``/``max``: plausible range of a number (in ``unit``), inclusive;
     ``positive``: must be > 0; ``count``: a step whose number over the span is
-    limited (a key of ``LIMITS``).
+    limited (a key of ``LIMITS``); ``direction``: a vector the scene normalises
+    (non-zero, with a finite length).
     """
 
     unit: str | None = None
@@ -70,6 +71,7 @@ class Key:
     max: float = math.inf
     positive: bool = False
     count: str = ""
+    direction: bool = False
 
     def accepted(self):
         if self.choices:
@@ -215,7 +217,12 @@ class Scenario:
         if spec.size:
             if not isinstance(value, list) or len(value) != spec.size:
                 raise ScenarioError(key, value, spec.accepted())
-            return np.array([_checked_float(key, v, spec) for v in value])
+            vector = np.array([_checked_float(key, v, spec) for v in value])
+            with np.errstate(over="ignore"):
+                length = np.linalg.norm(vector)
+            if spec.direction and not 0 < length < math.inf:
+                raise ScenarioError(key, value, f"a direction: {spec.size} numbers, not all zero, with a finite length")
+            return vector
         return _checked_float(key, value, spec)
 
     def _integrator_options(self):

@@ -165,6 +165,9 @@ def test_the_issue_cases_each_name_their_key(capsys):
         "integrator.rtol=" + "9" * 5000: "integrator.rtol", "body.moments=[nan, 1, 1]": "body.moments",
         'orbit.radius="1 km"': "orbit.radius", "integrator.max_step=1e-6": "integrator.max_step",
     }
+    for assignment in ("force.direction=[0, 0, 0]", "force.direction=[1e300, 1e300, 1e300]"):
+        assert main(["run", str(ROOT / "scenarios" / "p95_symmetric.toml"), "--out", "unused", "--set", assignment]) == 2
+        assert capsys.readouterr().err.startswith("error: force.direction: got ")
     for assignment, key in cases.items():
         assert main(["run", str(SCENE_FILES["p93_bounded"]), "--out", "unused", "--set", assignment]) == 2
         err = capsys.readouterr().err

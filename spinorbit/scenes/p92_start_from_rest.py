@@ -18,7 +18,7 @@ SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A <= B <= C, any unit"),
     "orbit.gm": Key(**GM, help="GM of the centre of forces"),
     "orbit.radius": Key(**DISTANCE, help="distance s of F"),
-    "force.direction": Key(unit="", size=3, help="direction of F in body principal axes"),
+    "force.direction": Key(unit="", size=3, direction=True, help="direction of F in body principal axes"),
 }
 
 

@@ -25,7 +25,7 @@ SCHEMA = {
     "body.pole_angle": Key(**ANGLE, default=0.0, help="rho = angle BAO"),
     "orbit.gm": Key(**GM, help="GM of the centre of forces"),
     "orbit.radius": Key(**DISTANCE, help="distance s of F"),
-    "force.direction": Key(unit="", size=3, help="(cos AF, cos BF, cos CF) in Euler's axes A (= our z), B, C"),
+    "force.direction": Key(unit="", size=3, direction=True, help="(cos AF, cos BF, cos CF) in Euler's axes A (= our z), B, C"),
 }
 
 
