@@ -1,10 +1,12 @@
 """Fuzz the command line: mutated scenes run through `spinorbit run`, each outcome classified.
 
-    python benchmarks/fuzz_cli.py [--cases 120] [--seed 13] [--timeout 120] [--out runs/fuzz]
+    python benchmarks/fuzz_cli.py [--cases 120] [--seed 13] [--timeout 120] [--out runs/fuzz] [--near]
 
 Mutations of four scenes (p93_bounded, free_body, p96_earthlike, moon_libration on a short span):
 wrong types, NaN/inf/huge/zero numbers, wrong units, bad dates, long strings, non-UTF-8 bytes,
-deep nesting, integers past Python's digit limit, as file edits and as ``--set``.  Outcomes:
+deep nesting, integers past Python's digit limit, as file edits and as ``--set``; with
+``--near``, numbers (plausible and extreme) in each key's own unit, which probe the ranges and
+run.  Outcomes:
 ``error`` (exit 2, one stderr line), ``ok`` (exit 0, strict JSON summary without NaN),
 ``failed`` (exit 3), and the bad ones: ``traceback``, ``hang`` (timeout), ``nan`` (exit 0 with a
 non-finite summary), ``noisy`` (exit 2 with more than one line), ``other``.  Writes
@@ -35,9 +37,19 @@ TEXTS = ['"2000-13-01"', '"1899-12-31"', '"9999-12-31T23:59:59"', '"x"', '"' + "
          "[1, 2]", "[" * 2000 + "]" * 2000, "true", '"de421"', '"/nonexistent.bsp"', '"rebound"']
 
 
-def mutation(rng, scene):
-    """One (--set list, file edit or None) mutation."""
+# The key's own unit, so that a value passes the unit check and probes the key's range.
+UNIT_OF = {"orbit.gm": "km3/s2", "orbit.radius": "km", "orbit.rate": "deg/d", "body.spin": "rad/d",
+           "body.obliquity": "deg", "span.step": "d", "span.end": "d", "orbit.step": "d", "integrator.rtol": "",
+           "integrator.atol": "", "integrator.max_step": "", "libration.energy_over_n": "", "model.level": ""}
+NEAR = ["0.1", "3", "0.001", "100", "1e4", "1e-4", "2e5", "-3", "0.9", "1e6"]
+
+
+def mutation(rng, scene, near):
+    """One (--set list, file edit or None) mutation; ``near``: a plausible number in the key's own unit."""
     key = rng.choice(KEYS[scene] + COMMON)
+    if near and key in UNIT_OF:
+        number = rng.choice(NEAR + NUMBERS[:9])
+        return [f"{key}={number}" if not UNIT_OF[key] else f'{key}="{number} {UNIT_OF[key]}"'], None
     kind = rng.random()
     if kind < 0.45:
         value = f'"{rng.choice(NUMBERS)} {rng.choice(UNITS)}"'.replace(' "', '"')
@@ -89,6 +101,7 @@ def main():
     parser.add_argument("--seed", type=int, default=13)
     parser.add_argument("--timeout", type=float, default=120.0)
     parser.add_argument("--out", default="runs/fuzz")
+    parser.add_argument("--near", action="store_true", help="plausible numbers in each key's own unit")
     args = parser.parse_args()
     out = Path(args.out).resolve()
     out.mkdir(parents=True, exist_ok=True)
@@ -96,7 +109,7 @@ def main():
     rows = []
     for i in range(args.cases):
         scene = rng.choice(sorted(SHORT))
-        sets, junk = mutation(rng, scene)
+        sets, junk = mutation(rng, scene, args.near)
         outcome, detail = run_case(scene, sets, junk, out, args.timeout)
         rows.append({"case": i, "scene": scene, "set": " ".join(s[:80] for s in sets),
                      "junk": junk, "outcome": outcome, "detail": detail})
