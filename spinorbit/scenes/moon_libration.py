@@ -83,7 +83,12 @@ def run(scenario):
     figures = {}
     other = scenario["compare.source"]
     if other:
-        system_b, _ = build_system(scenario, other)
+        try:
+            system_b, _ = build_system(scenario, other)
+        except ScenarioError as exc:                   # the error is about this source, not orbit.source
+            if exc.key != "orbit.source":
+                raise
+            raise ScenarioError("compare.source", other, exc.accepted) from None
         sol_b, _ = common.simulate_scenario(scenario, system_b, t_out)
         pole, lon = _pole_lon(mats, model_angles(sol_b)[1])
         comparison[f"pole_difference_vs_{other}_driven_max_arcsec"] = float(np.abs(pole).max() / ARCSEC)
