@@ -29,6 +29,8 @@ def main(argv=None):
                      help="override a scenario key by dotted path (repeatable)")
     run.add_argument("--out", help="run directory (default runs/<scenario name>)")
     run.add_argument("--strict", action="store_true", help=f"exit {EXIT_VERDICT_FAIL} when the verdict is 'fail'")
+    run.add_argument("--force", action="store_true",
+                     help="overwrite files in --out that spinorbit did not write (others are kept)")
     sweep = sub.add_parser("sweep", help="run a parameter sweep / ensemble on Dask (local cluster by default)")
     sweep.add_argument("scenario")
     sweep.add_argument("--vary", action="append", required=True, metavar="KEY=V1,V2,...",
@@ -66,19 +68,22 @@ def main(argv=None):
 def _run(args):
     from .reports import write_run
     from .results import run_scenario
+    from .rundir import RunDirectory
     from .scenarios import load_scenario
 
     scenario = load_scenario(args.scenario, args.overrides)
     out = Path(args.out or Path("runs") / scenario.name)
-    try:
-        result = run_scenario(scenario)
-    except IntegrationError as exc:
-        partial = getattr(exc, "result", None)
-        if partial is not None:
-            write_run(partial, out, status="failed", error=exc)
-            print(f"partial output written to {out}/", file=sys.stderr)
-        raise
-    write_run(result, out)
+    with RunDirectory(out, force=args.force) as run_dir:        # locked; foreign files refused up front
+        try:
+            result = run_scenario(scenario)
+        except IntegrationError as exc:
+            partial = getattr(exc, "result", None)
+            if partial is not None:
+                where = run_dir.fail(lambda d: write_run(partial, d, status="failed", error=exc))
+                kept = "" if where == run_dir.out else f"; the previous run in {out}/ is kept"
+                print(f"partial output written to {where}/{kept}", file=sys.stderr)
+            raise
+        run_dir.commit(lambda d: write_run(result, d))
     verdict = result.summary["verdict"]
     print(verdict["headline"])
     if verdict.get("note"):
@@ -86,6 +91,8 @@ def _run(args):
     print(f"wrote {out}/ (summary.json, timeseries.ecsv, report.md)")
     for key, value in result.summary.get("comparison", {}).items():
         print(f"  {key} = {value:.6g}" if isinstance(value, float) else f"  {key} = {value}")
+    for key, reason in result.summary.get("not_measured", {}).items():
+        print(f"  {key}: {reason}")
     return EXIT_VERDICT_FAIL if args.strict and verdict["result"] == "fail" else 0
 
 
@@ -119,8 +126,12 @@ def _list(folder):
         print(f"no scenarios in {folder}/")
         return 0
     for path in files:
-        scene = tomllib.loads(path.read_text()).get("scene", {})
-        print(f"{str(path.relative_to(folder)):48s} {scene.get('kind', '?'):28s} {scene.get('title', '')}")
+        try:
+            scene = tomllib.loads(path.read_bytes().decode("utf-8")).get("scene", {})
+        except (UnicodeDecodeError, ValueError, RecursionError):     # TOMLDecodeError is a ValueError
+            scene = {"title": "(not a readable UTF-8 TOML file)"}
+        scene = scene if isinstance(scene, dict) else {}
+        print(f"{str(path.relative_to(folder)):48s} {str(scene.get('kind', '?')):28s} {str(scene.get('title', ''))[:80]}")
     return 0
 
 

@@ -1,6 +1,9 @@
 """Exceptions, each named after what went wrong and saying what to do next."""
 
 
+ECHO_CHARS = 80                # longest key or value echoed in an error message
+
+
 class SpinorbitError(Exception):
     """Base of every error this package raises on purpose."""
 
@@ -8,12 +11,19 @@ class SpinorbitError(Exception):
 class ScenarioError(SpinorbitError, ValueError):
     """A scenario key has a value the code cannot use.
 
-    The message names the dotted key path, what was given and what is accepted.
+    The message names the dotted key path, what was given and what is accepted,
+    on one line: a long key or value is cut to ``ECHO_CHARS`` characters.
     """
 
     def __init__(self, key, given, accepted):
         self.key, self.given, self.accepted = key, given, accepted
-        super().__init__(f"{key}: got {given!r}; expected {accepted}")
+        super().__init__(f"{_short(str(key))}: got {_short(repr(given))}; expected {' '.join(str(accepted).split())}")
+
+
+def _short(text, limit=ECHO_CHARS):
+    """``text`` on one line, cut to ``limit`` characters with the full length said."""
+    text = text.replace("\n", "\\n").replace("\r", "\\r")
+    return text if len(text) <= limit else f"{text[:limit]}... ({len(text)} characters)"
 
 
 class PhysicsError(SpinorbitError, ValueError):

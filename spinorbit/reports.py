@@ -18,7 +18,8 @@ def write_run(result, out_dir, status="ok", error=None):
     summary = {**result.summary, "status": status}
     if error is not None:
         summary["error"] = str(error)
-    written = [_atomic(out / "summary.json", lambda p: p.write_text(json.dumps(_jsonable(summary), indent=2) + "\n"))]
+    text = json.dumps(_jsonable(summary), indent=2, allow_nan=False) + "\n"
+    written = [_atomic(out / "summary.json", lambda p: p.write_text(text))]
     if result.table is not None and len(result.table):
         written.append(_atomic(out / "timeseries.ecsv", lambda p: result.table.write(p, format="ascii.ecsv", overwrite=True)))
     plots = write_plots(result, out) if result.scenario["output.plots"] else []
@@ -136,7 +137,7 @@ def _jsonable(value):
         return _jsonable(value.tolist())
     if isinstance(value, (np.floating, float)):
         value = float(value)
-        return value if math.isfinite(value) else str(value)
+        return value if math.isfinite(value) else None     # results.mark_unmeasured says why
     if isinstance(value, np.integer):
         return int(value)
     if isinstance(value, np.bool_):

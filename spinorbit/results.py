@@ -3,9 +3,12 @@
 Edge module (imports astropy).  ``run_scenario`` is the one entry point used by
 the command line and by notebooks.
 """
+import math
 import re
 from dataclasses import dataclass, field
 from typing import Callable
+
+import numpy as np
 
 from .errors import IntegrationError
 from .scenarios import Scenario, load_scenario
@@ -29,7 +32,8 @@ def run_scenario(scenario, overrides=()):
     if not isinstance(scenario, Scenario):
         scenario = load_scenario(scenario, overrides)
     try:
-        result = scenario.module.run(scenario)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):   # NaN/inf are reported as not measured
+            result = scenario.module.run(scenario)
     except IntegrationError as exc:
         if getattr(exc, "result", None) is None and getattr(exc, "partial", None) is not None:
             exc.result = partial_result(scenario, exc)
@@ -37,7 +41,7 @@ def run_scenario(scenario, overrides=()):
     from .provenance import provenance
     from .verdict import evaluate, spec_of
 
-    summary = {**base_summary(scenario), **result.summary, "status": "ok"}
+    summary = mark_unmeasured({**base_summary(scenario), **result.summary, "status": "ok"})
     comparison = summary.get("comparison", {})
     summary["verdict"] = evaluate(spec_of(scenario, comparison), comparison, scenario.t_end - scenario.t_start,
                                   scenario.name, span_label(scenario))
@@ -46,6 +50,31 @@ def run_scenario(scenario, overrides=()):
     if result.table is not None:
         result.table.meta.update({"scene": scenario.name, "title": summary["title"], **summary["provenance"]})
     return result
+
+
+def mark_unmeasured(summary):
+    """Replace every non-finite number in ``summary`` by None, with its reason in ``summary["not_measured"]``.
+
+    A scene that knows why a value cannot be measured sets it to None and gives the
+    reason itself (``not_measured[dotted key] = reason``); any NaN or inf left is
+    caught here, so summary.json is always valid JSON and never holds NaN.
+    """
+    reasons = dict(summary.get("not_measured", {}))
+
+    def clean(value, name):
+        if hasattr(value, "tolist"):              # numpy arrays and scalars
+            value = value.tolist()
+        if isinstance(value, dict):
+            return {k: clean(v, f"{name}.{k}" if name else str(k)) for k, v in value.items()}
+        if isinstance(value, (list, tuple)):
+            return [clean(v, name) for v in value]
+        if isinstance(value, float) and not math.isfinite(value):
+            reasons.setdefault(name, f"the computed value was {value} (not a measurement)")
+            return None
+        return value
+
+    cleaned = clean({k: v for k, v in summary.items() if k != "not_measured"}, "")
+    return {**cleaned, "not_measured": reasons} if reasons else cleaned
 
 
 def partial_result(scenario, exc):
@@ -59,7 +88,7 @@ def partial_result(scenario, exc):
     from .provenance import provenance
 
     summary = {**base_summary(scenario), "run": run, "status": "failed", "provenance": provenance(scenario)}
-    return RunResult(scenario, table, summary, {}, partial)
+    return RunResult(scenario, table, mark_unmeasured(summary), {}, partial)
 
 
 def base_summary(scenario):

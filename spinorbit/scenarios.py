@@ -11,9 +11,18 @@ Quantities are strings with units, parsed by astropy (``"384400 km"``,
 ``"13.18 deg/d"``); bare numbers are accepted only for dimensionless keys.
 Times are ISO strings in TDB; ``span.end`` may also be a duration from
 ``span.start`` (``"100 yr"``, ``"1073.15 d"``).
+
+Beyond types and units, every number must be finite and inside its key's
+plausible range (``Key.min``/``Key.max``), tolerances inside [100 eps, 1e-3];
+a step over the span must not ask for more output rows, orbit samples or
+integrator steps than ``LIMITS`` allows, nor a rate for more than ``MAX_CYCLES``
+cycles: the run is refused up front with the estimate, instead of hanging or
+filling the memory.  Files must be UTF-8 and nest at most ``MAX_DEPTH`` levels.
 """
 import datetime
+import math
 import tomllib
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -23,6 +32,20 @@ from .constants import J2000_JD
 from .errors import ScenarioError
 
 REQUIRED = object()
+MAX_DEPTH = 8                  # nesting of tables and arrays in a scenario
+MAX_TEXT = 10_000              # characters in a string value
+# What a step over the span may ask for: count limit and bytes per item (estimate).
+# Compiled fixed-step methods take ~1-10 us a step; scipy's adaptive ones ~100 us (Python per stage).
+LIMITS = {"output rows": (1_000_000, 200), "orbit samples": (10_000_000, 150),
+          "integrator steps": (100_000_000, 0), "adaptive steps (at max_step)": (1_000_000, 0)}
+EPS = float(np.finfo(float).eps)
+# Plausible ranges scenes share, in internal units: Key(**GM, help=...).
+GM = dict(unit="km3/d2", positive=True, max=1e22)        # up to ~10 solar masses
+DISTANCE = dict(unit="km", min=1.0, max=1e12)            # 1 km to ~7000 au
+RATE = dict(unit="rad/d", min=-1e3, max=1e3)             # orbital rates (Phobos: 20 rad/d)
+SPIN = dict(unit="rad/d", min=-1e6, max=1e6)             # spin rates, up to ~160 000 turns a day
+ANGLE = dict(unit="rad", min=-2 * math.pi, max=2 * math.pi)
+SAMPLE_STEP = dict(unit="d", positive=True, max=10.0, count="orbit samples")
 
 
 @dataclass(frozen=True)
@@ -32,6 +55,10 @@ class Key:
     ``unit``: internal unit a quantity is converted to (None: not a quantity,
     "" : dimensionless); ``size``: vector length (0 for a scalar);
     ``choices``: accepted strings; ``type``: python type for non-quantities.
+    ``min``/``max``: plausible range of a number (in ``unit``), inclusive;
+    ``positive``: must be > 0; ``count``: a step whose number over the span is
+    limited (a key of ``LIMITS``); ``direction``: a vector the scene normalises
+    (non-zero, with a finite length).
     """
 
     unit: str | None = None
@@ -40,6 +67,11 @@ class Key:
     choices: tuple = ()
     type: type = float
     help: str = ""
+    min: float = -math.inf
+    max: float = math.inf
+    positive: bool = False
+    count: str = ""
+    direction: bool = False
 
     def accepted(self):
         if self.choices:
@@ -51,6 +83,19 @@ class Key:
             return f"a list of {self.size} numbers" if self.size else "a number"
         return f"a value of type {self.type.__name__}"
 
+    def check_range(self, key, value, given):
+        """Raise ScenarioError unless ``value`` (in ``unit``) is finite and inside the range."""
+        inside = self.min <= value <= self.max and (value > 0 or not self.positive)
+        if math.isfinite(value) and inside:
+            return
+        what = "a finite quantity" if self.unit else "a finite number"
+        if self.positive or math.isfinite(self.min) or math.isfinite(self.max):
+            low = "(0" if self.positive and self.min <= 0 else \
+                "(-inf" if math.isinf(self.min) else f"[{self.min:g}"
+            high = f"{self.max:g}]" if math.isfinite(self.max) else "inf)"
+            what += f" in {low}, {high}" + (f" {self.unit}" if self.unit else "")
+        raise ScenarioError(key, given, what)
+
 
 COMMON_SCHEMA = {
     "scene.kind": Key(type=str),
@@ -58,13 +103,29 @@ COMMON_SCHEMA = {
     "scene.description": Key(type=str, default=""),
     "span.start": Key(type=str, help="ISO time, TDB"),
     "span.end": Key(type=str, help="ISO time (TDB) or a duration such as '100 yr'"),
-    "span.step": Key(unit="d", help="output cadence"),
+    "span.step": Key(unit="d", positive=True, count="output rows", help="output cadence"),
     "integrator.method": Key(type=str, default="dop853"),
     "integrator.estimate_error": Key(type=bool, default=True),
     "output.plots": Key(type=bool, default=True),
 }
-# integrator.<option> keys are passed to the chosen method, which checks their names.
+# integrator.<option> keys are passed to the chosen method, which checks their names;
+# the known ones are checked here first.  scipy silently raises rtol below 100 eps, and
+# looser than 1e-3 (scipy's own default) an attitude run is nonsense (rtol 0.1 on
+# p93_bounded: zeta off by 62 deg); atol below 1e-20 is under the rounding of any state.
 OPEN_TABLES = ("integrator",)
+INTEGRATOR_OPTIONS = {
+    "rtol": Key(unit="", min=100 * EPS, max=1e-3, help="relative tolerance"),
+    "atol": Key(unit="", min=1e-20, max=1e-3, help="absolute tolerance"),
+    "max_step": Key(unit="", positive=True, count="adaptive steps (at max_step)", help="largest step, days"),
+    "step": Key(unit="d", positive=True, count="integrator steps", help="fixed step"),
+}
+MIN_SPAN_D = 1e-6              # shortest span, days (0.0864 s)
+# Cycles a run may have to follow: any rate key (rad/d) times the span, and the torque's own
+# time-scale sqrt(3 GM/s^3) when a scene has orbit.gm and a distance.  The fast-spin stress
+# scene follows 1e5 spin cycles (a compiled splitting method); dop853 costs ~10 ms per cycle
+# (p93 at orbit.rate = 1000 rad/d: 3200 cycles in 45 s), so 2e5 cycles is about half an hour.
+MAX_CYCLES = 2e5
+DISTANCE_KEYS = ("orbit.radius", "orbit.f", "orbit.a")
 
 
 class Scenario:
@@ -76,13 +137,19 @@ class Scenario:
         self.name = self.path.stem if self.path else "scenario"
         from .scenes import scene_module            # the scene registry (lazy imports)
 
+        check_depth(data, str(self.path) if self.path else "scenario")
         kind = _lookup(data, "scene.kind", Key(type=str))
+        if not isinstance(kind, str):
+            raise ScenarioError("scene.kind", kind, "a string naming a scene kind")
         self.module = scene_module(kind)
         self.schema = {**COMMON_SCHEMA, **self.module.SCHEMA}
         self._check_keys()
         self.values = {key: self._convert(key, spec) for key, spec in self.schema.items()}
         self.kind = kind
+        self._options = self._integrator_options()
         self.t_start, self.t_end = self._span()
+        self._check_counts()
+        self._check_cycles()
         from .integrators import get_method
 
         get_method(self["integrator.method"])(**self.integrator_options())   # checks method and options now
@@ -98,12 +165,7 @@ class Scenario:
 
     def integrator_options(self):
         """Options for the integrator (all of [integrator] but method/estimate_error), units -> days."""
-        options = {}
-        for key, value in self.data.get("integrator", {}).items():
-            if key in ("method", "estimate_error"):
-                continue
-            options[key] = _to_float(f"integrator.{key}", value, "d" if key == "step" else "")
-        return options
+        return dict(self._options)
 
     def output_times(self):
         """Output times in TDB days from J2000: start to end at span.step (end included)."""
@@ -137,22 +199,40 @@ class Scenario:
             return spec.default
         value = _lookup(self.data, key, spec)
         if spec.choices:
-            if value not in spec.choices:
+            if not isinstance(value, str) or value not in spec.choices:
                 raise ScenarioError(key, value, spec.accepted())
             return value
         if spec.unit is None:
             if spec.type is str and isinstance(value, (datetime.date, datetime.time)):
                 value = _toml_datetime_text(key, value)
             if spec.type is float and isinstance(value, int) and not isinstance(value, bool):
-                return float(value)
+                value = float(_finite_float(key, value))
             if not isinstance(value, spec.type) or (spec.type is not bool and isinstance(value, bool)):
                 raise ScenarioError(key, value, spec.accepted())
+            if isinstance(value, str) and len(value) > MAX_TEXT:
+                raise ScenarioError(key, value, f"a string of at most {MAX_TEXT} characters ({len(value)} given)")
+            if isinstance(value, (int, float)) and not isinstance(value, bool):
+                spec.check_range(key, _finite_float(key, value), value)
             return value
         if spec.size:
             if not isinstance(value, list) or len(value) != spec.size:
                 raise ScenarioError(key, value, spec.accepted())
-            return np.array([_to_float(key, v, spec.unit) for v in value])
-        return _to_float(key, value, spec.unit)
+            vector = np.array([_checked_float(key, v, spec) for v in value])
+            with np.errstate(over="ignore"):
+                length = np.linalg.norm(vector)
+            if spec.direction and not 0 < length < math.inf:
+                raise ScenarioError(key, value, f"a direction: {spec.size} numbers, not all zero, with a finite length")
+            return vector
+        return _checked_float(key, value, spec)
+
+    def _integrator_options(self):
+        options = {}
+        for key, value in self.data.get("integrator", {}).items():
+            if key in ("method", "estimate_error"):
+                continue
+            spec = INTEGRATOR_OPTIONS.get(key, Key(unit=""))
+            options[key] = _checked_float(f"integrator.{key}", value, spec)
+        return options
 
     def _span(self):
         start = parse_tdb_days("span.start", self["span.start"])
@@ -160,12 +240,65 @@ class Scenario:
         try:
             end = parse_tdb_days("span.end", end_text)
         except ScenarioError:
-            end = start + _to_float("span.end", end_text, "d")
+            end = start + _checked_float("span.end", end_text, Key(unit="d"))
         if not end > start:
             raise ScenarioError("span.end", end_text, f"a time after span.start ({self['span.start']})")
-        if not self["span.step"] > 0:
-            raise ScenarioError("span.step", self.data["span"]["step"], "a positive duration")
+        if abs(end - start) < MIN_SPAN_D:
+            raise ScenarioError("span.end", end_text, f"a span of at least {MIN_SPAN_D:g} d from span.start")
         return start, end
+
+    def _check_counts(self):
+        """Refuse a step that would ask for too many rows, samples or steps over the span."""
+        span = abs(self.t_end - self.t_start)
+        steps = [(key, spec, self.values[key]) for key, spec in self.schema.items() if spec.count]
+        steps += [(f"integrator.{name}", INTEGRATOR_OPTIONS[name], self._options[name])
+                  for name in ("step", "max_step") if name in self._options]
+        for key, spec, step in steps:
+            limit, item_bytes = LIMITS[spec.count]
+            n = span / step + 1
+            if n > limit:
+                count = f"{n:,.0f}" if n < 1e15 else f"{n:.3g}"
+                memory = f", ~{_bytes(n * item_bytes)} in memory" if item_bytes else ""
+                raise ScenarioError(key, _lookup(self.data, key, spec) if _has(self.data, key) else step,
+                                    f"a step giving at most {limit:,} {spec.count} over the {span:.6g} d span "
+                                    f"(this one gives {count}{memory}); lengthen {key} or shorten the span")
+
+
+    def _check_cycles(self):
+        """Refuse rates (and GM over distance^3) that would make the run follow more than MAX_CYCLES cycles."""
+        span = abs(self.t_end - self.t_start)
+        rates = [(key, float(np.linalg.norm(self.values[key])), "") for key, spec in self.schema.items()
+                 if spec.unit == "rad/d" and self.values[key] is not None]
+        distance = next((key for key in DISTANCE_KEYS if key in self.values), None)
+        if "orbit.gm" in self.values and distance:
+            torque_rate = math.sqrt(3 * self.values["orbit.gm"] / self.values[distance] ** 3)
+            rates.append((distance, torque_rate, f" (sqrt(3 orbit.gm/{distance}^3) = {torque_rate:.3g} rad/d)"))
+        for key, rate, how in rates:
+            cycles = rate * span / (2 * math.pi)
+            if cycles > MAX_CYCLES:
+                raise ScenarioError(key, _lookup(self.data, key, Key()) if _has(self.data, key) else rate,
+                                    f"a value giving at most {MAX_CYCLES:.0e} cycles over the {span:.6g} d span "
+                                    f"(this one gives {cycles:.3g}{how}); change {key} or shorten the span")
+
+
+def check_depth(data, where, limit=MAX_DEPTH):
+    """Raise ScenarioError if tables and arrays nest deeper than ``limit`` (checked without recursion)."""
+    stack = [(data, 0, "")]
+    while stack:
+        node, depth, name = stack.pop()
+        if depth > limit:
+            raise ScenarioError(name or where, "(nested deeper)", f"tables and arrays nested at most {limit} deep")
+        if isinstance(node, dict):
+            stack.extend((v, depth + 1, f"{name}.{k}" if name else str(k)) for k, v in node.items())
+        elif isinstance(node, list):
+            stack.extend((v, depth + 1, name) for v in node)
+
+
+def _bytes(n):
+    for unit in ("B", "kB", "MB", "GB", "TB"):
+        if n < 1000 or unit == "TB":
+            return f"{n:.3g} {unit}"
+        n /= 1000
 
 
 def _toml_datetime_text(key, value):
@@ -182,10 +315,15 @@ def parse_tdb_days(key, text):
     if not isinstance(text, str) or not text[:1].isdigit() or "-" not in text[1:]:
         raise ScenarioError(key, text, "an ISO time in TDB, e.g. '2000-01-01T12:00:00'")
     try:
-        t = Time(text, scale="tdb")
-    except ValueError:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")          # e.g. ERFA's "dubious year": refuse, do not print
+            t = Time(text, scale="tdb")
+            days = (t.jd1 - J2000_JD) + t.jd2
+    except (ValueError, TypeError, ArithmeticError, Warning):
         raise ScenarioError(key, text, "an ISO time in TDB, e.g. '2000-01-01T12:00:00'") from None
-    return (t.jd1 - J2000_JD) + t.jd2
+    if not math.isfinite(days):
+        raise ScenarioError(key, text, "an ISO time in TDB, e.g. '2000-01-01T12:00:00'")
+    return days
 
 
 def tdb_days_to_time(t_days):
@@ -199,20 +337,43 @@ def _to_float(key, value, unit):
     """A TOML value (number or quantity string) as a float in ``unit``."""
     import astropy.units as u
 
-    if isinstance(value, bool):
-        raise ScenarioError(key, value, f"a quantity in '{unit}'")
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        raise ScenarioError(key, value, f"a quantity in '{unit}'" if unit else "a number")
     if isinstance(value, (int, float)):
         if unit:
-            raise ScenarioError(key, value, f"a quantity with a unit convertible to '{unit}', e.g. \"{value} {unit}\"")
+            example = value if len(str(value)) <= 20 else 1.0
+            raise ScenarioError(key, value, f"a quantity with a unit convertible to '{unit}', e.g. \"{example} {unit}\"")
+        return _finite_float(key, value)
+    example = f'"1.0 {unit}"' if unit else "1.0"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")          # astropy's unit and overflow warnings: refuse, do not print
+        try:
+            quantity = u.Quantity(value)
+        except (TypeError, ValueError, ArithmeticError, LookupError, RecursionError, Warning):
+            raise ScenarioError(key, value, f"a quantity such as {example}") from None
+        if not quantity.isscalar:
+            raise ScenarioError(key, value, f"a single quantity such as {example}")
+        try:
+            return float(quantity.to_value(unit or u.dimensionless_unscaled, equivalencies=u.dimensionless_angles() if unit and "rad" in unit else []))
+        except (u.UnitsError, TypeError, ValueError):
+            raise ScenarioError(key, value, f"units convertible to '{unit or 'dimensionless'}'") from None
+        except (ArithmeticError, Warning):
+            raise ScenarioError(key, value, "a finite quantity (this one overflows)") from None
+
+
+def _finite_float(key, value):
+    """float(value), refusing integers too large for a float."""
+    try:
         return float(value)
-    try:
-        quantity = u.Quantity(value)
-    except (TypeError, ValueError):
-        raise ScenarioError(key, value, f"a quantity such as \"1.0 {unit or ''}\"".replace(' "', ' "')) from None
-    try:
-        return float(quantity.to_value(unit or u.dimensionless_unscaled, equivalencies=u.dimensionless_angles() if unit and "rad" in unit else []))
-    except u.UnitConversionError:
-        raise ScenarioError(key, value, f"units convertible to '{unit or 'dimensionless'}'") from None
+    except OverflowError:
+        raise ScenarioError(key, value, "a finite number (at most ~1.8e308)") from None
+
+
+def _checked_float(key, value, spec):
+    """``value`` as a float in ``spec.unit``, finite and inside the key's range."""
+    number = _to_float(key, value, spec.unit)
+    spec.check_range(key, number, value)
+    return number
 
 
 def _flatten(table, prefix):
@@ -242,8 +403,20 @@ def _lookup(data, key, spec):
     return node
 
 
+def _is_utf8(text):
+    """False for command-line text holding undecodable bytes (surrogate escapes)."""
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError:
+        return False
+    return True
+
+
 def apply_override(data, assignment):
     """Apply one ``--set dotted.key=value`` (value parsed as TOML, else taken as a string)."""
+    if not _is_utf8(assignment):
+        offset = next(i for i, c in enumerate(assignment) if not _is_utf8(c))
+        raise ScenarioError("--set", assignment, f"UTF-8 text (a byte that is not UTF-8 at offset {offset})")
     if "=" not in assignment:
         raise ScenarioError("--set", assignment, "key=value, e.g. span.end=2030-01-01")
     key, text = (s.strip() for s in assignment.split("=", 1))
@@ -251,6 +424,8 @@ def apply_override(data, assignment):
         value = tomllib.loads(f"v = {text}")["v"]
     except tomllib.TOMLDecodeError:
         value = text
+    except (ValueError, RecursionError) as exc:   # e.g. an integer over Python's digit limit, deep nesting
+        raise ScenarioError(key, text, f"a TOML value Python can read ({_reason(exc)})") from None
     node = data
     parts = key.split(".")
     for part in parts[:-1]:
@@ -263,12 +438,27 @@ def apply_override(data, assignment):
 def load_scenario(path, overrides=()):
     """Read and validate a scenario file; ``overrides`` are ``key=value`` strings."""
     path = Path(path)
-    if not path.is_file():
-        raise ScenarioError("scenario", str(path), "an existing .toml file (see `spinorbit list`)")
+    if not path.is_file() or not _is_utf8(str(path)):
+        raise ScenarioError("scenario", str(path), "an existing .toml file with a UTF-8 name (see `spinorbit list`)")
+    raw = path.read_bytes()
     try:
-        data = tomllib.loads(path.read_text())
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ScenarioError(str(path), f"byte 0x{raw[exc.start]:02x} at offset {exc.start}",
+                            "a UTF-8 text file (re-save it as UTF-8)") from None
+    try:
+        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ScenarioError(str(path), f"invalid TOML ({exc})", "a TOML file") from None
+    except (ValueError, RecursionError) as exc:
+        raise ScenarioError(str(path), _reason(exc), "a TOML file Python can read") from None
     for assignment in overrides:
         apply_override(data, assignment)
     return Scenario(data, path)
+
+
+def _reason(exc):
+    """The first line of an exception's message, or its type for a RecursionError."""
+    if isinstance(exc, RecursionError):
+        return "nesting too deep to parse"
+    return str(exc).splitlines()[0] if str(exc) else type(exc).__name__

@@ -39,11 +39,13 @@ def run_member(scenario_path, overrides, out_dir):
     from .reports import write_run
     from .results import run_scenario
     from .errors import SpinorbitError
+    from .rundir import RunDirectory
 
     record = {"overrides": overrides, "out": str(out_dir)}
     try:
         result = run_scenario(scenario_path, overrides)
-        write_run(result, out_dir)
+        with RunDirectory(out_dir) as run_dir:
+            run_dir.commit(lambda d: write_run(result, d))
         record.update(status="ok", verdict=result.summary["verdict"]["result"], **_flat_metrics(result.summary))
     except SpinorbitError as exc:
         record.update(status="failed", error=str(exc))

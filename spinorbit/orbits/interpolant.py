@@ -114,6 +114,7 @@ class HermiteOrbits:
         self.data = (np.array([float(t_start), self.step]), pos, vel, np.ascontiguousarray(acc, dtype=float))
         self.max_error_km = None          # set by measure_error()
         self.max_relative_error = None
+        self.jump = None                  # (body index, t, error km, typical error km) if a body jumps
 
     def check_span(self, t_start, t_end):
         """Raise EphemerisRangeError unless [t_start, t_end] lies inside the sampled span."""
@@ -144,6 +145,7 @@ class HermiteOrbits:
         err = np.linalg.norm(self.positions(t) - true, axis=2)
         self.max_error_km = err.max(axis=0)
         self.max_relative_error = (err / np.linalg.norm(true, axis=2)).max(axis=0)
+        self.jump = _jump(t, err, np.linalg.norm(true, axis=2))
         return self.max_error_km
 
     def __repr__(self):
@@ -151,6 +153,23 @@ class HermiteOrbits:
             f", max error {', '.join(f'{e:.3g}' for e in self.max_error_km)} km"
         return (f"HermiteOrbits({self.names}, {self.source}, span {self.span[0]:.6g} to "
                 f"{self.span[1]:.6g} d, step {self.step:g} d{err})")
+
+
+# A smooth orbit's mid-point errors vary with the orbit by a few times (e, h^6 scaling);
+# an interval holding a jump in the samples errs by half the jump.  Flag an interval
+# erring JUMP_FACTOR times the median one and above JUMP_FLOOR of the distance.
+JUMP_FACTOR = 1e3
+JUMP_FLOOR = 1e-9
+
+
+def _jump(t, err, distance):
+    """(body, t, error, typical error) of the worst interval if it stands out as a jump, else None."""
+    typical = np.median(err, axis=0)
+    worst = err.argmax(axis=0)
+    for body, k in enumerate(worst):
+        if err[k, body] > max(JUMP_FACTOR * typical[body], JUMP_FLOOR * distance[k, body]):
+            return body, float(t[k]), float(err[k, body]), float(typical[body])
+    return None
 
 
 def grid(t_start, t_end, step):

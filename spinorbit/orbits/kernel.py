@@ -42,6 +42,26 @@ def kernel_path(source):
                             f"or an installed naif-{source} package") from None
 
 
+def _open_spk(spk_class, path):
+    """jplephem's SPK for ``path``; a missing, unreadable or truncated file is a ScenarioError on orbit.source."""
+    accepted = "a JPL SPK kernel (.bsp): 'de421', a .bsp in ephemerides/, or a path to one"
+    if not path.is_file():
+        raise ScenarioError("orbit.source", str(path), f"{accepted} (no such file)")
+    try:
+        spk = spk_class.open(str(path))
+    except (OSError, ValueError, TypeError, IndexError, EOFError) as exc:
+        reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        raise ScenarioError("orbit.source", str(path), f"{accepted}; this file cannot be read ({reason})") from None
+    size = path.stat().st_size
+    short = [seg for seg in spk.segments if seg.end_i * 8 > size]     # DAF addresses are 8-byte words
+    if short or not spk.segments:
+        spk.close()
+        detail = f"segment of body {short[0].target} ends at byte {short[0].end_i * 8}" if short else "no segments"
+        raise ScenarioError("orbit.source", str(path), f"{accepted}; this file is truncated or empty "
+                                                        f"({size} bytes, {detail})")
+    return spk
+
+
 class JPLKernel:
     """An SPK kernel; states of one body relative to another by chaining segments.
 
@@ -54,7 +74,7 @@ class JPLKernel:
 
         self.path = kernel_path("de421") if path is None else Path(path)
         self.name = self.path.stem
-        self._spk = SPK.open(str(self.path))
+        self._spk = _open_spk(SPK, self.path)
         self._parent = {}       # target code -> (center code, [segments])
         for seg in self._spk.segments:
             self._parent.setdefault(seg.target, (seg.center, []))[1].append(seg)

@@ -55,12 +55,22 @@ def sample_orbits(source, center, bodies, t_start, t_end, step=None, measure=Tru
             return np.stack([ephemeris.relative_states(b, center, t)[0] for b in bodies], axis=1)
 
         states = [ephemeris.relative_states(b, center, times) for b in bodies]
+        for body, (pos, vel) in zip(bodies, states):
+            if not (np.isfinite(pos).all() and np.isfinite(vel).all()):
+                raise ScenarioError("orbit.source", source, f"a kernel with finite coefficients ({body} relative "
+                                                            f"to {center} is not finite in kernel {ephemeris.name!r})")
         orbits = HermiteOrbits(bodies, gm_of(bodies), t_start, step, [s[0] for s in states],
                                [s[1] for s in states], source=ephemeris.name)
     else:
         raise ScenarioError("orbit.source", source, SOURCES)
     if measure and reference is not None:
         orbits.measure_error(reference)
+        if orbits.jump is not None:
+            body, t, err, typical = orbits.jump
+            raise ScenarioError("orbit.source", source,
+                                f"a kernel whose bodies move smoothly: {bodies[body]} relative to {center} jumps "
+                                f"near t = {t:.6g} d TDB from J2000 (interpolation error {err:.3g} km there, "
+                                f"{typical:.3g} km typical)")
     return orbits
 
 

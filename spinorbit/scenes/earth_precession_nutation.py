@@ -27,14 +27,14 @@ from .. import earth, nonrigid
 from ..constants import ARCSEC, GM_KM3_D2, JULIAN_CENTURY_D, MAS
 from ..errors import ScenarioError
 from ..integrators import integrate
-from ..scenarios import Key
+from ..scenarios import SAMPLE_STEP, Key
 from ..verdict import Check, Verdict
 from . import common
 
 SCHEMA = {
     "earth.model": Key(type=str, default="gyroscopic", choices=("full", "gyroscopic")),
-    "earth.dynamical_ellipticity": Key(unit="", default=earth.H_D, help="(C - A)/C"),
-    "earth.b_minus_a_over_c": Key(unit="", default=0.0, help="triaxiality (full model only)"),
+    "earth.dynamical_ellipticity": Key(unit="", default=earth.H_D, positive=True, max=0.5, help="(C - A)/C"),
+    "earth.b_minus_a_over_c": Key(unit="", default=0.0, min=0.0, max=0.5, help="triaxiality (full model only)"),
     "earth.forced_start": Key(type=bool, default=True, help="Oppolzer terms in the initial omega"),
     "earth.start_pole": Key(type=str, default="iau", choices=("iau", "iau_mean_plus_rigid_nutation"),
                             help="initial figure axis: the IAU 2006/2000A pole, or the IAU mean pole plus "
@@ -46,10 +46,10 @@ SCHEMA = {
                                "elastic mantle with a fluid core (spinorbit.nonrigid, MHB2000 parameters)"),
     "orbit.source": Key(type=str, default="de421", choices=("de421", "circular")),
     "orbit.planets": Key(type=bool, default=False, help="add the direct torques of Venus and Jupiter"),
-    "orbit.sample_step": Key(unit="d", default=0.25),
-    "comparison.gyroscopic_step": Key(unit="d", default=1.0,
+    "orbit.sample_step": Key(**SAMPLE_STEP, default=0.25),
+    "comparison.gyroscopic_step": Key(unit="d", default=1.0, positive=True, count="integrator steps",
                                       help="rk8 step of the gyroscopic run compared with the full model"),
-    "comparison.free_nutation_span": Key(unit="d", default=610.0,
+    "comparison.free_nutation_span": Key(unit="d", default=610.0, positive=True, max=1e6,
                                          help="full model: span of the 0.125-d run fitted for the Euler period"),
 }
 

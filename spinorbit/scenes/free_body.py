@@ -12,14 +12,14 @@ from ..constants import ARCSEC
 from ..dynamics import invariant_drift, torque_free_system
 from ..errors import PhysicsError, ScenarioError
 from ..rotations import quat_angle, quat_from_euler313
-from ..scenarios import Key
+from ..scenarios import ANGLE, SPIN, Key
 from ..verdict import Check, Verdict
 from . import common
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A <= B <= C, any unit"),
-    "body.omega0": Key(unit="rad/d", size=3, help="initial body angular velocity"),
-    "body.attitude0": Key(unit="rad", size=3, default=np.zeros(3), help="initial JPL 3-1-3 angles"),
+    "body.omega0": Key(**SPIN, size=3, help="initial body angular velocity"),
+    "body.attitude0": Key(**ANGLE, size=3, default=np.zeros(3), help="initial JPL 3-1-3 angles"),
 }
 
 VERDICT = Verdict("Euler's closed form", (

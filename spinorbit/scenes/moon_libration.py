@@ -24,7 +24,7 @@ import numpy as np
 
 from ..constants import ARCSEC, J2000_JD, JULIAN_CENTURY_D
 from ..errors import ScenarioError
-from ..scenarios import Key
+from ..scenarios import SAMPLE_STEP, Key
 from ..verdict import Check, Verdict
 from . import common
 
@@ -66,10 +66,10 @@ def verdict(scenario, comparison):
 
 
 SCHEMA = {
-    "model.level": Key(type=int, default=3, help="1..4, see LEVEL_NAMES"),
+    "model.level": Key(type=int, default=3, min=1, max=4, help="1..4, see LEVEL_NAMES"),
     "model.tides": Key(type=bool, default=True, help="tidal/rotational distortion at levels 3-4"),
     "orbit.source": Key(type=str, default="de421", help="'de421', a .bsp name, or 'rebound'"),
-    "orbit.step": Key(unit="d", default=0.25, help="sampling step of the orbit interpolant"),
+    "orbit.step": Key(**SAMPLE_STEP, default=0.25, help="sampling step of the orbit interpolant"),
     "compare.source": Key(type=str, default="", help="also run driven by this source and report the difference"),
     "report.error_vs_runtime": Key(type=bool, default=False, help="rk8 steps and dop853 tolerances vs a converged run"),
 }
@@ -121,7 +121,12 @@ def run(scenario):
     figures = {}
     other = scenario["compare.source"]
     if other:
-        system_b, _ = build_system(scenario, other)
+        try:
+            system_b, _ = build_system(scenario, other)
+        except ScenarioError as exc:                   # the error is about this source, not orbit.source
+            if exc.key != "orbit.source":
+                raise
+            raise ScenarioError("compare.source", other, exc.accepted) from None
         sol_b, _ = common.simulate_scenario(scenario, system_b, t_out)
         pole, lon = _pole_lon(mats, model_angles(sol_b)[1])
         comparison[f"pole_difference_vs_{other}_driven_max_arcsec"] = float(np.abs(pole).max() / ARCSEC)

@@ -11,15 +11,15 @@ import numpy as np
 
 from ..constants import ARCSEC
 from ..dynamics import point_mass_system
-from ..scenarios import Key
+from ..scenarios import DISTANCE, GM, Key
 from ..verdict import Check, Verdict
 from . import common
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A <= B <= C, any unit"),
-    "orbit.gm": Key(unit="km3/d2", help="GM of the centre of forces"),
-    "orbit.radius": Key(unit="km", help="distance s of F"),
-    "force.direction": Key(unit="", size=3, help="direction of F in body principal axes"),
+    "orbit.gm": Key(**GM, help="GM of the centre of forces"),
+    "orbit.radius": Key(**DISTANCE, help="distance s of F"),
+    "force.direction": Key(unit="", size=3, direction=True, help="direction of F in body principal axes"),
 }
 
 VERDICT = Verdict("Euler's first motion (§821-823)", (

@@ -10,19 +10,19 @@ import numpy as np
 
 from ..constants import ARCSEC
 from ..errors import ScenarioError
-from ..scenarios import Key
+from ..scenarios import ANGLE, DISTANCE, GM, RATE, Key
 from ..verdict import Check, Verdict
 from . import common
 from .p93_planar_libration import planar_system, zeta_from_solution
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A < B <= C, any unit"),
-    "orbit.gm": Key(unit="km3/d2", help="GM of the centre of forces"),
-    "orbit.f": Key(unit="km", help="mean distance f"),
-    "orbit.rate": Key(unit="rad/d", help="mean angular speed delta of F"),
-    "orbit.alpha": Key(unit="rad", help="amplitude of the inequality of XF"),
-    "orbit.beta": Key(unit="", help="amplitude of the inequality of 1/s^3"),
-    "orbit.frequency": Key(unit="rad/d", help="Euler's A, the frequency of the inequality"),
+    "orbit.gm": Key(**GM, help="GM of the centre of forces"),
+    "orbit.f": Key(**DISTANCE, help="mean distance f"),
+    "orbit.rate": Key(**RATE, help="mean angular speed delta of F"),
+    "orbit.alpha": Key(**ANGLE, help="amplitude of the inequality of XF"),
+    "orbit.beta": Key(unit="", min=-0.5, max=0.5, help="amplitude of the inequality of 1/s^3"),
+    "orbit.frequency": Key(**RATE, help="Euler's A, the frequency of the inequality"),
 }
 
 VERDICT = Verdict("Euler's forced libration to second order (§835)", (

@@ -15,18 +15,18 @@ import numpy as np
 
 from ..dynamics import point_mass_system
 from ..errors import ScenarioError
-from ..scenarios import Key
+from ..scenarios import ANGLE, DISTANCE, GM, SPIN, Key
 from ..verdict import Check, Verdict
 from . import common
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="symmetric body [cc, cc, aa]"),
-    "body.spin": Key(unit="rad/d", help="angular speed gamma'"),
-    "body.pole_offset": Key(unit="rad", help="alpha = AO, arc from the figure axis to the rotation pole"),
-    "body.pole_angle": Key(unit="rad", default=0.0, help="rho = angle BAO"),
-    "orbit.gm": Key(unit="km3/d2", help="GM of the centre of forces"),
-    "orbit.radius": Key(unit="km", help="distance s of F"),
-    "force.direction": Key(unit="", size=3, help="(cos AF, cos BF, cos CF) in Euler's axes A (= our z), B, C"),
+    "body.spin": Key(**SPIN, help="angular speed gamma'"),
+    "body.pole_offset": Key(**ANGLE, help="alpha = AO, arc from the figure axis to the rotation pole"),
+    "body.pole_angle": Key(**ANGLE, default=0.0, help="rho = angle BAO"),
+    "orbit.gm": Key(**GM, help="GM of the centre of forces"),
+    "orbit.radius": Key(**DISTANCE, help="distance s of F"),
+    "force.direction": Key(unit="", size=3, direction=True, help="(cos AF, cos BF, cos CF) in Euler's axes A (= our z), B, C"),
 }
 
 VERDICT = Verdict("Euler's pole rates (§843a)", (

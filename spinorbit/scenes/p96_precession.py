@@ -20,17 +20,17 @@ from ..constants import ARCSEC
 from ..dynamics import point_mass_system
 from ..errors import ResonanceError
 from ..rotations import matrix_from_quat
-from ..scenarios import Key
+from ..scenarios import ANGLE, DISTANCE, GM, RATE, SPIN, Key
 from ..verdict import Check, Verdict
 from . import common
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments cc = cc < aa (symmetric, oblate)"),
-    "body.spin": Key(unit="rad/d", help="spin rate eps about the figure axis"),
-    "body.obliquity": Key(unit="rad", help="initial angle n between the figure axis A and the orbit pole Z"),
-    "orbit.gm": Key(unit="km3/d2", help="GM of the centre of forces"),
-    "orbit.radius": Key(unit="km", help="distance s of F"),
-    "orbit.rate": Key(unit="rad/d", help="angular speed delta of F"),
+    "body.spin": Key(**SPIN, help="spin rate eps about the figure axis"),
+    "body.obliquity": Key(**ANGLE, help="initial angle n between the figure axis A and the orbit pole Z"),
+    "orbit.gm": Key(**GM, help="GM of the centre of forces"),
+    "orbit.radius": Key(**DISTANCE, help="distance s of F"),
+    "orbit.rate": Key(**RATE, help="angular speed delta of F"),
 }
 
 _SECOND_ORDER = "Euler's theory is first order in N/delta and drops eps aa/cc - eps; 2e-3 covers the remainder"
@@ -136,9 +136,24 @@ def run(scenario):
             "za_2phi_growth_rel_error": growth / secular["growth_rate"] - 1,
             "detuning_eps_aa_over_cc_minus_2delta_rad_per_d": true.eps_f - 2 * delta,
         })
+    not_measured = _unsupported(comparison, dt[-1], delta)
     table = common.attitude_table(solution)
     table["ZA"] = p * common.u().rad
     table["XZA"] = lam * common.u().rad
     figures = {"ZA": common.plot_series(dt, np.degrees(p), "days from start", "ZA [deg]"),
                "XZA": common.plot_series(dt, np.degrees(lam), "days from start", "XZA [deg]")}
-    return common.result(scenario, table, {"comparison": comparison, "run": point}, figures, solution)
+    summary = {"comparison": comparison, "run": point, **({"not_measured": not_measured} if not_measured else {})}
+    return common.result(scenario, table, summary, figures, solution)
+
+
+def _unsupported(comparison, span_d, delta):
+    """Blank the fitted values (None, with the reason) when the span is shorter than one orbit of F:
+    the fit cannot then tell the precession from the 2 phi inequality."""
+    orbit_d = 2 * math.pi / abs(delta) if delta else math.inf
+    if span_d >= orbit_d:
+        return {}
+    reason = (f"not measured: the {span_d:.6g} d span is shorter than one orbit of F ({orbit_d:.6g} d), "
+              "so the fit cannot separate the precession from the 2 phi inequality; lengthen span.end")
+    fitted = [key for key in comparison if "measured" in key or key.endswith("rel_error")]
+    comparison.update(dict.fromkeys(fitted))
+    return {f"comparison.{key}": reason for key in fitted}

@@ -28,7 +28,7 @@ from ..dynamics import point_mass_system
 from ..errors import ScenarioError
 from ..integrators import get_method, integrate
 from ..rotations import matrix_from_quat, quat_angle
-from ..scenarios import Key
+from ..scenarios import ANGLE, SPIN, Key
 from ..verdict import Check, Verdict
 from . import common
 from .p96_precession import figure_axis_angles, initial_state
@@ -45,8 +45,8 @@ def verdict(scenario, comparison):
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="A <= B < C, nearly symmetric about C"),
-    "body.spin": Key(unit="rad/d", help="spin rate eps about the figure axis"),
-    "body.obliquity": Key(unit="rad", help="angle n of the figure axis from the orbit pole"),
+    "body.spin": Key(**SPIN, help="spin rate eps about the figure axis"),
+    "body.obliquity": Key(**ANGLE, help="angle n of the figure axis from the orbit pole"),
     "stress.spin_over_orbit": Key(unit="", default=1e5, help="eps/delta"),
     "stress.precession_over_orbit": Key(unit="", default=1e-3, help="N/delta (sets GM/s^3)"),
     "stress.runs": Key(type=list, help="[{method, step_d | rtol, span_fraction}] compared"),

@@ -35,7 +35,7 @@ import numpy as np
 
 from ..integrators import integrate
 from ..integrators.rk8 import fixed_step
-from ..scenarios import Key
+from ..scenarios import DISTANCE, GM, Key
 from ..verdict import Check, Verdict
 from . import common
 from .planar_spin_orbit import kepler_orbit, planar_params, planar_rhs, rigid_body_system, theta_from_quaternions
@@ -55,9 +55,9 @@ def verdict(scenario, comparison):
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A < B < C (3-D runs); (B - A)/C for planar"),
-    "orbit.gm": Key(unit="km3/d2", help="GM of Saturn"),
-    "orbit.a": Key(unit="km", help="semi-major axis"),
-    "orbit.e": Key(unit="", help="eccentricity"),
+    "orbit.gm": Key(**GM, help="GM of Saturn"),
+    "orbit.a": Key(**DISTANCE, help="semi-major axis"),
+    "orbit.e": Key(unit="", min=0.0, max=0.99, help="eccentricity"),
     "lyapunov.start": Key(unit="", size=2, help="nominal start at periapsis: theta - f (rad), theta'/n"),
     "lyapunov.orbits": Key(type=int, default=1000, help="length of the shorter nominal run, orbital periods"),
     "lyapunov.regular_orbits": Key(type=int, default=2000, help="length of the regular check run, orbital periods"),

@@ -22,7 +22,7 @@ import math
 import numpy as np
 
 from ..constants import ARCSEC
-from ..scenarios import Key
+from ..scenarios import DISTANCE, GM, Key
 from ..verdict import Check, Verdict
 from . import common
 from .planar_spin_orbit import forcing_coefficients, kepler_orbit, rigid_body_system, theta_from_quaternions
@@ -41,9 +41,9 @@ def verdict(scenario, comparison):
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A < B < C; (B - A)/C sets the libration"),
-    "orbit.gm": Key(unit="km3/d2", help="GM of the Sun"),
-    "orbit.a": Key(unit="km", help="semi-major axis"),
-    "orbit.e": Key(unit="", help="eccentricity"),
+    "orbit.gm": Key(**GM, help="GM of the Sun"),
+    "orbit.a": Key(**DISTANCE, help="semi-major axis"),
+    "orbit.e": Key(unit="", min=0.0, max=0.99, help="eccentricity"),
     "stress.linear_rel_tol": Key(unit="", default=1e-3, help="pass: |measured/linear theory - 1|"),
     "stress.series_rel_tol": Key(unit="", default=1e-2, help="pass: |measured/Margot series - 1|"),
 }

@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from ..integrators import integrate
-from ..scenarios import Key
+from ..scenarios import DISTANCE, GM, RATE, Key
 from ..verdict import Check, Verdict
 from . import common
 from .p93_planar_libration import crossing_times, planar_system, zeta_from_solution
@@ -32,9 +32,9 @@ def verdict(scenario, comparison):
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A < B <= C"),
-    "orbit.gm": Key(unit="km3/d2"),
-    "orbit.radius": Key(unit="km"),
-    "orbit.rate": Key(unit="rad/d"),
+    "orbit.gm": Key(**GM),
+    "orbit.radius": Key(**DISTANCE),
+    "orbit.rate": Key(**RATE),
     "stress.offsets": Key(type=list, default=[-1e-9, 1e-9], help="C/n - 1 for each run"),
     "stress.methods": Key(type=list, default=["rk8", "suzuki4", "dop853"]),
     "stress.time_rel_tol": Key(unit="", default=1e-4, help="pass threshold on the time to 90 deg"),
