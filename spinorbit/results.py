@@ -43,7 +43,7 @@ def run_scenario(scenario, overrides=()):
 
     summary = mark_unmeasured({**base_summary(scenario), **result.summary, "status": "ok"})
     comparison = summary.get("comparison", {})
-    summary["verdict"] = evaluate(spec_of(scenario, comparison), comparison, scenario.t_end - scenario.t_start,
+    summary["verdict"] = evaluate(spec_of(scenario, comparison), comparison, abs(scenario.t_end - scenario.t_start),
                                   scenario.name, span_label(scenario))
     summary["provenance"] = provenance(scenario)
     result.summary = summary
@@ -107,7 +107,7 @@ JULIAN_YEAR_D = 365.25
 
 def span_label(scenario):
     """The run's span for titles: calendar years "1900–2050" (Julian epochs), or its length in days."""
-    length = scenario.t_end - scenario.t_start
+    length = abs(scenario.t_end - scenario.t_start)
     if length < JULIAN_YEAR_D:
         return f"{length:.4g} d"
     y0, y1 = (2000.0 + t / JULIAN_YEAR_D for t in (scenario.t_start, scenario.t_end))
@@ -124,5 +124,5 @@ def title_for_span(title, scenario):
     if _YEAR_RANGE.search(title):
         return _YEAR_RANGE.sub(span_label(scenario), title, count=1)
     if _DURATION.search(title):
-        return _DURATION.sub(f"{(scenario.t_end - scenario.t_start) / JULIAN_YEAR_D:.3g} yr", title, count=1)
+        return _DURATION.sub(f"{abs(scenario.t_end - scenario.t_start) / JULIAN_YEAR_D:.3g} yr", title, count=1)
     return title

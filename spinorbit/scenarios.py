@@ -168,11 +168,17 @@ class Scenario:
         return dict(self._options)
 
     def output_times(self):
-        """Output times in TDB days from J2000: start to end at span.step (end included)."""
-        step = self["span.step"]
+        """Output times in TDB days from J2000: start to end at span.step (end included), descending
+        when the span runs backward (end before start)."""
+        step = self["span.step"] * (1.0 if self.t_end > self.t_start else -1.0)
         n = int(np.floor((self.t_end - self.t_start) / step + 1e-9))
         times = self.t_start + step * np.arange(n + 1)
-        return times if np.isclose(times[-1], self.t_end, rtol=0, atol=1e-9 * step) else np.append(times, self.t_end)
+        return times if np.isclose(times[-1], self.t_end, rtol=0, atol=1e-9 * abs(step)) else np.append(times, self.t_end)
+
+    @property
+    def bounds(self):
+        """(earliest, latest) TDB days of the span, whichever way it runs."""
+        return min(self.t_start, self.t_end), max(self.t_start, self.t_end)
 
     # --- validation -------------------------------------------------------
     def _check_keys(self):
@@ -241,8 +247,9 @@ class Scenario:
             end = parse_tdb_days("span.end", end_text)
         except ScenarioError:
             end = start + _checked_float("span.end", end_text, Key(unit="d"))
-        if not end > start:
-            raise ScenarioError("span.end", end_text, f"a time after span.start ({self['span.start']})")
+        if end < start and not getattr(self.module, "BACKWARD", False):
+            raise ScenarioError("span.end", end_text, f"a time after span.start ({self['span.start']}); scene kind "
+                                f"'{self.kind}' runs forward only (backward runs: {', '.join(backward_kinds())})")
         if abs(end - start) < MIN_SPAN_D:
             raise ScenarioError("span.end", end_text, f"a span of at least {MIN_SPAN_D:g} d from span.start")
         return start, end
@@ -299,6 +306,13 @@ def _bytes(n):
         if n < 1000 or unit == "TB":
             return f"{n:.3g} {unit}"
         n /= 1000
+
+
+def backward_kinds():
+    """Scene kinds that run a span backward (their module sets BACKWARD = True)."""
+    from .scenes import SCENES, scene_module
+
+    return sorted(kind for kind in SCENES if getattr(scene_module(kind), "BACKWARD", False))
 
 
 def _toml_datetime_text(key, value):

@@ -74,6 +74,10 @@ SCHEMA = {
     "report.error_vs_runtime": Key(type=bool, default=False, help="rk8 steps and dop853 tolerances vs a converged run"),
 }
 
+# The DE lunar integrations run both ways from their epoch: a span may end before it starts
+# (e.g. from DE421's 1969 state back to 1900).
+BACKWARD = True
+
 # Eckhardt's physical libration in longitude tau as in Meeus (Astronomical Algorithms,
 # ch. 53): (name, period, published coefficient in arcsec, "sin"/"cos", argument of
 # (D, M, M', F, Omega, K1, K2)).  Meeus's K2 term (1780 yr, 0.83") cannot be told
@@ -166,9 +170,10 @@ def build_system(scenario, source):
     spec = LEVELS[level]
     tides = spec["tides"] and scenario["model.tides"]
     c = moon_constants()
-    t0, t1 = scenario.t_start, scenario.t_end
+    t0 = scenario.t_start
+    first, last = scenario.bounds
     margin = 1.0                                                   # days: the tide looks back tau
-    orbits = sample_orbits(source, "moon", spec["bodies"], t0 - margin, t1 + margin, scenario["orbit.step"])
+    orbits = sample_orbits(source, "moon", spec["bodies"], first - margin, last + margin, scenario["orbit.step"])
     angles, _ = librations([t0])
     _, omega = orientation([t0])
     y0 = np.concatenate([quat_from_euler313(*angles[0]), omega[0]])
@@ -178,7 +183,7 @@ def build_system(scenario, source):
     n_mean = 2 * np.pi / 27.321661                                # sidereal month, rad/day
     # levels 3-4 (DE421's model): oblate core and the Earth's J2 on the figure
     de = dict(core_flattening=c.core_flattening, earth_j2_gm_r2=orbits.gm[0] * c.earth_j2 * c.earth_radius_km**2,
-              earth_pole=earth_pole(t0 - margin, t1 + margin)) if spec["core"] else {}
+              earth_pole=earth_pole(first - margin, last + margin)) if spec["core"] else {}
     params = moon_params(c.moments, orbits.gm, orbits.data, c.c_nm, c.s_nm, c.radius_km, c.k2,
                          c.gm_km3_d2["moon"], c.tau_d, c.kv_over_c_per_d, c.core_c_over_c, n_mean, **de)
     # levels 1-2 are one rigid body under an external torque (splitting methods can run them);
