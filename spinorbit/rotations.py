@@ -10,11 +10,14 @@ Conventions (docs/DEVELOPING.md):
   ``M = matrix_from_quat(q).T``.
 * Kinematics (Euler ch. 15 §809-811 in quaternion form): dq/dt = q * (0, omega_body) / 2.
 
-All functions are numba-compiled and take/return plain float64 arrays.  The
-3-vector and 3x3 helpers (dot3 ... solve3) are written out by element: numba
-compiles numpy's general array functions (np.cross, @ through BLAS,
-np.linalg.solve through LAPACK, np.outer, np.eye) in seconds each, and every
-kernel that calls them compiles them again.
+The functions the compiled kernels call are numba-compiled and take/return
+plain float64 arrays; the 3-vector and 3x3 helpers (dot3 ... solve3, put) are
+written out by element: numba compiles numpy's general array functions
+(np.cross, @ through BLAS, np.linalg.solve through LAPACK, np.outer, np.eye,
+slice assignment) in seconds each, and every kernel that calls them compiles
+them again.  The conversions used only from Python (Euler angles,
+quat_from_matrix) are plain numpy, the Euler-angle ones vectorised over leading
+axes, so they need no compilation.
 """
 import math
 
@@ -111,7 +114,6 @@ def matrix_from_quat(q):
     ])
 
 
-@njit(cache=True)
 def quat_from_matrix(m):
     """Unit quaternion (w >= 0) of a body-to-inertial rotation matrix (Shepperd's method)."""
     tr = m[0, 0] + m[1, 1] + m[2, 2]
@@ -148,66 +150,65 @@ def quat_rate(q, omega_body):
     return 0.5 * quat_multiply(q, np.array([0.0, omega_body[0], omega_body[1], omega_body[2]]))
 
 
-@njit(cache=True)
 def matrix_from_euler313(phi, theta, psi):
-    """ICRF-to-body matrix M = Rz(psi) Rx(theta) Rz(phi) (JPL lunar convention), rad."""
-    cf, sf = math.cos(phi), math.sin(phi)
-    ct, st = math.cos(theta), math.sin(theta)
-    cp, sp = math.cos(psi), math.sin(psi)
-    return np.array([
-        [cp * cf - sp * ct * sf, cp * sf + sp * ct * cf, sp * st],
-        [-sp * cf - cp * ct * sf, -sp * sf + cp * ct * cf, cp * st],
-        [st * sf, -st * cf, ct],
-    ])
+    """ICRF-to-body matrix M = Rz(psi) Rx(theta) Rz(phi) (JPL lunar convention), rad.
+
+    Angles of shape (...) give matrices (..., 3, 3).
+    """
+    cf, sf = np.cos(phi), np.sin(phi)
+    ct, st = np.cos(theta), np.sin(theta)
+    cp, sp = np.cos(psi), np.sin(psi)
+    rows = ([cp * cf - sp * ct * sf, cp * sf + sp * ct * cf, sp * st],
+            [-sp * cf - cp * ct * sf, -sp * sf + cp * ct * cf, cp * st],
+            [st * sf, -st * cf, ct])
+    return np.stack([np.stack(np.broadcast_arrays(*row), axis=-1) for row in rows], axis=-2)
 
 
-@njit(cache=True)
 def euler313_from_matrix(m):
-    """(phi, theta, psi) in rad of an ICRF-to-body matrix; phi, psi in [0, 2 pi).
+    """(phi, theta, psi) in rad of ICRF-to-body matrices (..., 3, 3); phi, psi in [0, 2 pi).
 
     At the gimbal singularity (sin theta below 1e-15) only phi + psi is defined;
     phi is set to 0 there.
     """
-    st = math.hypot(m[2, 0], m[2, 1])
-    theta = math.atan2(st, m[2, 2])
-    if st > 1e-15:
-        phi = math.atan2(m[2, 0], -m[2, 1])
-        psi = math.atan2(m[0, 2], m[1, 2])
-    else:
-        phi = 0.0
-        psi = math.atan2(m[0, 1], m[0, 0]) if m[2, 2] > 0 else math.atan2(-m[0, 1], m[0, 0])
-    two_pi = 2.0 * math.pi
-    return np.array([phi % two_pi, theta, psi % two_pi])
+    m = np.asarray(m, dtype=float)
+    st = np.hypot(m[..., 2, 0], m[..., 2, 1])
+    theta = np.arctan2(st, m[..., 2, 2])
+    regular = st > 1e-15
+    phi = np.where(regular, np.arctan2(m[..., 2, 0], -m[..., 2, 1]), 0.0)
+    psi_singular = np.arctan2(np.where(m[..., 2, 2] > 0, m[..., 0, 1], -m[..., 0, 1]), m[..., 0, 0])
+    psi = np.where(regular, np.arctan2(m[..., 0, 2], m[..., 1, 2]), psi_singular)
+    two_pi = 2.0 * np.pi
+    return np.stack([phi % two_pi, theta, psi % two_pi], axis=-1)
 
 
-@njit(cache=True)
 def omega_body_from_euler313_rates(angles, rates):
-    """Body angular velocity from 3-1-3 angles and their rates (JPL convention)."""
-    theta, psi = angles[1], angles[2]
-    dphi, dtheta, dpsi = rates[0], rates[1], rates[2]
-    st, ct, sp, cp = math.sin(theta), math.cos(theta), math.sin(psi), math.cos(psi)
-    return np.array([dphi * st * sp + dtheta * cp, dphi * st * cp - dtheta * sp, dphi * ct + dpsi])
+    """Body angular velocity from 3-1-3 angles and their rates (JPL convention), shapes (..., 3)."""
+    angles, rates = np.asarray(angles, dtype=float), np.asarray(rates, dtype=float)
+    theta, psi = angles[..., 1], angles[..., 2]
+    dphi, dtheta, dpsi = rates[..., 0], rates[..., 1], rates[..., 2]
+    st, ct, sp, cp = np.sin(theta), np.cos(theta), np.sin(psi), np.cos(psi)
+    return np.stack([dphi * st * sp + dtheta * cp, dphi * st * cp - dtheta * sp, dphi * ct + dpsi], axis=-1)
 
 
-@njit(cache=True)
 def euler313_rates_from_omega_body(angles, omega):
-    """Inverse of omega_body_from_euler313_rates (singular at sin theta = 0)."""
-    theta, psi = angles[1], angles[2]
-    st, ct, sp, cp = math.sin(theta), math.cos(theta), math.sin(psi), math.cos(psi)
-    dphi = (omega[0] * sp + omega[1] * cp) / st
-    dtheta = omega[0] * cp - omega[1] * sp
-    dpsi = omega[2] - dphi * ct
-    return np.array([dphi, dtheta, dpsi])
+    """Inverse of omega_body_from_euler313_rates (singular at sin theta = 0), shapes (..., 3)."""
+    angles, omega = np.asarray(angles, dtype=float), np.asarray(omega, dtype=float)
+    theta, psi = angles[..., 1], angles[..., 2]
+    st, ct, sp, cp = np.sin(theta), np.cos(theta), np.sin(psi), np.cos(psi)
+    dphi = (omega[..., 0] * sp + omega[..., 1] * cp) / st
+    dtheta = omega[..., 0] * cp - omega[..., 1] * sp
+    dpsi = omega[..., 2] - dphi * ct
+    return np.stack([dphi, dtheta, dpsi], axis=-1)
 
 
 def quat_from_euler313(phi, theta, psi):
     """Body-to-inertial quaternion of JPL 3-1-3 angles (rad)."""
-    return quat_from_matrix(matrix_from_euler313(phi, theta, psi).T.copy())
+    return quat_from_matrix(matrix_from_euler313(phi, theta, psi).T)
 
 
 def euler313_from_quat(q):
     """JPL 3-1-3 angles (rad) of a body-to-inertial quaternion."""
-    return euler313_from_matrix(matrix_from_quat(np.asarray(q, dtype=float)).T.copy())
+    return euler313_from_matrix(matrix_from_quat(np.asarray(q, dtype=float)).T)
 
 
 def quat_angle(q_a, q_b):

@@ -150,9 +150,7 @@ def librations(t_tdb_d):
 def orientation(t_tdb_d):
     """DE421 ICRF-to-body matrices (n, 3, 3) and body angular velocities (n, 3) rad/day."""
     angles, rates = librations(t_tdb_d)
-    mats = np.array([matrix_from_euler313(*a) for a in angles])
-    omega = np.array([omega_body_from_euler313_rates(a, r) for a, r in zip(angles, rates)])
-    return mats, omega
+    return matrix_from_euler313(*angles.T), omega_body_from_euler313_rates(angles, rates)
 
 
 def _pck_paths():
