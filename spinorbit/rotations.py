@@ -147,7 +147,10 @@ def rotate_to_body(q, v_inertial):
 @njit(cache=True)
 def quat_rate(q, omega_body):
     """dq/dt for body angular velocity omega_body (rad per time unit)."""
-    return 0.5 * quat_multiply(q, np.array([0.0, omega_body[0], omega_body[1], omega_body[2]]))
+    w, x, y, z = q[0], q[1], q[2], q[3]
+    a, b, c = omega_body[0], omega_body[1], omega_body[2]
+    return np.array([0.5 * (-x * a - y * b - z * c), 0.5 * (w * a + y * c - z * b),     # q * (0, omega) / 2
+                     0.5 * (w * b - x * c + z * a), 0.5 * (w * c + x * b - y * a)])
 
 
 def matrix_from_euler313(phi, theta, psi):
