@@ -162,14 +162,14 @@ def distortion(omega, r_del, v_del, consts):
     rv = dot3(r_del, v_del)
     w2, n2 = dot3(omega, omega), consts[N_MEAN] ** 2
     delta, delta_rate = np.empty((3, 3)), np.empty((3, 3))
-    for i in range(3):
+    for i in range(3):                     # the module docstring's I_m terms, element (i, j)
         for j in range(3):
-            eye = 1.0 if i == j else 0.0
-            outer = r_del[i] * r_del[j]
-            d_outer = v_del[i] * r_del[j] + r_del[i] * v_del[j]
-            tide = -f * (outer - r2 / 3.0 * eye)
-            delta_rate[i, j] = -f * (d_outer - 2.0 * rv / 3.0 * eye) + 5.0 * f * rv / r2 * (outer - r2 / 3.0 * eye)
-            rot = omega[i] * omega[j] - (w2 - n2) / 3.0 * eye
+            d_ij = 1.0 if i == j else 0.0
+            xx = r_del[i] * r_del[j]
+            xx_rate = v_del[i] * r_del[j] + r_del[i] * v_del[j]
+            tide = -f * (xx - r2 / 3.0 * d_ij)
+            delta_rate[i, j] = -f * (xx_rate - 2.0 * rv / 3.0 * d_ij) + 5.0 * f * rv / r2 * (xx - r2 / 3.0 * d_ij)
+            rot = omega[i] * omega[j] - (w2 - n2) / 3.0 * d_ij
             if i == 2 and j == 2:
                 rot = omega[2] * omega[2] - (w2 + 2.0 * n2) / 3.0
             delta[i, j] = tide + consts[K2_ROT] * rot
