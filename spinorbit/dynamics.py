@@ -41,8 +41,8 @@ def rigid_body_rhs(t, y, p):
     """dy/dt of a rigid body under ``torque(t, y, p)`` (body frame); ``p[0]`` = principal moments (A, B, C)."""
     moments = p[0]
     dy = np.zeros_like(y)
-    put(dy, 0, quat_rate(y[:4], y[4:7]))
-    put(dy, 4, euler_omega_dot(moments, y[4:7], torque(t, y, p)))
+    put(dy[:4], quat_rate(y[:4], y[4:7]))
+    put(dy[4:7], euler_omega_dot(moments, y[4:7], torque(t, y, p)))
     return dy
 
 

@@ -79,8 +79,8 @@ def full_rhs(t, y, p):
     extra = p[3]
     frame_rate_body = mat_t_vec3(matrix_from_quat(y[:4]), extra[:3])
     dy = np.zeros_like(y)
-    put(dy, 0, quat_rate(y[:4], y[4:7] + frame_rate_body))
-    put(dy, 4, euler_omega_dot(p[0], y[4:7], torque(t, y, p)))
+    put(dy[:4], quat_rate(y[:4], y[4:7] + frame_rate_body))
+    put(dy[4:7], euler_omega_dot(p[0], y[4:7], torque(t, y, p)))
     return dy
 
 

@@ -236,7 +236,7 @@ def moon_rhs(t, y, p):
         inertia = inertia + delta
     torque = external_torque(t, inertia, rot, positions(t, data), gm, c_nm, s_nm, consts, pole, N_MAX)
     dy = np.empty_like(y)
-    put(dy, 0, quat_rate(q, omega))
+    put(dy[:4], quat_rate(q, omega))
     if WITH_CORE:                  # torques act with the whole Moon's I; the mantle turns with I - I_c
         c_core = consts[C_CORE]
         core_moments = np.array([c_core * (1.0 - consts[F_CORE]), c_core * (1.0 - consts[F_CORE]), c_core])
@@ -245,9 +245,9 @@ def moon_rhs(t, y, p):
         n_cmb = consts[KV] * (omega_c - omega) + (c_core - core_moments[0]) * omega_c[2] * np.array(
             [-omega_c[1], omega_c[0], 0.0])
         torque += n_cmb
-        put(dy, 7, (-cross3(omega, core_moments * omega_c) - n_cmb) / core_moments)
+        put(dy[7:10], (-cross3(omega, core_moments * omega_c) - n_cmb) / core_moments)
     rhs_vec = torque - cross3(omega, matvec3(inertia, omega)) - matvec3(inertia_rate, omega)
-    put(dy, 4, solve3(inertia, rhs_vec))
+    put(dy[4:7], solve3(inertia, rhs_vec))
     return dy
 
 

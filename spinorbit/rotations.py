@@ -85,10 +85,13 @@ def solve3(m, b):
 
 
 @njit(cache=True)
-def put(out, start, v):
-    """out[start:start + len(v)] = v, by element (numba's slice assignment compiles a shape-error formatter)."""
+def put(out, v):
+    """out[:] = v for 1-d arrays of equal length, by element (numba's slice assignment
+    compiles a shape-error formatter); out may be a view such as y[4:7] or k[s]."""
+    if out.shape[0] != v.shape[0]:
+        raise ValueError("put: out and v differ in length")
     for i in range(v.shape[0]):
-        out[start + i] = v[i]
+        out[i] = v[i]
 
 
 @njit(cache=True)

@@ -78,8 +78,10 @@ def test_vector_helpers_against_numpy():
     np.testing.assert_allclose(mat_t_vec3(m, a), m.T @ a, rtol=1e-15, atol=1e-15)
     np.testing.assert_array_equal(diag3(a), np.diag(a))
     out = np.zeros(7)
-    put(out, 4, a)
+    put(out[4:7], a)
     np.testing.assert_array_equal(out, np.concatenate([np.zeros(4), a]))
+    with pytest.raises(ValueError):
+        put(out[:2], a)
 
 
 def test_solve3_as_accurate_as_lapack_on_inertia_tensors():

@@ -33,7 +33,7 @@ def rk_step(params, t, y, dt, a, b, c, k, ys):
                 w = dt * a[s, j]
                 for m in range(dim):
                     ys[m] += w * k[j, m]
-        put(k[s], 0, rhs(t + c[s] * dt, ys, params))
+        put(k[s], rhs(t + c[s] * dt, ys, params))
     y_new = y.copy()
     for s in range(n_stages):
         if b[s] != 0.0:
@@ -67,7 +67,7 @@ def rk_fixed(params, t0, y0, t_out, h, a, b, c, max_steps):
             steps += 1
             if steps > max_steps or not np.all(np.isfinite(y)):
                 return y_out, i, steps, t
-        put(y_out[i], 0, y)
+        put(y_out[i], y)
         t = t_out[i]
     return y_out, t_out.shape[0], steps, t
 
@@ -89,7 +89,7 @@ def rk8_dense(params, t0, y0, t_out, h, a, b, c, a_ext, c_ext, d, max_steps):
     extra = 0
     i = 0
     while i < t_out.shape[0] and t_out[i] <= t0:
-        put(y_out[i], 0, y0)
+        put(y_out[i], y0)
         i += 1
     while i < t_out.shape[0]:
         dt = min(h, t_out[-1] - t)
@@ -100,7 +100,7 @@ def rk8_dense(params, t0, y0, t_out, h, a, b, c, a_ext, c_ext, d, max_steps):
         t_new = t + dt if dt < h else t0 + steps * h     # no drift of the step grid
         if t_out[i] <= t_new:
             extra += 4
-            put(k[n_stages], 0, rhs(t_new, y_new, params))
+            put(k[n_stages], rhs(t_new, y_new, params))
             for s in range(3):                           # the three extra stages
                 for m in range(dim):
                     ys[m] = y[m]
@@ -108,7 +108,7 @@ def rk8_dense(params, t0, y0, t_out, h, a, b, c, a_ext, c_ext, d, max_steps):
                     if a_ext[s, j] != 0.0:
                         for m in range(dim):
                             ys[m] += dt * a_ext[s, j] * k[j, m]
-                put(k[n_stages + 1 + s], 0, rhs(t + c_ext[s] * dt, ys, params))
+                put(k[n_stages + 1 + s], rhs(t + c_ext[s] * dt, ys, params))
             for m in range(dim):
                 delta = y_new[m] - y[m]
                 f[0, m] = delta
