@@ -16,7 +16,7 @@ import numpy as np
 from numba import njit
 
 from .linker import link, template
-from .rotations import matrix_from_quat, quat_rate, rotate_to_body
+from .rotations import mat_t_vec3, matrix_from_quat, put, quat_rate, rotate_to_body
 from .torques import point_mass_torque
 
 
@@ -41,8 +41,8 @@ def rigid_body_rhs(t, y, p):
     """dy/dt of a rigid body under ``torque(t, y, p)`` (body frame); ``p[0]`` = principal moments (A, B, C)."""
     moments = p[0]
     dy = np.zeros_like(y)
-    dy[:4] = quat_rate(y[:4], y[4:7])
-    dy[4:7] = euler_omega_dot(moments, y[4:7], torque(t, y, p))
+    put(dy[:4], quat_rate(y[:4], y[4:7]))
+    put(dy[4:7], euler_omega_dot(moments, y[4:7], torque(t, y, p)))
     return dy
 
 
@@ -60,10 +60,10 @@ def point_masses_torque(t, y, p):
     """Body-frame torque of the point masses at ``positions(t, data)``; p = (moments, gm (n,), data)."""
     moments, gm, data = p[0], p[1], p[2]
     r_inertial = positions(t, data)
-    to_body = matrix_from_quat(y[:4]).T
+    rot = matrix_from_quat(y[:4])              # body -> inertial
     total = np.zeros(3)
     for i in range(gm.shape[0]):
-        total += point_mass_torque(moments, to_body @ r_inertial[i], gm[i])
+        total += point_mass_torque(moments, mat_t_vec3(rot, r_inertial[i]), gm[i])
     return total
 
 

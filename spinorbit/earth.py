@@ -33,7 +33,7 @@ from .constants import ARCSEC, JULIAN_CENTURY_D
 from .dynamics import SpinSystem, euler_omega_dot, make_point_mass_torque
 from .errors import PhysicsError
 from .linker import link, template
-from .rotations import matrix_from_quat, quat_from_matrix, quat_rate
+from .rotations import cross3, dot3, mat_t_vec3, matrix_from_quat, matvec3, put, quat_from_matrix, quat_rate
 
 H_D = 3.27379448e-3                      # (C - A)/C, IAU 2006 (Capitaine et al. 2003)
 ERA_RATE_RAD_D = 2 * math.pi * 1.00273781191135448   # Earth rotation angle rate, rad per UT1 day
@@ -77,10 +77,10 @@ def make_full_torque(positions):
 def full_rhs(t, y, p):
     """Euler's equations (§813) + kinematics in the frame turning at Omega_gp = p[3][:3] w.r.t. GCRS."""
     extra = p[3]
-    to_body = matrix_from_quat(y[:4]).T
+    frame_rate_body = mat_t_vec3(matrix_from_quat(y[:4]), extra[:3])
     dy = np.zeros_like(y)
-    dy[:4] = quat_rate(y[:4], y[4:7] + to_body @ extra[:3])
-    dy[4:7] = euler_omega_dot(p[0], y[4:7], torque(t, y, p))
+    put(dy[:4], quat_rate(y[:4], y[4:7] + frame_rate_body))
+    put(dy[4:7], euler_omega_dot(p[0], y[4:7], torque(t, y, p)))
     return dy
 
 
@@ -90,11 +90,6 @@ def make_full_rhs(positions):
 
 
 # --- gyroscopic model: the angular momentum direction -------------------------
-
-@njit(cache=True)
-def _cross(a, b):
-    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
-
 
 @template("positions")
 def tidal_tensor(t, p):
@@ -123,7 +118,7 @@ def make_tidal_tensor(positions):
 @njit(cache=True)
 def _axis_torque(tensor, z, c_minus_a):
     """(C - A) (T z) x z: inertial torque on an axisymmetric body with figure axis z."""
-    return c_minus_a * _cross(tensor @ z, z)
+    return c_minus_a * cross3(matvec3(tensor, z), z)
 
 
 @njit(cache=True)
@@ -140,8 +135,8 @@ def _slow_figure_axis(t0, t_dot, ell, lc, moments):
     c_minus_a = moments[2] - a
     n0 = _axis_torque(t0, ell, c_minus_a / (lc * lam))
     n_dot = _axis_torque(t_dot, ell, c_minus_a / (lc * lam * lam))
-    z = ell - _cross(ell, n0) - n_dot
-    return z / math.sqrt(z @ z)
+    z = ell - cross3(ell, n0) - n_dot
+    return z / math.sqrt(dot3(z, z))
 
 
 _H_DIFF = 1.0 / 64.0      # d, central difference for the tensor rate
@@ -169,8 +164,8 @@ def gyroscopic_rhs(t, y, p):
     t_dot = (tensor(t + _H_DIFF, p) - tensor(t - _H_DIFF, p)) / (2.0 * _H_DIFF)
     z = _slow_figure_axis(t0, t_dot, ell, lc, moments)
     torque = _axis_torque(t0, z, moments[2] - 0.5 * (moments[0] + moments[1]))
-    ell_dot = (torque - (torque @ ell) * ell) / lc + _cross(extra[:3], ell)
-    w = _cross(ell, ell_dot)          # inertial rate of the twist-free L frame
+    ell_dot = (torque - dot3(torque, ell) * ell) / lc + cross3(extra[:3], ell)
+    w = cross3(ell, ell_dot)          # inertial rate of the twist-free L frame
     dy = np.zeros_like(y)
     dy[0] = -0.5 * (w[0] * y[1] + w[1] * y[2] + w[2] * y[3])      # dq/dt = (0, w) q / 2
     dy[1] = 0.5 * (w[0] * y[0] + w[1] * y[3] - w[2] * y[2])

@@ -47,7 +47,7 @@ import numpy as np
 from numba import njit
 
 from .linker import link, template
-from .rotations import matrix_from_quat, quat_rate
+from .rotations import cross3, diag3, dot3, mat_t_vec3, matrix_from_quat, matvec3, put, quat_rate, solve3
 
 # Layout of the float vector ``consts`` in the parameters (see moon_params).
 R_KM, K2_MASS_RATIO, K2_ROT, TAU_D, KV, C_CORE, N_MEAN, F_CORE, J2E_GM_R2 = range(9)
@@ -93,14 +93,15 @@ def harmonic_gradient(r, radius, c_nm, s_nm, n_min, n_max):
             ay += 0.5 * (-c * w[n + 1, m + 1] + s * v[n + 1, m + 1]
                          + fac * (-c * w[n + 1, m - 1] + s * v[n + 1, m - 1]))
             az += (n - m + 1) * (-c * v[n + 1, m] - s * w[n + 1, m])
-    return np.array([ax, ay, az]) / (radius * radius)
+    r_ref2 = radius * radius
+    return np.array([ax / r_ref2, ay / r_ref2, az / r_ref2])
 
 
 @njit(cache=True)
 def figure_torque(inertia, r_body, gm):
     """Degree-2 torque 3 GM/r^5 r x (I r) of a point mass (Euler ch. 16 P91, §815), any I tensor."""
     r2 = r_body[0] ** 2 + r_body[1] ** 2 + r_body[2] ** 2
-    return 3.0 * gm / (r2 * r2 * math.sqrt(r2)) * np.cross(r_body, inertia @ r_body)
+    return 3.0 * gm / (r2 * r2 * math.sqrt(r2)) * cross3(r_body, matvec3(inertia, r_body))
 
 
 @njit(cache=True)
@@ -111,14 +112,14 @@ def oblate_earth_torque(inertia, r_body, pole_body, gm_j2_r2):
     gm_j2_r2 = GM_E J2E R_E^2 (km^5/d^2).  The torque -int x x grad U_J2 dm of the
     Earth's degree-2 potential's gradient across the body (its Hessian against I).
     """
-    r2 = r_body @ r_body
+    r2 = dot3(r_body, r_body)
     r = math.sqrt(r2)
     u = r_body / r
-    s = u @ pole_body
-    iu, ip = inertia @ u, inertia @ pole_body
-    return 7.5 * gm_j2_r2 / (r2 * r2 * r) * ((1.0 - 7.0 * s * s) * np.cross(u, iu)
-                                             + 2.0 * s * (np.cross(u, ip) + np.cross(pole_body, iu))
-                                             - 0.4 * np.cross(pole_body, ip))
+    s = dot3(u, pole_body)
+    iu, ip = matvec3(inertia, u), matvec3(inertia, pole_body)
+    return 7.5 * gm_j2_r2 / (r2 * r2 * r) * ((1.0 - 7.0 * s * s) * cross3(u, iu)
+                                             + 2.0 * s * (cross3(u, ip) + cross3(pole_body, iu))
+                                             - 0.4 * cross3(pole_body, ip))
 
 
 @njit(cache=True)
@@ -128,7 +129,7 @@ def interpolate_pole(t, pole):
     s = min(max((t - grid[0]) / grid[1], 0.0), samples.shape[0] - 1.000001)
     k = int(s)
     v = samples[k] + (s - k) * (samples[k + 1] - samples[k])
-    return v / math.sqrt(v @ v)
+    return v / math.sqrt(dot3(v, v))
 
 
 @njit(cache=True)
@@ -137,14 +138,14 @@ def harmonic_torque(r_body, gm, radius, c_nm, s_nm, n_min, n_max):
 
     N = -M_A r x grad U_body(r); divided by M R^2: -(GM/R^2) r x grad W.
     """
-    return -gm / (radius * radius) * np.cross(r_body, harmonic_gradient(r_body, radius, c_nm, s_nm, n_min, n_max))
+    return -gm / (radius * radius) * cross3(r_body, harmonic_gradient(r_body, radius, c_nm, s_nm, n_min, n_max))
 
 
 @njit(cache=True)
 def rotate_about(v, axis, angle):
     """Rodrigues: v rotated right-handedly by ``angle`` about the unit vector ``axis``."""
     c, s = math.cos(angle), math.sin(angle)
-    return v * c + np.cross(axis, v) * s + axis * (axis @ v) * (1.0 - c)
+    return v * c + cross3(axis, v) * s + axis * dot3(axis, v) * (1.0 - c)
 
 
 @njit(cache=True)
@@ -156,36 +157,42 @@ def distortion(omega, r_del, v_del, consts):
     and is left out.
     """
     k_tide = consts[K2_MASS_RATIO] * consts[R_KM] ** 3
-    r2 = r_del @ r_del
+    r2 = dot3(r_del, r_del)
     f = k_tide / (r2 * r2 * math.sqrt(r2))
-    rv = r_del @ v_del
-    outer = np.outer(r_del, r_del)
-    d_outer = np.outer(v_del, r_del) + np.outer(r_del, v_del)
-    eye = np.eye(3)
-    tide = -f * (outer - r2 / 3.0 * eye)
-    tide_rate = -f * (d_outer - 2.0 * rv / 3.0 * eye) + 5.0 * f * rv / r2 * (outer - r2 / 3.0 * eye)
-    w2, n2 = omega @ omega, consts[N_MEAN] ** 2
-    rot = np.outer(omega, omega) - (w2 - n2) / 3.0 * eye
-    rot[2, 2] = omega[2] * omega[2] - (w2 + 2.0 * n2) / 3.0
-    return tide + consts[K2_ROT] * rot, tide_rate
+    rv = dot3(r_del, v_del)
+    w2, n2 = dot3(omega, omega), consts[N_MEAN] ** 2
+    delta, delta_rate = np.empty((3, 3)), np.empty((3, 3))
+    for i in range(3):                     # the module docstring's I_m terms, element (i, j)
+        for j in range(3):
+            d_ij = 1.0 if i == j else 0.0
+            xx = r_del[i] * r_del[j]
+            xx_rate = v_del[i] * r_del[j] + r_del[i] * v_del[j]
+            tide = -f * (xx - r2 / 3.0 * d_ij)
+            delta_rate[i, j] = -f * (xx_rate - 2.0 * rv / 3.0 * d_ij) + 5.0 * f * rv / r2 * (xx - r2 / 3.0 * d_ij)
+            rot = omega[i] * omega[j] - (w2 - n2) / 3.0 * d_ij
+            if i == 2 and j == 2:
+                rot = omega[2] * omega[2] - (w2 + 2.0 * n2) / 3.0
+            delta[i, j] = tide + consts[K2_ROT] * rot
+    return delta, delta_rate
 
 
 @njit(cache=True)
-def external_torque(t, inertia, to_body, r_all, gm, c_nm, s_nm, consts, pole, n_max):
+def external_torque(t, inertia, rot, r_all, gm, c_nm, s_nm, consts, pole, n_max):
     """Body-frame torque (per M R^2) of the point masses at ``r_all`` (km, ICRF) on the Moon.
 
+    ``rot``: the body-to-ICRF matrix (its transpose takes ICRF vectors to body axes).
     The degree-2 figure torque of each mass (Euler ch. 16 P91, §815, with the
     instantaneous inertia), the Moon's degree 3..n_max field, and the Earth's
     J2 (body 0) acting on the lunar figure when its constant is nonzero.
     """
     torque = np.zeros(3)
     for i in range(gm.shape[0]):
-        r_b = to_body @ r_all[i]
+        r_b = mat_t_vec3(rot, r_all[i])
         torque += figure_torque(inertia, r_b, gm[i])
         if n_max >= 3:
             torque += harmonic_torque(r_b, gm[i], consts[R_KM], c_nm, s_nm, 3, n_max)
     if consts[J2E_GM_R2] != 0.0:
-        torque += oblate_earth_torque(inertia, to_body @ r_all[0], to_body @ interpolate_pole(t, pole),
+        torque += oblate_earth_torque(inertia, mat_t_vec3(rot, r_all[0]), mat_t_vec3(rot, interpolate_pole(t, pole)),
                                       consts[J2E_GM_R2])
     return torque
 
@@ -194,8 +201,8 @@ def external_torque(t, inertia, to_body, r_all, gm, c_nm, s_nm, consts, pole, n_
 def rigid_moon_torque(t, y, p):
     """Body-frame torque (per M R^2) on a rigid Moon (no core, no distortion); p = moon_params(...)."""
     moments, gm, data, c_nm, s_nm, consts, pole = p
-    to_body = matrix_from_quat(y[:4]).T
-    return external_torque(t, np.diag(moments), to_body, positions(t, data), gm, c_nm, s_nm, consts, pole, N_MAX)
+    return external_torque(t, diag3(moments), matrix_from_quat(y[:4]), positions(t, data), gm, c_nm, s_nm, consts,
+                           pole, N_MAX)
 
 
 def make_rigid_moon_torque(positions, degree=2):
@@ -215,32 +222,32 @@ def moon_rhs(t, y, p):
     """dy/dt of the lunar model; y = [q, w_m] or [q, w_m, w_c]; p = moon_params(...)."""
     moments, gm, data, c_nm, s_nm, consts, pole = p
     q, omega = y[:4], y[4:7]
-    to_body = matrix_from_quat(q).T
-    inertia = np.diag(moments)
+    rot = matrix_from_quat(q)                 # body -> ICRF; mat_t_vec3(rot, v) takes v to body axes
+    inertia = diag3(moments)
     inertia_rate = np.zeros((3, 3))
     if WITH_TIDES:
         tau = consts[TAU_D]
-        wn = math.sqrt(omega @ omega)
+        wn = math.sqrt(dot3(omega, omega))
         axis = omega / wn
-        r_del = rotate_about(to_body @ positions(t - tau, data)[0], axis, wn * tau)
+        r_del = rotate_about(mat_t_vec3(rot, positions(t - tau, data)[0]), axis, wn * tau)
         vel_i = (positions(t - tau + _DT_DIFF, data)[0] - positions(t - tau - _DT_DIFF, data)[0]) / (2 * _DT_DIFF)
-        v_del = rotate_about(to_body @ vel_i, axis, wn * tau) - np.cross(omega, r_del)
+        v_del = rotate_about(mat_t_vec3(rot, vel_i), axis, wn * tau) - cross3(omega, r_del)
         delta, inertia_rate = distortion(omega, r_del, v_del, consts)
         inertia = inertia + delta
-    torque = external_torque(t, inertia, to_body, positions(t, data), gm, c_nm, s_nm, consts, pole, N_MAX)
+    torque = external_torque(t, inertia, rot, positions(t, data), gm, c_nm, s_nm, consts, pole, N_MAX)
     dy = np.empty_like(y)
-    dy[:4] = quat_rate(q, omega)
+    put(dy[:4], quat_rate(q, omega))
     if WITH_CORE:                  # torques act with the whole Moon's I; the mantle turns with I - I_c
         c_core = consts[C_CORE]
         core_moments = np.array([c_core * (1.0 - consts[F_CORE]), c_core * (1.0 - consts[F_CORE]), c_core])
-        inertia = inertia - np.diag(core_moments)
+        inertia = inertia - diag3(core_moments)
         omega_c = y[7:10]
         n_cmb = consts[KV] * (omega_c - omega) + (c_core - core_moments[0]) * omega_c[2] * np.array(
             [-omega_c[1], omega_c[0], 0.0])
         torque += n_cmb
-        dy[7:10] = (-np.cross(omega, core_moments * omega_c) - n_cmb) / core_moments
-    rhs_vec = torque - np.cross(omega, inertia @ omega) - inertia_rate @ omega
-    dy[4:7] = np.linalg.solve(inertia, rhs_vec)
+        put(dy[7:10], (-cross3(omega, core_moments * omega_c) - n_cmb) / core_moments)
+    rhs_vec = torque - cross3(omega, matvec3(inertia, omega)) - matvec3(inertia_rate, omega)
+    put(dy[4:7], solve3(inertia, rhs_vec))
     return dy
 
 

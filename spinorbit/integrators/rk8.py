@@ -14,11 +14,12 @@ A span that ends before its start is integrated backward with the step negated.
 import time
 
 import numpy as np
-from scipy.integrate._ivp import dop853_coefficients as _dop853
 
 from ..errors import IntegrationError, ScenarioError
 from ..linker import link, template
 from ..progress import progress
+from ..rotations import put
+from . import dop853_tableau as dop853
 from .base import Integrator, Solution, normalise_quaternions, output_chunks
 
 
@@ -27,13 +28,14 @@ def rk_step(params, t, y, dt, a, b, c, k, ys):
     """One explicit Runge-Kutta step of size dt; fills the stages k; returns the new state."""
     n_stages, dim = b.shape[0], y.shape[0]
     for s in range(n_stages):
-        ys[:] = y
+        for m in range(dim):
+            ys[m] = y[m]
         for j in range(s):
             if a[s, j] != 0.0:
                 w = dt * a[s, j]
                 for m in range(dim):
                     ys[m] += w * k[j, m]
-        k[s] = rhs(t + c[s] * dt, ys, params)
+        put(k[s], rhs(t + c[s] * dt, ys, params))
     y_new = y.copy()
     for s in range(n_stages):
         if b[s] != 0.0:
@@ -67,7 +69,7 @@ def rk_fixed(params, t0, y0, t_out, h, a, b, c, max_steps):
             steps += 1
             if steps > max_steps or not np.all(np.isfinite(y)):
                 return y_out, i, steps, t
-        y_out[i] = y
+        put(y_out[i], y)
         t = t_out[i]
     return y_out, t_out.shape[0], steps, t
 
@@ -86,7 +88,7 @@ def rk8_dense(params, t_origin, y, steps, i, y_out, t_out, h, a, b, c, a_ext, c_
     t = t_origin + steps * h
     extra = 0
     while i < t_out.shape[0] and (t_out[i] - t) * h <= 0.0:
-        y_out[i] = y
+        put(y_out[i], y)
         i += 1
     while i < t_out.shape[0] and steps < max_steps:
         dt = h if abs(h) < abs(t_out[-1] - t) else t_out[-1] - t
@@ -97,30 +99,34 @@ def rk8_dense(params, t_origin, y, steps, i, y_out, t_out, h, a, b, c, a_ext, c_
         t_new = t + dt if dt != h else t_origin + steps * h     # no drift of the step grid
         if (t_out[i] - t_new) * h <= 0.0:
             extra += 4
-            k[n_stages] = rhs(t_new, y_new, params)
+            put(k[n_stages], rhs(t_new, y_new, params))
             for s in range(3):                           # the three extra stages
-                ys[:] = y
+                for m in range(dim):
+                    ys[m] = y[m]
                 for j in range(n_stages + 1 + s):
                     if a_ext[s, j] != 0.0:
                         for m in range(dim):
                             ys[m] += dt * a_ext[s, j] * k[j, m]
-                k[n_stages + 1 + s] = rhs(t + c_ext[s] * dt, ys, params)
-            delta = y_new - y
-            f[0] = delta
-            f[1] = dt * k[0] - delta
-            f[2] = 2.0 * delta - dt * (k[n_stages] + k[0])
+                put(k[n_stages + 1 + s], rhs(t + c_ext[s] * dt, ys, params))
+            for m in range(dim):
+                delta = y_new[m] - y[m]
+                f[0, m] = delta
+                f[1, m] = dt * k[0, m] - delta
+                f[2, m] = 2.0 * delta - dt * (k[n_stages, m] + k[0, m])
             for r in range(4):
                 f[3 + r] = 0.0
                 for j in range(n_stages + 4):
                     if d[r, j] != 0.0:
-                        f[3 + r] += dt * d[r, j] * k[j]
+                        for m in range(dim):
+                            f[3 + r, m] += dt * d[r, j] * k[j, m]
             while i < t_out.shape[0] and (t_out[i] - t_new) * h <= 0.0:
                 x = (t_out[i] - t) / dt
-                value = np.zeros(dim)
-                for r in range(6, -1, -1):               # Horner form of scipy's Dop853DenseOutput
-                    value += f[r]
-                    value *= x if (6 - r) % 2 == 0 else 1.0 - x
-                y_out[i] = y + value
+                for m in range(dim):
+                    value = 0.0
+                    for r in range(6, -1, -1):           # Horner form of scipy's Dop853DenseOutput
+                        value += f[r, m]
+                        value *= x if (6 - r) % 2 == 0 else 1.0 - x
+                    y_out[i, m] = y[m] + value
                 i += 1
         y, t = y_new, t_new
     return i, steps, t, y, extra, True
@@ -156,11 +162,11 @@ class RK8(Integrator):
     options = {"step": 1.0, "max_steps": 10**9}
     # Butcher tableau (methods as data): the 12-stage 8th-order part of DOP853,
     # and its continuous extension (three more stages, interpolation matrix D).
-    A = np.ascontiguousarray(_dop853.A[:12, :12])
-    B = np.ascontiguousarray(_dop853.B)
-    C = np.ascontiguousarray(_dop853.C[:12])
-    DENSE = (np.ascontiguousarray(_dop853.A[13:16]), np.ascontiguousarray(_dop853.C[13:16]),
-             np.ascontiguousarray(_dop853.D))
+    A = np.ascontiguousarray(dop853.A[:12, :12])
+    B = np.ascontiguousarray(dop853.B)
+    C = np.ascontiguousarray(dop853.C[:12])
+    DENSE = (np.ascontiguousarray(dop853.A[13:16]), np.ascontiguousarray(dop853.C[13:16]),
+             np.ascontiguousarray(dop853.D))
 
     def solve(self, system, t_out):
         t_out = self._check_times(system, t_out)

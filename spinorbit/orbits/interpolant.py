@@ -80,7 +80,10 @@ def derivative(samples, step, width=7):
 def _positions_many(ts, data):
     out = np.empty((ts.shape[0], data[1].shape[0], 3))
     for k in range(ts.shape[0]):
-        out[k] = hermite_positions(ts[k], data)
+        r = hermite_positions(ts[k], data)
+        for i in range(r.shape[0]):
+            for j in range(3):
+                out[k, i, j] = r[i, j]
     return out
 
 

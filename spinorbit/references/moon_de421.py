@@ -27,6 +27,7 @@ from numpy.polynomial import chebyshev
 
 from ..constants import J2000_JD
 from ..errors import EphemerisRangeError
+from ..rotations import cross3, dot3, matrix_from_euler313, omega_body_from_euler313_rates
 
 
 def _de421_dir():
@@ -148,12 +149,8 @@ def librations(t_tdb_d):
 
 def orientation(t_tdb_d):
     """DE421 ICRF-to-body matrices (n, 3, 3) and body angular velocities (n, 3) rad/day."""
-    from ..rotations import matrix_from_euler313, omega_body_from_euler313_rates
-
     angles, rates = librations(t_tdb_d)
-    mats = np.array([matrix_from_euler313(*a) for a in angles])
-    omega = np.array([omega_body_from_euler313_rates(a, r) for a, r in zip(angles, rates)])
-    return mats, omega
+    return matrix_from_euler313(*angles.T), omega_body_from_euler313_rates(angles, rates)
 
 
 def _pck_paths():
@@ -244,15 +241,15 @@ def core_angular_velocity(t_tdb_d, step_d=0.25):
 @njit(cache=True)
 def _core_rate(L, z, wm, kv, c_c, a_c):
     """d(I_c w_c)/dt and w_c for the core's angular momentum L about mantle pole z (inertial)."""
-    w = L / a_c - (c_c - a_c) / (a_c * c_c) * (z @ L) * z
-    return -kv * (w - wm) - (c_c - a_c) * (z @ w) * np.cross(z, w), w
+    w = L / a_c - (c_c - a_c) / (a_c * c_c) * dot3(z, L) * z
+    return -kv * (w - wm) - (c_c - a_c) * dot3(z, w) * cross3(z, w), w
 
 
 @njit(cache=True)
 def _carry_core(wc, h, pole, w_mantle, kv, c_c, f_c):
     """RK4 of the core's angular momentum L = I_c w_c (units of C) over samples h apart."""
     a_c = c_c * (1.0 - f_c)
-    L = a_c * wc + (c_c - a_c) * (pole[0] @ wc) * pole[0]
+    L = a_c * wc + (c_c - a_c) * dot3(pole[0], wc) * pole[0]
     for k in range(0, pole.shape[0] - 2, 2):
         k1 = _core_rate(L, pole[k], w_mantle[k], kv, c_c, a_c)[0]
         k2 = _core_rate(L + h * k1, pole[k + 1], w_mantle[k + 1], kv, c_c, a_c)[0]

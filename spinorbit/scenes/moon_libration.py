@@ -222,7 +222,7 @@ def model_angles(solution):
     from ..rotations import euler313_from_matrix, matrix_from_quat
 
     mats = np.array([matrix_from_quat(q).T for q in solution.quaternion])
-    angles = np.array([euler313_from_matrix(m) for m in mats])
+    angles = euler313_from_matrix(mats)
     return angles, mats
 
 
@@ -273,7 +273,7 @@ def physical_librations(t, mats, orbits):
     from ..rotations import euler313_from_matrix
 
     ecm = np.array([erfa.ecm06(J2000_JD, ti) for ti in t])       # ICRS -> ecliptic of date
-    ecl = np.array([euler313_from_matrix(m @ e.T) for m, e in zip(mats, ecm)])
+    ecl = euler313_from_matrix(np.array([m @ e.T for m, e in zip(mats, ecm)]))
     lp, d, m, mp, f, om = fundamental_arguments(t)
     wrap = lambda a: (a + np.pi) % (2 * np.pi) - np.pi
     tau = wrap(ecl[:, 0] + ecl[:, 2] - lp - np.pi)
