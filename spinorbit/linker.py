@@ -6,7 +6,8 @@ global" and defeats ``cache=True`` (every process would compile again).  A
 *template* is a plain Python function that calls some functions by free names
 (``rhs``, ``torque``, ``positions``) or reads compile-time constants
 (``N_MAX``); :func:`link` writes a small module that imports those names,
-appends the template's source under ``@njit(cache=True)`` and imports it.
+appends the template's source under ``@njit(cache=True, nogil=True)`` and
+imports it (without the GIL, two runs can share a machine's cores from threads).
 The module's file name carries a hash of its source and of the package's
 sources, so a change anywhere in spinorbit compiles afresh, and the same
 binding in a later process loads numba's cache instead of compiling.
@@ -125,7 +126,7 @@ def _module_source(fn, bindings):
             lines.append(_function_import(value, name))
     body = textwrap.dedent(inspect.getsource(fn))
     body = body[body.index("def "):]                      # drop the decorators
-    return "\n".join(lines) + "\n\n\n@njit(cache=True)\n" + body
+    return "\n".join(lines) + "\n\n\n@njit(cache=True, nogil=True)\n" + body
 
 
 def _global_names(code):

@@ -15,8 +15,8 @@ def enabled():
 
 @contextlib.contextmanager
 def progress(description, start, end, unit="d"):
-    """A bar over [start, end] in ``unit``; yields ``advance_to(value)``."""
-    if not enabled():
+    """A bar over [start, end] in ``unit``; yields ``advance_to(value)``.  No bar when description is None."""
+    if description is None or not enabled():
         yield lambda value: None
         return
     from tqdm import tqdm

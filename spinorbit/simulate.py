@@ -11,6 +11,8 @@ and the angular velocity (relative), from a second run of the same method:
 * adaptive methods (and fixed-step runs unstable at twice the step): a run with
   tolerances divided by 100 (or half the step), and |y - y_ref|.
 """
+from concurrent.futures import ThreadPoolExecutor
+
 import numpy as np
 
 from .constants import ARCSEC
@@ -30,33 +32,47 @@ def refined_options(method_cls, options):
     return refined
 
 
-def error_estimate(method_cls, options, system, t_out, solution):
-    """(attitude error arcsec, omega error relative, how) of ``solution``, from one more run."""
+def error_estimate(method_cls, options, system, t_out):
+    """(other solution, scale, how): the second run of the estimate, and how to read its difference.
+
+    Fixed-step methods of known order: a run at twice the step, the difference over 2^p - 1.
+    Otherwise (or when twice the step is unstable) a refined run, the difference as it is.
+    """
     settings = {**method_cls.options, **options}
-    other = None
     if "step" in settings and method_cls.order:
         try:
-            other = method_cls(**{**settings, "step": 2 * settings["step"]}).solve(system, t_out)
-            scale, how = 2.0**method_cls.order - 1.0, f"Richardson, run at twice the step, order {method_cls.order}"
+            coarse = method_cls(**{**settings, "step": 2 * settings["step"]})
+            coarse.label = None
+            return (coarse.solve(system, t_out), 2.0**method_cls.order - 1.0,
+                    f"Richardson, run at twice the step, order {method_cls.order}")
         except IntegrationError:             # twice the step is unstable: refine instead
             pass
-    if other is None:
-        other = method_cls(**refined_options(method_cls, options)).solve(system, t_out)
-        scale, how = 1.0, "difference from a run at half the step or tolerances / 100"
-    attitude = quat_angle(solution.quaternion, other.quaternion).max() / scale / ARCSEC
-    omega = np.abs(solution.omega - other.omega).max() / np.abs(other.omega).max() / scale
-    return float(attitude), float(omega), how
+    refined = method_cls(**refined_options(method_cls, options))
+    refined.label = None
+    return refined.solve(system, t_out), 1.0, "difference from a run at half the step or tolerances / 100"
 
 
 def simulate(system, t_out, method="dop853", options=None, estimate_error=True):
-    """Integrate; return (solution, {wall_s, integration_error_attitude_arcsec, ...})."""
+    """Integrate; return (solution, {wall_s, integration_error_attitude_arcsec, ...}).
+
+    A compiled method's error-estimate run goes on in a second thread meanwhile
+    (the kernels release the GIL), so on two cores it adds little to the wall time;
+    ``wall_s`` is the main run's own.
+    """
     method_cls = get_method(method)
     options = options or {}
-    solution = method_cls(**options).solve(system, t_out)
+    concurrent = estimate_error and method_cls.kind != "adaptive"
+    with ThreadPoolExecutor(max_workers=1) as pool:
+        estimate = pool.submit(error_estimate, method_cls, options, system, t_out) if concurrent else None
+        solution = method_cls(**options).solve(system, t_out)
+        if estimate_error and not concurrent:
+            estimate = pool.submit(error_estimate, method_cls, options, system, t_out)
+        other, scale, how = estimate.result() if estimate_error else (None, None, None)
     point = {"method": method_cls.name, "wall_s": solution.wall_s,
              "rhs_evaluations": solution.nfev, "steps": solution.nsteps}
     if estimate_error:
-        attitude, omega, how = error_estimate(method_cls, options, system, t_out, solution)
-        point.update(integration_error_attitude_arcsec=attitude, integration_error_omega_rel=omega,
+        attitude = quat_angle(solution.quaternion, other.quaternion).max() / scale / ARCSEC
+        omega = np.abs(solution.omega - other.omega).max() / np.abs(other.omega).max() / scale
+        point.update(integration_error_attitude_arcsec=float(attitude), integration_error_omega_rel=float(omega),
                      integration_error_method=how)
     return solution, point

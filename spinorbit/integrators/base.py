@@ -61,6 +61,7 @@ class Integrator:
             raise ScenarioError(f"integrator.{unknown[0]}", options[unknown[0]],
                                 f"one of {sorted(self.options)} for method '{self.name}'")
         self.settings = {**self.options, **options}
+        self.label = self.name                 # of its progress bar; None: no bar
 
     def supports(self, system):
         return True

@@ -205,7 +205,7 @@ class RK8(Integrator):
 
         def run():
             i, steps, y, extra, ok, t = 0, 0, system.y0, 0, True, t0
-            with progress(self.name, t0, float(t_out[-1])) as advance_to:
+            with progress(self.label, t0, float(t_out[-1])) as advance_to:
                 while ok and i < t_out.size and steps < max_steps:
                     i, steps, t, y, more, ok = loop(system.params, t0, y, steps, i, y_out, t_out, h, *tableau,
                                                     min(steps + chunk, max_steps))
@@ -224,7 +224,7 @@ class RK8(Integrator):
         def run():
             y_out = np.empty((t_out.size, system.y0.size))
             t, y, steps, n_done = float(system.t0), system.y0, 0, 0
-            with progress(self.name, t, float(t_out[-1])) as advance_to:
+            with progress(self.label, t, float(t_out[-1])) as advance_to:
                 for part in output_chunks(t_out.size):
                     states, n, more, t_fail = loop(system.params, t, y, t_out[part], h, *tableau, max_steps - steps)
                     y_out[part.start:part.start + n] = states[:n]

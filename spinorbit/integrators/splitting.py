@@ -213,7 +213,7 @@ class Strang(Integrator):
         loop(system.params, moments, t0, q, l, lc, n_torque, t_out[:0], y[:0], *fixed, max_steps)
         start = time.perf_counter()
         t, nfev, steps, n_done = t0, 1, 0, 0
-        with progress(self.name, t0, float(t_out[-1])) as advance_to:
+        with progress(self.label, t0, float(t_out[-1])) as advance_to:
             for part in output_chunks(t_out.size):
                 n, more, calls, t = loop(system.params, moments, t, q, l, lc, n_torque, t_out[part],
                                          y[part], *fixed, max_steps - steps)
