@@ -28,6 +28,7 @@ import os
 import sys
 import tempfile
 import textwrap
+import threading
 import types
 from pathlib import Path
 
@@ -88,7 +89,11 @@ def link(fn, **bindings):
     if missing or extra:
         raise TypeError(f"link({fn.__name__}): bind exactly {list(fn.free_names)}; "
                         f"missing {missing}, unexpected {extra}")
-    return _link(fn, tuple(sorted(bindings.items(), key=lambda kv: kv[0])))
+    with _LOCK:                                  # threads of one process link one at a time
+        return _link(fn, tuple(sorted(bindings.items(), key=lambda kv: kv[0])))
+
+
+_LOCK = threading.RLock()
 
 
 @functools.cache
@@ -98,9 +103,10 @@ def _link(fn, bindings):
     key = hashlib.sha256("".join([package_fingerprint(), *outside, source]).encode()).hexdigest()[:20]
     name = f"spinorbit_{fn.__name__.strip('_')}_{key}"
     path = cache_dir() / f"{name}.py"
-    if not path.exists():
-        tmp = path.with_suffix(f".{os.getpid()}.tmp")
-        tmp.write_text(source)
+    if not path.exists():                        # other processes may write it at the same time
+        handle, tmp = tempfile.mkstemp(suffix=".tmp", dir=path.parent)
+        with os.fdopen(handle, "w") as file:
+            file.write(source)
         os.replace(tmp, path)
     return getattr(importlib.import_module(name), fn.__name__)
 
