@@ -83,7 +83,7 @@ def _run(args):
                 kept = "" if where == run_dir.out else f"; the previous run in {out}/ is kept"
                 print(f"partial output written to {where}/{kept}", file=sys.stderr)
             raise
-        run_dir.commit(lambda d: write_run(result, d))
+        run_dir.commit(lambda d: write_run(result, d, fork_plots=True))
     verdict = result.summary["verdict"]
     print(verdict["headline"])
     if verdict.get("note"):
