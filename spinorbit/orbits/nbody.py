@@ -7,10 +7,10 @@ km, days, G = 1 with masses given as GM (km^3/day^2), DE421 values.
 """
 import numpy as np
 
-from ..constants import DAY_S
+from ..constants import DAY_S, JULIAN_YEAR_D
 from ..progress import progress
 from .interpolant import HermiteOrbits, grid
-from .kernel import JPLKernel, de421_constants
+from .kernel import DE421Arrays, JPLKernel, de421_constants
 
 # Body name -> key of its GM in the DE421 header (AU^3/day^2); Earth and Moon from GMB, EMRAT.
 GM_KEYS = {"sun": "GMS", "mercury": "GM1", "venus": "GM2", "mars": "GM4", "jupiter": "GM5",
@@ -83,3 +83,16 @@ class ReboundOrbits(HermiteOrbits):
                 if k % 256 == 0:
                     advance_to(t)
         super().__init__(bodies, [gm[b] for b in bodies], t_start, step, pos, vel, source="rebound")
+
+
+def moon_drift(years, t_start=0.0, step=0.01):
+    """How far REBOUND's geocentric Moon runs from DE421's in ``years`` from t_start (TDB d).
+
+    Returns (max angle rad, max distance km) over outputs every ``step`` years.
+    """
+    t = t_start + np.linspace(0.0, years * JULIAN_YEAR_D, int(years / step) + 1)
+    ours = ReboundOrbits("earth", ("moon",), t[0], t[-1]).positions(t)[:, 0]
+    truth = DE421Arrays().relative_states("moon", "earth", t)[0]
+    angle = np.arctan2(np.linalg.norm(np.cross(ours, truth), axis=1), (ours * truth).sum(1))
+    return float(angle.max()), float(np.linalg.norm(ours - truth, axis=1).max())
+
