@@ -11,7 +11,7 @@ from typing import Callable
 import numpy as np
 
 from .errors import IntegrationError
-from .scenarios import Scenario, load_scenario
+from .scenarios import Scenario, load_scenario, tdb_days_to_time
 
 
 @dataclass
@@ -77,10 +77,22 @@ def mark_unmeasured(summary):
     return {**cleaned, "not_measured": reasons} if reasons else cleaned
 
 
+def attitude_table(solution):
+    """QTable with TDB time, quaternion (body -> inertial) and body angular velocity (rad/d)."""
+    import astropy.units as units
+    from astropy.table import QTable
+
+    table = QTable()
+    table["time"] = tdb_days_to_time(solution.t)
+    for i, name in enumerate("wxyz"):
+        table[f"q_{name}"] = solution.quaternion[:, i]
+    for i, name in enumerate("xyz"):
+        table[f"omega_{name}"] = solution.omega[:, i] * units.rad / units.d
+    return table
+
+
 def partial_result(scenario, exc):
     """RunResult of the output an integrator produced before it failed (``exc.partial``, a Solution)."""
-    from .scenes.common import attitude_table
-
     partial = exc.partial
     run = {"method": partial.method, "wall_s": partial.wall_s, "rhs_evaluations": partial.nfev,
            "steps": partial.nsteps, "failed_at_tdb_d": exc.t, "outputs_written": int(partial.t.size)}

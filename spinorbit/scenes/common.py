@@ -3,7 +3,7 @@ import numpy as np
 
 from ..bodies import RigidBody
 from ..errors import PhysicsError, ScenarioError
-from ..results import RunResult
+from ..results import RunResult, attitude_table  # noqa: F401  (scenes call common.attitude_table)
 from ..scenarios import tdb_days_to_time
 from ..simulate import simulate
 
@@ -28,20 +28,6 @@ def simulate_scenario(scenario, system, t_out):
     """simulate() with the scenario's [integrator] table."""
     return simulate(system, t_out, scenario["integrator.method"], scenario.integrator_options(),
                     scenario["integrator.estimate_error"])
-
-
-def attitude_table(solution):
-    """QTable with TDB time, quaternion (body -> inertial) and body angular velocity (rad/d)."""
-    from astropy.table import QTable
-
-    units = u()
-    table = QTable()
-    table["time"] = tdb_days_to_time(solution.t)
-    for i, name in enumerate("wxyz"):
-        table[f"q_{name}"] = solution.quaternion[:, i]
-    for i, name in enumerate("xyz"):
-        table[f"omega_{name}"] = solution.omega[:, i] * units.rad / units.d
-    return table
 
 
 def result(scenario, table, summary, figures, solution):
