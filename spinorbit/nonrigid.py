@@ -28,6 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .analysis import resolvable
 from .earth import ERA_RATE_RAD_D, H_D
 
 
@@ -125,21 +126,6 @@ LUNISOLAR_ARGUMENTS = (
     (-2, 0, 2, 0, 0), (0, 1, 2, 0, 2), (0, 0, 2, 2, 1), (0, -1, 2, 0, 2), (0, 0, 0, 2, 1),
     (1, 0, 2, -2, 1), (2, 0, 2, -2, 2), (-2, 0, 0, 2, 1), (2, 0, 2, 0, 1), (0, -1, 2, -2, 1),
 )
-
-
-def resolvable(rates, span_d):
-    """Mask of the arguments kept, in order, for a fit over ``span_d`` days: each must beat by more than half
-    a cycle over the span against the quadratic (rate 0) and, with either sign, against every argument kept
-    before it (e.g. l' and 2F - 2D + 2Om - l', annual both, beat in ~10^4 yr: the second is dropped and
-    the first's term carries both)."""
-    kept = []
-    for k, rate in enumerate(rates):
-        others = [0.0] + [rates[j] for j in kept] + [-rates[j] for j in kept]
-        if all(abs(rate - other) * span_d > np.pi for other in others):
-            kept.append(k)
-    mask = np.zeros(len(rates), dtype=bool)
-    mask[kept] = True
-    return mask
 
 
 def circular_terms(t_d, x, y, phases, rates):

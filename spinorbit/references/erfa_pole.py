@@ -135,20 +135,22 @@ def fit_precession_nutation(t_tdb_d, values, terms=NUTATION_ARGUMENTS):
     """Least-squares fit of a series (rad): c0 + c1 T + c2 T^2 + sum(s_k sin arg_k + c_k cos arg_k).
 
     T in Julian centuries from J2000.  Returns {"poly": [c0, c1, c2] (rad, rad/cy, rad/cy^2),
-    "sin": {name: s_k}, "cos": {name: c_k}} in rad.
+    "sin": {name: s_k}, "cos": {name: c_k}} in rad; a term of which the span holds less than
+    half a period (it would trade with the quadratic) is not fitted and is None.
     """
     t = np.asarray(t_tdb_d, dtype=float)
     big_t = t / JULIAN_CENTURY_D
-    args = fundamental_arguments(t)
-    names = list(terms)
-    phases = [np.asarray(terms[k]) @ args for k in names]
+    phases, rates = argument_phases(t, list(terms.values()))
+    keep = np.abs(rates) * float(np.ptp(t)) > np.pi        # half a cycle against the quadratic, at least
+    names = [name for name, kept in zip(terms, keep) if kept]
     design = np.column_stack([np.ones_like(t), big_t, big_t**2]
-                             + [np.sin(a) for a in phases] + [np.cos(a) for a in phases])
+                             + [np.sin(a) for a in phases[keep]] + [np.cos(a) for a in phases[keep]])
     coef = np.linalg.lstsq(design, np.asarray(values, dtype=float), rcond=None)[0]
     n = len(names)
+    unresolved = dict.fromkeys(name for name, kept in zip(terms, keep) if not kept)
     return {"poly": coef[:3].tolist(),
-            "sin": dict(zip(names, coef[3:3 + n].tolist())),
-            "cos": dict(zip(names, coef[3 + n:].tolist())),
+            "sin": {**dict(zip(names, coef[3:3 + n].tolist())), **unresolved},
+            "cos": {**dict(zip(names, coef[3 + n:].tolist())), **unresolved},
             "residual_rms": float(np.sqrt(np.mean((values - design @ coef) ** 2)))}
 
 

@@ -24,6 +24,7 @@ import math
 import numpy as np
 
 from .. import earth, nonrigid
+from ..analysis import resolvable
 from ..constants import ARCSEC, GM_KM3_D2, JULIAN_CENTURY_D, MAS
 from ..errors import ScenarioError
 from ..integrators import integrate
@@ -59,6 +60,7 @@ NONRIGID_TABLE_TERMS = {"18.6 yr": (0, 0, 0, 0, 1), "9.3 yr": (0, 0, 0, 0, 2), "
 _RIGID_VS_IAU = ("IAU 2000A is a non-rigid Earth (MHB2000): its 18.6-yr nutation differs from a rigid "
                  "Earth's by 74 mas in dpsi (REN-2000 rigid -17.2806\" vs IAU 2000A -17.2064\"), 23 mas in deps; "
                  "project targets X <= 40, Y <= 25 mas rms")
+RATE_MIN_SPAN_D = 50 * 365.25     # a precession rate is fitted over at least this (the 18.6-yr term aliases)
 _NONRIGID_VS_IAU = ("IAU 2000A is MHB2000's transfer function on a rigid-Earth series, its residuals against VLBI "
                     "~0.2 mas; a non-rigid layer from published parameters should come within 1 mas rms")
 _RATE = ("H_d is IAU 2006's, so the rate matches IAU 2006 to the torques left out: the planets' direct "
@@ -77,13 +79,13 @@ def verdict(scenario, comparison):
             "ψ rate − IAU", "psi_rate_minus_iau_arcsec_cy", 0.05, "″/cy",
             "without geodesic precession the rate is off by its de Sitter value, +1.919883\"/cy "
             "(IERS Conventions 2010); " + _RATE, expected=earth.GEODESIC_PRECESSION_ARCSEC_CY,
-            min_span_d=50 * 365.25),), "X, Y drift by the omitted geodesic precession: not compared")
+            min_span_d=RATE_MIN_SPAN_D),), "X, Y drift by the omitted geodesic precession: not compared")
     if scenario["earth.nonrigid"]:
         checks = [Check(f"{axis} rms", f"{axis.lower()}_rms_mas", 1.0, " mas", _NONRIGID_VS_IAU) for axis in "XY"]
     else:
         checks = [Check(f"{axis} rms", f"{axis.lower()}_rms_mas", limit, " mas", _RIGID_VS_IAU)
                   for axis, limit in (("X", 40.0), ("Y", 25.0))]
-    checks.append(Check("ψ rate − IAU", "psi_rate_minus_iau_arcsec_cy", 0.05, "″/cy", _RATE, min_span_d=50 * 365.25))
+    checks.append(Check("ψ rate − IAU", "psi_rate_minus_iau_arcsec_cy", 0.05, "″/cy", _RATE, min_span_d=RATE_MIN_SPAN_D))
     if scenario["earth.model"] == "full":
         checks.append(Check("full − gyroscopic", "full_minus_gyroscopic_max_mas", 1.0, " mas",
                             "the gyroscopic figure axis is exact to second order in 1/Omega: the rest is the "
@@ -106,14 +108,14 @@ def run(scenario):
     if scenario["earth.nonrigid"]:
         z = _nonrigid_pole(erfa_pole, t, z)
 
-    comparison, table, figures = _compare_with_erfa(erfa_pole, t, z, plane_tilt)
+    comparison, table, figures, not_measured = _compare_with_erfa(erfa_pole, t, z, plane_tilt)
     comparison.update(_p96(scenario, orbits, z, pole_ecl, t, plane_tilt))
     if full:
         comparison.update(_full_checks(scenario, orbits, params, t0, z0, x0, t, z))
         figures["full_minus_gyroscopic"] = common.plot_series(
             common.decimal_year(t), comparison.pop("_full_minus_gyro_mas"), "year (TDB)",
             "full - gyroscopic figure axis [mas]")
-    summary = {"comparison": comparison, "run": point,
+    summary = {"not_measured": not_measured, "comparison": comparison, "run": point,
                "model": {"moments_over_C": moments.tolist(), "bodies": list(orbits.names),
                          "geodesic_precession_arcsec_cy": -earth.GEODESIC_PRECESSION_ARCSEC_CY
                          if scenario["earth.geodesic_precession"] else 0.0,
@@ -210,7 +212,7 @@ def _rigid_start(erfa_pole, orbits, params, t0, z0, t):
         fit_m, fit_i = (erfa_pole.fit_precession_nutation(t, v) for v in (model, iau))
         offsets.append(sum((fit_m["sin"][k] - fit_i["sin"][k]) * math.sin(np.dot(m, args))
                            + (fit_m["cos"][k] - fit_i["cos"][k]) * math.cos(np.dot(m, args))
-                           for k, m in erfa_pole.NUTATION_ARGUMENTS.items()))
+                           for k, m in erfa_pole.NUTATION_ARGUMENTS.items() if fit_m["sin"][k] is not None))
     psi0, eps0 = (v[0] for v in erfa_pole.pole_angles(np.array([t0]), z0[None]))
     return erfa_pole.pole_from_angles(t0, psi0 + offsets[0], eps0 + offsets[1])
 
@@ -244,7 +246,7 @@ def _nonrigid_summary(erfa_pole, t, z_rigid, z):
     _, _, psi_bar, eps_a = erfa_pole.mean_angles(t)
     dpsi_iau, deps_iau = erfa_pole.nutation(t)
     _, rates = erfa_pole.argument_phases(t, nonrigid.LUNISOLAR_ARGUMENTS)
-    keep = nonrigid.resolvable(rates, t[-1] - t[0])
+    keep = resolvable(rates, abs(t[-1] - t[0]))
     arguments = {str(m): m for m, k in zip(nonrigid.LUNISOLAR_ARGUMENTS, keep) if k}
     fits = {}
     for name, pole in (("rigid", z_rigid), ("nonrigid", z)):
@@ -266,7 +268,8 @@ def _nonrigid_summary(erfa_pole, t, z_rigid, z):
 
 
 def _compare_with_erfa(erfa_pole, t, z, plane_tilt):
-    """Residuals vs ERFA, the fitted precession and nutation, the output table and plots."""
+    """Residuals vs ERFA, the fitted precession and nutation (what the span cannot resolve is in
+    not_measured, with why), the output table and plots."""
     u = common.u()
     from astropy.table import QTable
 
@@ -276,6 +279,7 @@ def _compare_with_erfa(erfa_pole, t, z, plane_tilt):
     dx, dy = (z[:, 0] - x_ref) / MAS, (z[:, 1] - y_ref) / MAS
     comparison = {"x_rms_mas": _rms(dx), "x_max_mas": float(np.abs(dx).max()),
                   "y_rms_mas": _rms(dy), "y_max_mas": float(np.abs(dy).max())}
+    not_measured = {}
     table = QTable()
     table["time"] = tdb_days_to_time(t)
     table["cip_x"] = (z[:, 0] * u.rad).to(u.arcsec)
@@ -286,7 +290,7 @@ def _compare_with_erfa(erfa_pole, t, z, plane_tilt):
     figures = {"residual_vs_erfa": common.titled(common.plot_series(
         years, [dx, dy], "year (TDB)", "CIP model - IAU 2006/2000A [mas]", ["X", "Y"]), "CIP X, Y minus IAU 2006/2000A")}
     if plane_tilt is not None:         # Euler's circles: IAU nutation does not apply
-        return comparison, table, figures
+        return comparison, table, figures, not_measured
 
     psi, eps = erfa_pole.pole_angles(t, z)
     _, _, psi_bar, eps_a = erfa_pole.mean_angles(t)
@@ -300,8 +304,18 @@ def _compare_with_erfa(erfa_pole, t, z, plane_tilt):
         "psi_A_rate_iau2006_arcsec_cy": erfa_pole.PSI_A_RATE_ARCSEC_CY,
         "obliquity_rate_minus_iau_arcsec_cy": (fits["deps"]["poly"][1] - fits["deps_iau"]["poly"][1]) / ARCSEC,
     })
+    span = abs(t[-1] - t[0])
+    if span < RATE_MIN_SPAN_D:
+        for key in ("psi_rate_minus_iau_arcsec_cy", "psi_A_rate_arcsec_cy", "obliquity_rate_minus_iau_arcsec_cy"):
+            comparison[key] = None
+            not_measured[f"comparison.{key}"] = (f"a precession rate needs a span of {RATE_MIN_SPAN_D:.0f} d "
+                                                 f"(50 yr; shorter ones alias the 18.6-yr nutation into it), "
+                                                 f"the run has {span:.0f} d")
     for term, (psi_pub, eps_pub) in erfa_pole.IAU2000A_MAIN_ARCSEC.items():
         key = term.replace(" ", "").replace(".", "_")
+        if fits["dpsi"]["sin"][term] is None:
+            not_measured[f"comparison.nutation_{key}"] = f"the {span:.0f} d span does not resolve the {term} term"
+            continue
         model_psi, model_eps = fits["dpsi"]["sin"][term] / ARCSEC, fits["deps"]["cos"][term] / ARCSEC
         iau_psi, iau_eps = fits["dpsi_iau"]["sin"][term] / ARCSEC, fits["deps_iau"]["cos"][term] / ARCSEC
         comparison.update({
@@ -324,7 +338,7 @@ def _compare_with_erfa(erfa_pole, t, z, plane_tilt):
         ([deps, deps_iau / ARCSEC], ["rigid model", "IAU 2000A"], "Δε [arcsec]"),
         ([(dpsi - dpsi_iau / ARCSEC) * 1000, (deps - deps_iau / ARCSEC) * 1000], ["Δψ", "Δε"],
          "model - IAU [mas]")], "year (TDB)"), "nutation in longitude Δψ and obliquity Δε vs IAU 2000A")
-    return comparison, table, figures
+    return comparison, table, figures, not_measured
 
 
 def _p96(scenario, orbits, z, pole_ecl, t, plane_tilt):

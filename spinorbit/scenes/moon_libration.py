@@ -22,6 +22,7 @@ DE421-driven difference (``compare.source``) is reported beside it.
 """
 import numpy as np
 
+from ..analysis import resolvable
 from ..constants import ARCSEC, J2000_JD, JULIAN_CENTURY_D
 from ..errors import ScenarioError
 from ..scenarios import SAMPLE_STEP, Key
@@ -116,7 +117,8 @@ def run(scenario):
     comparison = residual_metrics(mats, ref_mats)
     librations = physical_librations(solution.t, mats, orbits)
     fit = fit_longitude_terms(solution.t, librations["tau"])
-    summary = {"comparison": comparison, "run": point, "model": {"level": level, "name": LEVEL_NAMES[level],
+    not_fitted = {f"longitude_terms.{term}": reason for term, reason in fit.pop("not_fitted").items()}
+    summary = {"not_measured": not_fitted, "comparison": comparison, "run": point, "model": {"level": level, "name": LEVEL_NAMES[level],
                **{k: v for k, v in LEVELS[level].items() if k != "bodies"}, "bodies": list(orbits.names),
                "tides": bool(system.meta["tides"])},
                "orbits": {"source": scenario["orbit.source"], "step_d": scenario["orbit.step"],
@@ -285,32 +287,64 @@ def physical_librations(t, mats, orbits):
             "sub_earth_lon": np.arctan2(u[:, 1], u[:, 0]), "sub_earth_lat": np.arcsin(u[:, 2])}
 
 
+def resolved_terms(span_d):
+    """Which of TAU_TERMS (and the free libration, last) a span of ``span_d`` days can fit, and why not.
+
+    analysis.resolvable, taking the terms in order: the main ones first, the free 1056-d
+    libration last (it parts from the 1095-d term only over ~40 yr).  Returns (taken
+    indices, {term: reason it is not fitted}); index len(TAU_TERMS) is the free libration.
+    """
+    periods = np.array([_period_d(period) for _, period, *_ in TAU_TERMS] + [FREE_LONGITUDE_PERIOD_D])
+    names = [name for name, *_ in TAU_TERMS] + ["free libration (1056 d)"]
+    rates = 2 * np.pi / periods
+    keep = resolvable(rates, span_d)
+    refused = {}
+    for k in np.flatnonzero(~keep):
+        beats = [(np.pi / abs(rates[k] - rates[j]), names[j]) for j in np.flatnonzero(keep[:k])]
+        need, partner = max([(periods[k] / 2, None)] + [b for b in beats if b[0] >= span_d])
+        refused[names[k]] = (f"needs a span of {need:.0f} d, the run has {span_d:.0f} d"
+                             + (f" (it beats with {partner})" if partner else " (half its period)"))
+    return list(np.flatnonzero(keep)), refused
+
+
 def fit_longitude_terms(t, tau):
     """Least squares at fixed arguments: tau = c0 + c1 t + free pair + sum S_k f_k(a_k), arcsec.
 
     Each published term's argument a_k is fixed (mean elements of date); its fitted
     coefficient (of the published sin or cos) and the quadrature one are returned with
-    the published value.
+    the published value.  Terms the span cannot resolve (resolved_terms) are not fitted:
+    their row says why, and so does ``not_measured``.
     """
     t = np.asarray(t)
+    span = float(np.ptp(t))
+    taken, refused = resolved_terms(span)
     d, m, mp, f, om = fundamental_arguments(t)[1:]
     big_t = t / JULIAN_CENTURY_D
     k1, k2 = np.radians(119.75 + 131.849 * big_t), np.radians(72.56 + 20.186 * big_t)
-    free = 2 * np.pi * t / FREE_LONGITUDE_PERIOD_D
-    columns = [np.ones_like(t), (t - t.mean()) / JULIAN_CENTURY_D, np.sin(free), np.cos(free)]
-    for *_, kind, arg in TAU_TERMS:
-        a = arg(d, m, mp, f, om, k1, k2)
-        main, quad = (np.sin(a), np.cos(a)) if kind == "sin" else (np.cos(a), np.sin(a))
-        columns += [main, quad]
+    columns, slot = [np.ones_like(t), (t - t.mean()) / JULIAN_CENTURY_D], {}
+    for k in taken:
+        if k == len(TAU_TERMS):
+            a, kind = 2 * np.pi * t / FREE_LONGITUDE_PERIOD_D, "sin"
+        else:
+            *_, kind, arg = TAU_TERMS[k]
+            a = arg(d, m, mp, f, om, k1, k2)
+        slot[k] = len(columns)
+        columns += [np.sin(a), np.cos(a)] if kind == "sin" else [np.cos(a), np.sin(a)]
     coef, *_ = np.linalg.lstsq(np.array(columns).T, tau / ARCSEC, rcond=None)
     rows = []
     for k, (name, period, published, kind, _) in enumerate(TAU_TERMS):
-        rows.append({"term": name, "period": period, "function": kind,
-                     "fitted_arcsec": float(coef[4 + 2 * k]), "quadrature_arcsec": float(coef[5 + 2 * k]),
-                     "published_arcsec": round(published, 2)})
-    free_amplitude = float(np.hypot(coef[2], coef[3]))
+        row = {"term": name, "period": period, "function": kind, "fitted_arcsec": None,
+               "quadrature_arcsec": None, "published_arcsec": round(published, 2)}
+        if k in slot:
+            row.update(fitted_arcsec=float(coef[slot[k]]), quadrature_arcsec=float(coef[slot[k] + 1]))
+        else:
+            row["not_fitted"] = refused[name]
+        rows.append(row)
+    free = len(TAU_TERMS)
     return {"main": rows[:MAIN_TERMS], "other": rows[MAIN_TERMS:],
-            "free_libration_1056d_amplitude_arcsec": free_amplitude}
+            "free_libration_1056d_amplitude_arcsec":
+                float(np.hypot(coef[slot[free]], coef[slot[free] + 1])) if free in slot else None,
+            "not_fitted": refused}
 
 
 def make_table(solution, angles, mats, ref_mats, librations):
@@ -401,8 +435,8 @@ def plot_spectrum(t, tau, fit):
     """Physical libration in longitude: amplitude against period, the published (Meeus/Eckhardt)
     and fitted terms marked."""
     period, amplitude = amplitude_spectrum(t, tau / ARCSEC)
-    span = t[-1] - t[0]
-    rows = [r for r in fit["main"] + fit["other"] if _period_d(r["period"]) <= span / 2]   # resolved terms
+    span = abs(t[-1] - t[0])
+    rows = [r for r in fit["main"] + fit["other"] if r["fitted_arcsec"] is not None]      # resolved terms
 
     def draw(fig):
         ax = fig.add_subplot()
@@ -429,7 +463,7 @@ def plot_spectrum(t, tau, fit):
 
 def plot_zoom(t, librations, ref_mats, orbits):
     """The last two years (or the whole run if shorter): tau and rho of the model with DE421's."""
-    keep = t >= t[-1] - ZOOM_D
+    keep = np.abs(t - t[-1]) <= ZOOM_D
     ref = physical_librations(t[keep], ref_mats[keep], orbits)
     years = _years(t[keep])
     tau, rho = librations["tau"][keep] / ARCSEC, librations["rho"][keep] / ARCSEC
