@@ -149,7 +149,8 @@ def split_loop(params, moments, t, q, l, lc, n_torque, t_out, y_out, h, gammas, 
     nfev, steps = 0, 0
     for k in range(t_out.shape[0]):
         span = t_out[k] - t
-        n_sub = int(np.ceil(abs(span) / h - 1e-12)) if span != 0.0 else 0
+        # an output a rounding error past k steps takes k steps, not k + 1
+        n_sub = int(np.ceil(abs(span) / h - 1e-9)) if span != 0.0 else 0
         dt = span / n_sub if n_sub > 0 else 0.0
         for _ in range(n_sub):
             for g in gammas:
