@@ -416,6 +416,8 @@ ZOOM_D = 730.5                      # the last two years of the run, against DE4
 def amplitude_spectrum(t, x):
     """(period d, amplitude) of x(t): Hann-windowed, 4x zero-padded FFT of the detrended series on a
     uniform grid; a sinusoid of amplitude a shows a peak of height ~a at its period."""
+    order = np.argsort(t)                                   # a backward run's times descend
+    t, x = np.asarray(t)[order], np.asarray(x)[order]
     grid = np.linspace(t[0], t[-1], t.size)
     y = np.interp(grid, t, x)
     y = y - np.polyval(np.polyfit(grid, y, 1), grid)
