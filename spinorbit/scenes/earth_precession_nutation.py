@@ -110,10 +110,8 @@ def run(scenario):
 
     comparison, table, figures, not_measured = _compare_with_erfa(erfa_pole, t, z, plane_tilt)
     comparison.update(_p96(scenario, orbits, z, pole_ecl, t, plane_tilt))
-    if plane_tilt is None and abs(t[-1] - t[0]) < RATE_MIN_SPAN_D:      # DE421's nutation aliases into the line
-        comparison["fixed_ecliptic_precession_rate_arcsec_cy"] = None
-        not_measured["comparison.fixed_ecliptic_precession_rate_arcsec_cy"] = (
-            f"a precession rate needs a span of {RATE_MIN_SPAN_D:.0f} d (50 yr), the run has {abs(t[-1] - t[0]):.0f} d")
+    if plane_tilt is None:                           # on DE421 the nutation aliases into a short span's rates
+        _withhold_short_rates(comparison, not_measured, abs(t[-1] - t[0]))
     if full:
         comparison.update(_full_checks(scenario, orbits, params, t0, z0, x0, t, z))
         figures["full_minus_gyroscopic"] = common.plot_series(
@@ -271,6 +269,22 @@ def _nonrigid_summary(erfa_pole, t, z_rigid, z):
             "chandler_period_mhb2000_d": nonrigid.wobble_period_days(nonrigid.PUBLISHED_CHANDLER_CPSD)}
 
 
+RATE_KEYS = ("psi_rate_minus_iau_arcsec_cy", "psi_A_rate_arcsec_cy", "obliquity_rate_minus_iau_arcsec_cy",
+             "fixed_ecliptic_precession_rate_arcsec_cy")
+
+
+def _withhold_short_rates(comparison, not_measured, span):
+    """Null every fitted rate of a run shorter than RATE_MIN_SPAN_D, with the reason."""
+    if span >= RATE_MIN_SPAN_D:
+        return
+    for key in RATE_KEYS:
+        if key in comparison:
+            comparison[key] = None
+            not_measured[f"comparison.{key}"] = (f"a precession rate needs a span of {RATE_MIN_SPAN_D:.0f} d "
+                                                 f"(50 yr; shorter ones alias the 18.6-yr nutation into it), "
+                                                 f"the run has {span:.0f} d")
+
+
 def _compare_with_erfa(erfa_pole, t, z, plane_tilt):
     """Residuals vs ERFA, the fitted precession and nutation (what the span cannot resolve is in
     not_measured, with why), the output table and plots."""
@@ -309,12 +323,6 @@ def _compare_with_erfa(erfa_pole, t, z, plane_tilt):
         "obliquity_rate_minus_iau_arcsec_cy": (fits["deps"]["poly"][1] - fits["deps_iau"]["poly"][1]) / ARCSEC,
     })
     span = abs(t[-1] - t[0])
-    if span < RATE_MIN_SPAN_D:
-        for key in ("psi_rate_minus_iau_arcsec_cy", "psi_A_rate_arcsec_cy", "obliquity_rate_minus_iau_arcsec_cy"):
-            comparison[key] = None
-            not_measured[f"comparison.{key}"] = (f"a precession rate needs a span of {RATE_MIN_SPAN_D:.0f} d "
-                                                 f"(50 yr; shorter ones alias the 18.6-yr nutation into it), "
-                                                 f"the run has {span:.0f} d")
     for term, (psi_pub, eps_pub) in erfa_pole.IAU2000A_MAIN_ARCSEC.items():
         key = term.replace(" ", "").replace(".", "_")
         if fits["dpsi"]["sin"][term] is None:
