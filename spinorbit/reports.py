@@ -25,9 +25,10 @@ def write_run(result, out_dir, status="ok", error=None, fork_plots=False):
         summary["error"] = str(error)
     text = json.dumps(_jsonable(summary), indent=2, allow_nan=False) + "\n"
     written = [_atomic(out / "summary.json", lambda p: p.write_text(text))]
-    drawing = result.scenario["output.plots"] and fork_plots and _fork_available()
+    context = _fork_context() if result.scenario["output.plots"] and fork_plots else None
+    drawing = context is not None
     if drawing:
-        child = _fork_context().Process(target=write_plots, args=(result, out), daemon=True)
+        child = context.Process(target=write_plots, args=(result, out), daemon=True)
         child.start()
     if result.table is not None and len(result.table):
         written.append(_atomic(out / "timeseries.ecsv", lambda p: result.table.write(p, format="ascii.ecsv", overwrite=True)))
@@ -44,15 +45,10 @@ def write_run(result, out_dir, status="ok", error=None, fork_plots=False):
 
 
 def _fork_context():
+    """multiprocessing's fork context, or None where the platform has no fork."""
     import multiprocessing
 
-    return multiprocessing.get_context("fork")
-
-
-def _fork_available():
-    import multiprocessing
-
-    return "fork" in multiprocessing.get_all_start_methods()
+    return multiprocessing.get_context("fork") if "fork" in multiprocessing.get_all_start_methods() else None
 
 
 def write_plots(result, out):

@@ -68,12 +68,11 @@ def simulate(system, t_out, method="dop853", options=None, estimate_error=True):
     with ThreadPoolExecutor(max_workers=1) as pool:
         estimate = pool.submit(error_estimate, method_cls, options, system, t_out) if concurrent else None
         solution = method_cls(**options).solve(system, t_out)
-        if estimate_error and not concurrent:
-            estimate = pool.submit(error_estimate, method_cls, options, system, t_out)
-        other, covered, scale, how = estimate.result() if estimate_error else (None, None, None, None)
     point = {"method": method_cls.name, "wall_s": solution.wall_s,
              "rhs_evaluations": solution.nfev, "steps": solution.nsteps}
     if estimate_error:
+        other, covered, scale, how = (estimate.result() if concurrent
+                                      else error_estimate(method_cls, options, system, t_out))
         attitude = quat_angle(solution.quaternion[covered], other.quaternion).max() / scale / ARCSEC
         omega = np.abs(solution.omega[covered] - other.omega).max() / np.abs(other.omega).max() / scale
         point.update(integration_error_attitude_arcsec=float(attitude), integration_error_omega_rel=float(omega),
