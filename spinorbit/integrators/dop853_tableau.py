@@ -4,8 +4,6 @@ interpolation matrix D of its order-7 continuous extension.  Methods as data: rk
 """
 import numpy as np
 
-N_STAGES = 12
-
 # Stage coefficients a[s, j] (16 x 16: stages 0-11 the method, 12 the error stage, 13-15 the extension).
 A = np.array([
     [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],

@@ -50,6 +50,7 @@ from numba import njit
 from ..errors import IntegrationError, ScenarioError
 from ..linker import link, template
 from ..progress import progress
+from ..rotations import put
 from .base import Integrator, Solution, output_chunks
 
 FREE_FLOWS = ("symmetric", "axes")
@@ -164,7 +165,7 @@ def split_loop(params, moments, t, q, l, lc, n_torque, t_out, y_out, h, gammas, 
                     y[m] = q[m]
                 for m in range(3):
                     y[4 + m] = l[m] / moments[m]
-                n_torque[:] = torque(t, y, params)
+                put(n_torque, torque(t, y, params))
                 nfev += 1
                 for m in range(3):
                     _add(l, lc, m, 0.5 * sub * n_torque[m])
