@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .analysis import resolvable
+from .analysis.spans import resolvable
 from .earth import ERA_RATE_RAD_D, H_D
 
 

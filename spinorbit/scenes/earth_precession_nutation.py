@@ -24,7 +24,7 @@ import math
 import numpy as np
 
 from .. import earth, nonrigid
-from ..analysis import resolvable
+from ..analysis.spans import resolvable
 from ..constants import ARCSEC, GM_KM3_D2, JULIAN_CENTURY_D, MAS
 from ..errors import ScenarioError
 from ..integrators import integrate

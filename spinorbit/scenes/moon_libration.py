@@ -22,7 +22,7 @@ DE421-driven difference (``compare.source``) is reported beside it.
 """
 import numpy as np
 
-from ..analysis import resolvable
+from ..analysis.spans import resolvable
 from ..constants import ARCSEC, J2000_JD, JULIAN_CENTURY_D
 from ..errors import ScenarioError
 from ..scenarios import SAMPLE_STEP, Key
