@@ -48,14 +48,14 @@ def build(years):
 
 
 def attitudes(solution):
-    from spinorbit.scenes.moon_libration import model_angles
+    from spinorbit.analysis.librations import icrf_to_body
 
-    return model_angles(solution)[1]
+    return icrf_to_body(solution.quaternion)
 
 
 def error_arcsec(m_a, m_b):
     from spinorbit.constants import ARCSEC
-    from spinorbit.references.moon_de421 import pole_and_longitude_difference
+    from spinorbit.analysis.librations import pole_and_longitude_difference
 
     pole, lon = pole_and_longitude_difference(m_a, m_b)
     return float(max(np.abs(pole).max(), np.abs(lon).max()) / ARCSEC)
@@ -77,11 +77,11 @@ def numpy_run(years, rtol, out):
 
 def compiled_rows(years):
     from spinorbit.integrators import integrate
-    from spinorbit.scenes.moon_libration import reference_mats
+    from spinorbit.references.moon_de421 import orientation
 
     scenario, system = build(years)
     t_out = scenario.output_times()
-    ref = reference_mats(t_out)
+    ref = orientation(t_out)[0]
     converged = attitudes(integrate(system, t_out, "rk8", step=0.25))
     rows = []
     runs = [("rk8", dict(step=h)) for h in (6.0, 4.0, 3.0, 2.0, 1.0)]

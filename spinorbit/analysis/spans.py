@@ -21,3 +21,21 @@ def resolvable(rates, span_d):
     mask = np.zeros(len(rates), dtype=bool)
     mask[kept] = True
     return mask
+
+
+def refusals(names, rates, span_d):
+    """{name: why it is not fitted} for each argument ``resolvable`` drops, with the span it needs.
+
+    The span needed is half its period, or half the beat period with a term kept before it,
+    whichever is longer (``rates`` in rad/d, ``span_d`` days).
+    """
+    rates = np.asarray(rates, dtype=float)
+    keep = resolvable(rates, span_d)
+    out = {}
+    for k in np.flatnonzero(~keep):
+        beats = [(np.pi / abs(rates[k] - sign * rates[j]), names[j])
+                 for j in np.flatnonzero(keep[:k]) for sign in (1, -1) if rates[k] != sign * rates[j]]
+        need, partner = max([(np.pi / abs(rates[k]), None)] + [b for b in beats if b[0] >= span_d], key=lambda b: b[0])
+        out[names[k]] = (f"needs a span of {need:.0f} d, the run has {span_d:.0f} d"
+                         + (f" (it beats with {partner})" if partner else " (half its period)"))
+    return out

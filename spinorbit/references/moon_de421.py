@@ -28,6 +28,9 @@ from numpy.polynomial import chebyshev
 from ..constants import J2000_JD
 from ..errors import EphemerisRangeError
 from ..rotations import cross3, dot3, matrix_from_euler313, omega_body_from_euler313_rates
+from .base import Comparable
+
+FREE_LIBRATION_LONGITUDE_PERIOD_D = 1056.16     # DE421's free libration in longitude (Yang et al. 2017)
 
 
 def _de421_dir():
@@ -153,6 +156,34 @@ def orientation(t_tdb_d):
     return matrix_from_euler313(*angles.T), omega_body_from_euler313_rates(angles, rates)
 
 
+class Orientation:
+    """DE421's lunar mantle orientation as a ``references.base.Reference``.
+
+    Values: ``icrf_to_body`` (n, 3, 3), ``angles_rad`` (n, 3) the JPL 3-1-3 angles
+    (phi, theta, psi), ``omega_body_rad_d`` (n, 3) the body angular velocity.
+    """
+
+    name = "DE421"
+
+    def __call__(self, t_tdb_d):
+        angles, rates = librations(t_tdb_d)
+        return Comparable(np.atleast_1d(np.asarray(t_tdb_d, dtype=float)),
+                          {"icrf_to_body": matrix_from_euler313(*angles.T), "angles_rad": angles,
+                           "omega_body_rad_d": omega_body_from_euler313_rates(angles, rates)}, provenance())
+
+
+def provenance():
+    """Where DE421's lunar orientation comes from: data package and version, citation, span."""
+    from importlib.metadata import version
+
+    start, end = libration_span()
+    return {"reference": "JPL DE421 lunar mantle orientation (Chebyshev libration angles)",
+            "data": f"de421 {version('de421')} (jpl-librations.npy, constants.npy)",
+            "citation": "Williams, Boggs & Folkner (2008), JPL IOM 335-JW,DB,WF-20080314-001; "
+                        "Folkner et al. (2014), IPN Progress Report 42-196",
+            "span_jd_tdb": [start + J2000_JD, end + J2000_JD]}
+
+
 def _pck_paths():
     import importlib.resources
 
@@ -196,21 +227,6 @@ def pck_matrix(t_tdb_d):
         raise EphemerisRangeError("moon_pa_de421 PCK", f"{t.min():.6g} to {t.max():.6g}", (start, end))
     times = load.timescale().tdb_jd(J2000_JD, t)
     return np.moveaxis(_pck_frame().rotation_at(times), -1, 0).reshape(t.size, 3, 3)
-
-
-def pole_and_longitude_difference(m_a, m_b):
-    """Differences of two series of ICRF-to-body matrices (n, 3, 3), rad: (pole, longitude).
-
-    pole: angle between the two body z axes (tilt of the spin axis);
-    longitude: signed rotation about z of frame a relative to frame b
-    (from the relative matrix m_a m_b^T; positive when a leads b).
-    """
-    m_a, m_b = np.asarray(m_a), np.asarray(m_b)
-    z_a, z_b = m_a[:, 2, :], m_b[:, 2, :]
-    pole = np.arctan2(np.linalg.norm(np.cross(z_a, z_b), axis=1), np.sum(z_a * z_b, axis=1))
-    rel = np.einsum("nij,nkj->nik", m_a, m_b)
-    longitude = np.arctan2(rel[:, 0, 1] - rel[:, 1, 0], rel[:, 0, 0] + rel[:, 1, 1])
-    return pole, longitude
 
 
 def core_angular_velocity(t_tdb_d, step_d=0.25):

@@ -1,0 +1,60 @@
+"""The Moon's orientation analysed: differences of two attitudes (pole, longitude), the physical
+librations about the Cassini state, and the sub-Earth point.
+
+Layer 2 (numpy).  The frame and the arguments are inputs (``references.arguments``):
+the body angles are taken against the mean ecliptic and equinox of date, node phi_e,
+inclination theta_e, and phi_e + psi_e the prime meridian's longitude; then
+tau = phi_e + psi_e - (L + 180 deg), rho = theta_e - I, sigma = phi_e - (Om + 180 deg).
+"""
+import numpy as np
+
+from ..constants import ARCSEC
+from ..rotations import euler313_from_matrix, matrix_from_quat
+
+INCLINATION_RAD = np.radians(1.54242)       # mean inclination of the lunar equator to the ecliptic (Meeus ch. 53)
+
+
+def _wrap(a):
+    return (a + np.pi) % (2 * np.pi) - np.pi
+
+
+def physical_librations(icrf_to_body, icrf_to_ecliptic, mean_longitude, node, earth_from_moon):
+    """tau, rho, sigma (rad) and the sub-Earth longitude and latitude (rad) of a series of orientations.
+
+    ``icrf_to_body``, ``icrf_to_ecliptic``: (n, 3, 3) matrices (the mean ecliptic of date);
+    ``mean_longitude`` L and ``node`` Om of the Moon (n,) rad; ``earth_from_moon`` (n, 3) ICRF, any unit.
+    """
+    ecl = euler313_from_matrix(np.einsum("nij,nkj->nik", icrf_to_body, icrf_to_ecliptic))
+    u = np.einsum("nij,nj->ni", icrf_to_body, earth_from_moon / np.linalg.norm(earth_from_moon, axis=1, keepdims=True))
+    return {"tau": _wrap(ecl[:, 0] + ecl[:, 2] - mean_longitude - np.pi), "rho": ecl[:, 1] - INCLINATION_RAD,
+            "sigma": _wrap(ecl[:, 0] - node - np.pi),
+            "sub_earth_lon": np.arctan2(u[:, 1], u[:, 0]), "sub_earth_lat": np.arcsin(u[:, 2])}
+
+
+def icrf_to_body(quaternions):
+    """ICRF-to-body matrices (n, 3, 3) of body-to-ICRF quaternions (n, 4) (an integrated attitude)."""
+    return np.array([matrix_from_quat(q).T for q in quaternions])
+
+
+def pole_and_longitude_difference(m_a, m_b):
+    """Differences of two series of ICRF-to-body matrices (n, 3, 3), rad: (pole, longitude).
+
+    pole: angle between the two body z axes (tilt of the spin axis);
+    longitude: signed rotation about z of frame a relative to frame b
+    (from the relative matrix m_a m_b^T; positive when a leads b).
+    """
+    m_a, m_b = np.asarray(m_a), np.asarray(m_b)
+    z_a, z_b = m_a[:, 2, :], m_b[:, 2, :]
+    pole = np.arctan2(np.linalg.norm(np.cross(z_a, z_b), axis=1), np.sum(z_a * z_b, axis=1))
+    rel = np.einsum("nij,nkj->nik", m_a, m_b)
+    longitude = np.arctan2(rel[:, 0, 1] - rel[:, 1, 0], rel[:, 0, 0] + rel[:, 1, 1])
+    return pole, longitude
+
+
+def residual_metrics(mats, reference_mats):
+    """Max and rms pole and longitude differences of two series of ICRF-to-body matrices, arcsec."""
+    out = {}
+    for name, x in zip(("pole", "longitude"), pole_and_longitude_difference(mats, reference_mats)):
+        out[f"{name}_error_max_arcsec"] = float(np.abs(x).max() / ARCSEC)
+        out[f"{name}_error_rms_arcsec"] = float(np.sqrt(np.mean(x**2)) / ARCSEC)
+    return out

@@ -1,0 +1,141 @@
+"""Drawing functions for reports.write_plots (edge: matplotlib is imported by the caller of ``draw``).
+
+Each function returns ``draw(fig)``; ``titled`` gives it the title written above it, and a
+``figsize`` attribute, when present, sizes the figure.
+"""
+import numpy as np
+
+
+def plot_series(x, ys, xlabel, ylabel, labels=None, logy=False):
+    """One or more curves against x."""
+    ys = np.atleast_2d(ys)
+
+    def draw(fig):
+        ax = fig.add_subplot()
+        for i, y in enumerate(ys):
+            ax.plot(x, y, lw=0.8, label=None if labels is None else labels[i])
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(ylabel)
+        if logy:
+            ax.set_yscale("log")
+        if labels is not None:
+            ax.legend()
+        ax.grid(alpha=0.3)
+
+    return draw
+
+
+def plot_panels(x, panels, xlabel):
+    """Stacked panels sharing x; ``panels`` = [(ys, labels, ylabel), ...]; the second curve of a panel
+    is drawn dashed over the first (a reference overlaid)."""
+
+    def draw(fig):
+        axes = fig.subplots(len(panels), 1, sharex=True)
+        for ax, (ys, labels, ylabel) in zip(np.atleast_1d(axes), panels):
+            for i, (y, label) in enumerate(zip(np.atleast_2d(ys), labels)):
+                ax.plot(x, y, lw=1.2 if i == 0 else 0.9, ls="-" if i == 0 else "--", label=label)
+            ax.set_ylabel(ylabel)
+            ax.legend(fontsize=8, loc="upper right")
+            ax.grid(alpha=0.3)
+        np.atleast_1d(axes)[-1].set_xlabel(xlabel)
+
+    draw.figsize = (8, 1.0 + 2.2 * len(panels))          # read by reports.write_plots
+    return draw
+
+
+def titled(draw, title):
+    """Give a drawing function the plot title reports.write_plots puts above it (with scene and span)."""
+    draw.title = title
+    return draw
+
+
+def plot_error_vs_cost(rows, errors, methods=(("rk8", "o-"), ("dop853", "s--"))):
+    """Max error against wall time, log-log, one curve per method and error: ``errors`` = [(key of the
+    rows, label, alpha), ...], ``rows`` as from analysis.ladder (rows that failed are left out)."""
+
+    def draw(fig):
+        ax = fig.add_subplot()
+        for method, marker in methods:
+            sel = [r for r in rows if r["method"] == method and "failed" not in r]
+            for key, label, alpha in errors:
+                ax.loglog([r["wall_s"] for r in sel], [max(r[key], 1e-9) for r in sel], marker, alpha=alpha,
+                          label=f"{method} {label}")
+        ax.set_xlabel("wall time [s]")
+        ax.set_ylabel("max attitude error [arcsec]")
+        ax.legend()
+        ax.grid(alpha=0.3, which="both")
+
+    return draw
+
+
+def plot_spectrum(period, amplitude, span, terms, labelled):
+    """Amplitude of tau against period (up to ``span``), with the published and fitted amplitudes of the
+    terms marked: ``terms`` = (periods, published, fitted), ``labelled`` = [(name, period, amplitude), ...]."""
+
+    def draw(fig):
+        ax = fig.add_subplot()
+        keep = period <= span
+        ax.loglog(period[keep], amplitude[keep], lw=0.7, color="0.3", label="model tau spectrum")
+        ax.scatter(terms[0], terms[1], marker="o", facecolors="none", edgecolors="C3", s=40,
+                   label="published (Eckhardt, in Meeus ch. 53)", zorder=3)
+        ax.scatter(terms[0], terms[2], marker="x", color="C0", s=30, label="fitted at fixed arguments", zorder=3)
+        for name, p, a in labelled:
+            ax.annotate(name, (p, a), textcoords="offset points", xytext=(4, 6), fontsize=7)
+        ax.set_xlabel("period [d]")
+        ax.set_ylabel("amplitude of tau [arcsec]")
+        ax.set_ylim(1e-3, None)
+        ax.legend(fontsize=8, loc="lower right")
+        ax.grid(alpha=0.3, which="both")
+
+    return draw
+
+
+def libration_spectrum(t, tau_arcsec, rows, labelled):
+    """Physical libration in longitude: amplitude against period, with the published (Eckhardt, in Meeus)
+    and fitted amplitudes of the fitted ``rows`` (references.eckhardt.beside_published), the names of
+    the ``labelled`` terms written beside them."""
+    from .analysis.spectrum import amplitude_spectrum
+
+    rows = [r for r in rows if r["fitted_arcsec"] is not None]
+    periods = [_period_d(r["period"]) for r in rows]
+    published, fitted = ([abs(r[k]) for r in rows] for k in ("published_arcsec", "fitted_arcsec"))
+    names = [(r["term"], p, a) for r, p, a in zip(rows, periods, published) if r["term"] in labelled]
+    return plot_spectrum(*amplitude_spectrum(t, tau_arcsec), abs(t[-1] - t[0]), (periods, published, fitted), names)
+
+
+def libration_zoom(years, model, reference):
+    """tau and rho (arcsec) of a model beside a reference's, and their difference in mas or arcsec."""
+    diff = np.array([model[k] - reference[k] for k in ("tau", "rho")])
+    scale, unit = (1000.0, "mas") if np.abs(diff).max() < 1.0 else (1.0, "arcsec")
+    return plot_panels(years, [
+        ([model["tau"], reference["tau"]], ["model", "DE421"], "longitude τ [arcsec]"),
+        ([model["rho"], reference["rho"]], ["model", "DE421"], "latitude ρ [arcsec]"),
+        (diff * scale, ["τ", "ρ"], f"model − DE421 [{unit}]")], "year (TDB)")
+
+
+def moon_libration(t, table, rows, labelled, zoom, zoom_reference):
+    """The Moon scene's figures: residuals and physical libration from ``table`` (arcsec columns), the
+    spectrum of tau with the fitted ``rows``, and the librations ``zoom_reference`` (rad) of DE421 over
+    the times ``zoom`` (a mask) beside the model's."""
+    from .constants import ARCSEC
+
+    years = 2000.0 + np.asarray(t) / 365.25
+    column = lambda *names: np.array([table[name].value for name in names])
+    model = {k: table[name].value[zoom] for k, name in (("tau", "libration_longitude"), ("rho", "libration_latitude"))}
+    reference = {k: zoom_reference[k] / ARCSEC for k in ("tau", "rho")}
+    return {"residuals_vs_de421": titled(plot_series(
+                years, column("pole_error", "longitude_error"), "year (TDB)", "model - DE421 [arcsec]",
+                ["pole", "longitude"]), "pole and longitude, model minus DE421"),
+            "physical_libration": titled(plot_series(
+                years, column("libration_longitude", "libration_latitude"), "year (TDB)",
+                "physical libration [arcsec]", ["longitude τ", "latitude ρ"]), "physical libration"),
+            "libration_spectrum": titled(libration_spectrum(t, table["libration_longitude"].value, rows, labelled),
+                                         "libration in longitude τ, amplitude spectrum"),
+            "libration_zoom_vs_de421": titled(libration_zoom(years[zoom], model, reference),
+                                              "the last two years, model and DE421")}
+
+
+def _period_d(text):
+    """Days in a period written "27.55 d" or "273 yr"."""
+    value, unit = text.split()
+    return float(value) * (365.25 if unit == "yr" else 1.0)
