@@ -135,6 +135,26 @@ def moon_libration(t, table, rows, labelled, zoom, zoom_reference):
                                               "the last two years, model and DE421")}
 
 
+def earth_precession_nutation(t, dx_mas, dy_mas, nutation, iau):
+    """The Earth scene's figures: CIP X, Y minus IAU 2006/2000A (mas) and, given the model's ``nutation``
+    (dpsi, deps about its mean pole, rad), its nutation beside IAU 2000A's (``iau``: a Comparable)."""
+    from .constants import ARCSEC
+
+    years = 2000.0 + np.asarray(t) / 365.25
+    figures = {"residual_vs_erfa": titled(plot_series(years, [dx_mas, dy_mas], "year (TDB)",
+                                                      "CIP model - IAU 2006/2000A [mas]", ["X", "Y"]),
+                                          "CIP X, Y minus IAU 2006/2000A")}
+    if nutation:
+        dpsi, deps = nutation["dpsi"] / ARCSEC, nutation["deps"] / ARCSEC
+        dpsi_iau, deps_iau = iau["dpsi_rad"] / ARCSEC, iau["deps_rad"] / ARCSEC
+        figures["nutation"] = titled(plot_panels(years, [
+            ([dpsi, dpsi_iau], ["rigid model", "IAU 2000A"], "Δψ [arcsec]"),
+            ([deps, deps_iau], ["rigid model", "IAU 2000A"], "Δε [arcsec]"),
+            ([(dpsi - dpsi_iau) * 1000, (deps - deps_iau) * 1000], ["Δψ", "Δε"], "model - IAU [mas]")],
+            "year (TDB)"), "nutation in longitude Δψ and obliquity Δε vs IAU 2000A")
+    return figures
+
+
 def _period_d(text):
     """Days in a period written "27.55 d" or "273 yr"."""
     value, unit = text.split()

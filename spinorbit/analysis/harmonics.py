@@ -25,17 +25,18 @@ class HarmonicFit:
     refused: dict
 
 
-def fit_harmonics(t_tdb_d, values, arguments, degree=2, origin_d=0.0):
+def fit_harmonics(t_tdb_d, values, arguments, degree=2, origin_d=0.0, separate=True):
     """Fit values(t) = sum_k c_k T^k + sum_j (s_j sin a_j + c_j cos a_j), T = (t - origin_d) / century.
 
     ``arguments``: name -> (phase (n,) rad, rate rad/d), in order of precedence: a term is kept only if
-    it beats by half a cycle over the span against the polynomial and against every term kept before it.
+    it beats by half a cycle over the span against the polynomial and against every term kept before it
+    (against the polynomial only with ``separate=False``: spans.resolvable).
     """
     t = np.asarray(t_tdb_d, dtype=float)
     span = float(np.ptp(t))
     names = list(arguments)
     rates = [arguments[name][1] for name in names]
-    keep = resolvable(rates, span)
+    keep = resolvable(rates, span, separate)
     kept = [name for name, k in zip(names, keep) if k]
     big_t = (t - origin_d) / JULIAN_CENTURY_D
     phases = [np.asarray(arguments[name][0]) for name in kept]
@@ -47,4 +48,4 @@ def fit_harmonics(t_tdb_d, values, arguments, degree=2, origin_d=0.0):
     return HarmonicFit(poly=coef[:p].tolist(),
                        sin={**unfitted, **dict(zip(kept, coef[p:p + n].tolist()))},
                        cos={**unfitted, **dict(zip(kept, coef[p + n:].tolist()))},
-                       refused=refusals(names, rates, span))
+                       refused=refusals(names, rates, span, separate))

@@ -38,3 +38,10 @@ def ecliptic_of_date(t_tdb_d):
     import erfa
 
     return erfa.ecm06(J2000_JD, np.asarray(t_tdb_d, dtype=float))
+
+
+def named(t_tdb_d, multipliers):
+    """name -> (phase (n,) rad, rate rad/d) of the arguments ``multipliers`` = {name: (l, l', F, D, Om)},
+    in the same order: the ``arguments`` of analysis.harmonics.fit_harmonics."""
+    phase, rate = phases(t_tdb_d, list(multipliers.values()))
+    return {name: (p, r) for name, p, r in zip(multipliers, phase, rate)}

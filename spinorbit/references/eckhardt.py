@@ -34,15 +34,9 @@ MAIN = 5
 def term_arguments(t_tdb_d):
     """name -> (phase (n,) rad, rate rad/d) of every term, in TERMS order."""
     t = np.asarray(t_tdb_d, dtype=float)
-    delaunay = [m for *_, m in TERMS if m != K1]
-    phase, rate = arguments.phases(t, delaunay)
-    out, i = {}, 0
-    for name, *_, m in TERMS:
-        if m == K1:
-            out[name] = (np.radians(119.75 + 131.849 * t / JULIAN_CENTURY_D), np.radians(131.849) / JULIAN_CENTURY_D)
-        else:
-            out[name], i = (phase[i], rate[i]), i + 1
-    return out
+    delaunay = arguments.named(t, {name: m for name, *_, m in TERMS if m != K1})
+    k1 = (np.radians(119.75 + 131.849 * t / JULIAN_CENTURY_D), np.radians(131.849) / JULIAN_CENTURY_D)
+    return {name: k1 if m == K1 else delaunay[name] for name, *_, m in TERMS}
 
 
 def beside_published(fit):

@@ -8,7 +8,8 @@ longitude) and eps (obliquity) place an equator on it (P03, Capitaine et al. 200
 """
 import numpy as np
 
-from ..constants import ARCSEC, J2000_JD, JULIAN_CENTURY_D
+from ..constants import J2000_JD
+from .base import Comparable
 
 PSI_A_RATE_ARCSEC_CY = 5038.481507       # IAU 2006 precession in longitude psi_A, fixed J2000 ecliptic
 P_A_RATE_ARCSEC_CY = 5028.796195         # IAU 2006 general precession in longitude
@@ -18,7 +19,8 @@ EPS0_ARCSEC = 84381.406                  # IAU 2006 obliquity at J2000
 IAU2000A_MAIN_ARCSEC = {"18.6 yr": (-17.2064161, 9.2052331), "0.5 yr": (-1.3170906, 0.5730336),
                         "13.66 d": (-0.2276413, 0.0978459)}
 
-# Arguments fitted to a nutation series: name -> multipliers of the Delaunay arguments (l, l', F, D, Om).
+# Arguments fitted to a nutation series, in order of precedence: name -> multipliers of the Delaunay
+# arguments (l, l', F, D, Om) of references.arguments.
 NUTATION_ARGUMENTS = {
     "18.6 yr": (0, 0, 0, 0, 1), "9.3 yr": (0, 0, 0, 0, 2), "1 yr": (0, 1, 0, 0, 0),
     "0.5 yr": (0, 0, 2, -2, 2), "121.7 d": (0, 1, 2, -2, 2), "365.2 d": (0, -1, 2, -2, 2),
@@ -26,6 +28,33 @@ NUTATION_ARGUMENTS = {
     "13.63 d": (0, 0, 2, 0, 1), "9.13 d": (1, 0, 2, 0, 2), "31.8 d": (-1, 0, 0, 2, 0),
     "27.09 d": (-1, 0, 2, 0, 2), "14.77 d": (0, 0, 0, 2, 0),
 }
+
+
+class IauPole:
+    """The IAU 2006/2000A pole as a ``references.base.Reference``, values in rad: the CIP ``cip_x_rad``,
+    ``cip_y_rad`` in GCRS, the mean pole's Fukushima-Williams angles ``psi_bar_rad``, ``eps_a_rad`` and
+    the nutation ``dpsi_rad``, ``deps_rad`` (psi = psi_bar + dpsi, eps = eps_A + deps)."""
+
+    name = "IAU 2006/2000A (ERFA)"
+
+    def __call__(self, t_tdb_d):
+        t = np.atleast_1d(np.asarray(t_tdb_d, dtype=float))
+        x, y = cip_xy(t)
+        _, _, psi_bar, eps_a = mean_angles(t)
+        dpsi, deps = nutation(t)
+        return Comparable(t, {"cip_x_rad": x, "cip_y_rad": y, "psi_bar_rad": psi_bar, "eps_a_rad": eps_a,
+                              "dpsi_rad": dpsi, "deps_rad": deps}, provenance())
+
+
+def provenance():
+    """Where the IAU 2006/2000A pole comes from: library and version, citations, span."""
+    import erfa
+
+    return {"reference": "IAU 2006 precession + IAU 2000A nutation: CIP X, Y = bpn2xy(pnm06a)",
+            "data": f"pyerfa {erfa.__version__} (ERFA {erfa.version.erfa_version})",
+            "citation": "IERS Conventions (2010), ch. 5 (Petit & Luzum, IERS TN 36); Capitaine, Wallace & "
+                        "Chapront (2003), A&A 412, 567 (P03); Mathews, Herring & Buffett (2002), JGR 107 (MHB2000)",
+            "span": "series in time from J2000: no hard limit"}
 
 
 def _jd(t_tdb_d):
@@ -114,45 +143,15 @@ def pole_from_angles(t_tdb_d, psi, eps):
     return np.stack([np.cos(gamb) * x1 - np.sin(gamb) * y1, np.sin(gamb) * x1 + np.cos(gamb) * y1, z], axis=-1)
 
 
-def fundamental_arguments(t_tdb_d):
-    """Delaunay arguments (l, l', F, D, Om), rad, shape (5, n) (IERS 2003, ERFA fa*03)."""
-    import erfa
-
-    t = np.asarray(t_tdb_d, dtype=float) / JULIAN_CENTURY_D
-    return np.array([erfa.fal03(t), erfa.falp03(t), erfa.faf03(t), erfa.fad03(t), erfa.faom03(t)])
-
-
-def argument_phases(t_tdb_d, multipliers):
-    """Phases (K, n), rad, and rates (K,), rad/d, of the arguments sum_j m_kj F_j (Delaunay F_j)."""
-    m = np.asarray(multipliers, dtype=float)
-    t = np.asarray(t_tdb_d, dtype=float)
-    step = np.diff(fundamental_arguments(np.array([t.mean() - 0.5, t.mean() + 0.5])), axis=1)[:, 0]
-    rates = m @ ((step + np.pi) % (2 * np.pi) - np.pi)
-    return m @ fundamental_arguments(t), rates
+def about_mean_pole(t_tdb_d, pole_gcrs):
+    """(psi - psi_bar, eps - eps_A), rad: Fukushima-Williams angles of poles (n, 3) about the IAU 2006 mean
+    pole (for the IAU pole, the nutation dpsi, deps)."""
+    psi, eps = pole_angles(t_tdb_d, pole_gcrs)
+    _, _, psi_bar, eps_a = mean_angles(t_tdb_d)
+    return psi - psi_bar, eps - eps_a
 
 
-def fit_precession_nutation(t_tdb_d, values, terms=NUTATION_ARGUMENTS):
-    """Least-squares fit of a series (rad): c0 + c1 T + c2 T^2 + sum(s_k sin arg_k + c_k cos arg_k).
-
-    T in Julian centuries from J2000.  Returns {"poly": [c0, c1, c2] (rad, rad/cy, rad/cy^2),
-    "sin": {name: s_k}, "cos": {name: c_k}} in rad; a term of which the span holds less than
-    half a period (it would trade with the quadratic) is not fitted and is None.
-    """
-    t = np.asarray(t_tdb_d, dtype=float)
-    big_t = t / JULIAN_CENTURY_D
-    phases, rates = argument_phases(t, list(terms.values()))
-    keep = np.abs(rates) * float(np.ptp(t)) > np.pi        # half a cycle against the quadratic, at least
-    names = [name for name, kept in zip(terms, keep) if kept]
-    design = np.column_stack([np.ones_like(t), big_t, big_t**2]
-                             + [np.sin(a) for a in phases[keep]] + [np.cos(a) for a in phases[keep]])
-    coef = np.linalg.lstsq(design, np.asarray(values, dtype=float), rcond=None)[0]
-    n = len(names)
-    unresolved = dict.fromkeys(name for name, kept in zip(terms, keep) if not kept)
-    return {"poly": coef[:3].tolist(),
-            "sin": {**dict(zip(names, coef[3:3 + n].tolist())), **unresolved},
-            "cos": {**dict(zip(names, coef[3 + n:].tolist())), **unresolved},
-            "residual_rms": float(np.sqrt(np.mean((values - design @ coef) ** 2)))}
-
-
-def arcsec(rad):
-    return rad / ARCSEC
+def from_mean_pole(t_tdb_d, dpsi, deps):
+    """Unit poles in GCRS at angles (dpsi, deps) rad from the IAU 2006 mean pole (inverse of about_mean_pole)."""
+    _, _, psi_bar, eps_a = mean_angles(t_tdb_d)
+    return pole_from_angles(t_tdb_d, psi_bar + dpsi, eps_a + deps)

@@ -24,10 +24,11 @@ import math
 import numpy as np
 
 from .. import earth, nonrigid
-from ..analysis.spans import resolvable
+from ..analysis.precession import RATE_MIN_SPAN_D
 from ..constants import ARCSEC, GM_KM3_D2, JULIAN_CENTURY_D, MAS
 from ..errors import ScenarioError
 from ..integrators import integrate
+from ..references import euler_p96
 from ..scenarios import SAMPLE_STEP, Key
 from ..verdict import Check, Verdict
 from . import common
@@ -60,7 +61,6 @@ NONRIGID_TABLE_TERMS = {"18.6 yr": (0, 0, 0, 0, 1), "9.3 yr": (0, 0, 0, 0, 2), "
 _RIGID_VS_IAU = ("IAU 2000A is a non-rigid Earth (MHB2000): its 18.6-yr nutation differs from a rigid "
                  "Earth's by 74 mas in dpsi (REN-2000 rigid -17.2806\" vs IAU 2000A -17.2064\"), 23 mas in deps; "
                  "project targets X <= 40, Y <= 25 mas rms")
-RATE_MIN_SPAN_D = 50 * 365.25     # a precession rate is fitted over at least this (the 18.6-yr term aliases)
 _NONRIGID_VS_IAU = ("IAU 2000A is MHB2000's transfer function on a rigid-Earth series, its residuals against VLBI "
                     "~0.2 mas; a non-rigid layer from published parameters should come within 1 mas rms")
 _RATE = ("H_d is IAU 2006's, so the rate matches IAU 2006 to the torques left out: the planets' direct "
@@ -92,42 +92,71 @@ def verdict(scenario, comparison):
                             "~10 mas Oppolzer offset times the fastest nutation over the spin (1/13.7)"))
     return Verdict("IAU 2006/2000A (ERFA)", tuple(checks))
 
-# Euler's circles (P96): mean distance and sidereal period of the Moon and the Sun.
-CIRCLES = {"moon": (384400.0, 27.321661), "sun": (149597870.7, 365.256363)}
+CIRCLES = euler_p96.CIRCLES              # Euler's circles (P96): mean distance (km), sidereal period (d)
+
+
+RATE_KEYS = ("psi_rate_minus_iau_arcsec_cy", "psi_A_rate_arcsec_cy", "obliquity_rate_minus_iau_arcsec_cy",
+             "fixed_ecliptic_precession_rate_arcsec_cy")
 
 
 def run(scenario):
-    from ..references import erfa_pole
+    from .. import plots
+    from ..analysis.precession import compare_with_iau, fit_pole, mean_pole_offset, node_rate, rate_refusal
+    from ..references import arguments, erfa_pole
+    from ..references.euler_p96 import precession_rate
 
     t0, t = scenario.t_start, scenario.output_times()
     system, orbits, params, (z0, x0, pole_ecl, plane_tilt) = build_system(scenario, t)
     moments, full = params[0], scenario["earth.model"] == "full"
     solution, point = common.simulate_scenario(scenario, system, t)
     z = earth.figure_axes_from_full(solution.y) if full else system.meta["figure_axes"](t, solution.y, params)
-    z_rigid = z
+    z_rigid, iau = z, erfa_pole.IauPole()(t)
     if scenario["earth.nonrigid"]:
         z = _nonrigid_pole(erfa_pole, t, z)
-
-    comparison, table, figures, not_measured = _compare_with_erfa(erfa_pole, t, z, plane_tilt)
-    comparison.update(_p96(scenario, orbits, z, pole_ecl, t, plane_tilt))
-    if plane_tilt is None:                           # on DE421 the nutation aliases into a short span's rates
-        _withhold_short_rates(comparison, not_measured, abs(t[-1] - t[0]))
+    dx, dy = (z[:, 0] - iau["cip_x_rad"]) / MAS, (z[:, 1] - iau["cip_y_rad"]) / MAS
+    comparison = {"x_rms_mas": _rms(dx), "x_max_mas": float(np.abs(dx).max()),
+                  "y_rms_mas": _rms(dy), "y_max_mas": float(np.abs(dy).max())}
+    not_measured, nutation = {}, {}
+    if plane_tilt is None:                           # on DE421: IAU 2000A's nutation applies
+        terms, offsets = arguments.named(t, erfa_pole.NUTATION_ARGUMENTS), erfa_pole.about_mean_pole(t, z)
+        model = fit_pole(t, *offsets, terms)
+        fitted, not_measured = compare_with_iau(model, fit_pole(t, iau["dpsi_rad"], iau["deps_rad"], terms),
+                                                erfa_pole.IAU2000A_MAIN_ARCSEC)
+        rate = fitted.pop("psi_rate_minus_iau_arcsec_cy")
+        comparison.update(psi_rate_minus_iau_arcsec_cy=rate, psi_A_rate_arcsec_cy=erfa_pole.PSI_A_RATE_ARCSEC_CY + rate,
+                          psi_A_rate_iau2006_arcsec_cy=erfa_pole.PSI_A_RATE_ARCSEC_CY, **fitted)
+        mean = [mean_pole_offset(t, fit) for fit in model]    # the model's mean pole minus IAU 2006's
+        nutation = {"psi_mean": iau["psi_bar_rad"] + mean[0], "eps_mean": iau["eps_a_rad"] + mean[1],
+                    "dpsi": offsets[0] - mean[0], "deps": offsets[1] - mean[1]}
+    # Euler's P96 rate N cos n (§846) on circles beside the model's mean rate on the fixed ecliptic
+    p96 = precession_rate(earth.earth_moments(scenario["earth.dynamical_ellipticity"]), earth.ERA_RATE_RAD_D,
+                          math.acos(float(z[0] @ pole_ecl))) * JULIAN_CENTURY_D / ARCSEC
+    circles = {} if plane_tilt is None else {b: (4 * math.pi * t / CIRCLES[b][1], 4 * math.pi / CIRCLES[b][1]) for b in CIRCLES}
+    node = node_rate(t, z, pole_ecl, circles) / ARCSEC          # fitted with the circles' 2-phi terms
+    if plane_tilt is None:
+        comparison.update(p96_circles_precession_rate_arcsec_cy=p96, fixed_ecliptic_precession_rate_arcsec_cy=node)
+    else:
+        p96 -= earth.GEODESIC_PRECESSION_ARCSEC_CY if scenario["earth.geodesic_precession"] else 0.0
+        comparison.update(p96_precession_rate_arcsec_cy=p96, model_precession_rate_arcsec_cy=node,
+                          model_minus_p96_arcsec_cy=node - p96)
+    if plane_tilt is None and (why := rate_refusal(abs(t[-1] - t[0]))):   # the nutation aliases into the rates
+        for key in RATE_KEYS:
+            comparison[key], not_measured[f"comparison.{key}"] = None, why
+    table, figures = _table(t, z, dx, dy, nutation), plots.earth_precession_nutation(t, dx, dy, nutation, iau)
     if full:
         comparison.update(_full_checks(scenario, orbits, params, t0, z0, x0, t, z))
-        figures["full_minus_gyroscopic"] = common.plot_series(
-            common.decimal_year(t), comparison.pop("_full_minus_gyro_mas"), "year (TDB)",
-            "full - gyroscopic figure axis [mas]")
-    summary = {"not_measured": not_measured, "comparison": comparison, "run": point,
+        figures["full_minus_gyroscopic"] = plots.plot_series(common.decimal_year(t), comparison.pop(
+            "_full_minus_gyro_mas"), "year (TDB)", "full - gyroscopic figure axis [mas]")
+    summary = {"not_measured": not_measured, "comparison": comparison, "run": point, "reference": iau.provenance,
                "model": {"moments_over_C": moments.tolist(), "bodies": list(orbits.names),
                          "geodesic_precession_arcsec_cy": -earth.GEODESIC_PRECESSION_ARCSEC_CY
                          if scenario["earth.geodesic_precession"] else 0.0,
                          "j2_rate_per_cy": earth.J2_RATE_PER_CY if scenario["earth.j2_rate"] else 0.0,
                          "spin_rate_rad_d": earth.ERA_RATE_RAD_D,
-                         "orbit_interpolation_max_relative_error":
-                             None if getattr(orbits, "max_relative_error", None) is None
-                             else orbits.max_relative_error.tolist()}}
+                         "orbit_interpolation_max_relative_error": None if getattr(
+                             orbits, "max_relative_error", None) is None else orbits.max_relative_error.tolist()}}
     if scenario["earth.nonrigid"]:
-        summary["nonrigid"] = _nonrigid_summary(erfa_pole, t, z_rigid, z)
+        summary["nonrigid"] = _nonrigid_summary(erfa_pole, t, z_rigid, z, iau)
     return common.result(scenario, table, summary, figures, solution)
 
 
@@ -203,20 +232,18 @@ def _orbits(scenario):
 
 def _rigid_start(erfa_pole, orbits, params, t0, z0, t):
     """IAU mean pole at t0 plus the rigid nutation there: IAU pole + (rigid - IAU) fitted periodic terms."""
+    from ..analysis.precession import fit_pole, periodic_part
+    from ..references import arguments
+
     gyro = earth.gyroscopic_system(orbits.kernel, params, t0, z0)
-    z = gyro.meta["figure_axes"](t, integrate(gyro, t, "rk8", step=2.0).y, params)
-    psi, eps = erfa_pole.pole_angles(t, z)
-    _, _, psi_bar, eps_a = erfa_pole.mean_angles(t)
-    dpsi, deps = erfa_pole.nutation(t)
-    args = erfa_pole.fundamental_arguments(np.array([t0]))[:, 0]
-    offsets = []
-    for model, iau in ((psi - psi_bar, dpsi), (eps - eps_a, deps)):
-        fit_m, fit_i = (erfa_pole.fit_precession_nutation(t, v) for v in (model, iau))
-        offsets.append(sum((fit_m["sin"][k] - fit_i["sin"][k]) * math.sin(np.dot(m, args))
-                           + (fit_m["cos"][k] - fit_i["cos"][k]) * math.cos(np.dot(m, args))
-                           for k, m in erfa_pole.NUTATION_ARGUMENTS.items() if fit_m["sin"][k] is not None))
+    z, iau = gyro.meta["figure_axes"](t, integrate(gyro, t, "rk8", step=2.0).y, params), erfa_pole.IauPole()(t)
+    terms = arguments.named(t, erfa_pole.NUTATION_ARGUMENTS)
+    at_t0 = {name: phase[0] for name, (phase, _) in arguments.named([t0], erfa_pole.NUTATION_ARGUMENTS).items()}
+    model = fit_pole(t, *erfa_pole.about_mean_pole(t, z), terms, separate=False)     # only their sum is used
+    ref = fit_pole(t, iau["dpsi_rad"], iau["deps_rad"], terms, separate=False)
     psi0, eps0 = (v[0] for v in erfa_pole.pole_angles(np.array([t0]), z0[None]))
-    return erfa_pole.pole_from_angles(t0, psi0 + offsets[0], eps0 + offsets[1])
+    return erfa_pole.pole_from_angles(t0, *(a + periodic_part(m, at_t0) - periodic_part(r, at_t0)
+                                            for a, m, r in zip((psi0, eps0), model, ref)))
 
 
 def _a_axis(erfa_pole, t0, z0):
@@ -229,161 +256,52 @@ def _a_axis(erfa_pole, t0, z0):
 def _nonrigid_pole(erfa_pole, t, z):
     """Figure axes (n, 3) of the non-rigid Earth: the rigid nutation (x, y) = (dpsi sin eps_A, deps) about
     the IAU 2006 mean pole, times the two-layer response term by term (spinorbit.nonrigid)."""
-    psi, eps = erfa_pole.pole_angles(t, z)
-    _, _, psi_bar, eps_a = erfa_pole.mean_angles(t)
-    phases, rates = erfa_pole.argument_phases(t, nonrigid.LUNISOLAR_ARGUMENTS)
-    sin_eps = np.sin(eps_a)
-    x, y = nonrigid.nonrigid_nutation(t, (psi - psi_bar) * sin_eps, eps - eps_a, phases, rates)
-    return erfa_pole.pole_from_angles(t, psi_bar + x / sin_eps, eps_a + y)
+    from ..references import arguments
+
+    (dpsi, deps), sin_eps = erfa_pole.about_mean_pole(t, z), np.sin(erfa_pole.mean_angles(t)[3])
+    x, y = nonrigid.nonrigid_nutation(t, dpsi * sin_eps, deps, *arguments.phases(t, nonrigid.LUNISOLAR_ARGUMENTS))
+    return erfa_pole.from_mean_pole(t, x / sin_eps, y)
 
 
-def _nonrigid_summary(erfa_pole, t, z_rigid, z):
+def _nonrigid_summary(erfa_pole, t, z_rigid, z, iau):
     """The rigid and non-rigid main terms beside IAU 2000A (mas), the rigid residuals, the model's free modes.
 
-    Terms: dpsi = sum(in sin arg + out cos arg), deps = sum(in cos arg + out sin arg), as in IAU 2000A,
-    fitted over the run on the nonrigid.LUNISOLAR_ARGUMENTS it resolves (with a quadratic), the same way
-    for the three columns: a term unresolved from a listed one (1 yr: 365.22 d; 0.5 yr: 182.63 d) is in it.
+    The three columns are fitted alike over the run on the nonrigid.LUNISOLAR_ARGUMENTS it resolves (with a
+    quadratic): a term unresolved from a listed one (1 yr: 365.22 d; 0.5 yr: 182.63 d) is in it.
     """
-    x_ref, y_ref = erfa_pole.cip_xy(t)
-    _, _, psi_bar, eps_a = erfa_pole.mean_angles(t)
-    dpsi_iau, deps_iau = erfa_pole.nutation(t)
-    _, rates = erfa_pole.argument_phases(t, nonrigid.LUNISOLAR_ARGUMENTS)
-    keep = resolvable(rates, abs(t[-1] - t[0]))
-    arguments = {str(m): m for m, k in zip(nonrigid.LUNISOLAR_ARGUMENTS, keep) if k}
-    fits = {}
-    for name, pole in (("rigid", z_rigid), ("nonrigid", z)):
-        psi, eps = erfa_pole.pole_angles(t, pole)
-        fits[name] = [erfa_pole.fit_precession_nutation(t, v, arguments) for v in (psi - psi_bar, eps - eps_a)]
-    fits["iau2000a"] = [erfa_pole.fit_precession_nutation(t, v, arguments) for v in (dpsi_iau, deps_iau)]
-    columns = {"dpsi_in": (0, "sin"), "dpsi_out": (0, "cos"), "deps_in": (1, "cos"), "deps_out": (1, "sin")}
-    terms = {term: {part: {model: fits[model][i][trig][str(m)] / MAS for model in fits}
-                    for part, (i, trig) in columns.items()}
-             for term, m in NONRIGID_TABLE_TERMS.items()}
+    from ..analysis.precession import fit_pole, term_table
+    from ..references import arguments
+
+    terms = arguments.named(t, {str(m): m for m in nonrigid.LUNISOLAR_ARGUMENTS})
+    fits = {name: fit_pole(t, *erfa_pole.about_mean_pole(t, pole), terms)
+            for name, pole in (("rigid", z_rigid), ("nonrigid", z))}
+    fits["iau2000a"] = fit_pole(t, iau["dpsi_rad"], iau["deps_rad"], terms)
     cw, fcn = nonrigid.normal_modes()
-    return {"rigid_x_rms_mas": _rms((z_rigid[:, 0] - x_ref) / MAS),
-            "rigid_y_rms_mas": _rms((z_rigid[:, 1] - y_ref) / MAS),
-            "terms_mas": terms,
+    return {"rigid_x_rms_mas": _rms((z_rigid[:, 0] - iau["cip_x_rad"]) / MAS),
+            "rigid_y_rms_mas": _rms((z_rigid[:, 1] - iau["cip_y_rad"]) / MAS),
+            "terms_mas": term_table(fits, {name: str(m) for name, m in NONRIGID_TABLE_TERMS.items()}),
             "fcn_period_model_d": nonrigid.celestial_period_days(fcn),
             "fcn_period_mhb2000_d": nonrigid.celestial_period_days(nonrigid.PUBLISHED_FCN_CPSD),
             "chandler_period_model_d": nonrigid.wobble_period_days(cw),
             "chandler_period_mhb2000_d": nonrigid.wobble_period_days(nonrigid.PUBLISHED_CHANDLER_CPSD)}
 
 
-RATE_KEYS = ("psi_rate_minus_iau_arcsec_cy", "psi_A_rate_arcsec_cy", "obliquity_rate_minus_iau_arcsec_cy",
-             "fixed_ecliptic_precession_rate_arcsec_cy")
-
-
-def _withhold_short_rates(comparison, not_measured, span):
-    """Null every fitted rate of a run shorter than RATE_MIN_SPAN_D, with the reason."""
-    if span >= RATE_MIN_SPAN_D:
-        return
-    for key in RATE_KEYS:
-        if key in comparison:
-            comparison[key] = None
-            not_measured[f"comparison.{key}"] = (f"a precession rate needs a span of {RATE_MIN_SPAN_D:.0f} d "
-                                                 f"(50 yr; shorter ones alias the 18.6-yr nutation into it), "
-                                                 f"the run has {span:.0f} d")
-
-
-def _compare_with_erfa(erfa_pole, t, z, plane_tilt):
-    """Residuals vs ERFA, the fitted precession and nutation (what the span cannot resolve is in
-    not_measured, with why), the output table and plots."""
-    u = common.u()
+def _table(t, z, dx, dy, nutation):
+    """The CIP X, Y and their residuals (mas); on DE421 the model's mean pole and nutation about it."""
     from astropy.table import QTable
 
     from ..scenarios import tdb_days_to_time
 
-    x_ref, y_ref = erfa_pole.cip_xy(t)
-    dx, dy = (z[:, 0] - x_ref) / MAS, (z[:, 1] - y_ref) / MAS
-    comparison = {"x_rms_mas": _rms(dx), "x_max_mas": float(np.abs(dx).max()),
-                  "y_rms_mas": _rms(dy), "y_max_mas": float(np.abs(dy).max())}
-    not_measured = {}
-    table = QTable()
+    u, table = common.u(), QTable()
     table["time"] = tdb_days_to_time(t)
-    table["cip_x"] = (z[:, 0] * u.rad).to(u.arcsec)
-    table["cip_y"] = (z[:, 1] * u.rad).to(u.arcsec)
-    table["cip_x_minus_erfa"] = dx * u.mas
-    table["cip_y_minus_erfa"] = dy * u.mas
-    years = common.decimal_year(t)
-    figures = {"residual_vs_erfa": common.titled(common.plot_series(
-        years, [dx, dy], "year (TDB)", "CIP model - IAU 2006/2000A [mas]", ["X", "Y"]), "CIP X, Y minus IAU 2006/2000A")}
-    if plane_tilt is not None:         # Euler's circles: IAU nutation does not apply
-        return comparison, table, figures, not_measured
-
-    psi, eps = erfa_pole.pole_angles(t, z)
-    _, _, psi_bar, eps_a = erfa_pole.mean_angles(t)
-    dpsi_iau, deps_iau = erfa_pole.nutation(t)
-    fits = {name: erfa_pole.fit_precession_nutation(t, series) for name, series in
-            (("dpsi", psi - psi_bar), ("deps", eps - eps_a), ("dpsi_iau", dpsi_iau), ("deps_iau", deps_iau))}
-    rate = (fits["dpsi"]["poly"][1] - fits["dpsi_iau"]["poly"][1]) / ARCSEC
-    comparison.update({
-        "psi_rate_minus_iau_arcsec_cy": rate,
-        "psi_A_rate_arcsec_cy": erfa_pole.PSI_A_RATE_ARCSEC_CY + rate,
-        "psi_A_rate_iau2006_arcsec_cy": erfa_pole.PSI_A_RATE_ARCSEC_CY,
-        "obliquity_rate_minus_iau_arcsec_cy": (fits["deps"]["poly"][1] - fits["deps_iau"]["poly"][1]) / ARCSEC,
-    })
-    span = abs(t[-1] - t[0])
-    for term, (psi_pub, eps_pub) in erfa_pole.IAU2000A_MAIN_ARCSEC.items():
-        key = term.replace(" ", "").replace(".", "_")
-        if fits["dpsi"]["sin"][term] is None:
-            not_measured[f"comparison.nutation_{key}"] = f"the {span:.0f} d span does not resolve the {term} term"
-            continue
-        model_psi, model_eps = fits["dpsi"]["sin"][term] / ARCSEC, fits["deps"]["cos"][term] / ARCSEC
-        iau_psi, iau_eps = fits["dpsi_iau"]["sin"][term] / ARCSEC, fits["deps_iau"]["cos"][term] / ARCSEC
-        comparison.update({
-            f"nutation_{key}_dpsi_model_arcsec": model_psi, f"nutation_{key}_dpsi_iau2000a_arcsec": psi_pub,
-            f"nutation_{key}_dpsi_model_minus_iau_mas": (model_psi - iau_psi) * 1000,
-            f"nutation_{key}_deps_model_arcsec": model_eps, f"nutation_{key}_deps_iau2000a_arcsec": eps_pub,
-            f"nutation_{key}_deps_model_minus_iau_mas": (model_eps - iau_eps) * 1000,
-        })
-    # Model mean pole = IAU mean pole + fitted polynomial difference; nutation about it.
-    big_t = (t / JULIAN_CENTURY_D)[:, None] ** np.arange(3)
-    psi_mean = psi_bar + big_t @ np.array(fits["dpsi"]["poly"])
-    eps_mean = eps_a + big_t @ np.array(fits["deps"]["poly"])
-    table["precession_longitude"] = (psi_mean * u.rad).to(u.arcsec)
-    table["obliquity"] = (eps_mean * u.rad).to(u.deg)
-    table["nutation_longitude"] = ((psi - psi_mean) * u.rad).to(u.arcsec)
-    table["nutation_obliquity"] = ((eps - eps_mean) * u.rad).to(u.arcsec)
-    dpsi, deps = (psi - psi_mean) / ARCSEC, (eps - eps_mean) / ARCSEC
-    figures["nutation"] = common.titled(common.plot_panels(years, [
-        ([dpsi, dpsi_iau / ARCSEC], ["rigid model", "IAU 2000A"], "Δψ [arcsec]"),
-        ([deps, deps_iau / ARCSEC], ["rigid model", "IAU 2000A"], "Δε [arcsec]"),
-        ([(dpsi - dpsi_iau / ARCSEC) * 1000, (deps - deps_iau / ARCSEC) * 1000], ["Δψ", "Δε"],
-         "model - IAU [mas]")], "year (TDB)"), "nutation in longitude Δψ and obliquity Δε vs IAU 2000A")
-    return comparison, table, figures, not_measured
-
-
-def _p96(scenario, orbits, z, pole_ecl, t, plane_tilt):
-    """Euler's P96 rate N cos n (§846) on circles beside the model's mean rate on the fixed ecliptic."""
-    from ..theory import SymmetricPrecession
-
-    moments = earth.earth_moments(scenario["earth.dynamical_ellipticity"])
-    n = math.acos(float(z[0] @ pole_ecl))
-    rate = 0.0
-    for name in ("moon", "sun"):
-        radius, period = CIRCLES[name]
-        big_n = 1.5 * GM_KM3_D2[name] * (moments[2] - moments[0]) / (earth.ERA_RATE_RAD_D * moments[2] * radius**3)
-        rate += SymmetricPrecession(earth.ERA_RATE_RAD_D, 2 * math.pi / period, big_n, n).precession_rate
-    # Longitude of the equator's node on the fixed ecliptic, fitted with the circles' 2-phi terms.
-    x_ecl = np.cross([0.0, 0.0, 1.0], pole_ecl)
-    x_ecl /= np.linalg.norm(x_ecl)
-    y_ecl = np.cross(pole_ecl, x_ecl)
-    node_lon = np.unwrap(np.arctan2(z @ x_ecl, -(z @ y_ecl)))
-    columns = [np.ones_like(t), t]
-    if plane_tilt is not None:
-        for name in ("moon", "sun"):
-            phase = 4 * math.pi * t / CIRCLES[name][1]
-            columns += [np.sin(phase), np.cos(phase)]
-    coef = np.linalg.lstsq(np.column_stack(columns), node_lon, rcond=None)[0]
-    model = -coef[1] * JULIAN_CENTURY_D / ARCSEC
-    if plane_tilt is None:
-        return {"p96_circles_precession_rate_arcsec_cy": rate * JULIAN_CENTURY_D / ARCSEC,
-                "fixed_ecliptic_precession_rate_arcsec_cy": model}
-    p96 = rate * JULIAN_CENTURY_D / ARCSEC
-    if scenario["earth.geodesic_precession"]:
-        p96 -= earth.GEODESIC_PRECESSION_ARCSEC_CY
-    return {"p96_precession_rate_arcsec_cy": p96, "model_precession_rate_arcsec_cy": model,
-            "model_minus_p96_arcsec_cy": model - p96}
+    table["cip_x"], table["cip_y"] = (z[:, 0] * u.rad).to(u.arcsec), (z[:, 1] * u.rad).to(u.arcsec)
+    table["cip_x_minus_erfa"], table["cip_y_minus_erfa"] = dx * u.mas, dy * u.mas
+    if nutation:
+        table["precession_longitude"] = (nutation["psi_mean"] * u.rad).to(u.arcsec)
+        table["obliquity"] = (nutation["eps_mean"] * u.rad).to(u.deg)
+        table["nutation_longitude"] = (nutation["dpsi"] * u.rad).to(u.arcsec)
+        table["nutation_obliquity"] = (nutation["deps"] * u.rad).to(u.arcsec)
+    return table
 
 
 def _full_checks(scenario, orbits, params, t0, z0, x0, t, z_full):

@@ -1,0 +1,76 @@
+"""Precession and nutation of a pole, fitted and set beside a reference's.
+
+Layer 2 (numpy).  A pole's Fukushima-Williams angles about a mean pole, dpsi = psi - psi_bar
+and deps = eps - eps_A (rad), are fitted with a quadratic in T from J2000 and the nutation
+arguments (harmonics.fit_harmonics; the arguments come from references.arguments).  A
+precession rate needs RATE_MIN_SPAN_D: over a shorter span the 18.6-yr nutation aliases into it.
+"""
+import numpy as np
+
+from ..constants import ARCSEC, JULIAN_CENTURY_D, MAS
+from .harmonics import fit_harmonics
+
+RATE_MIN_SPAN_D = 50 * 365.25
+
+
+def rate_refusal(span_d):
+    """Why a span of ``span_d`` days cannot give a precession rate, or None if it can."""
+    if span_d >= RATE_MIN_SPAN_D:
+        return None
+    return (f"a precession rate needs a span of {RATE_MIN_SPAN_D:.0f} d (50 yr; shorter ones alias the 18.6-yr "
+            f"nutation into it), the run has {span_d:.0f} d")
+
+
+def fit_pole(t_tdb_d, dpsi, deps, arguments, separate=True):
+    """(fit of dpsi, fit of deps): HarmonicFit, quadratic in T from J2000, rad (``separate``: spans.resolvable)."""
+    return tuple(fit_harmonics(t_tdb_d, v, arguments, degree=2, separate=separate) for v in (dpsi, deps))
+
+
+def compare_with_iau(model, iau, published):
+    """Fitted precession and nutation of a model beside a reference's, both from fit_pole.
+
+    Returns (comparison, not_measured): the rate differences in longitude and obliquity ("/cy), and for
+    each term of ``published`` = {name: (dpsi sin, deps cos) arcsec} the model's coefficients, the
+    published ones and model - reference (mas); a term the span does not resolve is in not_measured."""
+    comparison = {"psi_rate_minus_iau_arcsec_cy": (model[0].poly[1] - iau[0].poly[1]) / ARCSEC,
+                  "obliquity_rate_minus_iau_arcsec_cy": (model[1].poly[1] - iau[1].poly[1]) / ARCSEC}
+    not_measured = {}
+    for term, (psi_pub, eps_pub) in published.items():
+        key = "nutation_" + term.replace(" ", "").replace(".", "_")
+        if model[0].sin[term] is None:
+            not_measured[f"comparison.{key}"] = model[0].refused[term]
+            continue
+        for angle, trig, i, pub in (("dpsi", "sin", 0, psi_pub), ("deps", "cos", 1, eps_pub)):
+            value, ref = getattr(model[i], trig)[term] / ARCSEC, getattr(iau[i], trig)[term] / ARCSEC
+            comparison.update({f"{key}_{angle}_model_arcsec": value, f"{key}_{angle}_iau2000a_arcsec": pub,
+                               f"{key}_{angle}_model_minus_iau_mas": (value - ref) * 1000})
+    return comparison, not_measured
+
+
+def mean_pole_offset(t_tdb_d, fit):
+    """The polynomial part of a fit at the times, rad: the model's mean pole minus the reference's."""
+    return ((np.asarray(t_tdb_d) / JULIAN_CENTURY_D)[:, None] ** np.arange(len(fit.poly))) @ np.array(fit.poly)
+
+
+def periodic_part(fit, phases):
+    """The fitted periodic terms at one time, rad: sum s_k sin a_k + c_k cos a_k; ``phases`` name -> a_k."""
+    return sum(fit.sin[k] * np.sin(a) + fit.cos[k] * np.cos(a) for k, a in phases.items() if fit.sin[k] is not None)
+
+
+def term_table(fits, terms):
+    """term -> part -> model -> coefficient (mas), as IAU 2000A writes them: dpsi = in sin + out cos,
+    deps = in cos + out sin; ``fits`` = {model: fit_pole result}; a term not fitted is None."""
+    parts = {"dpsi_in": (0, "sin"), "dpsi_out": (0, "cos"), "deps_in": (1, "cos"), "deps_out": (1, "sin")}
+    value = lambda fit, trig, term: None if getattr(fit, trig)[term] is None else getattr(fit, trig)[term] / MAS
+    return {term: {part: {model: value(pair[i], trig, term) for model, pair in fits.items()}
+                   for part, (i, trig) in parts.items()} for term in terms}
+
+
+def node_rate(t_tdb_d, poles, ecliptic_pole, periodic=None):
+    """Mean rate (rad per Julian century) of the longitude of the equator's ascending node on a fixed
+    ecliptic, for poles (n, 3) in the ecliptic's frame; fitted linearly with the ``periodic`` arguments
+    (name -> (phase, rate)), positive for a regression (precession)."""
+    x = np.cross([0.0, 0.0, 1.0], ecliptic_pole)
+    x /= np.linalg.norm(x)
+    node = np.unwrap(np.arctan2(poles @ x, -(poles @ np.cross(ecliptic_pole, x))))
+    return -fit_harmonics(t_tdb_d, node, periodic or {}, degree=1).poly[1]
