@@ -54,3 +54,30 @@ def beside_published(fit):
             row["not_fitted"] = fit.refused[name]
         rows.append(row)
     return rows
+
+
+def physical_librations(t_tdb_d, icrf_to_body, earth_from_moon):
+    """tau, rho, sigma and the sub-Earth point (rad) of lunar orientations (n, 3, 3) at TDB days ``t``, about
+    the mean elements of date (analysis.librations.physical_librations on references.arguments)."""
+    from ..analysis.librations import physical_librations
+
+    _, _, f, _, om = arguments.delaunay(t_tdb_d)
+    return physical_librations(icrf_to_body, arguments.ecliptic_of_date(t_tdb_d), f + om, om, earth_from_moon)
+
+
+def fit_longitude_terms(t_tdb_d, tau_arcsec, free_period_d):
+    """Eckhardt's terms fitted to tau (arcsec) at fixed arguments, with a free libration of ``free_period_d``
+    (last: it parts from the 1095-d term only over ~40 yr) and a constant + linear trend.
+
+    Returns ({"main": rows, "other": rows, "free_libration_..._amplitude_arcsec"}, {term: why not fitted}),
+    rows as ``beside_published``."""
+    from ..analysis.harmonics import fit_harmonics
+
+    t = np.asarray(t_tdb_d, dtype=float)
+    free = f"free libration ({free_period_d:.0f} d)"
+    fit = fit_harmonics(t, tau_arcsec, {**term_arguments(t), free: (2 * np.pi * t / free_period_d,
+                        2 * np.pi / free_period_d)}, degree=1, origin_d=t.mean())
+    rows = beside_published(fit)
+    amplitude = None if fit.sin[free] is None else float(np.hypot(fit.sin[free], fit.cos[free]))
+    return ({"main": rows[:MAIN], "other": rows[MAIN:], f"free_libration_{free_period_d:.0f}d_amplitude_arcsec": amplitude},
+            fit.refused)

@@ -7,18 +7,14 @@ spinorbit.moon).  Nothing is fitted.  Outputs: the JPL angles, residuals against
 DE421 (pole = tilt of the body z axis, longitude = rotation about it), the physical
 librations in longitude, latitude and node about the Cassini state, the sub-Earth
 point (optical + physical libration), and the main longitude terms fitted at fixed
-arguments beside Eckhardt's (spinorbit.analysis, spinorbit.references).
+arguments beside Eckhardt's (references.eckhardt).
 
-Verdict (``verdict``): max pole and longitude error against DE421, at the project's
-target for the level: level 2 (rigid Moon, degree 2-4) pole <= 12", longitude <= 2";
-levels 3-4 (DE421's own lunar model) pole <= 0.1", longitude <= 0.01".  Level 1,
-Euler's degree-2 Moon, is held to the level-2 target and fails it: it lacks the
-Moon's degree-3 field, which level 2 adds.  Driven by REBOUND the run is still
-held to DE421 at its level's tolerance and fails (pole 0.33", longitude 19.8"
-over 50 yr): REBOUND's lunar orbit drifts from DE421's (3" after 10 yr) and the
-libration in longitude follows the orbit.  A tolerance fitted to that drift would
-pass a result that does not reproduce DE421, so none is given; the
-DE421-driven difference (``compare.source``) is reported beside it.
+Verdict (``verdict``): max pole and longitude error against DE421 at the level's target
+(TOLERANCES).  Level 1, Euler's degree-2 Moon, is held to level 2's and fails it.  Driven
+by REBOUND the run fails too (pole 0.33", longitude 19.8" over 50 yr): REBOUND's lunar
+orbit drifts from DE421's (3" after 10 yr) and the libration follows the orbit; a tolerance
+fitted to that drift would pass a result that does not reproduce DE421, so none is given,
+and the DE421-driven difference (``compare.source``) is reported beside it.
 """
 import numpy as np
 
@@ -86,45 +82,37 @@ ZOOM_D = 730.5                      # days
 
 def run(scenario):
     from .. import plots
-    from ..analysis.harmonics import fit_harmonics
-    from ..analysis.librations import icrf_to_body, pole_and_longitude_difference, residual_metrics
+    from ..analysis.librations import icrf_to_body, residual_metrics
     from ..references import eckhardt
-    from ..references.moon_de421 import FREE_LIBRATION_LONGITUDE_PERIOD_D as FREE, Orientation
+    from ..references.moon_de421 import FREE_LIBRATION_LONGITUDE_PERIOD_D, Orientation
 
     t_out, level, other = scenario.output_times(), scenario["model.level"], scenario["compare.source"]
     system, orbits = build_system(scenario, scenario["orbit.source"])
     solution, point = common.simulate_scenario(scenario, system, t_out)
     t, mats, de421 = solution.t, icrf_to_body(solution.quaternion), Orientation()(solution.t)
-    lib, free = _librations(t, mats, orbits), "free libration (1056 d)"    # free: last, it parts from 1095 d over ~40 yr
-    fit = fit_harmonics(t, lib["tau"] / ARCSEC, {**eckhardt.term_arguments(t), free: (2 * np.pi * t / FREE,
-                        2 * np.pi / FREE)}, degree=1, origin_d=t.mean())
-    rows, table = eckhardt.beside_published(fit), _table(solution, mats, de421, lib)
-    summary = {"not_measured": {f"longitude_terms.{k}": why for k, why in fit.refused.items()},
-               "comparison": residual_metrics(mats, de421["icrf_to_body"]), "run": point, "reference": de421.provenance,
+    lib = eckhardt.physical_librations(t, mats, orbits.positions(t)[:, 0])
+    terms, refused = eckhardt.fit_longitude_terms(t, lib["tau"] / ARCSEC, FREE_LIBRATION_LONGITUDE_PERIOD_D)
+    orbit_error = getattr(orbits, "max_error_km", None)
+    summary = {"not_measured": {f"longitude_terms.{k}": why for k, why in refused.items()},
+               "comparison": residual_metrics(mats, de421["icrf_to_body"]), "run": point,
+               "reference": de421.provenance,
                "model": {"level": level, "name": LEVEL_NAMES[level], "degree": LEVELS[level]["degree"],
-                         "core": LEVELS[level]["core"], "tides": bool(system.meta["tides"]), "bodies": list(orbits.names)},
-               "orbits": {"source": scenario["orbit.source"], "step_d": scenario["orbit.step"],
-                          "max_error_km": _list(getattr(orbits, "max_error_km", None))},
-               "longitude_terms": {"main": rows[:eckhardt.MAIN], "other": rows[eckhardt.MAIN:],
-                                   "free_libration_1056d_amplitude_arcsec": None if fit.sin[free] is None
-                                   else float(np.hypot(fit.sin[free], fit.cos[free]))}}
+                         "core": LEVELS[level]["core"], "tides": bool(system.meta["tides"]),
+                         "bodies": list(orbits.names)},
+               "orbits": {"source": scenario["orbit.source"], "step_d": scenario["orbit.step"], "max_error_km":
+                          None if orbit_error is None else [float(v) for v in np.atleast_1d(orbit_error)]},
+               "longitude_terms": terms}
+    table, rows = _table(solution, mats, de421, lib), terms["main"] + terms["other"]
     zoom = np.abs(t - t[-1]) <= ZOOM_D                  # the last two years, against DE421
-    figures = plots.moon_libration(t, table, rows, [r["term"] for r in rows[:eckhardt.MAIN]], zoom,
-                                   _librations(t[zoom], de421["icrf_to_body"][zoom], orbits))
+    de421_zoom = eckhardt.physical_librations(t[zoom], de421["icrf_to_body"][zoom], orbits.positions(t[zoom])[:, 0])
+    figures = plots.moon_libration(t, table, rows, [r["term"] for r in terms["main"]], zoom, de421_zoom)
     if other:
-        try:
-            system_b, _ = build_system(scenario, other)
-        except ScenarioError as exc:                   # the error is about this source, not orbit.source
-            if exc.key != "orbit.source":
-                raise
-            raise ScenarioError("compare.source", other, exc.accepted) from None
-        sol_b, _ = common.simulate_scenario(scenario, system_b, t_out)
-        pole, lon = pole_and_longitude_difference(mats, icrf_to_body(sol_b.quaternion))
-        summary["comparison"].update({f"pole_difference_vs_{other}_driven_max_arcsec": float(np.abs(pole).max() / ARCSEC),
-                                      f"longitude_difference_vs_{other}_driven_max_arcsec": float(np.abs(lon).max() / ARCSEC)})
-        figures[f"difference_vs_{other}_driven"] = plots.plot_series(common.decimal_year(t), np.array([pole, lon]) / ARCSEC,
-                                                                     "year (TDB)", f"{scenario['orbit.source']} - {other} "
-                                                                     "driven [arcsec]", ["pole", "longitude"])
+        pole, lon = _difference_driven_by(scenario, other, mats, t_out)
+        summary["comparison"][f"pole_difference_vs_{other}_driven_max_arcsec"] = float(np.abs(pole).max() / ARCSEC)
+        summary["comparison"][f"longitude_difference_vs_{other}_driven_max_arcsec"] = float(np.abs(lon).max() / ARCSEC)
+        figures[f"difference_vs_{other}_driven"] = plots.plot_series(
+            common.decimal_year(t), np.array([pole, lon]) / ARCSEC, "year (TDB)",
+            f"{scenario['orbit.source']} - {other} driven [arcsec]", ["pole", "longitude"])
     if scenario["report.error_vs_runtime"]:
         summary["error_vs_runtime"] = _error_vs_runtime(system, t_out, de421["icrf_to_body"])
         figures["error_vs_runtime"] = plots.plot_error_vs_cost(summary["error_vs_runtime"], [
@@ -169,13 +157,9 @@ def build_system(scenario, source):
 
 
 def build(scenario):
-    """For ``spinorbit bench``: (system, output times, error vs a converged run, rad).
-
-    The error of a solution is its max attitude angle from a converged rk8 run at
-    h = 0.5 d (bench.converged_error, checked against h = 0.25 d; the agreement is
-    kept in system.meta["reference_agreement_rad"]), not from DE421: this measures
-    integration error only.  Splitting methods run at levels 1-2 only.
-    """
+    """For ``spinorbit bench``: (system, output times, error: max attitude angle, rad, from a converged rk8
+    run at 0.5 d, checked against 0.25 d, agreement in system.meta["reference_agreement_rad"]).  Integration
+    error only, not the difference from DE421.  Splitting methods run at levels 1-2 only."""
     from ..bench import converged_error
 
     system, _ = build_system(scenario, scenario["orbit.source"])
@@ -185,31 +169,37 @@ def build(scenario):
     return system, t_out, error
 
 
-def _librations(t, mats, orbits):
-    from ..analysis.librations import physical_librations
-    from ..references import arguments
+def _difference_driven_by(scenario, other, mats, t_out):
+    """(pole, longitude) differences, rad, of this run from the same run driven by orbit source ``other``."""
+    from ..analysis.librations import icrf_to_body, pole_and_longitude_difference
 
-    _, _, f, _, om = arguments.delaunay(t)
-    return physical_librations(mats, arguments.ecliptic_of_date(t), f + om, om, orbits.positions(t)[:, 0])
+    try:
+        system, _ = build_system(scenario, other)
+    except ScenarioError as exc:                   # the error is about this source, not orbit.source
+        if exc.key != "orbit.source":
+            raise
+        raise ScenarioError("compare.source", other, exc.accepted) from None
+    solution, _ = common.simulate_scenario(scenario, system, t_out)
+    return pole_and_longitude_difference(mats, icrf_to_body(solution.quaternion))
 
 
 def _table(solution, mats, de421, lib):
+    """The attitude, the JPL angles and their residuals against DE421, the librations and the sub-Earth point."""
     from ..analysis.librations import pole_and_longitude_difference
     from ..rotations import euler313_from_matrix
 
-    units, table = common.u(), common.attitude_table(solution)
-    angles = euler313_from_matrix(mats)
-    wrap = lambda a: (a + np.pi) % (2 * np.pi) - np.pi
+    u, table, angles = common.u(), common.attitude_table(solution), euler313_from_matrix(mats)
+    arcsec = lambda x: x / ARCSEC * u.arcsec
+    minus_de421 = (angles - de421["angles_rad"] + np.pi) % (2 * np.pi) - np.pi
     for i, name in enumerate(("phi", "theta", "psi")):
-        table[name] = angles[:, i] * units.rad
-    for name, x in zip(("pole_error", "longitude_error"), pole_and_longitude_difference(mats, de421["icrf_to_body"])):
-        table[name] = x / ARCSEC * units.arcsec
+        table[name] = angles[:, i] * u.rad
+    table["pole_error"], table["longitude_error"] = map(arcsec, pole_and_longitude_difference(mats, de421["icrf_to_body"]))
     for i, name in enumerate(("phi", "theta", "psi")):
-        table[f"{name}_minus_de421"] = wrap(angles[:, i] - de421["angles_rad"][:, i]) / ARCSEC * units.arcsec
+        table[f"{name}_minus_de421"] = arcsec(minus_de421[:, i])
     for name, key in (("longitude", "tau"), ("latitude", "rho"), ("node", "sigma")):
-        table[f"libration_{name}"] = lib[key] / ARCSEC * units.arcsec
-    table["sub_earth_longitude"] = np.degrees(lib["sub_earth_lon"]) * units.deg
-    table["sub_earth_latitude"] = np.degrees(lib["sub_earth_lat"]) * units.deg
+        table[f"libration_{name}"] = arcsec(lib[key])
+    table["sub_earth_longitude"] = np.degrees(lib["sub_earth_lon"]) * u.deg
+    table["sub_earth_latitude"] = np.degrees(lib["sub_earth_lat"]) * u.deg
     return table
 
 
@@ -222,8 +212,9 @@ def _error_vs_runtime(system, t_out, de421_mats):
 
     def error(solution):
         mats = icrf_to_body(solution.quaternion)
-        return {f"error_vs_{name}_arcsec": float(max(np.abs(x).max() for x in pole_and_longitude_difference(mats, ref)) / ARCSEC)
-                for name, ref in (("converged", converged), ("de421", de421_mats))}
+        worst = lambda ref: max(np.abs(x).max() for x in pole_and_longitude_difference(mats, ref))
+        return {"error_vs_converged_arcsec": float(worst(converged) / ARCSEC),
+                "error_vs_de421_arcsec": float(worst(de421_mats) / ARCSEC)}
 
     return _work_precision(system, t_out, LADDER, error)
 
@@ -243,7 +234,3 @@ def _work_precision(system, t_out, settings, error):
         rows.append({"method": method, **options, "wall_s": sol.wall_s, "rhs_evaluations": sol.nfev,
                      "steps": sol.nsteps, **error(sol)})
     return rows
-
-
-def _list(x):
-    return None if x is None else [float(v) for v in np.atleast_1d(x)]
