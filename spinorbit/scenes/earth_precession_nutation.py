@@ -147,7 +147,7 @@ def build_system(scenario, t):
         np.array([0.0, -math.sin(plane_tilt), math.cos(plane_tilt)])
     moments = earth.earth_moments(scenario["earth.dynamical_ellipticity"], scenario["earth.b_minus_a_over_c"])
     extra = earth.extra_parameters(pole_ecl, scenario["earth.geodesic_precession"], scenario["earth.j2_rate"])
-    params = (moments, orbits.gm, orbits.data, extra)
+    params = earth.earth_params(moments, orbits.gm, orbits.data, extra)
     z0 = erfa_pole.cip_vector(t0)
     if scenario["earth.start_pole"] != "iau" and plane_tilt is None:
         z0 = _rigid_start(erfa_pole, orbits, params, t0, z0, t)
