@@ -29,6 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .analysis.spans import resolvable
+from .constants import ARCSEC, JULIAN_CENTURY_D
 from .earth import ERA_RATE_RAD_D, H_D
 
 
@@ -65,6 +66,12 @@ RIGID = EarthParameters(e=H_D / (1.0 - H_D), e_f=0.0, a_f=0.0, kappa=0.0, xi=0.0
 PUBLISHED_CHANDLER_CPSD = 0.0026010 + 0.0001361j
 PUBLISHED_FCN_CPSD = -1.0023181 + 0.000025j
 SIDEREAL_PER_SOLAR_DAY = ERA_RATE_RAD_D / (2.0 * np.pi)
+
+# MHB2000's nonlinear terms (products of the nutation amplitudes in the non-rigid Earth's equations):
+# their contribution to the precession rate in longitude, -21 050 uas/cy (0 in obliquity), as listed
+# among the contributions to the IAU 2006 (P03) rate: Capitaine, Wallace & Chapront 2003, A&A 412, 567,
+# Table 3 ("Non-linear effect").
+NONLINEAR_PRECESSION_ARCSEC_CY = -0.021050
 
 
 def _matrices(sigma, p):
@@ -126,6 +133,11 @@ LUNISOLAR_ARGUMENTS = (
     (-2, 0, 2, 0, 0), (0, 1, 2, 0, 2), (0, 0, 2, 2, 1), (0, -1, 2, 0, 2), (0, 0, 0, 2, 1),
     (1, 0, 2, -2, 1), (2, 0, 2, -2, 2), (-2, 0, 0, 2, 1), (2, 0, 2, 0, 1), (0, -1, 2, -2, 1),
 )
+
+
+def nonlinear_precession(dt_d):
+    """Longitude offset (rad) accumulated over dt_d (days) by MHB2000's nonlinear precession rate."""
+    return NONLINEAR_PRECESSION_ARCSEC_CY * ARCSEC * np.asarray(dt_d) / JULIAN_CENTURY_D
 
 
 def circular_terms(t_d, x, y, phases, rates):
