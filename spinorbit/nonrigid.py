@@ -59,7 +59,9 @@ class EarthParameters:
 #   hydrostatic value, Im K_CMB the electromagnetic dissipation at the core-mantle boundary) and the
 #   elastic PREM compliances kappa, xi, gamma, beta (Mathews et al. 1991, JGR 96, 8219, as used by MHB
 #   2002) are the values as recalled from those papers: NOT checked against their tables, which were
-#   out of reach when this was written.  What checks them is indirect: the free core nutation and the
+#   out of reach when this was written.  e_f has a secondary source: the IERS EOP Product Center's
+#   constants page lists core moments A_f = 9.1152379e36, C_f = 9.1393530e36 kg m^2, (C_f - A_f)/A_f
+#   = 0.0026456.  What checks them is indirect: the free core nutation and the
 #   main terms they give (tests/test_nonrigid.py, benchmarks/RESULTS.md).
 MHB2000 = EarthParameters(e=H_D / (1.0 - H_D), e_f=0.0026456, a_f=0.1132,
                           kappa=1.0340e-3, xi=2.2204e-4, gamma=1.9662e-3, beta=6.1600e-4,

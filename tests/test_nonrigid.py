@@ -20,7 +20,8 @@ SIGMAS = -1.0 + np.array([-1 / 6798.4, -1 / 365.26, 1 / 182.62, 1 / 13.66]) / 1.
 
 
 def test_fcn_period_of_the_model_is_mhb2000s():
-    """The free core nutation from the parameters, against MHB2000's -430.21 d (IERS 2010 Table 6.4)."""
+    """The free core nutation from the parameters, against MHB2000's -430.21 d (IERS 2010 Table 6.4; Herring's
+    MHB_2000 code: -1.00231810920 cpsd, 430.2082 d; Krasna et al. 2013: "conventional -431.39 sidereal days")."""
     _, fcn = nonrigid.normal_modes()
     period = nonrigid.celestial_period_days(fcn)
     published = nonrigid.celestial_period_days(nonrigid.PUBLISHED_FCN_CPSD)
