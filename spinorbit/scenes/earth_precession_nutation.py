@@ -228,13 +228,15 @@ def _a_axis(erfa_pole, t0, z0):
 
 def _nonrigid_pole(erfa_pole, t, z):
     """Figure axes (n, 3) of the non-rigid Earth: the rigid nutation (x, y) = (dpsi sin eps_A, deps) about
-    the IAU 2006 mean pole, times the two-layer response term by term (spinorbit.nonrigid)."""
+    the IAU 2006 mean pole, times the two-layer response term by term, plus MHB2000's nonlinear precession
+    accumulated from the start (spinorbit.nonrigid)."""
     psi, eps = erfa_pole.pole_angles(t, z)
     _, _, psi_bar, eps_a = erfa_pole.mean_angles(t)
     phases, rates = erfa_pole.argument_phases(t, nonrigid.LUNISOLAR_ARGUMENTS)
     sin_eps = np.sin(eps_a)
     x, y = nonrigid.nonrigid_nutation(t, (psi - psi_bar) * sin_eps, eps - eps_a, phases, rates)
-    return erfa_pole.pole_from_angles(t, psi_bar + x / sin_eps, eps_a + y)
+    psi_nonlinear = nonrigid.nonlinear_precession(t - t[0])
+    return erfa_pole.pole_from_angles(t, psi_bar + x / sin_eps + psi_nonlinear, eps_a + y)
 
 
 def _nonrigid_summary(erfa_pole, t, z_rigid, z):
@@ -263,6 +265,7 @@ def _nonrigid_summary(erfa_pole, t, z_rigid, z):
     return {"rigid_x_rms_mas": _rms((z_rigid[:, 0] - x_ref) / MAS),
             "rigid_y_rms_mas": _rms((z_rigid[:, 1] - y_ref) / MAS),
             "terms_mas": terms,
+            "nonlinear_precession_arcsec_cy": nonrigid.NONLINEAR_PRECESSION_ARCSEC_CY,
             "fcn_period_model_d": nonrigid.celestial_period_days(fcn),
             "fcn_period_mhb2000_d": nonrigid.celestial_period_days(nonrigid.PUBLISHED_FCN_CPSD),
             "chandler_period_model_d": nonrigid.wobble_period_days(cw),
