@@ -35,8 +35,8 @@ LEVELS_MAS = (200.0, 2.0, 0.02, 2e-4)          # ~1e-6, 1e-8, 1e-10, 1e-12 rad
 
 def setup(span):
     orbits = sample_orbits("de421", "earth", ("moon", "sun"), T0 - 1, T0 + span + 1, 0.25, measure=False)
-    params = (earth.earth_moments(), orbits.gm, orbits.data,
-              earth.extra_parameters(erfa_pole.ecliptic_pole_j2000(), True, True))
+    params = earth.earth_params(earth.earth_moments(), orbits.gm, orbits.data,
+                                earth.extra_parameters(erfa_pole.ecliptic_pole_j2000(), True, True))
     z0 = erfa_pole.cip_vector(T0)
     return orbits, params, z0, erfa_pole.terrestrial_x_axis(T0)
 

@@ -16,12 +16,11 @@ Y0[:4] /= np.linalg.norm(Y0[:4])
 
 def numba_system(gm=GM, moments=MOMENTS, y0=Y0):
     """spinorbit's SpinSystem for the model (compiled rhs and torque)."""
-    from spinorbit.dynamics import SpinSystem, make_point_mass_torque, make_rigid_body_rhs
+    from spinorbit.dynamics import point_mass_system
     from spinorbit.orbits.analytic import CircularOrbits
 
     orbit = CircularOrbits(("m",), gm=[gm], radius=[RADIUS], rate=[RATE], inclination=[INCL])
-    torque = make_point_mass_torque(orbit.kernel)
-    return SpinSystem(make_rigid_body_rhs(torque), (moments, orbit.gm, orbit.data), 0.0, y0, moments, torque)
+    return point_mass_system(moments, orbit, y0[:4], y0[4:7])
 
 
 def numpy_rhs(t, y, moments=MOMENTS, gm=GM):

@@ -15,9 +15,10 @@ from typing import Callable
 import numpy as np
 from numba import njit
 
+from . import terms as term_registry
 from .linker import link, template
-from .rotations import mat_t_vec3, matrix_from_quat, put, quat_rate, rotate_to_body
-from .torques import point_mass_torque
+from .rotations import diag3, matrix_from_quat, put, quat_rate, rotate_to_body
+from .terms.base import Context, fuse
 
 
 @njit(cache=True)
@@ -55,26 +56,19 @@ def make_rigid_body_rhs(torque):
     return link(rigid_body_rhs, torque=torque)
 
 
-@template("positions")
-def point_masses_torque(t, y, p):
-    """Body-frame torque of the point masses at ``positions(t, data)``; p = (moments, gm (n,), data)."""
-    moments, gm, data = p[0], p[1], p[2]
-    r_inertial = positions(t, data)
-    rot = matrix_from_quat(y[:4])              # body -> inertial
-    total = np.zeros(3)
-    for i in range(gm.shape[0]):
-        total += point_mass_torque(moments, mat_t_vec3(rot, r_inertial[i]), gm[i])
-    return total
+@template("positions", "terms")
+def figure_torque(t, y, p):
+    """Body-frame torque of the fused ``terms`` on a rigid figure; p = (moments, gm (n,), data, term_params, ...)."""
+    return terms(t, y, matrix_from_quat(y[:4]), diag3(p[0]), positions(t, p[2]), p[1], p[3])
 
 
-def make_point_mass_torque(positions):
-    """Body-frame torque of point masses whose inertial positions come from ``positions``.
+def make_figure_torque(positions, terms):
+    """torque(t, y, p) of the fused ``terms`` (terms.base.fuse) on a rigid figure.
 
-    ``positions(t, data) -> (n, 3)`` is a numba function giving each mass's
-    position relative to the body's centre (km, inertial axes) at TDB day t.
-    Parameters: ``p = (moments, gm (n,), data)`` (Euler ch. 16 P91, §815).
+    ``positions(t, data) -> (n, 3)`` is a numba function giving each attracting body's
+    position relative to the figure's centre (km, inertial axes) at time t.
     """
-    return link(point_masses_torque, positions=positions)
+    return link(figure_torque, positions=positions, terms=terms)
 
 
 @dataclass
@@ -108,11 +102,14 @@ def torque_free_system(moments, q0, omega0, t0=0.0):
                       moments, _no_torque, "free body")
 
 
-def point_mass_system(moments, orbit, q0, omega0, t0=0.0, name="rigid body under point masses"):
-    """A rigid body under the P91 torque (§815) of the point masses of an orbit source."""
+def point_mass_system(moments, orbit, q0, omega0, t0=0.0, name="rigid body under point masses",
+                      terms=("point_mass",), body=None):
+    """A rigid body under the named terms (default: the P91 torque, §815, of the orbit's point masses)."""
     moments = np.asarray(moments, dtype=float)
-    torque = make_point_mass_torque(orbit.kernel)
-    return SpinSystem(make_rigid_body_rhs(torque), (moments, orbit.gm, orbit.data), t0,
+    context = Context(body, tuple(getattr(orbit, "names", ())), np.asarray(orbit.gm, dtype=float))
+    kernel, term_params = fuse(term_registry.build(terms, context))
+    torque = make_figure_torque(orbit.kernel, kernel)
+    return SpinSystem(make_rigid_body_rhs(torque), (moments, orbit.gm, orbit.data, term_params), t0,
                       np.concatenate([q0, omega0]), moments, torque, name)
 
 
@@ -144,7 +141,7 @@ def invariant_drift(moments, y):
 
 
 __all__ = [
-    "SpinSystem", "euler_omega_dot", "make_rigid_body_rhs", "make_point_mass_torque",
+    "SpinSystem", "euler_omega_dot", "make_rigid_body_rhs", "make_figure_torque",
     "point_mass_system", "torque_free_system", "kinetic_energy", "angular_momentum_inertial",
     "invariant_drift", "rotate_to_body",
 ]

@@ -19,9 +19,11 @@ to GCRS at the geodesic precession ``Omega_gp`` (prograde about the ecliptic
 pole, de Sitter), so the kinematics add ``Omega_gp`` to the body rate and the
 observed precession in longitude is 1.919883"/cy less than the dynamical one.
 
-Parameters of both right-hand sides: ``p = (moments, gm (n,), data, extra)``
-with ``extra = [Omega_gp (3, rad/d, GCRS), k_J2 (1/d)]``; the torque is scaled
-by (1 + k_J2 t), t in TDB days from J2000 (secular change of J2).
+Parameters of both right-hand sides: ``p = (moments, gm (n,), data, term_params, extra)``
+(``earth_params``) with ``extra = [Omega_gp (3, rad/d, GCRS), k_J2 (1/d)]``; the figure's
+anisotropy, and so the torque, is scaled by (1 + k_J2 t), t in TDB days from J2000 (secular
+change of J2).  The full model takes any terms (spinorbit.terms, default the point masses);
+the gyroscopic one is built on the point masses' tidal tensor alone.
 """
 import functools
 import math
@@ -30,23 +32,29 @@ import numpy as np
 from numba import njit
 
 from .constants import ARCSEC, JULIAN_CENTURY_D
-from .dynamics import SpinSystem, euler_omega_dot, make_point_mass_torque
+from .bodies.earth import (A_AXIS_LONGITUDE_DEG, B_MINUS_A_OVER_C, ERA_RATE_RAD_D,  # noqa: F401 (the model's)
+                           GEODESIC_PRECESSION_ARCSEC_CY, H_D, J2, J2_RATE_PER_CY)
+from .dynamics import SpinSystem, euler_omega_dot
 from .errors import PhysicsError
 from .linker import link, template
-from .rotations import cross3, dot3, mat_t_vec3, matrix_from_quat, matvec3, put, quat_from_matrix, quat_rate
+from .rotations import (cross3, diag3, dot3, mat_t_vec3, matrix_from_quat, matvec3, put, quat_from_matrix,
+                        quat_rate)
+from .terms import point_mass
+from .terms.base import fuse
 
-H_D = 3.27379448e-3                      # (C - A)/C, IAU 2006 (Capitaine et al. 2003)
-ERA_RATE_RAD_D = 2 * math.pi * 1.00273781191135448   # Earth rotation angle rate, rad per UT1 day
-GEODESIC_PRECESSION_ARCSEC_CY = 1.919883  # rate of the dynamical frame w.r.t. GCRS, prograde
-J2 = 1.0826359e-3                        # IAU 2006 (P03)
-J2_RATE_PER_CY = -3.001e-9               # dJ2/dt, P03
-B_MINUS_A_OVER_C = 1.904e-5              # 4 C22 / (C/MR^2), EGM2008 C22 = 1.5745e-6, C/MR^2 = 0.3307
-A_AXIS_LONGITUDE_DEG = -14.93            # longitude of the axis of least moment
+POINT_MASSES = (point_mass.build(None),)
 
 
 def earth_moments(h_d=H_D, b_minus_a_over_c=0.0):
     """(A, B, C)/C with (C - (A + B)/2)/C = h_d and (B - A)/C as given."""
     return np.array([1.0 - h_d - b_minus_a_over_c / 2, 1.0 - h_d + b_minus_a_over_c / 2, 1.0])
+
+
+def earth_params(moments, gm, data, extra, term_params=((),)):
+    """Parameter tuple of both models: (moments, gm (n,), data, term_params, extra); ``term_params``
+    those of the fused terms (default: the point masses')."""
+    return (np.asarray(moments, dtype=float), np.asarray(gm, dtype=float), data, term_params,
+            np.asarray(extra, dtype=float))
 
 
 def extra_parameters(ecliptic_pole, geodesic=True, j2_rate=True):
@@ -59,24 +67,25 @@ def extra_parameters(ecliptic_pole, geodesic=True, j2_rate=True):
 
 # --- full model: Euler's equations with the daily spin ------------------------
 
-@template("point_masses")
+@template("positions", "terms")
 def full_torque(t, y, p):
-    """Body-frame torque of the point masses (§815, reading p[0..2]) scaled by (1 + k_J2 t)."""
-    return point_masses(t, y, p) * (1.0 + p[3][3] * t)
+    """Body-frame torque of the fused terms on the figure I (1 + k_J2 t), I = diag(p[0])."""
+    inertia = diag3(p[0]) * (1.0 + p[4][3] * t)
+    return terms(t, y, matrix_from_quat(y[:4]), inertia, positions(t, p[2]), p[1], p[3])
 
 
-def make_full_torque(positions):
-    """torque(t, y, p): body-frame torque of the point masses (§815), scaled by (1 + k_J2 t).
+def make_full_torque(positions, terms=None):
+    """torque(t, y, p) of the fused ``terms`` (default: the point masses, §815) on the figure I (1 + k_J2 t).
 
     ``positions(t, data) -> (n, 3)`` km, GCRS, relative to the geocentre.
     """
-    return link(full_torque, point_masses=make_point_mass_torque(positions))
+    return link(full_torque, positions=positions, terms=fuse(POINT_MASSES)[0] if terms is None else terms)
 
 
 @template("torque")
 def full_rhs(t, y, p):
-    """Euler's equations (§813) + kinematics in the frame turning at Omega_gp = p[3][:3] w.r.t. GCRS."""
-    extra = p[3]
+    """Euler's equations (§813) + kinematics in the frame turning at Omega_gp = p[4][:3] w.r.t. GCRS."""
+    extra = p[4]
     frame_rate_body = mat_t_vec3(matrix_from_quat(y[:4]), extra[:3])
     dy = np.zeros_like(y)
     put(dy[:4], quat_rate(y[:4], y[4:7] + frame_rate_body))
@@ -84,9 +93,9 @@ def full_rhs(t, y, p):
     return dy
 
 
-def make_full_rhs(positions):
+def make_full_rhs(positions, terms=None):
     """rhs(t, y, p) of Euler's equations (§813) + kinematics with geodesic precession."""
-    return link(full_rhs, torque=make_full_torque(positions))
+    return link(full_rhs, torque=make_full_torque(positions, terms))
 
 
 # --- gyroscopic model: the angular momentum direction -------------------------
@@ -94,7 +103,7 @@ def make_full_rhs(positions):
 @template("positions")
 def tidal_tensor(t, p):
     """3 (1 + k_J2 t) sum GM r r^T / r^5 (GCRS, 1/d^2) of the point masses at ``positions``."""
-    gm, data, extra = p[1], p[2], p[3]
+    gm, data, extra = p[1], p[2], p[4]
     r = positions(t, data)
     out = np.zeros((3, 3))
     for i in range(gm.shape[0]):
@@ -157,7 +166,7 @@ def make_figure_axis(positions):
 @template("tensor")
 def gyroscopic_rhs(t, y, p):
     """dL/dt = N(z(L)) + Omega_gp x L for y = [q_L, 0, 0, |L|/C]."""
-    moments, extra = p[0], p[3]
+    moments, extra = p[0], p[4]
     ell = _third_axis(y)
     lc = y[6]
     t0 = tensor(t, p)
@@ -218,8 +227,11 @@ def _frame(z, x_hint):
     return np.column_stack([x, np.cross(z, x), z])
 
 
-def full_system(positions, params, t0, z0, x0, spin_rate=ERA_RATE_RAD_D, forced=True):
+def full_system(positions, params, t0, z0, x0, spin_rate=ERA_RATE_RAD_D, forced=True, terms=None):
     """SpinSystem of the full model started on figure axis ``z0`` (GCRS) with body x axis near ``x0``.
+
+    ``terms``: the fused torque of the terms (terms.base.fuse; its parameters in params[3]),
+    default the point masses.  The forced start is computed for the point masses alone.
 
     forced=True: omega_perp from the forced L (Oppolzer terms), so no free
     nutation starts; forced=False: omega along the figure axis (starts one).
@@ -234,8 +246,8 @@ def full_system(positions, params, t0, z0, x0, spin_rate=ERA_RATE_RAD_D, forced=
     y0 = np.concatenate([quat_from_matrix(rot), omega])
     # a rigid body under an external torque, its Euler equations in the frame turning at
     # Omega_gp w.r.t. GCRS: splitting methods take the torque and that frame rate
-    return SpinSystem(make_full_rhs(positions), params, t0, y0, moments, make_full_torque(positions),
-                      "earth (full)", {"frame_rate": params[3][:3].copy()})
+    return SpinSystem(make_full_rhs(positions, terms), params, t0, y0, moments, make_full_torque(positions, terms),
+                      "earth (full)", {"frame_rate": params[4][:3].copy()})
 
 
 def gyroscopic_system(positions, params, t0, z0, spin_rate=ERA_RATE_RAD_D):

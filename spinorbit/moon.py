@@ -38,6 +38,10 @@ Four levels, each adding physics to the one before:
    pole by 3.3"; the rotational term as a whole by 0.07".
 4. (optional) further point masses (planets) acting on the figure.
 
+The torques of the levels are terms (spinorbit.terms: point_mass, harmonics, earth_j2, and any
+other named in the scenario), fused into one kernel; this module adds what is the Moon's own:
+the fluid core and the distortion of the mantle's inertia.
+
 Units: km, rad/day, GM km^3/day^2, moments in units of M R^2 (R = gravity reference
 radius).  State y = [q (4), w_m (3)] or [q, w_m, w_c (3)] with a core.
 """
@@ -46,99 +50,17 @@ import math
 import numpy as np
 from numba import njit
 
+from .dynamics import SpinSystem, make_figure_torque
 from .linker import link, template
 from .rotations import cross3, diag3, dot3, mat_t_vec3, matrix_from_quat, matvec3, put, quat_rate, solve3
+from .terms.base import fuse
 
 # Layout of the float vector ``consts`` in the parameters (see moon_params).
-R_KM, K2_MASS_RATIO, K2_ROT, TAU_D, KV, C_CORE, N_MEAN, F_CORE, J2E_GM_R2 = range(9)
+R_KM, K2_MASS_RATIO, K2_ROT, TAU_D, KV, C_CORE, N_MEAN, F_CORE = range(8)
 
-
-@njit(cache=True)
-def harmonic_gradient(r, radius, c_nm, s_nm, n_min, n_max):
-    """grad W at r (body axes, km) for W = (1/r) sum (R/r)^n P_nm (C cos + S sin): 1/km^2.
-
-    W is the potential per unit GM of the body, degrees n_min..n_max, unnormalised
-    coefficients (C_n0 = -J_n).  Cartesian V_nm/W_nm recursion, free of polar
-    singularities (Montenbruck & Gill 2000, §3.2.4-3.2.5).
-    """
-    top = n_max + 1
-    x, y, z = r[0], r[1], r[2]
-    r2 = x * x + y * y + z * z
-    rho = radius * radius / r2
-    x0, y0, z0 = radius * x / r2, radius * y / r2, radius * z / r2
-    v = np.zeros((top + 1, top + 1))
-    w = np.zeros((top + 1, top + 1))
-    v[0, 0] = radius / math.sqrt(r2)
-    for m in range(top + 1):
-        if m > 0:
-            v[m, m] = (2 * m - 1) * (x0 * v[m - 1, m - 1] - y0 * w[m - 1, m - 1])
-            w[m, m] = (2 * m - 1) * (x0 * w[m - 1, m - 1] + y0 * v[m - 1, m - 1])
-        if m < top:
-            v[m + 1, m] = (2 * m + 1) * z0 * v[m, m]
-            w[m + 1, m] = (2 * m + 1) * z0 * w[m, m]
-        for n in range(m + 2, top + 1):
-            v[n, m] = ((2 * n - 1) * z0 * v[n - 1, m] - (n + m - 1) * rho * v[n - 2, m]) / (n - m)
-            w[n, m] = ((2 * n - 1) * z0 * w[n - 1, m] - (n + m - 1) * rho * w[n - 2, m]) / (n - m)
-    ax = ay = az = 0.0
-    for n in range(n_min, n_max + 1):
-        c = c_nm[n, 0]
-        ax -= c * v[n + 1, 1]
-        ay -= c * w[n + 1, 1]
-        az -= (n + 1) * c * v[n + 1, 0]
-        for m in range(1, n + 1):
-            c, s = c_nm[n, m], s_nm[n, m]
-            fac = (n - m + 2) * (n - m + 1)
-            ax += 0.5 * (-c * v[n + 1, m + 1] - s * w[n + 1, m + 1]
-                         + fac * (c * v[n + 1, m - 1] + s * w[n + 1, m - 1]))
-            ay += 0.5 * (-c * w[n + 1, m + 1] + s * v[n + 1, m + 1]
-                         + fac * (-c * w[n + 1, m - 1] + s * v[n + 1, m - 1]))
-            az += (n - m + 1) * (-c * v[n + 1, m] - s * w[n + 1, m])
-    r_ref2 = radius * radius
-    return np.array([ax / r_ref2, ay / r_ref2, az / r_ref2])
-
-
-@njit(cache=True)
-def figure_torque(inertia, r_body, gm):
-    """Degree-2 torque 3 GM/r^5 r x (I r) of a point mass (Euler ch. 16 P91, §815), any I tensor."""
-    r2 = r_body[0] ** 2 + r_body[1] ** 2 + r_body[2] ** 2
-    return 3.0 * gm / (r2 * r2 * math.sqrt(r2)) * cross3(r_body, matvec3(inertia, r_body))
-
-
-@njit(cache=True)
-def oblate_earth_torque(inertia, r_body, pole_body, gm_j2_r2):
-    """Torque of the Earth's J2 on a degree-2 figure I (Folkner et al. 2014, N_figM-figE), per M R^2.
-
-    r_body: the Earth's position (km) and pole_body its unit pole, both in body axes;
-    gm_j2_r2 = GM_E J2E R_E^2 (km^5/d^2).  The torque -int x x grad U_J2 dm of the
-    Earth's degree-2 potential's gradient across the body (its Hessian against I).
-    """
-    r2 = dot3(r_body, r_body)
-    r = math.sqrt(r2)
-    u = r_body / r
-    s = dot3(u, pole_body)
-    iu, ip = matvec3(inertia, u), matvec3(inertia, pole_body)
-    return 7.5 * gm_j2_r2 / (r2 * r2 * r) * ((1.0 - 7.0 * s * s) * cross3(u, iu)
-                                             + 2.0 * s * (cross3(u, ip) + cross3(pole_body, iu))
-                                             - 0.4 * cross3(pole_body, ip))
-
-
-@njit(cache=True)
-def interpolate_pole(t, pole):
-    """Unit vector at TDB day t, linear in a table pole = (grid [t0, h], (m, 3) samples)."""
-    grid, samples = pole
-    s = min(max((t - grid[0]) / grid[1], 0.0), samples.shape[0] - 1.000001)
-    k = int(s)
-    v = samples[k] + (s - k) * (samples[k + 1] - samples[k])
-    return v / math.sqrt(dot3(v, v))
-
-
-@njit(cache=True)
-def harmonic_torque(r_body, gm, radius, c_nm, s_nm, n_min, n_max):
-    """Torque per unit M R^2 of a point mass GM at r_body on the body's degree n_min..n_max field.
-
-    N = -M_A r x grad U_body(r); divided by M R^2: -(GM/R^2) r x grad W.
-    """
-    return -gm / (radius * radius) * cross3(r_body, harmonic_gradient(r_body, radius, c_nm, s_nm, n_min, n_max))
+LEVEL_TERMS = {1: ("point_mass",), 2: ("point_mass", "harmonics"), 3: ("point_mass", "harmonics", "earth_j2"),
+               4: ("point_mass", "harmonics", "earth_j2")}
+N_MEAN_RAD_D = 2 * math.pi / 27.321661                      # sidereal month, rad/day
 
 
 @njit(cache=True)
@@ -176,51 +98,13 @@ def distortion(omega, r_del, v_del, consts):
     return delta, delta_rate
 
 
-@njit(cache=True)
-def external_torque(t, inertia, rot, r_all, gm, c_nm, s_nm, consts, pole, n_max):
-    """Body-frame torque (per M R^2) of the point masses at ``r_all`` (km, ICRF) on the Moon.
-
-    ``rot``: the body-to-ICRF matrix (its transpose takes ICRF vectors to body axes).
-    The degree-2 figure torque of each mass (Euler ch. 16 P91, §815, with the
-    instantaneous inertia), the Moon's degree 3..n_max field, and the Earth's
-    J2 (body 0) acting on the lunar figure when its constant is nonzero.
-    """
-    torque = np.zeros(3)
-    for i in range(gm.shape[0]):
-        r_b = mat_t_vec3(rot, r_all[i])
-        torque += figure_torque(inertia, r_b, gm[i])
-        if n_max >= 3:
-            torque += harmonic_torque(r_b, gm[i], consts[R_KM], c_nm, s_nm, 3, n_max)
-    if consts[J2E_GM_R2] != 0.0:
-        torque += oblate_earth_torque(inertia, mat_t_vec3(rot, r_all[0]), mat_t_vec3(rot, interpolate_pole(t, pole)),
-                                      consts[J2E_GM_R2])
-    return torque
-
-
-@template("positions", "N_MAX")
-def rigid_moon_torque(t, y, p):
-    """Body-frame torque (per M R^2) on a rigid Moon (no core, no distortion); p = moon_params(...)."""
-    moments, gm, data, c_nm, s_nm, consts, pole = p
-    return external_torque(t, diag3(moments), matrix_from_quat(y[:4]), positions(t, data), gm, c_nm, s_nm, consts,
-                           pole, N_MAX)
-
-
-def make_rigid_moon_torque(positions, degree=2):
-    """torque(t, y, p) of a rigid Moon (no core, no distortion), p = moon_params(...).
-
-    The same terms as make_moon_rhs; exposed so that splitting integrators can
-    alternate the free flow with torque kicks (levels 1-2).
-    """
-    return link(rigid_moon_torque, positions=positions, N_MAX=int(degree))
-
-
 _DT_DIFF = 1e-3        # days, central difference for the Earth's velocity at t - tau
 
 
-@template("positions", "N_MAX", "WITH_CORE", "WITH_TIDES")
+@template("positions", "terms", "WITH_CORE", "WITH_TIDES")
 def moon_rhs(t, y, p):
     """dy/dt of the lunar model; y = [q, w_m] or [q, w_m, w_c]; p = moon_params(...)."""
-    moments, gm, data, c_nm, s_nm, consts, pole = p
+    moments, gm, data, term_params, consts = p
     q, omega = y[:4], y[4:7]
     rot = matrix_from_quat(q)                 # body -> ICRF; mat_t_vec3(rot, v) takes v to body axes
     inertia = diag3(moments)
@@ -234,7 +118,7 @@ def moon_rhs(t, y, p):
         v_del = rotate_about(mat_t_vec3(rot, vel_i), axis, wn * tau) - cross3(omega, r_del)
         delta, inertia_rate = distortion(omega, r_del, v_del, consts)
         inertia = inertia + delta
-    torque = external_torque(t, inertia, rot, positions(t, data), gm, c_nm, s_nm, consts, pole, N_MAX)
+    torque = terms(t, y, rot, inertia, positions(t, data), gm, term_params)
     dy = np.empty_like(y)
     put(dy[:4], quat_rate(q, omega))
     if WITH_CORE:                  # torques act with the whole Moon's I; the mantle turns with I - I_c
@@ -251,44 +135,46 @@ def moon_rhs(t, y, p):
     return dy
 
 
-def make_moon_rhs(positions, degree=2, core=False, tides=False):
+def make_moon_rhs(positions, terms, core=False, tides=False):
     """Compiled rhs(t, y, p) of the lunar model.
 
     ``positions(t, data) -> (n, 3)``: attracting bodies relative to the Moon, km, ICRF;
-    body 0 must be the Earth (it raises the tide and carries J2).  ``degree``: 2, 3
-    or 4 (highest degree of the Moon's field); ``core``: fluid core, y has 10
-    components; ``tides``: tidal and rotational distortion.  p = moon_params(...);
-    the Earth's J2 acts on the figure when its constant is nonzero.
+    body 0 must be the Earth (it raises the tide).  ``terms``: the fused torque of the
+    model's terms (terms.base.fuse); ``core``: fluid core, y has 10 components;
+    ``tides``: tidal and rotational distortion.  p = moon_params(...).
     """
-    return link(moon_rhs, positions=positions, N_MAX=int(degree), WITH_CORE=bool(core), WITH_TIDES=bool(tides))
+    return link(moon_rhs, positions=positions, terms=terms, WITH_CORE=bool(core), WITH_TIDES=bool(tides))
 
 
-NO_POLE = (np.array([0.0, 1.0]), np.array([[0.0, 0.0, 1.0], [0.0, 0.0, 1.0]]))
+def moon_params(moon, gm, data, term_params, n_mean=N_MEAN_RAD_D):
+    """Parameter tuple of make_moon_rhs: (moments, gm (n,), data, term_params, consts).
 
-
-def moon_params(moments, gm, data, c_nm, s_nm, radius_km, k2=0.0, gm_moon=1.0, tau_d=0.0,
-                kv_over_c=0.0, core_c_over_c=0.0, n_mean=0.0, core_flattening=0.0,
-                earth_j2_gm_r2=0.0, earth_pole=NO_POLE):
-    """Parameter tuple of make_moon_rhs.
-
-    moments: (A, B, C) of the whole undistorted Moon, M R^2; gm (n,) km^3/d^2 (gm[0] = Earth);
-    data: the orbit kernel's data; c_nm, s_nm (5, 5) unnormalised; k2, tau_d (days);
-    kv_over_c: k_v / C (1/day); core_c_over_c: C_core / C; n_mean: mean motion, rad/day;
-    core_flattening: f_c = (C_c - A_c)/C_c; earth_j2_gm_r2: GM_E J2E R_E^2 (km^5/d^2, 0 = off);
-    earth_pole: (grid [t0, h] TDB days, (m, 3) unit vectors ICRF), read by interpolate_pole.
+    ``moon``: a bodies.moon.Moon (moments in M R^2, R = radius_km; k2, tau_d days; kv_over_c 1/day;
+    core C_c/C and flattening); gm (n,) km^3/d^2, gm[0] = the Earth's; data: the orbit kernel's
+    data; n_mean: mean motion, rad/day (the rotational distortion's reference).
     """
-    moments = np.asarray(moments, dtype=float)
-    c_total = moments[2]
-    consts = np.zeros(9)
-    consts[R_KM] = radius_km
-    consts[K2_MASS_RATIO] = k2 * gm[0] / gm_moon
-    consts[K2_ROT] = k2 * radius_km**3 / (3.0 * gm_moon)
-    consts[TAU_D] = tau_d
-    consts[KV] = kv_over_c * c_total
-    consts[C_CORE] = core_c_over_c * c_total
+    c_total = moon.moments[2]
+    consts = np.zeros(8)
+    consts[R_KM] = moon.radius_km
+    consts[K2_MASS_RATIO] = moon.k2 * gm[0] / moon.gm_km3_d2
+    consts[K2_ROT] = moon.k2 * moon.radius_km**3 / (3.0 * moon.gm_km3_d2)
+    consts[TAU_D] = moon.tau_d
+    consts[KV] = moon.kv_over_c_per_d * c_total
+    consts[C_CORE] = moon.core_c_over_c * c_total
     consts[N_MEAN] = n_mean
-    consts[F_CORE] = core_flattening
-    consts[J2E_GM_R2] = earth_j2_gm_r2
-    pole = (np.asarray(earth_pole[0], dtype=float), np.ascontiguousarray(earth_pole[1], dtype=float))
-    return (moments, np.asarray(gm, dtype=float), data, np.ascontiguousarray(c_nm, dtype=float),
-            np.ascontiguousarray(s_nm, dtype=float), consts, pole)
+    consts[F_CORE] = moon.core_flattening
+    return (np.asarray(moon.moments, dtype=float), np.asarray(gm, dtype=float), data, term_params, consts)
+
+
+def moon_system(moon, orbits, terms, t0, y0, core=False, tides=False, name="moon"):
+    """SpinSystem of the lunar model: ``terms`` (a tuple of terms.base.Term) on the Moon ``moon``,
+    driven by ``orbits`` (kernel, gm, data; body 0 the Earth); y0 = [q, w_m] (+ w_c with a core).
+
+    Without core and distortion the Moon is one rigid body under an external torque, which
+    splitting methods take (system.torque); with them no separable torque exists.
+    """
+    kernel, term_params = fuse(terms)
+    params = moon_params(moon, orbits.gm, orbits.data, term_params)
+    rhs = make_moon_rhs(orbits.kernel, kernel, core, tides)
+    torque = None if (core or tides) else make_figure_torque(orbits.kernel, kernel)
+    return SpinSystem(rhs, params, t0, y0, moon.moments, torque, name)

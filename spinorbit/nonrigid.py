@@ -21,14 +21,17 @@ c/A = kappa (m - phi) + xi m_f, c_f/A_f = gamma (m - phi) + beta m_f; K_CMB the
 core-mantle coupling constant).  A circular nutation of celestial frequency nu
 (cpsd, prograde > 0) is a wobble of sigma = nu - 1, and the nutation amplitude
 ratio is the wobble ratio.  Its two normal modes are the Chandler wobble and the
-free core nutation (FCN).  Left out: the solid inner core (free inner-core
-nutation), ocean tides, mantle anelasticity and the nonlinear terms of MHB2000.
+free core nutation (FCN).  MHB2000's nonlinear terms enter only through their
+published contribution to the precession rate (``nonlinear_precession``).  Left out:
+the solid inner core (free inner-core nutation), ocean tides, mantle anelasticity
+and the nonlinear terms' nutations.
 """
 from dataclasses import dataclass
 
 import numpy as np
 
 from .analysis.spans import resolvable
+from .constants import ARCSEC, JULIAN_CENTURY_D
 from .earth import ERA_RATE_RAD_D, H_D
 
 
@@ -46,13 +49,20 @@ class EarthParameters:
     k_cmb: complex        # core-mantle boundary coupling constant
 
 
-# e: the rigid model's H_d = (C - A)/C as (C - A)/A, 0.0032845474 (MHB 2002 quote e = 0.0032845479).
-# e_f, K_CMB: MHB 2002 estimates from VLBI nutation data (e_f above its hydrostatic value; K_CMB's
-# imaginary part is the electromagnetic dissipation at the core-mantle boundary).
-# kappa, xi, gamma, beta: elastic compliances of PREM (Mathews et al. 1991), as used by MHB 2002.
-# A_f/A: PREM's fluid outer core (Dziewonski & Anderson 1981 density polynomials integrated in
-# spherical shells, 1221.5-3480 km: 9.066e36 kg m^2) over the Earth's A = C (1 - H_d), with
-# C/(M a^2) = 0.3307, GM = 398600.4418 km^3/s^2, a = 6378.1366 km: 8.008e37 kg m^2.
+# e: the rigid model's H_d = (C - A)/C (P03: Capitaine, Wallace & Chapront 2003, A&A 412, 567) as
+#   (C - A)/A, 0.0032845474; MHB 2002's e = 0.0032845479 gives H_d = 0.0032737950 (rate effect 7e-4"/cy).
+# A_f/A: PREM's fluid outer core (Dziewonski & Anderson 1981, PEPI 25, 297: outer-core density
+#   12.5815 - 1.2638 x - 3.6426 x^2 - 5.5281 x^3 g/cm^3, x = r / 6371 km, 1221.5-3480 km, integrated in
+#   spherical shells: 9.066e36 kg m^2) over the Earth's A = C (1 - H_d), with C/(M a^2) = 0.3307,
+#   GM = 398600.4418 km^3/s^2, G = 6.67430e-11, a = 6378.1366 km: 8.008e37 kg m^2.  Recomputed: 0.11321.
+# e_f = 0.0026456 and K_CMB = 2.23e-5 - 1.85e-5 i (MHB 2002's estimates from VLBI: e_f above its
+#   hydrostatic value, Im K_CMB the electromagnetic dissipation at the core-mantle boundary) and the
+#   elastic PREM compliances kappa, xi, gamma, beta (Mathews et al. 1991, JGR 96, 8219, as used by MHB
+#   2002) are the values as recalled from those papers: NOT checked against their tables, which were
+#   out of reach when this was written.  e_f has a secondary source: the IERS EOP Product Center's
+#   constants page lists core moments A_f = 9.1152379e36, C_f = 9.1393530e36 kg m^2, (C_f - A_f)/A_f
+#   = 0.0026456.  What checks them is indirect: the free core nutation and the
+#   main terms they give (tests/test_nonrigid.py, benchmarks/RESULTS.md).
 MHB2000 = EarthParameters(e=H_D / (1.0 - H_D), e_f=0.0026456, a_f=0.1132,
                           kappa=1.0340e-3, xi=2.2204e-4, gamma=1.9662e-3, beta=6.1600e-4,
                           k_cmb=2.23e-5 - 1.85e-5j)
@@ -61,10 +71,19 @@ RIGID = EarthParameters(e=H_D / (1.0 - H_D), e_f=0.0, a_f=0.0, kappa=0.0, xi=0.0
 
 # MHB2000 normal modes, cpsd, terrestrial frame, in this module's convention: IERS Conventions 2010
 # Tables 6.4 and 7.1 list them for tidal frequencies (-0.0026010 - 0.0001361i, 1.0023181 + 0.000025i),
-# i.e. as -conj(sigma).  FCN period in space: -1/(0.0023181 * 1.0027379) = -430.21 solar days.
+# i.e. as -conj(sigma).  FCN period in space: -1/(0.0023181 * 1.0027379) = -430.21 solar days, the
+# "conventional -431.39 sidereal days" of Krasna et al. 2013 (A&A 555, A29); Q = 1.0023181 / (2 Im)
+# = 20 000, beside VLBI's 15 400-19 500 (the compilation in Table 1 of "Parameters of the Earth's Free
+# Core Nutation from Diurnal Strain Tides", Sci. Rep. 10, 2020, doi:10.1038/s41598-020-66426-7).
 PUBLISHED_CHANDLER_CPSD = 0.0026010 + 0.0001361j
 PUBLISHED_FCN_CPSD = -1.0023181 + 0.000025j
 SIDEREAL_PER_SOLAR_DAY = ERA_RATE_RAD_D / (2.0 * np.pi)
+
+# MHB2000's nonlinear terms (products of the nutation amplitudes in the non-rigid Earth's equations):
+# their contribution to the precession rate in longitude, -21 050 uas/cy (0 in obliquity), as listed
+# among the contributions to the IAU 2006 (P03) rate: Capitaine, Wallace & Chapront 2003, A&A 412, 567,
+# Table 3 ("Non-linear effect").
+NONLINEAR_PRECESSION_ARCSEC_CY = -0.021050
 
 
 def _matrices(sigma, p):
@@ -126,6 +145,11 @@ LUNISOLAR_ARGUMENTS = (
     (-2, 0, 2, 0, 0), (0, 1, 2, 0, 2), (0, 0, 2, 2, 1), (0, -1, 2, 0, 2), (0, 0, 0, 2, 1),
     (1, 0, 2, -2, 1), (2, 0, 2, -2, 2), (-2, 0, 0, 2, 1), (2, 0, 2, 0, 1), (0, -1, 2, -2, 1),
 )
+
+
+def nonlinear_precession(dt_d):
+    """Longitude offset (rad) accumulated over dt_d (days) by MHB2000's nonlinear precession rate."""
+    return NONLINEAR_PRECESSION_ARCSEC_CY * ARCSEC * np.asarray(dt_d) / JULIAN_CENTURY_D
 
 
 def circular_terms(t_d, x, y, phases, rates):

@@ -32,7 +32,7 @@ def circles(bodies=("moon", "sun")):
 
 def circle_params(orbits, geodesic=False):
     pole = np.array([0.0, -math.sin(EPS0), math.cos(EPS0)])
-    return (earth.earth_moments(), orbits.gm, orbits.data, earth.extra_parameters(pole, geodesic, False))
+    return earth.earth_params(earth.earth_moments(), orbits.gm, orbits.data, earth.extra_parameters(pole, geodesic, False))
 
 
 @pytest.fixture(scope="module")

@@ -6,8 +6,7 @@ import numpy as np
 import pytest
 from numba import njit
 
-from spinorbit.dynamics import (SpinSystem, kinetic_energy, make_point_mass_torque, make_rigid_body_rhs,
-                                torque_free_system)
+from spinorbit.dynamics import SpinSystem, kinetic_energy, make_rigid_body_rhs, point_mass_system, torque_free_system
 from spinorbit.errors import IntegrationError, ScenarioError
 from spinorbit.integrators import METHODS, get_method, integrate
 from spinorbit.orbits.analytic import CircularOrbits
@@ -23,10 +22,8 @@ HLW_OMEGA0 = np.array([math.sin(1.1), 0.0, math.cos(1.1)]) / HLW_MOMENTS
 def torqued():
     """A smooth torqued problem: asymmetric body, one point mass on an inclined circle (P91 torque)."""
     orbit = CircularOrbits(("m",), gm=[0.5], radius=[1.0], rate=[1.0], inclination=[0.3])
-    torque = make_point_mass_torque(orbit.kernel)
     moments = np.array([0.8, 1.0, 1.3])
-    y0 = np.concatenate([quat_from_euler313(0.2, 0.5, 0.1), [0.3, -0.4, 1.2]])
-    system = SpinSystem(make_rigid_body_rhs(torque), (moments, orbit.gm, orbit.data), 0.0, y0, moments, torque)
+    system = point_mass_system(moments, orbit, quat_from_euler313(0.2, 0.5, 0.1), [0.3, -0.4, 1.2])
     t = np.linspace(0.0, 20.0, 11)
     reference = integrate(system, t, "rk8", step=0.01).y          # converged: error ~1e-14
     return system, t, reference
@@ -77,10 +74,8 @@ def test_symmetric_free_flow_beats_axes_splitting_for_fast_nearly_symmetric_spin
     """Earth-like spinner (C-A)/C = 3.3e-3, B-A = 1e-5 A, 1 rev/d, distant perturber: the three-axis
     Strang splitting's error grows with the spin, the symmetric-exact one does not."""
     orbit = CircularOrbits(("sun",), gm=[2.96e-4], radius=[1.0], rate=[0.0172], inclination=[0.41])
-    torque = make_point_mass_torque(orbit.kernel)
     moments = np.array([1.0, 1.00001, 1.0033])
-    y0 = np.concatenate([[1.0, 0, 0, 0], [1e-4, 0, 2 * math.pi]])
-    system = SpinSystem(make_rigid_body_rhs(torque), (moments, orbit.gm, orbit.data), 0.0, y0, moments, torque)
+    system = point_mass_system(moments, orbit, [1.0, 0, 0, 0], [1e-4, 0, 2 * math.pi])
     t = np.linspace(0.0, 30.0, 31)
     reference = integrate(system, t, "rk8", step=0.01).y
     error = {flow: np.abs(integrate(system, t, "strang", step=0.05, free_flow=flow).y - reference).max()

@@ -50,37 +50,6 @@ def test_reference_range_errors():
         ref.pck_matrix([ref.pck_span()[1] + 1.0])
 
 
-def test_degree2_harmonics_equal_point_mass_torque():
-    """The V/W recursion at degree 2 (C20 = -J2, C22) equals 3 GM/r^5 r x I r (§815)."""
-    from spinorbit.moon import figure_torque, harmonic_torque
-
-    c_nm, s_nm = np.zeros((5, 5)), np.zeros((5, 5))
-    c_nm[2, 0], c_nm[2, 2] = -C.j2, C.c22
-    rng = np.random.default_rng(1)
-    for r in rng.normal(size=(5, 3)) * 3.8e5:
-        expected = figure_torque(np.diag(C.moments), r, 1.0)
-        got = harmonic_torque(r, 1.0, C.radius_km, c_nm, s_nm, 2, 2)
-        assert np.abs(got - expected).max() < 1e-12 * np.abs(expected).max()
-
-
-def test_degree3_torque_against_finite_difference_potential():
-    """r x grad W from the recursion equals r x (numerical gradient of the explicit degree-3 zonal)."""
-    from spinorbit.moon import harmonic_gradient
-
-    c_nm, s_nm = np.zeros((5, 5)), np.zeros((5, 5))
-    c_nm[3, 0] = -1e-5                 # C30 = -J3, J3 = 1e-5
-
-    def potential(r):           # W = -J3 (R/r)^3 P3(z/r) / r
-        x = r[2] / np.linalg.norm(r)
-        return -1e-5 * (C.radius_km / np.linalg.norm(r)) ** 3 * 0.5 * (5 * x**3 - 3 * x) / np.linalg.norm(r)
-
-    r = np.array([2.1e5, -1.4e5, 2.6e5])
-    h = 1.0
-    numeric = np.array([(potential(r + h * e) - potential(r - h * e)) / (2 * h) for e in np.eye(3)])
-    got = harmonic_gradient(r, C.radius_km, c_nm, s_nm, 3, 3)
-    assert np.abs(got - numeric).max() < 1e-7 * np.abs(numeric).max()
-
-
 def test_core_state_carried_from_epoch():
     """DE421's core angular velocity carried to JDEPOC itself is the header's OMGCX/Y/Z."""
     got = ref.core_angular_velocity(C.epoch_tdb_d)
@@ -100,32 +69,6 @@ def test_spherical_core_carry_equals_linear_solution():
     weights = k * np.exp(-k * (s[-1] - s))[:, None]
     expected = np.exp(-k * s[-1]) * w0 + np.trapezoid(weights * w_m, s, axis=0)
     assert np.abs(got - expected).max() < 1e-9 * 0.23         # trapezoid error (k h)^2 w_m ~ 1e-10
-
-
-def test_oblate_earth_torque_against_numerical_hessian():
-    """Folkner et al. (2014) N_figM-figE equals eps_ijk (I H)_jk with H the finite-difference
-    Hessian of the Earth's J2 potential GM J2 R^2 P2(p.x/r)/r^3 at the Moon."""
-    from spinorbit.moon import oblate_earth_torque
-
-    inertia = np.diag(C.moments) + 1e-5 * np.array([[0, 1, 2], [1, 0, 3], [2, 3, 0]])
-    pole = np.array([0.1, -0.2, 0.97]) / np.linalg.norm([0.1, -0.2, 0.97])
-    r = np.array([3.1e5, -2.2e5, 0.4e5])            # the Earth from the Moon, body axes
-
-    def potential(x):                               # x: the Moon from the Earth
-        d = np.linalg.norm(x)
-        u = pole @ x / d
-        return (1.5 * u * u - 0.5) / d**3
-
-    step = 50.0
-    hess = np.empty((3, 3))
-    for i, ei in enumerate(np.eye(3) * step):
-        for j, ej in enumerate(np.eye(3) * step):
-            hess[i, j] = (potential(-r + ei + ej) - potential(-r + ei - ej) - potential(-r - ei + ej)
-                          + potential(-r - ei - ej)) / (4 * step * step)
-    ih = inertia @ hess
-    expected = np.array([ih[1, 2] - ih[2, 1], ih[2, 0] - ih[0, 2], ih[0, 1] - ih[1, 0]])
-    got = oblate_earth_torque(inertia, r, pole, 1.0)
-    assert np.abs(got - expected).max() < 1e-6 * np.abs(expected).max()
 
 
 # --- the scene against DE421 on 5 years (2000-2005) ------------------------------------

@@ -176,7 +176,7 @@ def build_system(scenario, t):
         np.array([0.0, -math.sin(plane_tilt), math.cos(plane_tilt)])
     moments = earth.earth_moments(scenario["earth.dynamical_ellipticity"], scenario["earth.b_minus_a_over_c"])
     extra = earth.extra_parameters(pole_ecl, scenario["earth.geodesic_precession"], scenario["earth.j2_rate"])
-    params = (moments, orbits.gm, orbits.data, extra)
+    params = earth.earth_params(moments, orbits.gm, orbits.data, extra)
     z0 = erfa_pole.cip_vector(t0)
     if scenario["earth.start_pole"] != "iau" and plane_tilt is None:
         z0 = _rigid_start(erfa_pole, orbits, params, t0, z0, t)
@@ -255,12 +255,13 @@ def _a_axis(erfa_pole, t0, z0):
 
 def _nonrigid_pole(erfa_pole, t, z):
     """Figure axes (n, 3) of the non-rigid Earth: the rigid nutation (x, y) = (dpsi sin eps_A, deps) about
-    the IAU 2006 mean pole, times the two-layer response term by term (spinorbit.nonrigid)."""
+    the IAU 2006 mean pole, times the two-layer response term by term, plus MHB2000's nonlinear precession
+    accumulated from the start (spinorbit.nonrigid)."""
     from ..references import arguments
 
     (dpsi, deps), sin_eps = erfa_pole.about_mean_pole(t, z), np.sin(erfa_pole.mean_angles(t)[3])
     x, y = nonrigid.nonrigid_nutation(t, dpsi * sin_eps, deps, *arguments.phases(t, nonrigid.LUNISOLAR_ARGUMENTS))
-    return erfa_pole.from_mean_pole(t, x / sin_eps, y)
+    return erfa_pole.from_mean_pole(t, x / sin_eps + nonrigid.nonlinear_precession(t - t[0]), y)
 
 
 def _nonrigid_summary(erfa_pole, t, z_rigid, z, iau):
@@ -280,6 +281,7 @@ def _nonrigid_summary(erfa_pole, t, z_rigid, z, iau):
     return {"rigid_x_rms_mas": _rms((z_rigid[:, 0] - iau["cip_x_rad"]) / MAS),
             "rigid_y_rms_mas": _rms((z_rigid[:, 1] - iau["cip_y_rad"]) / MAS),
             "terms_mas": term_table(fits, {name: str(m) for name, m in NONRIGID_TABLE_TERMS.items()}),
+            "nonlinear_precession_arcsec_cy": nonrigid.NONLINEAR_PRECESSION_ARCSEC_CY,
             "fcn_period_model_d": nonrigid.celestial_period_days(fcn),
             "fcn_period_mhb2000_d": nonrigid.celestial_period_days(nonrigid.PUBLISHED_FCN_CPSD),
             "chandler_period_model_d": nonrigid.wobble_period_days(cw),

@@ -64,6 +64,8 @@ def verdict(scenario, comparison):
 SCHEMA = {
     "model.level": Key(type=int, default=3, min=1, max=4, help="1..4, see LEVEL_NAMES"),
     "model.tides": Key(type=bool, default=True, help="tidal/rotational distortion at levels 3-4"),
+    "model.terms": Key(type=list, default=[], help="torque terms added to the level's (spinorbit.terms), "
+                                                    "e.g. [\"sun_j2\"]"),
     "orbit.source": Key(type=str, default="de421", help="'de421', a .bsp name, or 'rebound'"),
     "orbit.step": Key(**SAMPLE_STEP, default=0.25, help="sampling step of the orbit interpolant"),
     "compare.source": Key(type=str, default="", help="also run driven by this source and report the difference"),
@@ -121,38 +123,36 @@ def run(scenario):
 
 
 def build_system(scenario, source):
-    """SpinSystem of the lunar model at the scenario's level, driven by ``source``."""
-    from ..dynamics import SpinSystem
-    from ..moon import make_moon_rhs, make_rigid_moon_torque, moon_params
+    """SpinSystem of the lunar model at the scenario's level (its terms + ``model.terms``), driven by ``source``."""
+    from .. import terms
+    from ..bodies.moon import de421
+    from ..moon import LEVEL_TERMS, moon_system
     from ..orbits.sources import sample_orbits
-    from ..references.moon_de421 import core_angular_velocity, earth_pole, librations, moon_constants, orientation
+    from ..references.moon_de421 import core_angular_velocity, earth_pole, librations, orientation
     from ..rotations import quat_from_euler313
 
-    level = scenario["model.level"]
-    spec = LEVELS[level]
-    tides = spec["tides"] and scenario["model.tides"]
-    c = moon_constants()
-    t0 = scenario.t_start
+    level, extra = scenario["model.level"], scenario["model.terms"]
+    spec, names = LEVELS[level], LEVEL_TERMS[level]
+    if not isinstance(extra, list) or any(not isinstance(n, str) or n not in terms.TERMS or n in names for n in extra):
+        raise ScenarioError("model.terms", extra, f"a list of terms not in level {level}'s {list(names)}, "
+                                                  f"from {sorted(terms.TERMS)}")
+    names += tuple(extra)
     first, last = scenario.bounds
     margin = 1.0                                                   # days: the tide looks back tau
     orbits = sample_orbits(source, "moon", spec["bodies"], first - margin, last + margin, scenario["orbit.step"])
-    angles, _ = librations([t0])
-    _, omega = orientation([t0])
-    y0 = np.concatenate([quat_from_euler313(*angles[0]), omega[0]])
+    t0 = scenario.t_start
+    y0 = np.concatenate([quat_from_euler313(*librations([t0])[0][0]), orientation([t0])[1][0]])
     if spec["core"]:
         y0 = np.concatenate([y0, core_angular_velocity(t0)])
-    rhs = make_moon_rhs(orbits.kernel, spec["degree"], spec["core"], tides)
-    n_mean = 2 * np.pi / 27.321661                                # sidereal month, rad/day
-    # levels 3-4 (DE421's model): oblate core and the Earth's J2 on the figure
-    de = dict(core_flattening=c.core_flattening, earth_j2_gm_r2=orbits.gm[0] * c.earth_j2 * c.earth_radius_km**2,
-              earth_pole=earth_pole(first - margin, last + margin)) if spec["core"] else {}
-    params = moon_params(c.moments, orbits.gm, orbits.data, c.c_nm, c.s_nm, c.radius_km, c.k2,
-                         c.gm_km3_d2["moon"], c.tau_d, c.kv_over_c_per_d, c.core_c_over_c, n_mean, **de)
-    # levels 1-2 are one rigid body under an external torque (splitting methods can run them);
-    # levels 3-4 carry the core's state and a time-varying inertia: no separable torque
-    torque = None if spec["core"] else make_rigid_moon_torque(orbits.kernel, spec["degree"])
-    system = SpinSystem(rhs, params, t0, y0, c.moments, torque, f"moon level {level}",
-                        {"tides": tides, "source": source})
+    poles = {"earth": earth_pole(first - margin, last + margin)} if "earth_j2" in names else {}
+    context = terms.Context(de421(), orbits.names, orbits.gm, poles)
+    try:
+        built = terms.build(names, context)
+    except KeyError as exc:
+        raise ScenarioError("model.terms", extra, str(exc.args[0])) from None
+    system = moon_system(de421(), orbits, built, t0, y0, spec["core"], spec["tides"] and scenario["model.tides"],
+                         f"moon level {level}")
+    system.meta.update(tides=spec["tides"] and scenario["model.tides"], source=source, terms=names)
     return system, orbits
 
 

@@ -1,0 +1,254 @@
+"""The interaction terms: each against a closed form or an independent computation, and action
+equals reaction for every term (spinorbit.terms).
+
+point_mass: Euler's P, Q, R (§815) and a point cloud (§816, §818); harmonics: degree 2 equals the
+point-mass torque, degree 3 against a finite-difference potential; figure_figure (the Earth's or
+the Sun's J2): Folkner et al.'s torque against the Hessian of the J2 potential and against three
+point masses with the same quadrupole; and, for all, rot N + sum r x F (+ the attractor's own
+torque) = 0 and the force as minus the energy's gradient."""
+import math
+
+import numpy as np
+import pytest
+
+from spinorbit import terms
+from spinorbit.bodies import RigidBody, sun
+from spinorbit.bodies.moon import de421
+from spinorbit.rotations import matrix_from_quat
+from spinorbit.terms import figure_figure, harmonics, point_mass
+
+GM = 2.9755e15          # km^3/d^2, about the Earth's
+C = de421()
+NO_STATE = np.zeros(7)
+
+
+def point_mass_torque(moments, r_body, gm):
+    """The point_mass term's torque for one mass at r (body axes = ICRF here)."""
+    return point_mass.torque(0.0, NO_STATE, np.eye(3), np.diag(moments), np.atleast_2d(r_body), np.array([gm]), ())
+
+
+def figure_force(moments, mass, r_body, gm):
+    """Force on the figure's centre (towards the mass) to order 1/s^4, §818: monopole + minus the term's force."""
+    r = np.asarray(r_body, dtype=float)
+    s = np.linalg.norm(r)
+    f_on_mass = point_mass.force(0.0, NO_STATE, np.eye(3), np.diag(moments), r[None], np.array([gm]), ())[0]
+    return gm * mass * r / s**3 - f_on_mass
+
+
+def test_components_are_eulers_p_q_r():
+    """§815: P = 3 GM (C - B) cos eta cos theta / s^3, Q = 3 GM (A - C) cos zeta cos theta / s^3, R = ..."""
+    a, b, c = 0.3930197, 0.3931092, 0.3932677
+    zeta, eta = math.radians(50), math.radians(70)
+    cos_theta = math.sqrt(1 - math.cos(zeta) ** 2 - math.cos(eta) ** 2)
+    cz, ce, ct, s = math.cos(zeta), math.cos(eta), cos_theta, 384400.0
+    euler = 3 * GM / s**3 * np.array([(c - b) * ce * ct, (a - c) * cz * ct, (b - a) * cz * ce])
+    got = point_mass_torque(np.array([a, b, c]), s * np.array([cz, ce, ct]), GM)
+    np.testing.assert_allclose(got, euler, rtol=1e-14)
+
+
+def test_two_masses_add():
+    moments = np.array([1.0, 1.2, 1.5])
+    r = np.array([[1e5, 2e5, 3e5], [-4e5, 1e5, 2e5]])
+    gm = np.array([GM, 0.3 * GM])
+    total = point_mass_torque(moments, r[0], gm[0]) + point_mass_torque(moments, r[1], gm[1])
+    both = point_mass.torque(0.0, NO_STATE, np.eye(3), np.diag(moments), r, gm, ())
+    np.testing.assert_allclose(both, total, rtol=1e-15)
+
+
+def _cloud(symmetric):
+    """A uniform ellipsoid (3, 2, 1) of unit mass as random points; ``symmetric``: closed under r -> -r
+    (no odd moments), otherwise a cut ellipsoid (centre of mass moved to the origin)."""
+    rng = np.random.default_rng(3)
+    p = rng.uniform(-1, 1, size=(60000, 3))
+    p = p[np.sum(p * p, axis=1) <= 1] * [3.0, 2.0, 1.0]
+    p = np.concatenate([p, -p]) if symmetric else p[p[:, 0] + 0.5 * p[:, 1] > -0.5]
+    p = p - p.mean(axis=0)
+    m = np.full(len(p), 1.0 / len(p))
+    tensor = np.sum(m * np.sum(p * p, axis=1)) * np.eye(3) - np.einsum("i,ij,ik->jk", m, p, p)
+    body = RigidBody.from_tensor(tensor)
+    return body.moments, p @ body.axes, m                            # points in principal axes
+
+
+def _brute(points, m, s_vec, gm):
+    """Exact force on the cloud and its torque about the centre from a point mass at s_vec."""
+    d = s_vec - points
+    w = gm * m / np.linalg.norm(d, axis=1) ** 3
+    return (w[:, None] * d).sum(axis=0), np.cross(points, w[:, None] * d).sum(axis=0)
+
+
+@pytest.mark.parametrize("symmetric, order", [(False, 1), (True, 2)])
+def test_torque_remainder_shrinks_as_816_says(symmetric, order):
+    """The neglected part is O(size/s) of the 1/s^3 torque, O((size/s)^2) without odd moments (§816)."""
+    moments, points, m = _cloud(symmetric)
+    u = np.array([0.6, 0.48, 0.64])
+    errors = []
+    for s in (40.0, 80.0, 160.0):
+        _, exact = _brute(points, m, s * u, 1.0)
+        model = point_mass_torque(moments, s * u, 1.0)
+        errors.append(np.linalg.norm(exact - model) / np.linalg.norm(model))
+    ratios = np.array(errors[:-1]) / np.array(errors[1:])
+    assert errors[0] < 0.1
+    np.testing.assert_allclose(ratios, 2.0**order, rtol=0.05)
+
+
+@pytest.mark.parametrize("symmetric, order", [(False, 1), (True, 2)])
+def test_figure_force_818_against_cloud(symmetric, order):
+    """§818: the force to order 1/s^4; its error relative to the 1/s^4 part shrinks like (size/s)^order."""
+    moments, points, m = _cloud(symmetric)
+    u = np.array([0.6, 0.48, 0.64])
+    errors = []
+    for s in (40.0, 80.0, 160.0):
+        exact, _ = _brute(points, m, s * u, 1.0)
+        model = figure_force(moments, 1.0, s * u, 1.0)
+        second = model - u / s**2                                    # the 1/s^4 part
+        errors.append(np.linalg.norm(exact - model) / np.linalg.norm(second))
+    ratios = np.array(errors[:-1]) / np.array(errors[1:])
+    assert errors[0] < 0.1
+    np.testing.assert_allclose(ratios, 2.0**order, rtol=0.05)
+
+
+# --- harmonics --------------------------------------------------------------------------
+
+def test_degree2_harmonics_equal_point_mass_torque():
+    """The V/W recursion at degree 2 (C20 = -J2, C22) equals 3 GM/r^5 r x I r (§815)."""
+    c_nm, s_nm = np.zeros((5, 5)), np.zeros((5, 5))
+    c_nm[2, 0], c_nm[2, 2] = -C.j2, C.c22
+    rng = np.random.default_rng(1)
+    for r in rng.normal(size=(5, 3)) * 3.8e5:
+        expected = point_mass_torque(C.moments, r, 1.0)
+        got = harmonics.torque(0.0, NO_STATE, np.eye(3), np.eye(3), r[None], np.array([1.0]),
+                               (C.radius_km, c_nm, s_nm, 2, 2))
+        assert np.abs(got - expected).max() < 1e-12 * np.abs(expected).max()
+
+
+def test_degree3_gradient_against_finite_difference_potential():
+    """grad W from the recursion equals the numerical gradient of the explicit degree-3 zonal."""
+    c_nm, s_nm = np.zeros((5, 5)), np.zeros((5, 5))
+    c_nm[3, 0] = -1e-5                 # C30 = -J3, J3 = 1e-5
+
+    def potential(r):           # W = -J3 (R/r)^3 P3(z/r) / r
+        x = r[2] / np.linalg.norm(r)
+        return -1e-5 * (C.radius_km / np.linalg.norm(r)) ** 3 * 0.5 * (5 * x**3 - 3 * x) / np.linalg.norm(r)
+
+    r = np.array([2.1e5, -1.4e5, 2.6e5])
+    h = 1.0
+    numeric = np.array([(potential(r + h * e) - potential(r - h * e)) / (2 * h) for e in np.eye(3)])
+    got = harmonics.gradient(r, C.radius_km, c_nm, s_nm, 3, 3)
+    assert np.abs(got - numeric).max() < 1e-7 * np.abs(numeric).max()
+
+
+# --- figure-figure (an oblate attractor's J2) --------------------------------------------
+
+INERTIA = np.diag(C.moments) + 1e-5 * np.array([[0, 1, 2], [1, 0, 3], [2, 3, 0]])
+POLE = np.array([0.1, -0.2, 0.97]) / np.linalg.norm([0.1, -0.2, 0.97])
+
+
+def test_figure_figure_torque_against_numerical_hessian():
+    """Folkner et al. (2014) N_figM-figE equals eps_ijk (I H)_jk with H the finite-difference
+    Hessian of the Earth's J2 potential GM J2 R^2 P2(p.x/r)/r^3 at the Moon."""
+    r = np.array([3.1e5, -2.2e5, 0.4e5])            # the Earth from the Moon, body axes
+
+    def potential(x):                               # x: the Moon from the Earth
+        d = np.linalg.norm(x)
+        u = POLE @ x / d
+        return (1.5 * u * u - 0.5) / d**3
+
+    step = 50.0
+    hess = np.empty((3, 3))
+    for i, ei in enumerate(np.eye(3) * step):
+        for j, ej in enumerate(np.eye(3) * step):
+            hess[i, j] = (potential(-r + ei + ej) - potential(-r + ei - ej) - potential(-r - ei + ej)
+                          + potential(-r - ei - ej)) / (4 * step * step)
+    ih = INERTIA @ hess
+    expected = np.array([ih[1, 2] - ih[2, 1], ih[2, 0] - ih[0, 2], ih[0, 1] - ih[1, 0]])
+    got = figure_figure.figure_torque(INERTIA, r, POLE, 1.0)
+    assert np.abs(got - expected).max() < 1e-6 * np.abs(expected).max()
+
+
+def test_figure_figure_torque_equals_three_point_masses_with_the_same_quadrupole():
+    """An oblate attractor's J2 field is, to degree 2, that of three point masses on its pole: -q at
+    +-d and +2q at the centre with 2 q d^2 = M J2 R^2 (zero mass and dipole, the same quadrupole);
+    their point-mass torques on the figure equal the figure-figure torque up to the three masses'
+    degree-4 field, a remainder ~ (d/r)^2: it falls 4x each time d halves, to 1e-5 at d/r = 1/800."""
+    gm, j2, radius, r = 1.0, 0.1, 1.0, np.array([6.0, -3.0, 4.0])      # |r| ~ 8 R
+    closed_form = figure_figure.figure_torque(INERTIA, r, POLE, gm * j2 * radius**2)
+    errors = []
+    for d in (0.04, 0.02, 0.01):
+        q = gm * j2 * radius**2 / (2 * d * d)
+        masses = np.array([-q, -q, 2 * q])
+        positions = r + np.array([d * POLE, -d * POLE, 0 * POLE])
+        point_masses = point_mass.torque(0.0, NO_STATE, np.eye(3), INERTIA, positions, masses, ())
+        errors.append(np.abs(point_masses - closed_form).max() / np.abs(closed_form).max())
+    np.testing.assert_allclose(np.array(errors[:-1]) / errors[1:], 4.0, rtol=0.01)
+    assert errors[-1] < 2e-5
+
+
+def test_figure_figure_force_is_minus_the_energy_gradient():
+    """The complex-step force equals a central finite difference of the interaction energy."""
+    r = np.array([3.1e5, -2.2e5, 0.4e5])
+    p = (0, 2.0e20, np.array([0.0, 1.0]), np.array([POLE, POLE]))
+    force = figure_figure.force(0.0, NO_STATE, np.eye(3), INERTIA, r[None], np.array([1.0]), p)[0]
+    h = 10.0
+    numeric = np.array([-(figure_figure.energy(INERTIA, r + h * e, POLE, 2.0e20)
+                          - figure_figure.energy(INERTIA, r - h * e, POLE, 2.0e20)) / (2 * h) for e in np.eye(3)])
+    assert np.abs(force - numeric).max() < 1e-6 * np.abs(force).max()
+
+
+def test_figure_figure_torque_is_minus_the_energy_derivative_in_rotation():
+    """Turning the figure by a small angle about axis k changes the energy by -N_k angle."""
+    r = np.array([3.1e5, -2.2e5, 0.4e5])
+    k = 2.0e20
+    torque = figure_figure.figure_torque(INERTIA, r, POLE, k)
+    h = 1e-6
+    for axis in range(3):
+        w = np.zeros(3)
+        w[axis] = h
+        turn = lambda a: np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
+        energies = []
+        for sign in (1, -1):
+            rot = np.eye(3) + turn(sign * w) + turn(sign * w) @ turn(sign * w) / 2
+            energies.append(figure_figure.energy(rot @ INERTIA @ rot.T, r, POLE, k))
+        assert abs(-(energies[0] - energies[1]) / (2 * h) - torque[axis]) < 1e-6 * np.abs(torque).max()
+
+
+# --- action equals reaction, every term ------------------------------------------------------
+
+def _context():
+    poles = {"earth": (np.array([0.0, 1.0]), np.array([POLE, POLE]))}
+    gm = np.array([GM, 1.3e20])
+    return terms.Context(C, ("earth", "sun"), gm, poles)
+
+
+@pytest.mark.parametrize("name", sorted(terms.TERMS))
+def test_action_equals_reaction(name):
+    """rot N + sum_i r_i x F_i + (the attractor's own torque) = 0: the term conserves angular momentum."""
+    term, = terms.build([name], _context())
+    rot = matrix_from_quat(np.array([0.9, 0.2, -0.3, 0.25]) / np.linalg.norm([0.9, 0.2, -0.3, 0.25]))
+    r = np.array([[3.1e5, -2.2e5, 0.4e5], [1.2e8, 0.7e8, 0.3e8]])
+    gm = _context().gm
+    inertia = np.diag(C.moments)
+    torque = rot @ term.torque(0.0, NO_STATE, rot, inertia, r, gm, term.params)
+    forces = term.force(0.0, NO_STATE, rot, inertia, r, gm, term.params)
+    parts = [torque, np.cross(r, forces).sum(axis=0)]
+    if term.torque is figure_figure.torque:
+        parts.append(figure_figure.reaction_torque(0.0, NO_STATE, rot, inertia, r, gm, term.params))
+    scale = max(np.abs(part).max() for part in parts)
+    assert scale > 0
+    assert np.abs(sum(parts)).max() < 1e-13 * scale
+
+
+def test_sun_j2_term_is_the_suns_published_oblateness():
+    """The sun_j2 term carries GM_sun J2 R^2 with the DE421 header's J2SUN and ASUN and the IAU pole."""
+    term, = terms.build(["sun_j2"], _context())
+    index, k, _, poles = term.params
+    assert index == 1
+    assert k == pytest.approx(1.3e20 * 2.0e-7 * 696000.0**2, rel=1e-15)
+    ra, dec = math.atan2(poles[0, 1], poles[0, 0]) % (2 * math.pi), math.asin(poles[0, 2])
+    assert math.degrees(ra) == pytest.approx(286.13, abs=1e-12)
+    assert math.degrees(dec) == pytest.approx(63.87, abs=1e-12)
+    assert sun.J2 == 2.0e-7
+
+
+def test_unknown_term_is_named():
+    with pytest.raises(ValueError, match="unknown term 'moon_j7'"):
+        terms.build(["moon_j7"], _context())
