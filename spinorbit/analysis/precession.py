@@ -26,25 +26,31 @@ def fit_pole(t_tdb_d, dpsi, deps, arguments, separate=True):
     return tuple(fit_harmonics(t_tdb_d, v, arguments, degree=2, separate=separate) for v in (dpsi, deps))
 
 
-def compare_with_iau(model, iau, published):
-    """Fitted precession and nutation of a model beside a reference's, both from fit_pole.
+def compare_with_iau(t_tdb_d, model, reference, arguments, published):
+    """A model's precession and nutation fitted beside a reference's: ``model``, ``reference`` = (dpsi, deps)
+    about the same mean pole (rad), ``arguments`` as for fit_pole, ``published`` = {term: (dpsi sin,
+    deps cos) arcsec}.
 
-    Returns (comparison, not_measured): the rate differences in longitude and obliquity ("/cy), and for
-    each term of ``published`` = {name: (dpsi sin, deps cos) arcsec} the model's coefficients, the
-    published ones and model - reference (mas); a term the span does not resolve is in not_measured."""
-    comparison = {"psi_rate_minus_iau_arcsec_cy": (model[0].poly[1] - iau[0].poly[1]) / ARCSEC,
-                  "obliquity_rate_minus_iau_arcsec_cy": (model[1].poly[1] - iau[1].poly[1]) / ARCSEC}
+    Returns (comparison, not_measured, mean): the rate differences in longitude and obliquity ("/cy);
+    for each published term the model's coefficients, the published ones and model - reference (mas),
+    or in not_measured why the span does not resolve it; and the model's mean pole minus the
+    reference's, (dpsi, deps) rad at the times (the fits' polynomials).
+    """
+    fits = fit_pole(t_tdb_d, *model, arguments)
+    refs = fit_pole(t_tdb_d, *reference, arguments)
+    comparison = {"psi_rate_minus_iau_arcsec_cy": (fits[0].poly[1] - refs[0].poly[1]) / ARCSEC,
+                  "obliquity_rate_minus_iau_arcsec_cy": (fits[1].poly[1] - refs[1].poly[1]) / ARCSEC}
     not_measured = {}
     for term, (psi_pub, eps_pub) in published.items():
         key = "nutation_" + term.replace(" ", "").replace(".", "_")
-        if model[0].sin[term] is None:
-            not_measured[f"comparison.{key}"] = model[0].refused[term]
+        if fits[0].sin[term] is None:
+            not_measured[f"comparison.{key}"] = fits[0].refused[term]
             continue
         for angle, trig, i, pub in (("dpsi", "sin", 0, psi_pub), ("deps", "cos", 1, eps_pub)):
-            value, ref = getattr(model[i], trig)[term] / ARCSEC, getattr(iau[i], trig)[term] / ARCSEC
+            value, ref = getattr(fits[i], trig)[term] / ARCSEC, getattr(refs[i], trig)[term] / ARCSEC
             comparison.update({f"{key}_{angle}_model_arcsec": value, f"{key}_{angle}_iau2000a_arcsec": pub,
                                f"{key}_{angle}_model_minus_iau_mas": (value - ref) * 1000})
-    return comparison, not_measured
+    return comparison, not_measured, tuple(mean_pole_offset(t_tdb_d, fit) for fit in fits)
 
 
 def mean_pole_offset(t_tdb_d, fit):
@@ -58,12 +64,13 @@ def periodic_part(fit, phases):
 
 
 def term_table(fits, terms):
-    """term -> part -> model -> coefficient (mas), as IAU 2000A writes them: dpsi = in sin + out cos,
-    deps = in cos + out sin; ``fits`` = {model: fit_pole result}; a term not fitted is None."""
+    """row -> part -> model -> coefficient (mas), as IAU 2000A writes them: dpsi = in sin + out cos,
+    deps = in cos + out sin.  ``fits`` = {model: fit_pole result}, ``terms`` = {row: argument name};
+    a term not fitted is None."""
     parts = {"dpsi_in": (0, "sin"), "dpsi_out": (0, "cos"), "deps_in": (1, "cos"), "deps_out": (1, "sin")}
-    value = lambda fit, trig, term: None if getattr(fit, trig)[term] is None else getattr(fit, trig)[term] / MAS
-    return {term: {part: {model: value(pair[i], trig, term) for model, pair in fits.items()}
-                   for part, (i, trig) in parts.items()} for term in terms}
+    value = lambda fit, trig, name: None if getattr(fit, trig)[name] is None else getattr(fit, trig)[name] / MAS
+    return {row: {part: {model: value(pair[i], trig, name) for model, pair in fits.items()}
+                  for part, (i, trig) in parts.items()} for row, name in terms.items()}
 
 
 def node_rate(t_tdb_d, poles, ecliptic_pole, periodic=None):

@@ -1,6 +1,9 @@
 """Euler's precession of the equinoxes (Theoria motus ch. 16, P96, §846) on his hypothesis: the Moon and the
-Sun on uniform circles, the rate N cos n of each added (theory.SymmetricPrecession)."""
+Sun on uniform circles, the rate N cos n of each added (theory.SymmetricPrecession), and a run's mean
+precession set beside it."""
 import math
+
+import numpy as np
 
 from ..constants import GM_KM3_D2
 
@@ -18,3 +21,22 @@ def precession_rate(moments, spin_rad_d, tilt_rad):
         big_n = 1.5 * GM_KM3_D2[name] * (moments[2] - moments[0]) / (spin_rad_d * moments[2] * radius**3)
         rate += SymmetricPrecession(spin_rad_d, 2 * math.pi / period, big_n, tilt_rad).precession_rate
     return rate
+
+
+def compare(t_tdb_d, poles, ecliptic_pole, moments, spin_rad_d, circles, geodesic_arcsec_cy=0.0):
+    """Euler's P96 rate (on the circles, tilted as the first pole) beside the model's mean node rate on the
+    fixed ecliptic, arcsec/cy.  ``circles``: the run was driven by them (the node rate is fitted with
+    their 2-phi terms, and the P96 rate adds the model's ``geodesic_arcsec_cy``); else it ran on DE421."""
+    from ..analysis.precession import node_rate
+    from ..constants import ARCSEC, JULIAN_CENTURY_D
+
+    t = np.asarray(t_tdb_d, dtype=float)
+    tilt = math.acos(float(poles[0] @ ecliptic_pole))
+    p96 = precession_rate(moments, spin_rad_d, tilt) * JULIAN_CENTURY_D / ARCSEC
+    periodic = {b: (4 * math.pi * t / period, 4 * math.pi / period) for b, (_, period) in CIRCLES.items()}
+    model = node_rate(t, poles, ecliptic_pole, periodic if circles else None) / ARCSEC
+    if not circles:
+        return {"p96_circles_precession_rate_arcsec_cy": p96, "fixed_ecliptic_precession_rate_arcsec_cy": model}
+    p96 -= geodesic_arcsec_cy
+    return {"p96_precession_rate_arcsec_cy": p96, "model_precession_rate_arcsec_cy": model,
+            "model_minus_p96_arcsec_cy": model - p96}

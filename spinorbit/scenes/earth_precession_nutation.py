@@ -25,7 +25,7 @@ import numpy as np
 
 from .. import earth, nonrigid
 from ..analysis.precession import RATE_MIN_SPAN_D
-from ..constants import ARCSEC, GM_KM3_D2, JULIAN_CENTURY_D, MAS
+from ..constants import ARCSEC, GM_KM3_D2, MAS
 from ..errors import ScenarioError
 from ..integrators import integrate
 from ..references import euler_p96
@@ -101,9 +101,8 @@ RATE_KEYS = ("psi_rate_minus_iau_arcsec_cy", "psi_A_rate_arcsec_cy", "obliquity_
 
 def run(scenario):
     from .. import plots
-    from ..analysis.precession import compare_with_iau, fit_pole, mean_pole_offset, node_rate, rate_refusal
+    from ..analysis.precession import compare_with_iau, rate_refusal
     from ..references import arguments, erfa_pole
-    from ..references.euler_p96 import precession_rate
 
     t0, t = scenario.t_start, scenario.output_times()
     system, orbits, params, (z0, x0, pole_ecl, plane_tilt) = build_system(scenario, t)
@@ -118,27 +117,17 @@ def run(scenario):
                   "y_rms_mas": _rms(dy), "y_max_mas": float(np.abs(dy).max())}
     not_measured, nutation = {}, {}
     if plane_tilt is None:                           # on DE421: IAU 2000A's nutation applies
-        terms, offsets = arguments.named(t, erfa_pole.NUTATION_ARGUMENTS), erfa_pole.about_mean_pole(t, z)
-        model = fit_pole(t, *offsets, terms)
-        fitted, not_measured = compare_with_iau(model, fit_pole(t, iau["dpsi_rad"], iau["deps_rad"], terms),
-                                                erfa_pole.IAU2000A_MAIN_ARCSEC)
+        offsets = erfa_pole.about_mean_pole(t, z)
+        fitted, not_measured, mean = compare_with_iau(t, offsets, (iau["dpsi_rad"], iau["deps_rad"]), arguments.named(
+            t, erfa_pole.NUTATION_ARGUMENTS), erfa_pole.IAU2000A_MAIN_ARCSEC)
         rate = fitted.pop("psi_rate_minus_iau_arcsec_cy")
         comparison.update(psi_rate_minus_iau_arcsec_cy=rate, psi_A_rate_arcsec_cy=erfa_pole.PSI_A_RATE_ARCSEC_CY + rate,
                           psi_A_rate_iau2006_arcsec_cy=erfa_pole.PSI_A_RATE_ARCSEC_CY, **fitted)
-        mean = [mean_pole_offset(t, fit) for fit in model]    # the model's mean pole minus IAU 2006's
         nutation = {"psi_mean": iau["psi_bar_rad"] + mean[0], "eps_mean": iau["eps_a_rad"] + mean[1],
-                    "dpsi": offsets[0] - mean[0], "deps": offsets[1] - mean[1]}
-    # Euler's P96 rate N cos n (§846) on circles beside the model's mean rate on the fixed ecliptic
-    p96 = precession_rate(earth.earth_moments(scenario["earth.dynamical_ellipticity"]), earth.ERA_RATE_RAD_D,
-                          math.acos(float(z[0] @ pole_ecl))) * JULIAN_CENTURY_D / ARCSEC
-    circles = {} if plane_tilt is None else {b: (4 * math.pi * t / CIRCLES[b][1], 4 * math.pi / CIRCLES[b][1]) for b in CIRCLES}
-    node = node_rate(t, z, pole_ecl, circles) / ARCSEC          # fitted with the circles' 2-phi terms
-    if plane_tilt is None:
-        comparison.update(p96_circles_precession_rate_arcsec_cy=p96, fixed_ecliptic_precession_rate_arcsec_cy=node)
-    else:
-        p96 -= earth.GEODESIC_PRECESSION_ARCSEC_CY if scenario["earth.geodesic_precession"] else 0.0
-        comparison.update(p96_precession_rate_arcsec_cy=p96, model_precession_rate_arcsec_cy=node,
-                          model_minus_p96_arcsec_cy=node - p96)
+                    "dpsi": offsets[0] - mean[0], "deps": offsets[1] - mean[1]}   # about the model's mean pole
+    geodesic = earth.GEODESIC_PRECESSION_ARCSEC_CY if scenario["earth.geodesic_precession"] else 0.0
+    comparison.update(euler_p96.compare(t, z, pole_ecl, earth.earth_moments(scenario["earth.dynamical_ellipticity"]),
+                                        earth.ERA_RATE_RAD_D, plane_tilt is not None, geodesic))
     if plane_tilt is None and (why := rate_refusal(abs(t[-1] - t[0]))):   # the nutation aliases into the rates
         for key in RATE_KEYS:
             comparison[key], not_measured[f"comparison.{key}"] = None, why
@@ -149,8 +138,7 @@ def run(scenario):
             "_full_minus_gyro_mas"), "year (TDB)", "full - gyroscopic figure axis [mas]")
     summary = {"not_measured": not_measured, "comparison": comparison, "run": point, "reference": iau.provenance,
                "model": {"moments_over_C": moments.tolist(), "bodies": list(orbits.names),
-                         "geodesic_precession_arcsec_cy": -earth.GEODESIC_PRECESSION_ARCSEC_CY
-                         if scenario["earth.geodesic_precession"] else 0.0,
+                         "geodesic_precession_arcsec_cy": -geodesic,
                          "j2_rate_per_cy": earth.J2_RATE_PER_CY if scenario["earth.j2_rate"] else 0.0,
                          "spin_rate_rad_d": earth.ERA_RATE_RAD_D,
                          "orbit_interpolation_max_relative_error": None if getattr(
