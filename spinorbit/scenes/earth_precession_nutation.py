@@ -11,13 +11,11 @@ response (MHB2000: fluid core, mantle anelasticity, oceans), not errors;
 ``earth.nonrigid = true`` applies that response (spinorbit.nonrigid: elastic
 mantle and fluid core) to the integrated rigid nutation, term by term.
 
-Verdict (``verdict``): on DE421, the CIP X, Y rms against IAU 2006/2000A and the
-precession rate in longitude minus IAU 2006's (fitted only over >= 50 yr, where
-the 18.6-yr term no longer aliases into the rate); the full model adds its
-agreement with the gyroscopic one.  With geodesic precession off, only the rate,
-expected +1.919883"/cy off (X, Y then drift by the omitted term).  On Euler's circles the verdict is the model's precession rate
-minus Euler's N cos n (§846); X, Y against IAU 2000A do not apply there.
-With the non-rigid layer, X and Y are held to 1 mas rms.
+Verdict (``verdict``): on DE421, the CIP X, Y rms against IAU 2006/2000A (1 mas with the
+non-rigid layer) and the precession rate in longitude minus IAU 2006's (over >= 50 yr);
+the full model adds its agreement with the gyroscopic one.  With geodesic precession off,
+only the rate, expected +1.919883"/cy off.  On Euler's circles, the model's precession
+rate minus Euler's N cos n (§846).
 """
 import math
 
@@ -92,9 +90,8 @@ def verdict(scenario, comparison):
                             "~10 mas Oppolzer offset times the fastest nutation over the spin (1/13.7)"))
     return Verdict("IAU 2006/2000A (ERFA)", tuple(checks))
 
+
 CIRCLES = euler_p96.CIRCLES              # Euler's circles (P96): mean distance (km), sidereal period (d)
-
-
 RATE_KEYS = ("psi_rate_minus_iau_arcsec_cy", "psi_A_rate_arcsec_cy", "obliquity_rate_minus_iau_arcsec_cy",
              "fixed_ecliptic_precession_rate_arcsec_cy")
 
@@ -180,16 +177,10 @@ HALF_MONTH_D = 13.66                   # shortest period of the lunisolar torque
 
 
 def build(scenario):
-    """For ``spinorbit bench``: (system, output times, error vs a converged run, rad).
-
-    The error is the max attitude angle from a converged rk8 run (bench.converged_error
-    at 0.05 d for the full model, 0.5 d for the gyroscopic one, each checked against
-    half that step; the agreement is kept in system.meta["reference_agreement_rad"]):
-    integration error only, not the difference from IAU 2006/2000A.  For the full model
-    the attitude includes the daily rotation phase; for the gyroscopic model it is the
-    twist-free frame of L.  Splitting methods run the full model only (a rigid body
-    under the Moon's and Sun's torques; the gyroscopic state is L alone).
-    """
+    """For ``spinorbit bench``: (system, output times, error: max attitude angle, rad, from a converged rk8
+    run at BENCH_REFERENCE_STEP_D checked against half that step, agreement in system.meta).  Integration
+    error only; the attitude is the full model's, daily phase included, or the twist-free frame of L.
+    Splitting methods run the full model only (the gyroscopic state is L alone)."""
     from ..bench import converged_error
 
     t_out = scenario.output_times()
@@ -253,22 +244,19 @@ def _nonrigid_pole(erfa_pole, t, z):
 
 
 def _nonrigid_summary(erfa_pole, t, z_rigid, z, iau):
-    """The rigid and non-rigid main terms beside IAU 2000A (mas), the rigid residuals, the model's free modes.
-
-    The three columns are fitted alike over the run on the nonrigid.LUNISOLAR_ARGUMENTS it resolves (with a
-    quadratic): a term unresolved from a listed one (1 yr: 365.22 d; 0.5 yr: 182.63 d) is in it.
-    """
+    """The rigid and non-rigid main terms beside IAU 2000A (mas), fitted alike on the nonrigid.LUNISOLAR_ARGUMENTS
+    the run resolves (a term unresolved from a listed one is in it), the rigid residuals, the model's free modes."""
     from ..analysis.precession import fit_pole, term_table
     from ..references import arguments
 
     terms = arguments.named(t, {str(m): m for m in nonrigid.LUNISOLAR_ARGUMENTS})
-    fits = {name: fit_pole(t, *erfa_pole.about_mean_pole(t, pole), terms)
-            for name, pole in (("rigid", z_rigid), ("nonrigid", z))}
-    fits["iau2000a"] = fit_pole(t, iau["dpsi_rad"], iau["deps_rad"], terms)
+    series = {"rigid": erfa_pole.about_mean_pole(t, z_rigid), "nonrigid": erfa_pole.about_mean_pole(t, z),
+              "iau2000a": (iau["dpsi_rad"], iau["deps_rad"])}
     cw, fcn = nonrigid.normal_modes()
     return {"rigid_x_rms_mas": _rms((z_rigid[:, 0] - iau["cip_x_rad"]) / MAS),
             "rigid_y_rms_mas": _rms((z_rigid[:, 1] - iau["cip_y_rad"]) / MAS),
-            "terms_mas": term_table(fits, {name: str(m) for name, m in NONRIGID_TABLE_TERMS.items()}),
+            "terms_mas": term_table({name: fit_pole(t, *v, terms) for name, v in series.items()},
+                                    {name: str(m) for name, m in NONRIGID_TABLE_TERMS.items()}),
             "nonlinear_precession_arcsec_cy": nonrigid.NONLINEAR_PRECESSION_ARCSEC_CY,
             "fcn_period_model_d": nonrigid.celestial_period_days(fcn),
             "fcn_period_mhb2000_d": nonrigid.celestial_period_days(nonrigid.PUBLISHED_FCN_CPSD),
@@ -282,16 +270,14 @@ def _table(t, z, dx, dy, nutation):
 
     from ..scenarios import tdb_days_to_time
 
-    u, table = common.u(), QTable()
-    table["time"] = tdb_days_to_time(t)
-    table["cip_x"], table["cip_y"] = (z[:, 0] * u.rad).to(u.arcsec), (z[:, 1] * u.rad).to(u.arcsec)
-    table["cip_x_minus_erfa"], table["cip_y_minus_erfa"] = dx * u.mas, dy * u.mas
+    u = common.u()
+    columns = {"time": tdb_days_to_time(t), "cip_x": (z[:, 0] * u.rad).to(u.arcsec),
+               "cip_y": (z[:, 1] * u.rad).to(u.arcsec), "cip_x_minus_erfa": dx * u.mas, "cip_y_minus_erfa": dy * u.mas}
     if nutation:
-        table["precession_longitude"] = (nutation["psi_mean"] * u.rad).to(u.arcsec)
-        table["obliquity"] = (nutation["eps_mean"] * u.rad).to(u.deg)
-        table["nutation_longitude"] = (nutation["dpsi"] * u.rad).to(u.arcsec)
-        table["nutation_obliquity"] = (nutation["deps"] * u.rad).to(u.arcsec)
-    return table
+        columns.update({name: (nutation[key] * u.rad).to(unit) for name, key, unit in (
+            ("precession_longitude", "psi_mean", u.arcsec), ("obliquity", "eps_mean", u.deg),
+            ("nutation_longitude", "dpsi", u.arcsec), ("nutation_obliquity", "deps", u.arcsec))})
+    return QTable(columns)
 
 
 def _full_checks(scenario, orbits, params, t0, z0, x0, t, z_full):
