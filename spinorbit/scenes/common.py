@@ -3,9 +3,8 @@ import numpy as np
 
 from ..bodies import RigidBody
 from ..errors import PhysicsError, ScenarioError
-from ..plots import plot_panels, plot_series, titled  # noqa: F401  (scenes call common.plot_*, common.titled)
+from ..plots import plot_series  # scenes call common.plot_series
 from ..results import RunResult, attitude_table  # noqa: F401  (scenes call common.attitude_table)
-from ..scenarios import tdb_days_to_time
 from ..simulate import simulate
 
 
