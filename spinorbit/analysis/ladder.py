@@ -1,0 +1,33 @@
+"""Error against cost: one system run with a list of integrator settings, one row per setting.
+
+Layer 2.  The work-precision tables of ``spinorbit bench``, the stress scenes'
+per-integrator comparisons and the Moon's error-vs-runtime figure are all this
+ladder with their own settings and error functions.
+"""
+from ..errors import IntegrationError
+from ..integrators import get_method
+
+
+def work_precision(system, t_out, settings, error, until=None):
+    """Rows ``{"method", **options, "wall_s", "rhs_evaluations", "steps", **error(solution)}``, in order.
+
+    ``settings`` is ``[(method, options), ...]`` (a registry name or Integrator class, and its
+    options dict); ``error(solution)`` returns named errors ``{name: float}``.  A setting whose run
+    raises IntegrationError gives ``{"method", **options, "failed": message}`` and no errors.
+    ``until(row)``, if given, stops the ladder after the first row for which it is true.
+    Wall times exclude compilation (see integrators.base, contract item 6).
+    """
+    rows = []
+    for method, options in settings:
+        cls = get_method(method)
+        try:
+            solution = cls(**options).solve(system, t_out)
+        except IntegrationError as failure:
+            row = {"method": cls.name, **options, "failed": str(failure)}
+        else:
+            row = {"method": cls.name, **options, "wall_s": solution.wall_s,
+                   "rhs_evaluations": solution.nfev, "steps": solution.nsteps, **error(solution)}
+        rows.append(row)
+        if until is not None and until(row):
+            break
+    return rows
