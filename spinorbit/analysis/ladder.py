@@ -5,7 +5,8 @@ per-integrator comparisons and the Moon's error-vs-runtime figure are all this
 ladder with their own settings and error functions.
 """
 from ..errors import IntegrationError
-from ..integrators import get_method
+from ..integrators import get_method, integrate
+from ..rotations import quat_angle
 
 
 def work_precision(system, t_out, settings, error, until=None):
@@ -31,3 +32,17 @@ def work_precision(system, t_out, settings, error, until=None):
         if until is not None and until(row):
             break
     return rows
+
+
+def converged_error(system, t_out, step, method="rk8"):
+    """An error function against a converged fixed-step run at ``step`` (checked against step/2).
+
+    Returns (error, agreement_rad): ``agreement_rad`` is the max attitude
+    difference between the runs at step and step/2, an upper bound of the
+    reference's own error.
+    """
+    a = integrate(system, t_out, method, step=step)
+    b = integrate(system, t_out, method, step=step / 2)
+    q_ref = b.quaternion
+    agreement = float(quat_angle(a.quaternion, q_ref).max())
+    return (lambda solution: float(quat_angle(solution.quaternion, q_ref).max())), agreement
