@@ -11,7 +11,8 @@ import numpy as np
 from scipy.special import ellipj, ellipk, ellipkinc, elliprf, elliprj
 
 from .errors import PhysicsError, ResonanceError
-from .rotations import matrix_from_euler313, matrix_from_quat, quat_from_matrix
+from .rotations import (matrix_from_euler313, matrix_from_quat, quat_from_matrix, quat_from_rotation_vector,
+                        quat_multiply)
 
 _REL = 1e-13
 
@@ -151,6 +152,22 @@ class FreeRigidBody:
             r = self._m_l @ self._euler_matrix(omega[i], phi[i]).T @ self._q_perm
             out[i] = quat_from_matrix(r)
         return out
+
+
+def axisymmetric_attitude(moments, omega0, q0, t, s):
+    """Attitude (n, 4) at times t of a torque-free body symmetric about body axis s (the other two moments equal).
+
+    With body L0, q(t) = q0 E(L0 t / I_p) E((1/I_s - 1/I_p) L_s t e_s), E(w) the unit quaternion
+    of rotation vector w (the body L rotates about e_s by -(1/I_s - 1/I_p) L_s t).  Written with
+    I_p - I_s, so that it stays exact for a flattening of 1e-8 (the elliptic form loses digits there).
+    """
+    moments, omega0 = np.asarray(moments, dtype=float), np.asarray(omega0, dtype=float)
+    i_s, i_p = moments[s], moments[(s + 1) % 3]
+    l0 = moments * omega0
+    t = np.asarray(t, dtype=float)[:, None]
+    first = quat_from_rotation_vector(l0 / i_p * t)
+    second = quat_from_rotation_vector((i_p - i_s) / (i_s * i_p) * l0[s] * np.eye(3)[s] * t)
+    return np.array([quat_multiply(quat_multiply(np.asarray(q0, dtype=float), a), b) for a, b in zip(first, second)])
 
 
 # --- Problem 92: first motion of a body at rest (§820-823, §806) -------------

@@ -46,3 +46,9 @@ def converged_error(system, t_out, step, method="rk8"):
     q_ref = b.quaternion
     agreement = float(quat_angle(a.quaternion, q_ref).max())
     return (lambda solution: float(quat_angle(solution.quaternion, q_ref).max())), agreement
+
+
+def settings(methods, **options):
+    """[(method, the ``options`` it accepts), ...]: one setting per method, e.g. step for the fixed-step
+    methods and rtol/atol for the adaptive ones (the integrator classes' ``options`` decide)."""
+    return [(method, {k: v for k, v in options.items() if k in get_method(method).options}) for method in methods]
