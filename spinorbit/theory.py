@@ -344,6 +344,13 @@ def pole_rates_symmetric(a_polar, c_equatorial, gamma_prime, gm, s, rho, u_body)
 
 # --- Problem 96: precession and nutation of a symmetric spinner (§844-849) ---
 
+def precession_constant(gm, s, eps, aa, cc):
+    """Euler's N = (3/2) GM (aa - cc)/(eps cc s^3) of P96 (§844), rad per time unit: aa the polar moment,
+    cc the equatorial one, eps the spin rate, F at distance s.  The mean precession is N cos n
+    (SymmetricPrecession; N cos n cc/aa with the gyroscopic ratio aa/cc)."""
+    return 1.5 * gm * (aa - cc) / (eps * cc * s**3)
+
+
 class SymmetricPrecession:
     """Euler's solution of P96 (§844) without the diurnal terms (h = 0).
 
@@ -413,3 +420,14 @@ class SymmetricPrecession:
         a = -nn * s * (1 + c) / (2 * d)
         return {"E": -nn * s * c / (2 * d), "a": a, "F_plus_G": nn * s * (1 - c) / (4 * d),
                 "growth_rate": abs(a) * d}
+
+
+def p96_initial_state(n, eps, x0, y0):
+    """(q0, body omega0) of P96's spinner: figure axis at ZA = n, XZA = 0 (orbit plane = x-y), omega =
+    eps A + A x v_A with the pole velocity v_A = eps (-y e_p + x e_lambda) of Euler's dp = -eps y dt,
+    sin p d lambda = eps x dt (§844); x0, y0 from SymmetricPrecession.coefficients (x0 = E + F)."""
+    a_hat = np.array([math.sin(n), 0.0, math.cos(n)])
+    e_p, e_lam = np.array([math.cos(n), 0.0, -math.sin(n)]), np.array([0.0, 1.0, 0.0])
+    omega_inertial = eps * a_hat + np.cross(a_hat, eps * (-y0 * e_p + x0 * e_lam))
+    q0 = np.array([math.cos(n / 2), 0.0, math.sin(n / 2), 0.0])
+    return q0, matrix_from_quat(q0).T @ omega_inertial

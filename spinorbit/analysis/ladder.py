@@ -52,3 +52,9 @@ def settings(methods, **options):
     """[(method, the ``options`` it accepts), ...]: one setting per method, e.g. step for the fixed-step
     methods and rtol/atol for the adaptive ones (the integrator classes' ``options`` decide)."""
     return [(method, {k: v for k, v in options.items() if k in get_method(method).options}) for method in methods]
+
+
+def cheapest(rows, error, level, cost="wall_s"):
+    """The row of least ``cost`` among those whose ``error`` is at most ``level`` (failed rows skipped); None if none."""
+    within = [r for r in rows if "failed" not in r and r[error] <= level]
+    return min(within, key=lambda r: r[cost]) if within else None
