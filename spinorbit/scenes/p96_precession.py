@@ -20,7 +20,7 @@ from ..constants import ARCSEC
 from ..dynamics import point_mass_system
 from ..errors import ResonanceError, ScenarioError
 from ..rotations import matrix_from_quat
-from ..scenarios import ANGLE, DISTANCE, GM, RATE, SPIN, Key
+from ..schema import ANGLE, DISTANCE, GM, RATE, SPIN, Key
 from ..verdict import Check, Verdict
 from . import common
 

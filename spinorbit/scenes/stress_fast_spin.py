@@ -25,7 +25,7 @@ from ..dynamics import point_mass_system
 from ..errors import ScenarioError
 from ..integrators import METHODS, get_method, integrate
 from ..rotations import quat_angle
-from ..scenarios import ANGLE, SPIN, Key
+from ..schema import ANGLE, SPIN, Key
 from ..verdict import Check, Verdict
 from . import common
 from .p96_precession import figure_axis, fit_angles

@@ -17,7 +17,7 @@ from ..dynamics import invariant_drift, kinetic_energy, point_mass_system, torqu
 from ..errors import ScenarioError
 from ..integrators import METHODS
 from ..rotations import quat_angle, quat_from_rotation_vector
-from ..scenarios import Key
+from ..schema import Key
 from ..theory import FreeRigidBody, axisymmetric_attitude
 from ..verdict import Check, Verdict
 from . import common

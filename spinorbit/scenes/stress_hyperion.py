@@ -23,7 +23,7 @@ import math
 import numpy as np
 
 from ..analysis.lyapunov import ensemble_mean
-from ..scenarios import DISTANCE, GM, Key
+from ..schema import DISTANCE, GM, Key
 from ..verdict import Check, Verdict
 from . import common
 from .planar_spin_orbit import (kepler_orbit, planar_lyapunov, planar_params, planar_vs_rigid_body,

@@ -24,7 +24,7 @@ import math
 import numpy as np
 
 from ..constants import ARCSEC
-from ..scenarios import DISTANCE, GM, Key
+from ..schema import DISTANCE, GM, Key
 from ..verdict import Check, Verdict
 from . import common
 from .planar_spin_orbit import forcing_coefficients, kepler_orbit, rigid_body_system, theta_from_quaternions

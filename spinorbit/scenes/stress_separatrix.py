@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from ..analysis.ladder import settings, work_precision
-from ..scenarios import DISTANCE, GM, RATE, Key
+from ..schema import DISTANCE, GM, RATE, Key
 from ..verdict import Check, Verdict
 from . import common
 from .p93_planar_libration import crossing_times, planar_system, zeta_from_solution
