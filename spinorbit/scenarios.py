@@ -189,8 +189,8 @@ class Scenario:
         """Refuse a step that would ask for too many rows, samples or steps over the span."""
         span = abs(self.t_end - self.t_start)
         steps = [(key, spec, self.values[key]) for key, spec in self.schema.items() if spec.count]
-        steps += [(f"integrator.{name}", INTEGRATOR_OPTIONS[name], self._options[name])
-                  for name in ("step", "max_step") if name in self._options]
+        steps += [(f"integrator.{name}", INTEGRATOR_OPTIONS[name], value) for name, value in self._options.items()
+                  if name in INTEGRATOR_OPTIONS and INTEGRATOR_OPTIONS[name].count]
         for key, spec, step in steps:
             limit, item_bytes = LIMITS[spec.count]
             n = span / step + 1
