@@ -3,14 +3,16 @@
 A scene module that can be benchmarked defines ``build(scenario) -> (system,
 t_out, error)``: the :class:`~spinorbit.dynamics.SpinSystem`, the output times
 (TDB days) and ``error(solution)``, the maximum attitude error in rad against
-the scene's closed form or a converged run (:func:`converged_error`).
+the scene's closed form or a converged run
+(:func:`spinorbit.analysis.ladder.converged_error`).
 
 Every registered method that ``supports`` the system is run on a ladder of
 settings: fixed-step and splitting methods at steps halving from a quarter of
 the shortest time scale (capped at the output spacing for methods that land on
 every output; rk8 is not, it interpolates with its continuous extension),
-adaptive methods at rtol = 1e-3 ... 1e-13 (atol = rtol/1000).  A method's ladder stops when a run
-takes longer than ``budget_s``, fails, or reaches the rounding floor.
+adaptive methods at rtol = 1e-3 ... 1e-13 (atol = rtol/1000).  The rows come from
+:func:`spinorbit.analysis.ladder.work_precision`; a method's ladder stops when a run takes longer
+than ``budget_s`` or reaches the rounding floor (a setting too coarse to finish is left out).
 Wall times exclude one-off compilation (each integrator warms up first).
 """
 import csv
@@ -20,26 +22,12 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import IntegrationError, ScenarioError
-from .integrators import METHODS, get_method, integrate
-from .rotations import quat_angle
+from .analysis.ladder import converged_error, work_precision  # noqa: F401  (converged_error: scenes still import it here)
+from .errors import ScenarioError
+from .integrators import METHODS, get_method
 
 COLUMNS = ("method", "kind", "order", "setting", "wall_s", "rhs_evaluations", "steps", "error_rad")
 LEVELS = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12)
-
-
-def converged_error(system, t_out, step, method="rk8"):
-    """An error function against a converged fixed-step run at ``step`` (checked against step/2).
-
-    Returns (error, agreement_rad): ``agreement_rad`` is the max attitude
-    difference between the runs at step and step/2, an upper bound of the
-    reference's own error.
-    """
-    a = integrate(system, t_out, method, step=step)
-    b = integrate(system, t_out, method, step=step / 2)
-    q_ref = b.quaternion
-    agreement = float(quat_angle(a.quaternion, q_ref).max())
-    return (lambda solution: float(quat_angle(solution.quaternion, q_ref).max())), agreement
 
 
 def time_scale(system):
@@ -57,7 +45,7 @@ def ladder(cls, system, t_out, n=14):
     Methods that land on every output time (all but rk8, which has dense output)
     start at most at the output spacing, so that the step shown is the step taken.
     """
-    if cls.kind == "adaptive":
+    if "rtol" in cls.options:
         return [{"rtol": 10.0**-k, "atol": 10.0**-k * 1e-3} for k in range(3, 14)]
     h0 = time_scale(system) / 4
     spacing = np.diff(t_out)
@@ -67,23 +55,24 @@ def ladder(cls, system, t_out, n=14):
 
 
 def run_method(name, system, t_out, error, budget_s=10.0, floor=1e-14):
-    """Rows of the work-precision table for one method."""
+    """Rows of the work-precision table for one method (a setting too coarse to finish is left out)."""
     cls = get_method(name)
-    rows, previous = [], math.inf
-    for setting in ladder(cls, system, t_out):
-        try:
-            solution = integrate(system, t_out, name, **setting)
-        except IntegrationError:
-            continue                      # too coarse to finish: try the next, finer setting
-        err = error(solution)
-        rows.append({"method": cls.name, "kind": cls.kind, "order": cls.order,
-                     "setting": ", ".join(f"{k}={v:.3g}" for k, v in setting.items()),
-                     "wall_s": solution.wall_s, "rhs_evaluations": solution.nfev, "steps": solution.nsteps,
-                     "error_rad": err})
-        if solution.wall_s > budget_s or err < floor or (err > 0.5 * previous and err < 1e-10):
-            break
-        previous = err
-    return rows
+    settings = ladder(cls, system, t_out)
+    previous = [math.inf]
+
+    def enough(row):
+        if "failed" in row:
+            return False                  # too coarse to finish: try the next, finer setting
+        err = row["error_rad"]
+        done = row["wall_s"] > budget_s or err < floor or (err > 0.5 * previous[0] and err < 1e-10)
+        previous[0] = err
+        return done
+
+    rows = work_precision(system, t_out, [(cls, s) for s in settings],
+                          lambda solution: {"error_rad": error(solution)}, until=enough)
+    return [{"method": cls.name, "kind": cls.kind, "order": cls.order,
+             "setting": ", ".join(f"{k}={v:.3g}" for k, v in setting.items()),
+             **{k: row[k] for k in COLUMNS[4:]}} for setting, row in zip(settings, rows) if "failed" not in row]
 
 
 def bench_system(system, t_out, error, methods=None, budget_s=10.0):

@@ -1,30 +1,17 @@
-"""The result of a run: an astropy QTable with a TDB time column, a summary, figures.
+"""Running a scenario: ``run_scenario``, the one entry point of the command line and notebooks.
 
-Edge module (imports astropy).  ``run_scenario`` is the one entry point used by
-the command line and by notebooks.
+Edge module (imports astropy): loads the scenario, runs its scene, and completes the scene's
+:class:`~spinorbit.run_result.RunResult` with the summary every run has (span, integrator,
+verdict, provenance; NaN turned into "not measured").
 """
 import math
 import re
-from dataclasses import dataclass, field
-from typing import Callable
 
 import numpy as np
 
 from .errors import IntegrationError
-from .scenarios import Scenario, load_scenario, tdb_days_to_time
-
-
-@dataclass
-class RunResult:
-    """``table``: QTable (``time`` column TDB + unit-carrying columns);
-    ``summary``: JSON-ready dict whose metric keys carry their unit in the name;
-    ``figures``: name -> function(matplotlib Figure) drawing one plot."""
-
-    scenario: Scenario
-    table: object
-    summary: dict
-    figures: dict[str, Callable] = field(default_factory=dict)
-    solution: object = None
+from .run_result import RunResult, attitude_table  # noqa: F401  (RunResult: scenes.common still imports it here)
+from .scenarios import Scenario, load_scenario
 
 
 def run_scenario(scenario, overrides=()):
@@ -75,20 +62,6 @@ def mark_unmeasured(summary):
 
     cleaned = clean({k: v for k, v in summary.items() if k != "not_measured"}, "")
     return {**cleaned, "not_measured": reasons} if reasons else cleaned
-
-
-def attitude_table(solution):
-    """QTable with TDB time, quaternion (body -> inertial) and body angular velocity (rad/d)."""
-    import astropy.units as units
-    from astropy.table import QTable
-
-    table = QTable()
-    table["time"] = tdb_days_to_time(solution.t)
-    for i, name in enumerate("wxyz"):
-        table[f"q_{name}"] = solution.quaternion[:, i]
-    for i, name in enumerate("xyz"):
-        table[f"omega_{name}"] = solution.omega[:, i] * units.rad / units.d
-    return table
 
 
 def partial_result(scenario, exc):

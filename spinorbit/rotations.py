@@ -196,15 +196,12 @@ def omega_body_from_euler313_rates(angles, rates):
     return np.stack([dphi * st * sp + dtheta * cp, dphi * st * cp - dtheta * sp, dphi * ct + dpsi], axis=-1)
 
 
-def euler313_rates_from_omega_body(angles, omega):
-    """Inverse of omega_body_from_euler313_rates (singular at sin theta = 0), shapes (..., 3)."""
-    angles, omega = np.asarray(angles, dtype=float), np.asarray(omega, dtype=float)
-    theta, psi = angles[..., 1], angles[..., 2]
-    st, ct, sp, cp = np.sin(theta), np.cos(theta), np.sin(psi), np.cos(psi)
-    dphi = (omega[..., 0] * sp + omega[..., 1] * cp) / st
-    dtheta = omega[..., 0] * cp - omega[..., 1] * sp
-    dpsi = omega[..., 2] - dphi * ct
-    return np.stack([dphi, dtheta, dpsi], axis=-1)
+def quat_from_rotation_vector(w):
+    """Unit quaternion(s) (..., 4) of rotation vector(s) w (..., 3): angle |w| (rad) about w/|w|."""
+    w = np.asarray(w, dtype=float)
+    angle = np.linalg.norm(w, axis=-1, keepdims=True)
+    axis = np.divide(w, angle, out=np.zeros_like(w), where=angle > 0)
+    return np.concatenate([np.cos(angle / 2), np.sin(angle / 2) * axis], axis=-1)
 
 
 def quat_from_euler313(phi, theta, psi):

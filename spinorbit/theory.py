@@ -11,7 +11,8 @@ import numpy as np
 from scipy.special import ellipj, ellipk, ellipkinc, elliprf, elliprj
 
 from .errors import PhysicsError, ResonanceError
-from .rotations import matrix_from_euler313, matrix_from_quat, quat_from_matrix
+from .rotations import (matrix_from_euler313, matrix_from_quat, quat_from_matrix, quat_from_rotation_vector,
+                        quat_multiply)
 
 _REL = 1e-13
 
@@ -151,6 +152,22 @@ class FreeRigidBody:
             r = self._m_l @ self._euler_matrix(omega[i], phi[i]).T @ self._q_perm
             out[i] = quat_from_matrix(r)
         return out
+
+
+def axisymmetric_attitude(moments, omega0, q0, t, s):
+    """Attitude (n, 4) at times t of a torque-free body symmetric about body axis s (the other two moments equal).
+
+    With body L0, q(t) = q0 E(L0 t / I_p) E((1/I_s - 1/I_p) L_s t e_s), E(w) the unit quaternion
+    of rotation vector w (the body L rotates about e_s by -(1/I_s - 1/I_p) L_s t).  Written with
+    I_p - I_s, so that it stays exact for a flattening of 1e-8 (the elliptic form loses digits there).
+    """
+    moments, omega0 = np.asarray(moments, dtype=float), np.asarray(omega0, dtype=float)
+    i_s, i_p = moments[s], moments[(s + 1) % 3]
+    l0 = moments * omega0
+    t = np.asarray(t, dtype=float)[:, None]
+    first = quat_from_rotation_vector(l0 / i_p * t)
+    second = quat_from_rotation_vector((i_p - i_s) / (i_s * i_p) * l0[s] * np.eye(3)[s] * t)
+    return np.array([quat_multiply(quat_multiply(np.asarray(q0, dtype=float), a), b) for a, b in zip(first, second)])
 
 
 # --- Problem 92: first motion of a body at rest (§820-823, §806) -------------
@@ -327,6 +344,13 @@ def pole_rates_symmetric(a_polar, c_equatorial, gamma_prime, gm, s, rho, u_body)
 
 # --- Problem 96: precession and nutation of a symmetric spinner (§844-849) ---
 
+def precession_constant(gm, s, eps, aa, cc):
+    """Euler's N = (3/2) GM (aa - cc)/(eps cc s^3) of P96 (§844), rad per time unit: aa the polar moment,
+    cc the equatorial one, eps the spin rate, F at distance s.  The mean precession is N cos n
+    (SymmetricPrecession; N cos n cc/aa with the gyroscopic ratio aa/cc)."""
+    return 1.5 * gm * (aa - cc) / (eps * cc * s**3)
+
+
 class SymmetricPrecession:
     """Euler's solution of P96 (§844) without the diurnal terms (h = 0).
 
@@ -396,3 +420,14 @@ class SymmetricPrecession:
         a = -nn * s * (1 + c) / (2 * d)
         return {"E": -nn * s * c / (2 * d), "a": a, "F_plus_G": nn * s * (1 - c) / (4 * d),
                 "growth_rate": abs(a) * d}
+
+
+def p96_initial_state(n, eps, x0, y0):
+    """(q0, body omega0) of P96's spinner: figure axis at ZA = n, XZA = 0 (orbit plane = x-y), omega =
+    eps A + A x v_A with the pole velocity v_A = eps (-y e_p + x e_lambda) of Euler's dp = -eps y dt,
+    sin p d lambda = eps x dt (§844); x0, y0 from SymmetricPrecession.coefficients (x0 = E + F)."""
+    a_hat = np.array([math.sin(n), 0.0, math.cos(n)])
+    e_p, e_lam = np.array([math.cos(n), 0.0, -math.sin(n)]), np.array([0.0, 1.0, 0.0])
+    omega_inertial = eps * a_hat + np.cross(a_hat, eps * (-y0 * e_p + x0 * e_lam))
+    q0 = np.array([math.cos(n / 2), 0.0, math.sin(n / 2), 0.0])
+    return q0, matrix_from_quat(q0).T @ omega_inertial

@@ -67,3 +67,64 @@ def test_torque_free_scene_imports_no_ephemeris_or_nbody_library(tmp_path):
     assert proc.returncode == 0, proc.stderr
     loaded = set(proc.stdout.split())
     assert not loaded & {"skyfield", "jplephem", "rebound", "reboundx", "dask", "distributed", "matplotlib"}
+
+
+def room_imports():
+    """{(room, imported room): ["file:line", ...]} over every import in the package, inside functions too.
+
+    A room is a subpackage (``scenes``, ``integrators`` ...) or a top-level module (``scenarios``, ``bench``).
+    """
+    rooms = {p.relative_to(PACKAGE).parts[0].removesuffix(".py") for p in MODULES}
+    edges = {}
+    for path in MODULES:
+        room = path.relative_to(PACKAGE).parts[0].removesuffix(".py")
+        depth = len(path.relative_to(PACKAGE).parts) - 1
+        for node in ast.walk(ast.parse(path.read_text())):
+            names = []
+            if isinstance(node, ast.Import):
+                names = [a.name.split(".")[1] for a in node.names if a.name.startswith("spinorbit.")]
+            elif isinstance(node, ast.ImportFrom) and node.level == 0 and (node.module or "").startswith("spinorbit"):
+                parts = node.module.split(".")
+                names = parts[1:2] or [a.name for a in node.names]
+            elif isinstance(node, ast.ImportFrom) and node.level > depth:      # relative, reaching the package root
+                names = [node.module.split(".")[0]] if node.module else [a.name for a in node.names]
+            for name in names:
+                if name in rooms and name != room:
+                    edges.setdefault((room, name), []).append(f"{path.relative_to(PACKAGE)}:{node.lineno}")
+    return edges
+
+
+def find_cycle(edges):
+    """One cycle [a, b, ..., a] of the directed graph, or None."""
+    graph = {}
+    for a, b in edges:
+        graph.setdefault(a, []).append(b)
+    state = {}
+
+    def visit(node, path):
+        state[node] = "open"
+        for nxt in sorted(graph.get(node, ())):
+            if state.get(nxt) == "open":
+                return path[path.index(nxt):] + [nxt]
+            if nxt not in state:
+                found = visit(nxt, path + [nxt])
+                if found:
+                    return found
+        state[node] = "done"
+        return None
+
+    for start in sorted(graph):
+        if start not in state:
+            found = visit(start, [start])
+            if found:
+                return found
+    return None
+
+
+def test_no_import_cycle_between_rooms():
+    """No cycle between rooms (imports inside functions count): each room can be read and changed from below."""
+    edges = room_imports()
+    assert ("scenes", "verdict") in edges          # the graph sees the package's imports
+    cycle = find_cycle(edges)
+    assert cycle is None, "import cycle between rooms: " + " -> ".join(cycle) + "\n" + "\n".join(
+        f"  {a} -> {b}: {', '.join(edges[a, b])}" for a, b in zip(cycle, cycle[1:]))

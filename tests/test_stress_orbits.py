@@ -54,8 +54,8 @@ def test_fast_spin_slow_orbit_integrators():
     every full-span run's precession rate agrees with it to 1e-8 and with P96's N cos n cc/aa to 1e-3 (the closed
     form is first order in N/delta = 1e-3); the splittings reach 1e-9 rad in the figure axis at steps of 0.137 d.
     The suite runs four of the scene's ten integrator runs (the scipy ones, Python per step, take minutes)."""
-    s = summary("fast_spin", 'stress.runs=[{method = "rk8", step_d = 0.125}, {method = "strang", step_d = 0.137}, '
-                             '{method = "yoshida4", step_d = 0.137}, {method = "suzuki4", step_d = 0.137}]')
+    s = summary("fast_spin", 'stress.runs=[{method = "rk8", step = 0.125}, {method = "strang", step = 0.137}, '
+                             '{method = "yoshida4", step = 0.137}, {method = "suzuki4", step = 0.137}]')
     c, runs = s["comparison"], {r["run"]: r for r in s["details"]["runs"]}
     assert c["reference_agreement_axis_rad"] < 1e-9
     assert abs(c["precession_rate_reference_rel_error"]) < 1e-3

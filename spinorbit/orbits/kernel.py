@@ -76,6 +76,7 @@ class JPLKernel:
         self.name = self.path.stem
         self._spk = _open_spk(SPK, self.path)
         self._parent = {}       # target code -> (center code, [segments])
+        self._memo = (None, {})
         for seg in self._spk.segments:
             self._parent.setdefault(seg.target, (seg.center, []))[1].append(seg)
         # a body may be split over consecutive segments (e.g. DE441): its cover is their union
@@ -101,7 +102,17 @@ class JPLKernel:
         return chain
 
     def _segment_state(self, code, t):
-        """State of ``code`` relative to its parent, km and km/day, shape (3, len(t)) each."""
+        """State of ``code`` relative to its parent, km and km/day, shape (3, len(t)) each.
+
+        Kept for the last time array asked for: sampling several bodies on one grid evaluates
+        each shared segment (e.g. the Moon's, 301 wrt 3) once."""
+        if self._memo[0] is not t:
+            self._memo = (t, {})
+        if code not in self._memo[1]:
+            self._memo[1][code] = self._evaluate(code, t)
+        return self._memo[1][code]
+
+    def _evaluate(self, code, t):
         pos, vel = np.empty((3, t.size)), np.empty((3, t.size))
         done = np.zeros(t.size, bool)
         for seg in self._parent[code][1]:

@@ -1,6 +1,6 @@
 """Scene kinds: ``scene.kind`` in a scenario -> the module that builds and compares it.
 
-Each scene module defines ``SCHEMA`` (its scenario keys, see scenarios.Key) and
+Each scene module defines ``SCHEMA`` (its scenario keys, see schema.Key) and
 ``run(scenario) -> RunResult``.  Modules are imported only when a scenario
 names them, so a scene loads nothing it does not use.
 """

@@ -12,7 +12,7 @@ from ..constants import ARCSEC
 from ..dynamics import invariant_drift, torque_free_system
 from ..errors import PhysicsError, ScenarioError
 from ..rotations import quat_angle, quat_from_euler313
-from ..scenarios import ANGLE, SPIN, Key
+from ..schema import ANGLE, SPIN, Key
 from ..verdict import Check, Verdict
 from . import common
 

@@ -11,7 +11,7 @@ import numpy as np
 
 from ..constants import ARCSEC
 from ..dynamics import point_mass_system
-from ..scenarios import DISTANCE, GM, Key
+from ..schema import DISTANCE, GM, Key
 from ..verdict import Check, Verdict
 from . import common
 

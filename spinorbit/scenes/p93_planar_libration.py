@@ -13,7 +13,7 @@ import numpy as np
 from ..constants import ARCSEC
 from ..dynamics import point_mass_system
 from ..rotations import matrix_from_quat
-from ..scenarios import DISTANCE, GM, RATE, Key
+from ..schema import DISTANCE, GM, RATE, Key
 from ..verdict import Check, Verdict
 from . import common
 

@@ -10,7 +10,7 @@ import numpy as np
 
 from ..constants import ARCSEC
 from ..errors import ScenarioError
-from ..scenarios import ANGLE, DISTANCE, GM, RATE, Key
+from ..schema import ANGLE, DISTANCE, GM, RATE, Key
 from ..verdict import Check, Verdict
 from . import common
 from .p93_planar_libration import planar_system, zeta_from_solution

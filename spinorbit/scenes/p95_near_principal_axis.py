@@ -15,7 +15,7 @@ import numpy as np
 
 from ..dynamics import point_mass_system
 from ..errors import ScenarioError
-from ..scenarios import ANGLE, DISTANCE, GM, SPIN, Key
+from ..schema import ANGLE, DISTANCE, GM, SPIN, Key
 from ..verdict import Check, Verdict
 from . import common
 

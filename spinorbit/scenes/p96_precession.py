@@ -18,9 +18,9 @@ import numpy as np
 
 from ..constants import ARCSEC
 from ..dynamics import point_mass_system
-from ..errors import ResonanceError
+from ..errors import ResonanceError, ScenarioError
 from ..rotations import matrix_from_quat
-from ..scenarios import ANGLE, DISTANCE, GM, RATE, SPIN, Key
+from ..schema import ANGLE, DISTANCE, GM, RATE, SPIN, Key
 from ..verdict import Check, Verdict
 from . import common
 
@@ -51,40 +51,43 @@ def verdict(scenario, comparison):
               versus="xza_2phi_amplitude_gyroscopic_arcsec", relative=True)))
 
 
-def initial_state(n, eps, x0, y0):
-    """Figure axis at ZA = n, XZA = 0; omega = eps A + A x v_A with the pole velocity
-    v_A = eps (-y e_p + x e_lambda) of Euler's dp = -eps y dt, sin p d lambda = eps x dt (§844)."""
-    a_hat = np.array([math.sin(n), 0.0, math.cos(n)])
-    e_p, e_lam = np.array([math.cos(n), 0.0, -math.sin(n)]), np.array([0.0, 1.0, 0.0])
-    omega_inertial = eps * a_hat + np.cross(a_hat, eps * (-y0 * e_p + x0 * e_lam))
-    q0 = np.array([math.cos(n / 2), 0.0, math.sin(n / 2), 0.0])
-    return q0, matrix_from_quat(q0).T @ omega_inertial
+def figure_axis(solution):
+    """Unit vectors (n, 3) of the body's z axis in inertial axes."""
+    return np.array([matrix_from_quat(q)[:, 2] for q in solution.quaternion])
 
 
 def figure_axis_angles(solution):
     """ZA = p and unwrapped XZA = lambda (rad) of the body's z axis."""
-    axis = np.array([matrix_from_quat(q)[:, 2] for q in solution.quaternion])
+    axis = figure_axis(solution)
     return np.arccos(np.clip(axis[:, 2], -1, 1)), np.unwrap(np.arctan2(axis[:, 1], axis[:, 0]))
 
 
-def fit(t, y, columns):
-    """Least-squares coefficients of y on the given columns."""
-    return np.linalg.lstsq(np.column_stack(columns), y, rcond=None)[0]
+def fit_angles(solution, t0, delta, eps_f, resonant=False):
+    """(dt, ZA, XZA, XZA's and ZA's least-squares coefficients), angles in rad, dt in days from t0, phi =
+    XZA - delta dt: XZA on [1, dt, sin 2phi, cos 2phi, *more], ZA on [1, cos 2phi, sin 2phi, *more], more =
+    the free nutation (cos eps_f dt, sin eps_f dt) or, ``resonant``, §849's growth (dt cos 2phi, dt sin 2phi)."""
+    dt = solution.t - t0
+    p, lam = figure_axis_angles(solution)
+    phi = lam - delta * dt
+    c2, s2, one = np.cos(2 * phi), np.sin(2 * phi), np.ones_like(dt)
+    more = [dt * c2, dt * s2] if resonant else [np.cos(eps_f * dt), np.sin(eps_f * dt)]
+    fit = [np.linalg.lstsq(np.column_stack(cols), y, rcond=None)[0]
+           for y, cols in ((lam, [one, dt, s2, c2, *more]), (p, [one, c2, s2, *more]))]
+    return dt, p, lam, *fit
 
 
 def run(scenario):
     from ..orbits.analytic import CircularOrbits
-    from ..theory import SymmetricPrecession
+    from ..theory import SymmetricPrecession, p96_initial_state, precession_constant
 
     body = common.rigid_body(scenario)
     cc, aa = body.moments[0], body.moments[2]
     if not (abs(body.moments[1] - cc) <= 1e-12 * aa and aa > cc):
-        from ..errors import ScenarioError
         raise ScenarioError("body.moments", body.moments.tolist(), "a symmetric oblate body [cc, cc, aa] with aa > cc")
     eps, n = scenario["body.spin"], scenario["body.obliquity"]
     gm, s, delta = scenario["orbit.gm"], scenario["orbit.radius"], scenario["orbit.rate"]
     t0 = scenario.t_start
-    big_n = 1.5 * gm * (aa - cc) / (eps * cc * s**3)
+    big_n = precession_constant(gm, s, eps, aa, cc)
     euler = SymmetricPrecession(eps, delta, big_n, n)
     true = SymmetricPrecession(eps, delta, big_n, n, ratio=aa / cc)
     comparison = {"N_rad_per_d": big_n, "eps_over_delta": eps / delta}
@@ -93,44 +96,30 @@ def run(scenario):
         x0, resonance = e + f, None
     except ResonanceError as exc:
         x0, resonance = 0.0, exc
-    q0, omega0 = initial_state(n, eps, x0, 0.0)
+    q0, omega0 = p96_initial_state(n, eps, x0, 0.0)
     orbit = CircularOrbits(("F",), [gm], [s], [delta], phase=[-delta * t0])
     system = point_mass_system(body.moments, orbit, q0, omega0, t0, "symmetric spinner")
     t = scenario.output_times()
     solution, point = common.simulate_scenario(scenario, system, t)
 
-    dt = solution.t - t0
-    p, lam = figure_axis_angles(solution)
-    phi = lam - delta * dt
-    c2, s2 = np.cos(2 * phi), np.sin(2 * phi)
-    nut_c, nut_s = np.cos(true.eps_f * dt), np.sin(true.eps_f * dt)
-    one = np.ones_like(dt)
+    dt, p, lam, lam_fit, p_fit = fit_angles(solution, t0, delta, true.eps_f, resonant=resonance is not None)
     if resonance is None:
-        lam_fit = fit(dt, lam, [one, dt, s2, c2, nut_c, nut_s])
-        p_fit = fit(dt, p, [one, c2, s2, nut_c, nut_s])
-        comparison.update({
-            "resonance_detected": False,
-            "precession_rate_measured_arcsec_per_d": float(-lam_fit[1] / ARCSEC),
-            "precession_rate_euler_arcsec_per_d": euler.precession_rate / ARCSEC,
-            "precession_rate_gyroscopic_arcsec_per_d": true.precession_rate / ARCSEC,
-            "precession_rate_euler_rel_error": float(euler.precession_rate / -lam_fit[1] - 1),
-            "precession_rate_gyroscopic_rel_error": float(true.precession_rate / -lam_fit[1] - 1),
-            "za_2phi_half_range_measured_arcsec": float(abs(p_fit[1]) / ARCSEC),
-            "za_2phi_half_range_euler_arcsec": euler.inequalities()["za_half_range"] / ARCSEC,
-            "za_2phi_half_range_gyroscopic_arcsec": true.inequalities()["za_half_range"] / ARCSEC,
-            "xza_2phi_amplitude_measured_arcsec": float(abs(lam_fit[2]) / ARCSEC),
-            "xza_2phi_amplitude_euler_arcsec": euler.inequalities()["xza_amplitude"] / ARCSEC,
-            "xza_2phi_amplitude_gyroscopic_arcsec": true.inequalities()["xza_amplitude"] / ARCSEC,
-            "diurnal_nutation_measured_arcsec": float(math.hypot(p_fit[3], p_fit[4]) / ARCSEC),
-        })
+        comparison.update({"resonance_detected": False,
+                           "precession_rate_measured_arcsec_per_d": float(-lam_fit[1] / ARCSEC),
+                           "za_2phi_half_range_measured_arcsec": float(abs(p_fit[1]) / ARCSEC),
+                           "xza_2phi_amplitude_measured_arcsec": float(abs(lam_fit[2]) / ARCSEC),
+                           "diurnal_nutation_measured_arcsec": float(math.hypot(p_fit[3], p_fit[4]) / ARCSEC)})
+        for name, model in (("euler", euler), ("gyroscopic", true)):
+            comparison.update({
+                f"precession_rate_{name}_arcsec_per_d": model.precession_rate / ARCSEC,
+                f"precession_rate_{name}_rel_error": float(model.precession_rate / -lam_fit[1] - 1),
+                f"za_2phi_half_range_{name}_arcsec": model.inequalities()["za_half_range"] / ARCSEC,
+                f"xza_2phi_amplitude_{name}_arcsec": model.inequalities()["xza_amplitude"] / ARCSEC})
     else:
         # §849: ZA's 2 phi term grows like |a| delta t; fit (c + g t) cos 2phi + (c' + g' t) sin 2phi.
-        p_fit = fit(dt, p, [one, c2, s2, dt * c2, dt * s2])
-        secular = euler.secular()
-        growth = math.hypot(p_fit[3], p_fit[4])
+        growth, secular = math.hypot(p_fit[3], p_fit[4]), euler.secular()
         comparison.update({
-            "resonance_detected": True,
-            "resonance_message": str(resonance),
+            "resonance_detected": True, "resonance_message": str(resonance),
             "za_2phi_growth_measured_arcsec_per_d": growth / ARCSEC,
             "za_2phi_growth_euler_849_arcsec_per_d": secular["growth_rate"] / ARCSEC,
             "za_2phi_growth_rel_error": growth / secular["growth_rate"] - 1,

@@ -10,7 +10,8 @@ Two realisations share the initial conditions: ``rigid_body_system`` is the
 full 3-D rigid body (dynamics.make_rigid_body_rhs, quaternion + omega) on a
 ``KeplerOrbit``; ``planar_rhs`` is the one-angle model above, compiled, for
 any number of independent copies at once (state [theta_0, theta'_0, theta_1,
-...]), used where many trajectories share one orbit (Lyapunov maps).
+...]), used where many trajectories share one orbit (Lyapunov maps: ``planar_lyapunov``, with
+analysis.lyapunov).
 Times in days, angles in rad; the orbit has periapsis on the inertial x axis
 and mean anomaly 0 at ``t0``.
 """
@@ -19,7 +20,10 @@ import math
 import numpy as np
 from numba import njit
 
+from ..analysis.lyapunov import benettin, compiled_flow, displaced, scipy_flow, system_flow
 from ..dynamics import point_mass_system
+from ..integrators import integrate
+from ..integrators.rk8 import fixed_step
 from ..orbits.analytic import KeplerOrbit, eccentric_anomaly
 from ..rotations import matrix_from_quat
 
@@ -80,3 +84,31 @@ def forcing_coefficients(e, k_max=8, samples=4096):
     c = np.cos(3 * m - 2 * f) / r**3
     k = np.arange(1, k_max + 1)
     return 2 * np.mean(s * np.sin(np.outer(k, m)), axis=1), float(np.mean(c))
+
+
+def planar_lyapunov(p, theta0, rate0, t0, period, orbits, steps, d0, method="rk8"):
+    """Running exponents (orbits, n_starts) in 1/T for starts theta0, rate0 (rad, rad/d): all starts and
+    neighbours in one vector of planar_rhs copies; ``method`` "rk8" (``steps`` per period) or "dop853"."""
+    theta0, rate0 = np.broadcast_arrays(np.atleast_1d(theta0).astype(float), np.atleast_1d(rate0).astype(float))
+    scale = np.array([1.0, p[0]])
+    advance = (compiled_flow(planar_rhs, p, t0, period, period / steps) if method == "rk8"
+               else scipy_flow(planar_rhs, p, t0, period))
+    return benettin(advance, displaced(np.column_stack([theta0, rate0]), d0, scale), d0, orbits, scale)
+
+
+def rigid_body_lyapunov(system, period, orbits, steps, d0):
+    """Running exponent (orbits,) in 1/T of a 3-D SpinSystem, distance |(2 dq, d omega/n)|."""
+    scale = np.array([0.5] * 4 + [2 * math.pi / period] * 3)
+    advance = system_flow(system, period, "rk8", step=period / steps)
+    return benettin(advance, displaced(system.y0, d0, scale), d0, orbits, scale)[:, 0]
+
+
+def planar_vs_rigid_body(moments, orbit, p, t0, period, start):
+    """(max |theta_planar - theta_3D| (rad) over 5 orbits, the 3-D SpinSystem) from start = (theta - f, theta'/n)
+    at periapsis: the planar model against the 3-D body of ``moments`` kept in the plane."""
+    n = p[0]
+    t = t0 + np.linspace(0.0, 5 * period, 501)
+    system = rigid_body_system(moments, orbit, t0, start[0], start[1] * n)
+    body = integrate(system, t, "rk8", step=period / 512)
+    planar = fixed_step(planar_rhs, p, t0, [start[0], start[1] * n], t, period / 512)
+    return float(np.abs(theta_from_quaternions(body.quaternion) - planar[:, 0]).max()), system

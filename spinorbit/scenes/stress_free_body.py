@@ -1,33 +1,24 @@
 """Stress cases of the torque-free rigid body (Euler ch. 15 §808), each passing or failing on a number.
 
-``stress.case``:
-
-* ``flip`` — intermediate-axis flips (I = 0.3, 0.35, 0.4; omega0 = 0.1, 15, 0.1 rad/d):
-  the flip period measured over ``stress.flips`` flips (zero crossings of w_y)
-  against the closed-form period 4 K(k^2)/... of theory.FreeRigidBody (12.335 d).
-* ``degenerate`` — A = B = C exactly under a point-mass torque (the torque must be
-  exactly zero, no NaN: uniform rotation) and A = B (1 + 1e-12) torque-free
-  against the axisymmetric closed form.
-* ``shapes`` — prolate (A < B = C) and oblate (A = B < C) bodies with (C - A)/C
-  from 1e-8 to 0.9 against the axisymmetric closed form (below).
-* ``long_run`` — ``stress.steps`` steps of the HLW body per method: drift of |L|
-  and of the energy (first and last tenth of the run), bounded for the splitting.
-
-Axisymmetric closed form (symmetry axis s, other moment I_p): with body L0,
-q(t) = q0 * E(L0 t / I_p) * E((1/I_s - 1/I_p) L_s t e_s), E(w) the unit
-quaternion of rotation vector w, and body L rotating about e_s by
--(1/I_s - 1/I_p) L_s t.  Written with I_p - I_s so that it stays exact for a
-flattening of 1e-8 (the general elliptic form loses digits there).
+``stress.case``: ``flip`` (intermediate-axis flips of I = 0.3, 0.35, 0.4, omega0 = 0.1, 15, 0.1 rad/d:
+the period over ``stress.flips`` flips of w_y vs theory.FreeRigidBody, 12.335 d); ``degenerate``
+(A = B = C under a point-mass torque: exactly zero torque, uniform rotation; A = B (1 + 1e-12)
+torque-free vs theory.axisymmetric_attitude); ``shapes`` (prolate and oblate, (C - A)/C = 1e-8 ... 0.9,
+vs theory.axisymmetric_attitude); ``long_run`` (``stress.steps`` steps of the HLW body: drift of |L|
+and of the energy, first and last tenth, bounded for the splittings).  Every case runs its methods
+through analysis.ladder.work_precision.
 """
 import math
 
 import numpy as np
 
+from ..analysis.ladder import settings, work_precision
 from ..dynamics import invariant_drift, kinetic_energy, point_mass_system, torque_free_system
 from ..errors import ScenarioError
-from ..integrators import integrate
-from ..rotations import quat_angle, quat_multiply
-from ..scenarios import Key
+from ..integrators import METHODS
+from ..rotations import quat_angle, quat_from_rotation_vector
+from ..schema import Key
+from ..theory import FreeRigidBody, axisymmetric_attitude
 from ..verdict import Check, Verdict
 from . import common
 
@@ -48,146 +39,111 @@ Q0 = np.array([1.0, 0.0, 0.0, 0.0])
 L_ROUNDING = 1e-11
 CHECKS = {
     "flip": "intermediate-axis flip period over many flips vs closed form; passes within 1e-3 relative",
-    "degenerate": "A = B = C: torque exactly 0, no NaN, uniform rotation; A = B(1 + 1e-12): attitude vs "
-                  "axisymmetric closed form; passes below 1e-9 rad",
-    "shapes": "prolate/oblate, (C - A)/C = 1e-8 ... 0.9: attitude vs axisymmetric closed form; passes below 1e-9 rad",
-    "long_run": "|L| and energy drift over many steps; passes if the splitting keeps |L| to 1e-11 and its energy "
-                "error in the last tenth is below twice that of the first tenth (no secular growth)",
-}
+    "degenerate": "A = B = C: torque exactly 0, uniform rotation; A = B(1 + 1e-12) vs closed form; passes below 1e-9 rad",
+    "shapes": "prolate/oblate, (C - A)/C = 1e-8 ... 0.9 vs axisymmetric closed form; passes below 1e-9 rad",
+    "long_run": "|L| and energy drift over many steps; passes if the splittings keep |L| to 1e-11 and their energy "
+                "error in the last tenth below twice that of the first (no secular growth)"}
 
 
-def _exp(w):
-    """Unit quaternion of the rotation vector w (..., 3)."""
-    angle = np.linalg.norm(w, axis=-1, keepdims=True)
-    axis = np.divide(w, angle, out=np.zeros_like(w), where=angle > 0)
-    return np.concatenate([np.cos(angle / 2), np.sin(angle / 2) * axis], axis=-1)
+def ok(rows):
+    return [r for r in rows if "failed" not in r]     # the rows that ran (a failed run fails its case)
 
 
-def axisymmetric_attitude(moments, omega0, q0, t, s):
-    """Closed-form attitude (n, 4) of a body symmetric about axis s (the other two moments equal)."""
-    i_s = moments[s]
-    i_p = moments[(s + 1) % 3]
-    l0 = moments * omega0
-    e_s = np.eye(3)[s]
-    t = np.asarray(t)[:, None]
-    first = _exp(l0 / i_p * t)
-    second = _exp((i_p - i_s) / (i_s * i_p) * l0[s] * e_s * t)
-    return np.array([quat_multiply(quat_multiply(q0, a), b) for a, b in zip(first, second)])
-
-
-def _options(method, step):
-    return {} if method in ("dop853", "radau", "rk45") else {"step": step}
+def attitude_error(exact):
+    return lambda solution: {"attitude_error_max_rad": float(quat_angle(solution.quaternion, exact).max())}
 
 
 def flip(scenario):
-    from ..theory import FreeRigidBody
-
     moments, omega0 = scenario["body.moments"], scenario["body.omega0"]
     period = FreeRigidBody(moments, omega0, Q0).period
     t = np.arange(0.0, (scenario["stress.flips"] + 1.5) * period / 2, 0.005)
-    system = torque_free_system(moments, Q0, omega0)
-    rows = {}
-    for method in scenario["stress.methods"]:
-        sol = integrate(system, t, method, **_options(method, 0.005))
+
+    def measured(sol):
         wy = sol.omega[:, 1]
         i = np.nonzero(np.sign(wy[:-1]) != np.sign(wy[1:]))[0]
         crossing = t[i] - wy[i] * (t[i + 1] - t[i]) / (wy[i + 1] - wy[i])
         flips = crossing.size - 1
-        measured = 2 * (crossing[-1] - crossing[0]) / flips
-        rows[method] = {"flips": int(flips), "period_measured_d": float(measured),
-                        "period_rel_error_vs_closed_form": float(measured / period - 1), "wall_s": sol.wall_s}
-    worst = max(abs(r["period_rel_error_vs_closed_form"]) for r in rows.values())
-    comparison = {"period_closed_form_d": period, "period_design_reference_d": 12.335,
-                  "period_rel_error_max": worst, "passed": bool(worst < 1e-3 and
-                                                                 min(r["flips"] for r in rows.values()) >= scenario["stress.flips"])}
-    return comparison, {"methods": rows}, system, t
+        period_d = float(2 * (crossing[-1] - crossing[0]) / flips)
+        return {"flips": int(flips), "period_measured_d": period_d, "period_rel_error_vs_closed_form": period_d / period - 1}
+
+    rows = work_precision(torque_free_system(moments, Q0, omega0), t, settings(scenario["stress.methods"], step=5e-3), measured)
+    worst = max(abs(r["period_rel_error_vs_closed_form"]) for r in ok(rows))
+    passed = len(ok(rows)) == len(rows) and worst < 1e-3 and min(r["flips"] for r in rows) >= scenario["stress.flips"]
+    return {"period_closed_form_d": period, "period_design_reference_d": 12.335, "period_rel_error_max": worst,
+            "passed": bool(passed)}, {"methods": {r["method"]: r for r in rows}}
 
 
 def degenerate(scenario):
     from ..orbits.analytic import CircularOrbits
-
     orbit = CircularOrbits(("F",), [1.0], [1.0], [0.7], inclination=[0.4])
     omega0 = np.array([0.3, -0.2, 2.0])
     t = np.linspace(0.0, 100.0, 201)
+    sphere = point_mass_system(np.ones(3), orbit, Q0, omega0)
+    torque_max = float(np.abs([sphere.torque(ti, sphere.y0, sphere.params) for ti in t]).max())
+    cases = (("sphere", sphere, quat_from_rotation_vector(omega0 * t[:, None])),     # uniform rotation
+             ("a_eq_b_1e-12", torque_free_system(np.array([1.0, 1.0 + 1e-12, 1.3]), Q0, omega0),
+              axisymmetric_attitude(np.array([1.0, 1.0, 1.3]), omega0, Q0, t, 2)))
     rows = {}
-    for label, moments in (("sphere", np.ones(3)), ("a_eq_b_1e-12", np.array([1.0, 1.0 + 1e-12, 1.3]))):
-        if label == "sphere":
-            system = point_mass_system(moments, orbit, Q0, omega0)
-            exact = _exp(omega0 * t[:, None])              # uniform rotation about a fixed axis
-            torque_max = float(np.abs([system.torque(ti, system.y0, system.params) for ti in t]).max())
-        else:
-            system = torque_free_system(moments, Q0, omega0)
-            exact = axisymmetric_attitude(np.array([1.0, 1.0, 1.3]), omega0, Q0, t, 2)
-        for method in scenario["stress.methods"]:
-            sol = integrate(system, t, method, **_options(method, 0.01))
-            rows[f"{label}/{method}"] = {"attitude_error_max_rad": float(quat_angle(sol.quaternion, exact).max()),
-                                         "finite": bool(np.all(np.isfinite(sol.y)))}
-    worst = max(r["attitude_error_max_rad"] for r in rows.values())
-    comparison = {"sphere_torque_max": torque_max, "attitude_error_max_rad": worst,
-                  "passed": bool(torque_max == 0.0 and worst < 1e-9 and all(r["finite"] for r in rows.values()))}
-    return comparison, {"methods": rows}, system, t
+    for label, system, exact in cases:
+        for r in work_precision(system, t, settings(scenario["stress.methods"], step=0.01), attitude_error(exact)):
+            rows[f"{label}/{r['method']}"] = {**r, "finite": "failed" not in r}
+    worst = max(r["attitude_error_max_rad"] for r in ok(rows.values()))
+    return {"sphere_torque_max": torque_max, "attitude_error_max_rad": worst,
+            "passed": bool(torque_max == 0.0 and worst < 1e-9 and all(r["finite"] for r in rows.values()))}, {"methods": rows}
 
 
 def shapes(scenario):
     t = np.linspace(0.0, 100.0, 201)
-    rows, worst = {}, 0.0
+    rows = {}
     for f in scenario["stress.flattenings"]:
         for shape, moments, omega0, s in (("oblate", [1 - f, 1 - f, 1.0], [0.3, 0.2, 2.0], 2),
                                           ("prolate", [1 - f, 1.0, 1.0], [2.0, 0.3, 0.2], 0)):
             moments, omega0 = np.array(moments), np.array(omega0)
-            system = torque_free_system(moments, Q0, omega0)
             exact = axisymmetric_attitude(moments, omega0, Q0, t, s)
-            for method in scenario["stress.methods"]:
-                sol = integrate(system, t, method, **_options(method, 0.01))
-                err = float(quat_angle(sol.quaternion, exact).max())
-                rows[f"{shape}/{f:g}/{method}"] = err
-                worst = max(worst, err)
-    return {"attitude_error_max_rad": worst, "passed": bool(worst < 1e-9)}, {"attitude_error_max_rad": rows}, system, t
+            for r in work_precision(torque_free_system(moments, Q0, omega0), t,
+                                    settings(scenario["stress.methods"], step=0.01), attitude_error(exact)):
+                rows[f"{shape}/{f:g}/{r['method']}"] = r.get("attitude_error_max_rad", math.inf)
+    worst = max(rows.values())
+    return {"attitude_error_max_rad": worst, "passed": bool(worst < 1e-9)}, {"attitude_error_max_rad": rows}
 
 
 def long_run(scenario):
     moments = np.array([2 / 3, 1.0, 2.0])
     omega0 = np.array([math.sin(1.1), 0.0, math.cos(1.1)]) / moments
-    system = torque_free_system(moments, Q0, omega0)
     h, steps = 0.1, scenario["stress.steps"]
     t = np.linspace(0.0, h * steps, 10001)
-    rows = {}
-    for method in scenario["stress.methods"]:
-        if method in ("dop853", "radau", "rk45"):
-            continue                                   # never 1e7 steps of scipy
-        sol = integrate(system, t, method, step=h)
+    tenth = t.size // 10
+
+    def drift(sol):
         energy = kinetic_energy(moments, sol.omega)
         de = np.abs(energy / energy[0] - 1)
-        tenth = t.size // 10
-        rows[method] = {"steps": sol.nsteps, "wall_s": sol.wall_s, **invariant_drift(moments, sol.y),
-                        "energy_error_first_tenth": float(de[:tenth].max()),
-                        "energy_error_last_tenth": float(de[-tenth:].max())}
+        return {**invariant_drift(moments, sol.y), "energy_error_first_tenth": float(de[:tenth].max()),
+                "energy_error_last_tenth": float(de[-tenth:].max())}
+
+    fixed_step = [(m, o) for m, o in settings(scenario["stress.methods"], step=h) if o]   # never 1e7 steps of scipy
+    rows = {r["method"]: r for r in work_precision(torque_free_system(moments, Q0, omega0), t, fixed_step, drift)}
     split = [r for m, r in rows.items() if m in ("strang", "yoshida4", "suzuki4")]
-    passed = bool(split) and all(r["L_norm_rel_drift"] < L_ROUNDING and
-                                 r["energy_error_last_tenth"] < 2 * r["energy_error_first_tenth"] for r in split)
-    comparison = {"steps": steps, "L_norm_rel_drift_max_splitting": max(r["L_norm_rel_drift"] for r in split),
-                  "passed": passed}
-    return comparison, {"methods": rows}, system, t
+    passed = bool(split) and len(ok(split)) == len(split) and all(r["L_norm_rel_drift"] < L_ROUNDING and
+                                                                  r["energy_error_last_tenth"] < 2 * r["energy_error_first_tenth"] for r in split)
+    return {"steps": steps, "L_norm_rel_drift_max_splitting": max(r["L_norm_rel_drift"] for r in ok(split)),
+            "passed": passed}, {"methods": rows}
 
 
 def build(scenario):
     """For ``spinorbit bench``: the case's torque-free system (flip: closed-form period reference)."""
-    from ..theory import FreeRigidBody
-
     moments, omega0 = scenario["body.moments"], scenario["body.omega0"]
     system = torque_free_system(moments, Q0, omega0)
     t = scenario.output_times()
-    q_exact = FreeRigidBody(moments, omega0, Q0).attitude(t - scenario.t_start)
-    return system, t, lambda solution: float(quat_angle(solution.quaternion, q_exact).max())
+    error = attitude_error(FreeRigidBody(moments, omega0, Q0).attitude(t - scenario.t_start))
+    return system, t, lambda solution: error(solution)["attitude_error_max_rad"]
 
 
 def run(scenario):
     case = scenario["stress.case"]
     for method in scenario["stress.methods"]:
-        if not isinstance(method, str):
-            raise ScenarioError("stress.methods", method, "method names, e.g. ['rk8', 'strang']")
-    comparison, details, system, t = {"flip": flip, "degenerate": degenerate, "shapes": shapes,
-                                      "long_run": long_run}[case](scenario)
+        if not isinstance(method, str) or method not in METHODS:
+            raise ScenarioError("stress.methods", method, f"method names, of {sorted(METHODS)}")
+    comparison, details = {"flip": flip, "degenerate": degenerate, "shapes": shapes, "long_run": long_run}[case](scenario)
     comparison = {"checks": CHECKS[case], **comparison}
     summary = {"comparison": comparison, "details": details, "run": {"method": ",".join(scenario["stress.methods"])}}
     return common.result(scenario, None, summary, {}, None)

@@ -3,42 +3,31 @@
 Planar spin-orbit on a Kepler ellipse (e = 0.1, (B - A)/C = 0.26; Wisdom, Peale
 & Mignard 1984) and the full 3-D rigid body (Euler ch. 15 §808 + ch. 16 P91).
 
-Method (Benettin et al. 1980): a reference and a neighbour trajectory started
-d0 apart in the scaled phase space (theta, theta'/n) -- in 3-D (2 q, omega/n)
--- are integrated together; every orbital period T their distance d is
-measured, ln(d/d0) accumulated and the neighbour pulled back to distance d0
-along the same direction.  lambda(t) = sum ln(d/d0) / t, in units of 1/T.
-For a regular orbit d grows at most linearly, so lambda(t) ~ ln(t)/t -> 0; a
-chaotic orbit gives a positive limit.
+Method: analysis.lyapunov (Benettin et al. 1980), a reference and a neighbour d0 apart in the scaled
+phase space (theta, theta'/n) -- in 3-D (2 q, omega/n) -- renormalised every orbital period T;
+lambda in units of 1/T.
 
-The scene checks (a) a regular orbit (small (B - A)/C, synchronous start)
-whose lambda falls like ln t/t (halves from T to 2T) below ``lyapunov.regular_max``; (b) the nominal
-Hyperion start: lambda clearly positive and the same over two integration
-lengths (rk8) and with a second integrator (scipy DOP853); (c) the 3-D exponent of the same start (planar
-reference, neighbour displaced out of the plane too).  It maps lambda over a
-grid of initial (theta - f, theta'/n) at periapsis (PNG) and reports the
-chaotic fraction; and it checks the planar model against the 3-D body
-restricted to the plane once.
+The scene checks (a) a regular orbit (small (B - A)/C, synchronous start) whose lambda falls like
+ln t/t (halves from T to 2T) below ``lyapunov.regular_max``; (b) the nominal Hyperion start: lambda
+clearly positive and the same over two integration lengths (rk8) and with scipy's DOP853; (c) the 3-D
+exponent of the same start.  It maps lambda over a grid of initial (theta - f, theta'/n) at periapsis
+(PNG) with the chaotic fraction, and checks the planar model against the 3-D body in the plane once.
 
-A finite-time exponent of a chaotic orbit is a random variable: rounding (a
-different machine, library or integrator) changes the trajectory after a few
-Lyapunov times, and the estimate with it.  So (b) measures an ensemble of
-``lyapunov.ensemble`` starts 1e-3 rad apart around the nominal start (they
-decorrelate within ~50 periods) and compares ensemble means within
-``lyapunov.max_sigma`` of their standard errors, which come from the ensemble's
-own spread.
+A finite-time exponent of a chaotic orbit is a random variable: rounding (another machine, library or
+integrator) changes the trajectory after a few Lyapunov times, and the estimate with it.  So (b) takes
+an ensemble of ``lyapunov.ensemble`` starts 1e-3 rad apart around the nominal one (decorrelated within
+~50 periods) and compares ensemble means within ``lyapunov.max_sigma`` of their own standard errors.
 """
-import dataclasses
 import math
 
 import numpy as np
 
-from ..integrators import integrate
-from ..integrators.rk8 import fixed_step
-from ..scenarios import DISTANCE, GM, Key
+from ..analysis.lyapunov import ensemble_mean
+from ..schema import DISTANCE, GM, Key
 from ..verdict import Check, Verdict
 from . import common
-from .planar_spin_orbit import kepler_orbit, planar_params, planar_rhs, rigid_body_system, theta_from_quaternions
+from .planar_spin_orbit import (kepler_orbit, planar_lyapunov, planar_params, planar_vs_rigid_body,
+                                rigid_body_lyapunov)
 
 
 def verdict(scenario, comparison):
@@ -75,68 +64,6 @@ SCHEMA = {
 }
 
 
-def planar_lyapunov(p, theta0, rate0, t0, period, orbits, steps, d0, method="rk8"):
-    """Running exponents (orbits, n_starts) in 1/T for starts theta0, rate0 (rad, rad/d), Benettin.
-
-    All starts and their neighbours are one state vector of planar_rhs copies
-    (they share the orbit); ``method`` "rk8" (compiled fixed step, ``steps`` per
-    period) or "dop853" (scipy, rtol 1e-12).
-    """
-    from scipy.integrate import solve_ivp
-
-    n = p[0]
-    theta0, rate0 = np.broadcast_arrays(np.atleast_1d(theta0).astype(float), np.atleast_1d(rate0).astype(float))
-    y = np.empty(4 * theta0.size)
-    y[0::4], y[1::4] = theta0, rate0
-    y[2::4], y[3::4] = theta0 + d0 / math.sqrt(2), rate0 + n * d0 / math.sqrt(2)
-    logs, running = np.zeros(theta0.size), np.empty((orbits, theta0.size))
-    t = t0
-    for k in range(orbits):
-        if method == "rk8":
-            y = fixed_step(planar_rhs, p, t, y, [t + period], period / steps)[0]
-        else:
-            y = solve_ivp(planar_rhs, (t, t + period), y, "DOP853", args=(p,), rtol=1e-12, atol=1e-12).y[:, -1]
-        t += period
-        d_theta, d_rate = y[2::4] - y[0::4], (y[3::4] - y[1::4]) / n
-        d = np.hypot(d_theta, d_rate)
-        logs += np.log(d / d0)
-        running[k] = logs / (k + 1)
-        y[2::4], y[3::4] = y[0::4] + d_theta * d0 / d, y[1::4] + n * d_rate * d0 / d
-    return running
-
-
-def ensemble_mean(exponents):
-    """(mean, standard error of the mean) of independent finite-time exponents."""
-    return float(np.mean(exponents)), float(np.std(exponents, ddof=1) / math.sqrt(exponents.size))
-
-
-def rigid_body_lyapunov(system, period, orbits, steps, d0):
-    """Running exponent (orbits,) in 1/T of a 3-D SpinSystem, Benettin with distance |(2 dq, d omega/n)|."""
-    n = 2 * math.pi / period
-    weights = np.array([2, 2, 2, 2, 1 / n, 1 / n, 1 / n])
-    a, b = system.y0.copy(), system.y0 + d0 / weights / math.sqrt(7)
-    t, logs, running = system.t0, 0.0, np.empty(orbits)
-    for k in range(orbits):
-        a, b = (integrate(dataclasses.replace(system, t0=t, y0=y), [t, t + period], "rk8",
-                          step=period / steps).y[-1] for y in (a, b))
-        t += period
-        d = float(np.linalg.norm(weights * (b - a)))
-        logs += math.log(d / d0)
-        running[k] = logs / (k + 1)
-        b = a + (b - a) * d0 / d
-    return running
-
-
-def planar_vs_rigid_body(scenario, p, orbit, period, start):
-    """Max |theta_planar - theta_3D| (rad) over 5 orbits from the nominal start (3-D body kept in the plane)."""
-    t0, n = scenario.t_start, p[0]
-    t = t0 + np.linspace(0.0, 5 * period, 501)
-    system = rigid_body_system(scenario["body.moments"], orbit, t0, start[0], start[1] * n)
-    body = integrate(system, t, "rk8", step=period / 512)
-    planar = fixed_step(planar_rhs, p, t0, [start[0], start[1] * n], t, period / 512)
-    return float(np.abs(theta_from_quaternions(body.quaternion) - planar[:, 0]).max()), system
-
-
 def lyapunov_map(scenario, p, period):
     """(theta grid, rate/n grid, exponent (n_rate, n_theta) in 1/T) at periapsis after map.orbits periods."""
     n_theta, n_rate = (int(v) for v in scenario["map.grid"])
@@ -166,15 +93,11 @@ def run(scenario):
     moments = scenario["body.moments"]
     gamma = (moments[1] - moments[0]) / moments[2]
     gm, a, e = scenario["orbit.gm"], scenario["orbit.a"], scenario["orbit.e"]
-    t0 = scenario.t_start
-    n = math.sqrt(gm / a**3)
-    period = 2 * math.pi / n
-    orbit = kepler_orbit(gm, a, e, t0)
-    p = planar_params(n, e, t0, gamma)
-    start = scenario["lyapunov.start"]
+    t0, n, start = scenario.t_start, math.sqrt(gm / a**3), scenario["lyapunov.start"]
+    period, orbit, p = 2 * math.pi / n, kepler_orbit(gm, a, e, t0), planar_params(n, e, t0, gamma)
     orbits, steps, d0 = scenario["lyapunov.orbits"], scenario["lyapunov.steps_per_orbit"], scenario["lyapunov.d0"]
 
-    planar_error, system = planar_vs_rigid_body(scenario, p, orbit, period, start)
+    planar_error, system = planar_vs_rigid_body(moments, orbit, p, t0, period, start)
     regular_orbits = scenario["lyapunov.regular_orbits"]
     regular = planar_lyapunov(planar_params(n, e, t0, scenario["lyapunov.regular_gamma"]), 0.0, n, t0, period,
                               regular_orbits, steps, d0)[:, 0]

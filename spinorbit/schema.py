@@ -1,0 +1,158 @@
+"""What a scenario key may hold, and how a TOML value becomes a number in internal units.
+
+Edge module (imports astropy), below ``scenarios`` and ``scenes``: a scene declares its keys
+with :class:`Key` and the shared plausible ranges here; ``scenarios`` reads the file and checks
+it against the scene's keys.  Quantities are strings with units, parsed by astropy
+(``"384400 km"``, ``"13.18 deg/d"``); bare numbers only for dimensionless keys; times are
+ISO strings in TDB, TDB days from J2000.0 inside.
+"""
+import math
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from .constants import J2000_JD
+from .errors import ScenarioError
+
+REQUIRED = object()
+MAX_TEXT = 10_000              # characters in a string value
+EPS = float(np.finfo(float).eps)
+# Plausible ranges scenes share, in internal units: Key(**GM, help=...).
+GM = dict(unit="km3/d2", positive=True, max=1e22)        # up to ~10 solar masses
+DISTANCE = dict(unit="km", min=1.0, max=1e12)            # 1 km to ~7000 au
+RATE = dict(unit="rad/d", min=-1e3, max=1e3)             # orbital rates (Phobos: 20 rad/d)
+SPIN = dict(unit="rad/d", min=-1e6, max=1e6)             # spin rates, up to ~160 000 turns a day
+ANGLE = dict(unit="rad", min=-2 * math.pi, max=2 * math.pi)
+SAMPLE_STEP = dict(unit="d", positive=True, max=10.0, count="orbit samples")
+
+
+@dataclass(frozen=True)
+class Key:
+    """One accepted scenario key.
+
+    ``unit``: internal unit a quantity is converted to (None: not a quantity,
+    "" : dimensionless); ``size``: vector length (0 for a scalar);
+    ``choices``: accepted strings; ``type``: python type for non-quantities.
+    ``min``/``max``: plausible range of a number (in ``unit``), inclusive;
+    ``positive``: must be > 0; ``count``: a step whose number over the span is
+    limited (a key of ``LIMITS``); ``direction``: a vector the scene normalises
+    (non-zero, with a finite length).
+    """
+
+    unit: str | None = None
+    default: object = REQUIRED
+    size: int = 0
+    choices: tuple = ()
+    type: type = float
+    help: str = ""
+    min: float = -math.inf
+    max: float = math.inf
+    positive: bool = False
+    count: str = ""
+    direction: bool = False
+
+    def accepted(self):
+        if self.choices:
+            return f"one of {list(self.choices)}"
+        if self.unit:
+            what = f"a list of {self.size} quantities" if self.size else "a quantity"
+            return f"{what} in units convertible to '{self.unit}', e.g. \"1.0 {self.unit}\""
+        if self.unit == "":
+            return f"a list of {self.size} numbers" if self.size else "a number"
+        return f"a value of type {self.type.__name__}"
+
+    def check_range(self, key, value, given):
+        """Raise ScenarioError unless ``value`` (in ``unit``) is finite and inside the range."""
+        inside = self.min <= value <= self.max and (value > 0 or not self.positive)
+        if math.isfinite(value) and inside:
+            return
+        what = "a finite quantity" if self.unit else "a finite number"
+        if self.positive or math.isfinite(self.min) or math.isfinite(self.max):
+            low = "(0" if self.positive and self.min <= 0 else \
+                "(-inf" if math.isinf(self.min) else f"[{self.min:g}"
+            high = f"{self.max:g}]" if math.isfinite(self.max) else "inf)"
+            what += f" in {low}, {high}" + (f" {self.unit}" if self.unit else "")
+        raise ScenarioError(key, given, what)
+
+
+# integrator.<option> keys are passed to the chosen method, which checks their names;
+# the known ones are checked here first.  scipy silently raises rtol below 100 eps, and
+# looser than 1e-3 (scipy's own default) an attitude run is nonsense (rtol 0.1 on
+# p93_bounded: zeta off by 62 deg); atol below 1e-20 is under the rounding of any state.
+INTEGRATOR_OPTIONS = {
+    "rtol": Key(unit="", min=100 * EPS, max=1e-3, help="relative tolerance"),
+    "atol": Key(unit="", min=1e-20, max=1e-3, help="absolute tolerance"),
+    "max_step": Key(unit="", positive=True, count="adaptive steps (at max_step)", help="largest step, days"),
+    "step": Key(unit="d", positive=True, count="integrator steps", help="fixed step"),
+}
+
+
+def parse_tdb_days(key, text):
+    """ISO time string (TDB) -> days from J2000.0 TDB."""
+    from astropy.time import Time
+
+    if not isinstance(text, str) or not text[:1].isdigit() or "-" not in text[1:]:
+        raise ScenarioError(key, text, "an ISO time in TDB, e.g. '2000-01-01T12:00:00'")
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")          # e.g. ERFA's "dubious year": refuse, do not print
+            t = Time(text, scale="tdb")
+            days = (t.jd1 - J2000_JD) + t.jd2
+    except (ValueError, TypeError, ArithmeticError, Warning):
+        raise ScenarioError(key, text, "an ISO time in TDB, e.g. '2000-01-01T12:00:00'") from None
+    if not math.isfinite(days):
+        raise ScenarioError(key, text, "an ISO time in TDB, e.g. '2000-01-01T12:00:00'")
+    return days
+
+
+def tdb_days_to_time(t_days):
+    """TDB days from J2000.0 -> astropy Time (scale TDB)."""
+    from astropy.time import Time
+
+    return Time(J2000_JD, np.asarray(t_days), format="jd", scale="tdb")
+
+
+def to_float(key, value, unit):
+    """A TOML value (number or quantity string) as a float in ``unit``."""
+    import astropy.units as u
+
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        raise ScenarioError(key, value, f"a quantity in '{unit}'" if unit else "a number")
+    if isinstance(value, (int, float)):
+        if unit:
+            example = value if len(str(value)) <= 20 else 1.0
+            raise ScenarioError(key, value, f"a quantity with a unit convertible to '{unit}', e.g. \"{example} {unit}\"")
+        return finite_float(key, value)
+    example = f'"1.0 {unit}"' if unit else "1.0"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")          # astropy's unit and overflow warnings: refuse, do not print
+        try:
+            quantity = u.Quantity(value)
+        except (TypeError, ValueError, ArithmeticError, LookupError, RecursionError, Warning):
+            raise ScenarioError(key, value, f"a quantity such as {example}") from None
+        if not quantity.isscalar:
+            raise ScenarioError(key, value, f"a single quantity such as {example}")
+        try:
+            return float(quantity.to_value(unit or u.dimensionless_unscaled, equivalencies=u.dimensionless_angles() if unit and "rad" in unit else []))
+        except (u.UnitsError, TypeError, ValueError):
+            raise ScenarioError(key, value, f"units convertible to '{unit or 'dimensionless'}'") from None
+        except (ArithmeticError, Warning):
+            raise ScenarioError(key, value, "a finite quantity (this one overflows)") from None
+
+
+def finite_float(key, value):
+    """float(value), refusing integers too large for a float."""
+    try:
+        return float(value)
+    except OverflowError:
+        raise ScenarioError(key, value, "a finite number (at most ~1.8e308)") from None
+
+
+def checked_float(key, value, spec):
+    """``value`` as a float in ``spec.unit``, finite and inside the key's range."""
+    number = to_float(key, value, spec.unit)
+    spec.check_range(key, number, value)
+    return number
+
+
