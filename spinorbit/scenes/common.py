@@ -4,7 +4,7 @@ import numpy as np
 from ..bodies import RigidBody
 from ..errors import PhysicsError, ScenarioError
 from ..plots import plot_series  # scenes call common.plot_series
-from ..results import RunResult, attitude_table  # noqa: F401  (scenes call common.attitude_table)
+from ..run_result import RunResult, attitude_table  # noqa: F401  (scenes call common.attitude_table)
 from ..simulate import simulate
 
 

@@ -27,7 +27,7 @@ from ..constants import ARCSEC, GM_KM3_D2, MAS
 from ..errors import ScenarioError
 from ..integrators import integrate
 from ..references import euler_p96
-from ..scenarios import SAMPLE_STEP, Key
+from ..schema import SAMPLE_STEP, Key
 from ..verdict import Check, Verdict
 from . import common
 
@@ -181,7 +181,7 @@ def build(scenario):
     run at BENCH_REFERENCE_STEP_D checked against half that step, agreement in system.meta).  Integration
     error only; the attitude is the full model's, daily phase included, or the twist-free frame of L.
     Splitting methods run the full model only (the gyroscopic state is L alone)."""
-    from ..bench import converged_error
+    from ..analysis.ladder import converged_error
 
     t_out = scenario.output_times()
     system = build_system(scenario, t_out)[0]
@@ -268,7 +268,7 @@ def _table(t, z, dx, dy, nutation):
     """The CIP X, Y and their residuals (mas); on DE421 the model's mean pole and nutation about it."""
     from astropy.table import QTable
 
-    from ..scenarios import tdb_days_to_time
+    from ..schema import tdb_days_to_time
 
     u = common.u()
     columns = {"time": tdb_days_to_time(t), "cip_x": (z[:, 0] * u.rad).to(u.arcsec),

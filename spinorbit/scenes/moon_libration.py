@@ -20,7 +20,7 @@ import numpy as np
 
 from ..constants import ARCSEC
 from ..errors import ScenarioError
-from ..scenarios import SAMPLE_STEP, Key
+from ..schema import SAMPLE_STEP, Key
 from ..verdict import Check, Verdict
 from . import common
 
@@ -160,7 +160,7 @@ def build(scenario):
     """For ``spinorbit bench``: (system, output times, error: max attitude angle, rad, from a converged rk8
     run at 0.5 d, checked against 0.25 d, agreement in system.meta["reference_agreement_rad"]).  Integration
     error only, not the difference from DE421.  Splitting methods run at levels 1-2 only."""
-    from ..bench import converged_error
+    from ..analysis.ladder import converged_error
 
     system, _ = build_system(scenario, scenario["orbit.source"])
     t_out = scenario.output_times()
@@ -205,6 +205,7 @@ def _table(solution, mats, de421, lib):
 
 def _error_vs_runtime(system, t_out, de421_mats):
     """LADDER's wall time and max attitude error vs a converged rk8 run and vs DE421, arcsec."""
+    from ..analysis.ladder import work_precision
     from ..analysis.librations import icrf_to_body, pole_and_longitude_difference
     from ..integrators import integrate
 
@@ -216,21 +217,4 @@ def _error_vs_runtime(system, t_out, de421_mats):
         return {"error_vs_converged_arcsec": float(worst(converged) / ARCSEC),
                 "error_vs_de421_arcsec": float(worst(de421_mats) / ARCSEC)}
 
-    return _work_precision(system, t_out, LADDER, error)
-
-
-def _work_precision(system, t_out, settings, error):
-    """Stand-in for analysis.ladder.work_precision (same contract), until that module is merged."""
-    from ..errors import IntegrationError
-    from ..integrators import integrate
-
-    rows = []
-    for method, options in settings:
-        try:
-            sol = integrate(system, t_out, method, **options)
-        except IntegrationError as exc:
-            rows.append({"method": method, **options, "failed": str(exc)})
-            continue
-        rows.append({"method": method, **options, "wall_s": sol.wall_s, "rhs_evaluations": sol.nfev,
-                     "steps": sol.nsteps, **error(sol)})
-    return rows
+    return work_precision(system, t_out, LADDER, error)
