@@ -3,8 +3,8 @@ import numpy as np
 
 from ..bodies import RigidBody
 from ..errors import PhysicsError, ScenarioError
-from ..results import RunResult, attitude_table  # noqa: F401  (scenes call common.attitude_table)
-from ..scenarios import tdb_days_to_time
+from ..run_result import RunResult, attitude_table  # noqa: F401  (scenes call common.attitude_table)
+from ..schema import tdb_days_to_time
 from ..simulate import simulate
 
 

@@ -28,7 +28,7 @@ from ..analysis.spans import resolvable
 from ..constants import ARCSEC, GM_KM3_D2, JULIAN_CENTURY_D, MAS
 from ..errors import ScenarioError
 from ..integrators import integrate
-from ..scenarios import SAMPLE_STEP, Key
+from ..schema import SAMPLE_STEP, Key
 from ..verdict import Check, Verdict
 from . import common
 
@@ -173,7 +173,7 @@ def build(scenario):
     twist-free frame of L.  Splitting methods run the full model only (a rigid body
     under the Moon's and Sun's torques; the gyroscopic state is L alone).
     """
-    from ..bench import converged_error
+    from ..analysis.ladder import converged_error
 
     t_out = scenario.output_times()
     system = build_system(scenario, t_out)[0]
@@ -294,7 +294,7 @@ def _compare_with_erfa(erfa_pole, t, z, plane_tilt):
     u = common.u()
     from astropy.table import QTable
 
-    from ..scenarios import tdb_days_to_time
+    from ..schema import tdb_days_to_time
 
     x_ref, y_ref = erfa_pole.cip_xy(t)
     dx, dy = (z[:, 0] - x_ref) / MAS, (z[:, 1] - y_ref) / MAS

@@ -25,7 +25,7 @@ import numpy as np
 from ..analysis.spans import resolvable
 from ..constants import ARCSEC, J2000_JD, JULIAN_CENTURY_D
 from ..errors import ScenarioError
-from ..scenarios import SAMPLE_STEP, Key
+from ..schema import SAMPLE_STEP, Key
 from ..verdict import Check, Verdict
 from . import common
 
@@ -207,7 +207,7 @@ def build(scenario):
     kept in system.meta["reference_agreement_rad"]), not from DE421: this measures
     integration error only.  Splitting methods run at levels 1-2 only.
     """
-    from ..bench import converged_error
+    from ..analysis.ladder import converged_error
 
     level = scenario["model.level"]
     if level not in LEVELS:
