@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .analysis.ladder import converged_error, work_precision  # noqa: F401  (converged_error: scenes still import it here)
+from .analysis.ladder import work_precision
 from .errors import ScenarioError
 from .integrators import METHODS, get_method
 

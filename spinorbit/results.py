@@ -10,7 +10,7 @@ import re
 import numpy as np
 
 from .errors import IntegrationError
-from .run_result import RunResult, attitude_table  # noqa: F401  (RunResult: scenes.common still imports it here)
+from .run_result import RunResult, attitude_table
 from .scenarios import Scenario, load_scenario
 
 
