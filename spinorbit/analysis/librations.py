@@ -58,3 +58,13 @@ def residual_metrics(mats, reference_mats):
         out[f"{name}_error_max_arcsec"] = float(np.abs(x).max() / ARCSEC)
         out[f"{name}_error_rms_arcsec"] = float(np.sqrt(np.mean(x**2)) / ARCSEC)
     return out
+
+
+def attitude_error(reference_mats):
+    """An error function for analysis.ladder: the max pole or longitude difference (rad) of a solution's
+    attitude from ICRF-to-body matrices (n, 3, 3) at its output times."""
+    def error(solution):
+        return float(max(np.abs(x).max() for x in pole_and_longitude_difference(icrf_to_body(solution.quaternion),
+                                                                                reference_mats)))
+
+    return error

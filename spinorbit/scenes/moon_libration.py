@@ -206,15 +206,9 @@ def _table(solution, mats, de421, lib):
 def _error_vs_runtime(system, t_out, de421_mats):
     """LADDER's wall time and max attitude error vs a converged rk8 run and vs DE421, arcsec."""
     from ..analysis.ladder import work_precision
-    from ..analysis.librations import icrf_to_body, pole_and_longitude_difference
+    from ..analysis.librations import attitude_error, icrf_to_body
     from ..integrators import integrate
 
     converged = icrf_to_body(integrate(system, t_out, CONVERGED[0], **CONVERGED[1]).quaternion)
-
-    def error(solution):
-        mats = icrf_to_body(solution.quaternion)
-        worst = lambda ref: max(np.abs(x).max() for x in pole_and_longitude_difference(mats, ref))
-        return {"error_vs_converged_arcsec": float(worst(converged) / ARCSEC),
-                "error_vs_de421_arcsec": float(worst(de421_mats) / ARCSEC)}
-
-    return work_precision(system, t_out, LADDER, error)
+    errors = {"error_vs_converged_arcsec": attitude_error(converged), "error_vs_de421_arcsec": attitude_error(de421_mats)}
+    return work_precision(system, t_out, LADDER, lambda sol: {k: f(sol) / ARCSEC for k, f in errors.items()})
