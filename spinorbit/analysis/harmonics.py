@@ -11,7 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..constants import JULIAN_CENTURY_D
-from .spans import refusals, resolvable
+from .spans import refusals
 
 
 @dataclass(frozen=True)
@@ -35,17 +35,14 @@ def fit_harmonics(t_tdb_d, values, arguments, degree=2, origin_d=0.0, separate=T
     t = np.asarray(t_tdb_d, dtype=float)
     span = float(np.ptp(t))
     names = list(arguments)
-    rates = [arguments[name][1] for name in names]
-    keep = resolvable(rates, span, separate)
-    kept = [name for name, k in zip(names, keep) if k]
+    refused = refusals(names, [arguments[name][1] for name in names], span, separate)
+    kept = [name for name in names if name not in refused]
     big_t = (t - origin_d) / JULIAN_CENTURY_D
     phases = [np.asarray(arguments[name][0]) for name in kept]
     design = np.column_stack([big_t**k for k in range(degree + 1)]
                              + [np.sin(a) for a in phases] + [np.cos(a) for a in phases])
     coef = np.linalg.lstsq(design, np.asarray(values, dtype=float), rcond=None)[0]
     n, p = len(kept), degree + 1
-    unfitted = dict.fromkeys(name for name in names if name not in kept)
-    return HarmonicFit(poly=coef[:p].tolist(),
-                       sin={**unfitted, **dict(zip(kept, coef[p:p + n].tolist()))},
-                       cos={**unfitted, **dict(zip(kept, coef[p + n:].tolist()))},
-                       refused=refusals(names, rates, span, separate))
+    sin, cos = dict(zip(kept, coef[p:p + n].tolist())), dict(zip(kept, coef[p + n:].tolist()))
+    return HarmonicFit(poly=coef[:p].tolist(), sin={name: sin.get(name) for name in names},
+                       cos={name: cos.get(name) for name in names}, refused=refused)
