@@ -1,7 +1,7 @@
 """The fundamental arguments of the luni-solar theories, computed once for every scene (ERFA).
 
 Delaunay arguments (l, l', F, D, Om) of the IERS Conventions 2003 (ERFA ``fal03``,
-``falp03``, ``faf03``, ``fad03``, ``faom03``), the Moon's mean longitude L = F + Om, and
+``falp03``, ``faf03``, ``fad03``, ``faom03``; the Moon's mean longitude is L = F + Om), and
 the mean ecliptic and equinox of date (IAU 2006, ERFA ``ecm06``).  Times are TDB days
 from J2000.0 (passed to ERFA as TT: they differ by < 2 ms); angles in rad.
 """
@@ -25,12 +25,6 @@ def phases(t_tdb_d, multipliers):
     step = np.diff(delaunay(np.array([t.mean() - 0.5, t.mean() + 0.5])), axis=1)[:, 0]
     rates = m @ ((step + np.pi) % (2 * np.pi) - np.pi)
     return m @ delaunay(t), rates
-
-
-def moon_mean_longitude(t_tdb_d):
-    """Mean longitude of the Moon on the mean ecliptic and equinox of date, L = F + Om, rad."""
-    _, _, f, _, om = delaunay(t_tdb_d)
-    return f + om
 
 
 def ecliptic_of_date(t_tdb_d):
