@@ -12,7 +12,6 @@ from ..constants import J2000_JD
 from .base import Comparable
 
 PSI_A_RATE_ARCSEC_CY = 5038.481507       # IAU 2006 precession in longitude psi_A, fixed J2000 ecliptic
-P_A_RATE_ARCSEC_CY = 5028.796195         # IAU 2006 general precession in longitude
 EPS0_ARCSEC = 84381.406                  # IAU 2006 obliquity at J2000
 
 # Main IAU 2000A luni-solar nutation terms (IERS Conventions 2010, Table 5.3a): name -> (dpsi sin, deps cos) arcsec at J2000.
