@@ -135,7 +135,7 @@ def run(scenario):
             "_full_minus_gyro_mas"), "year (TDB)", "full - gyroscopic figure axis [mas]")
     summary = {"not_measured": not_measured, "comparison": comparison, "run": point, "reference": iau.provenance,
                "model": {"moments_over_C": moments.tolist(), "bodies": list(orbits.names),
-                         "geodesic_precession_arcsec_cy": -geodesic,
+                         "geodesic_precession_arcsec_cy": -geodesic if geodesic else 0.0,    # not -0.0
                          "j2_rate_per_cy": earth.J2_RATE_PER_CY if scenario["earth.j2_rate"] else 0.0,
                          "spin_rate_rad_d": earth.ERA_RATE_RAD_D,
                          "orbit_interpolation_max_relative_error": None if getattr(
