@@ -49,7 +49,7 @@ def provenance():
     """Where the IAU 2006/2000A pole comes from: library and version, citations, span."""
     import erfa
 
-    return {"reference": "IAU 2006 precession + IAU 2000A nutation: CIP X, Y = bpn2xy(pnm06a)",
+    return {"name": "IAU 2006 precession + IAU 2000A nutation: CIP X, Y = bpn2xy(pnm06a)",
             "data": f"pyerfa {erfa.__version__} (ERFA {erfa.version.erfa_version})",
             "citation": "IERS Conventions (2010), ch. 5 (Petit & Luzum, IERS TN 36); Capitaine, Wallace & "
                         "Chapront (2003), A&A 412, 567 (P03); Mathews, Herring & Buffett (2002), JGR 107 (MHB2000)",

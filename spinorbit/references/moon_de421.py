@@ -177,7 +177,7 @@ def provenance():
     from importlib.metadata import version
 
     start, end = libration_span()
-    return {"reference": "JPL DE421 lunar mantle orientation (Chebyshev libration angles)",
+    return {"name": "JPL DE421 lunar mantle orientation (Chebyshev libration angles)",
             "data": f"de421 {version('de421')} (jpl-librations.npy, constants.npy)",
             "citation": "Williams, Boggs & Folkner (2008), JPL IOM 335-JW,DB,WF-20080314-001; "
                         "Folkner et al. (2014), IPN Progress Report 42-196",
