@@ -31,16 +31,19 @@ def compare_with_iau(t_tdb_d, model, reference, arguments, published):
     about the same mean pole (rad), ``arguments`` as for fit_pole, ``published`` = {term: (dpsi sin,
     deps cos) arcsec}.
 
-    Returns (comparison, not_measured, mean): the rate differences in longitude and obliquity ("/cy);
-    for each published term the model's coefficients, the published ones and model - reference (mas),
-    or in not_measured why the span does not resolve it; and the model's mean pole minus the
-    reference's, (dpsi, deps) rad at the times (the fits' polynomials).
+    Returns (comparison, not_measured, mean): the rate differences in longitude and obliquity ("/cy,
+    None under RATE_MIN_SPAN_D); for each published term the model's coefficients, the published ones
+    and model - reference (mas); in not_measured why a rate or term is not given (the span it needs);
+    and the model's mean pole minus the reference's, (dpsi, deps) rad at the times (the polynomials).
     """
     fits = fit_pole(t_tdb_d, *model, arguments)
     refs = fit_pole(t_tdb_d, *reference, arguments)
     comparison = {"psi_rate_minus_iau_arcsec_cy": (fits[0].poly[1] - refs[0].poly[1]) / ARCSEC,
                   "obliquity_rate_minus_iau_arcsec_cy": (fits[1].poly[1] - refs[1].poly[1]) / ARCSEC}
     not_measured = {}
+    if why := rate_refusal(float(np.ptp(t_tdb_d))):
+        not_measured = {f"comparison.{key}": why for key in comparison}
+        comparison = dict.fromkeys(comparison)
     for term, (psi_pub, eps_pub) in published.items():
         key = "nutation_" + term.replace(" ", "").replace(".", "_")
         if fits[0].sin[term] is None:

@@ -25,9 +25,10 @@ def precession_rate(moments, spin_rad_d, tilt_rad):
 
 def compare(t_tdb_d, poles, ecliptic_pole, moments, spin_rad_d, circles, geodesic_arcsec_cy=0.0):
     """Euler's P96 rate (on the circles, tilted as the first pole) beside the model's mean node rate on the
-    fixed ecliptic, arcsec/cy.  ``circles``: the run was driven by them (the node rate is fitted with
-    their 2-phi terms, and the P96 rate adds the model's ``geodesic_arcsec_cy``); else it ran on DE421."""
-    from ..analysis.precession import node_rate
+    fixed ecliptic, arcsec/cy: (comparison, not_measured).  ``circles``: the run was driven by them (the
+    node rate is fitted with their 2-phi terms, and the P96 rate adds the model's ``geodesic_arcsec_cy``);
+    else it ran on DE421, where the node rate needs analysis.precession.RATE_MIN_SPAN_D."""
+    from ..analysis.precession import node_rate, rate_refusal
     from ..constants import ARCSEC, JULIAN_CENTURY_D
 
     t = np.asarray(t_tdb_d, dtype=float)
@@ -36,7 +37,9 @@ def compare(t_tdb_d, poles, ecliptic_pole, moments, spin_rad_d, circles, geodesi
     periodic = {b: (4 * math.pi * t / period, 4 * math.pi / period) for b, (_, period) in CIRCLES.items()}
     model = node_rate(t, poles, ecliptic_pole, periodic if circles else None) / ARCSEC
     if not circles:
-        return {"p96_circles_precession_rate_arcsec_cy": p96, "fixed_ecliptic_precession_rate_arcsec_cy": model}
+        why = rate_refusal(float(np.ptp(t)))          # the nutation aliases into a short span's rate
+        return ({"p96_circles_precession_rate_arcsec_cy": p96, "fixed_ecliptic_precession_rate_arcsec_cy":
+                 None if why else model}, {"comparison.fixed_ecliptic_precession_rate_arcsec_cy": why} if why else {})
     p96 -= geodesic_arcsec_cy
     return {"p96_precession_rate_arcsec_cy": p96, "model_precession_rate_arcsec_cy": model,
-            "model_minus_p96_arcsec_cy": model - p96}
+            "model_minus_p96_arcsec_cy": model - p96}, {}

@@ -92,13 +92,11 @@ def verdict(scenario, comparison):
 
 
 CIRCLES = euler_p96.CIRCLES              # Euler's circles (P96): mean distance (km), sidereal period (d)
-RATE_KEYS = ("psi_rate_minus_iau_arcsec_cy", "psi_A_rate_arcsec_cy", "obliquity_rate_minus_iau_arcsec_cy",
-             "fixed_ecliptic_precession_rate_arcsec_cy")
 
 
 def run(scenario):
     from .. import plots
-    from ..analysis.precession import compare_with_iau, rate_refusal
+    from ..analysis.precession import compare_with_iau
     from ..references import arguments, erfa_pole
 
     t0, t = scenario.t_start, scenario.output_times()
@@ -117,17 +115,19 @@ def run(scenario):
         offsets = erfa_pole.about_mean_pole(t, z)
         fitted, not_measured, mean = compare_with_iau(t, offsets, (iau["dpsi_rad"], iau["deps_rad"]), arguments.named(
             t, erfa_pole.NUTATION_ARGUMENTS), erfa_pole.IAU2000A_MAIN_ARCSEC)
-        rate = fitted.pop("psi_rate_minus_iau_arcsec_cy")
-        comparison.update(psi_rate_minus_iau_arcsec_cy=rate, psi_A_rate_arcsec_cy=erfa_pole.PSI_A_RATE_ARCSEC_CY + rate,
-                          psi_A_rate_iau2006_arcsec_cy=erfa_pole.PSI_A_RATE_ARCSEC_CY, **fitted)
+        rate = fitted.pop("psi_rate_minus_iau_arcsec_cy")            # None over a short span, with why
+        comparison.update(psi_rate_minus_iau_arcsec_cy=rate, psi_A_rate_arcsec_cy=None if rate is None else
+                          erfa_pole.PSI_A_RATE_ARCSEC_CY + rate, psi_A_rate_iau2006_arcsec_cy=erfa_pole.PSI_A_RATE_ARCSEC_CY,
+                          **fitted)
+        if rate is None:
+            not_measured["comparison.psi_A_rate_arcsec_cy"] = not_measured["comparison.psi_rate_minus_iau_arcsec_cy"]
         nutation = {"psi_mean": iau["psi_bar_rad"] + mean[0], "eps_mean": iau["eps_a_rad"] + mean[1],
                     "dpsi": offsets[0] - mean[0], "deps": offsets[1] - mean[1]}   # about the model's mean pole
     geodesic = earth.GEODESIC_PRECESSION_ARCSEC_CY if scenario["earth.geodesic_precession"] else 0.0
-    comparison.update(euler_p96.compare(t, z, pole_ecl, earth.earth_moments(scenario["earth.dynamical_ellipticity"]),
-                                        earth.ERA_RATE_RAD_D, plane_tilt is not None, geodesic))
-    if plane_tilt is None and (why := rate_refusal(abs(t[-1] - t[0]))):   # the nutation aliases into the rates
-        for key in RATE_KEYS:
-            comparison[key], not_measured[f"comparison.{key}"] = None, why
+    p96, p96_not_measured = euler_p96.compare(t, z, pole_ecl, earth.earth_moments(scenario["earth.dynamical_ellipticity"]),
+                                              earth.ERA_RATE_RAD_D, plane_tilt is not None, geodesic)
+    comparison.update(p96)
+    not_measured.update(p96_not_measured)
     table, figures = _table(t, z, dx, dy, nutation), plots.earth_precession_nutation(t, dx, dy, nutation, iau)
     if full:
         comparison.update(_full_checks(scenario, orbits, params, t0, z0, x0, t, z))
