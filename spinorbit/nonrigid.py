@@ -80,7 +80,7 @@ class EarthParameters:
 
 @dataclass(frozen=True)
 class ResonanceExpansion:
-    """T(sigma) = R + R' (1 + sigma) + sum over the free modes of A / (sigma - s): a transfer function's resonance form."""
+    """A transfer function in resonance form: T(sigma) = R + R' (1 + sigma) + sum over free modes of A / (sigma - s)."""
 
     r: complex
     r_prime: complex
@@ -130,19 +130,22 @@ RIGID = EarthParameters(e=H_D / (1.0 - H_D), e_f=0.0, a_f=0.0, kappa=0.0, xi=0.0
 #     R and R'  1.04901828112 -.00150732471    -.25517427386   .03965769073   (R; then R' in the frequency slot)
 # The routine writes its complex numbers with the opposite sign of i to this module's exp(i sigma Omega t):
 # its FCN grows (Im s < 0).  Every value is therefore taken conjugated, which makes the FCN decay, as the
-# two-layer model's FCN does (Im K_CMB < 0) and as VLBI sees it.  FCN period in space -430.07 d.
+# two-layer model's FCN does (Im K_CMB < 0); the out-of-phase terms it then gives have IAU 2000A's signs.
+# FCN period in space -430.06 d, Chandler wobble 393.9 d (no ocean: MHB2000's is 383.4 d).
 IERS1996 = ResonanceExpansion(r=1.04901828112 + 0.00150732471j, r_prime=-0.25517427386 - 0.03965769073j,
                               chandler=0.0025317 + 0j, chandler_strength=-0.00057992 + 0j,
                               fcn=-1.00231888314 + 0.00002920327j,
                               fcn_strength=-0.00011489752 - 0.00000214130j)
-DEFAULT = IERS1996
+DEFAULT = IERS1996                # the layer's model wherever p is None
 
 # MHB2000 normal modes, cpsd, terrestrial frame, in this module's convention: IERS Conventions 2010
-# Tables 6.4 and 7.1 list them for tidal frequencies (-0.0026010 - 0.0001361i, 1.0023181 + 0.000025i),
-# i.e. as -conj(sigma).  FCN period in space: -1/(0.0023181 * 1.0027379) = -430.21 solar days, the
-# "conventional -431.39 sidereal days" of Krasna et al. 2013 (A&A 555, A29); Q = 1.0023181 / (2 Im)
-# = 20 000, beside VLBI's 15 400-19 500 (the compilation in Table 1 of "Parameters of the Earth's Free
-# Core Nutation from Diurnal Strain Tides", Sci. Rep. 10, 2020, doi:10.1038/s41598-020-66426-7).
+# Tables 6.4 and 7.1 list them for tidal frequencies (-0.0026010 - 0.0001361i, 1.0023181 + 0.000025i,
+# and the free inner-core nutation 0.999026 + 0.000780i), i.e. as -conj(sigma); read in copies of those
+# tables in public code (e.g. L. Petrov's, "taken from the IERS Conventions 2000").  FCN period in
+# space: -1/(0.0023181 * 1.0027379) = -430.21 solar days, the "conventional -431.39 sidereal days" of
+# Krasna et al. 2013 (A&A 555, A29); Q = 1.0023181 / (2 Im) = 20 000, beside VLBI's 15 400-19 500 (the
+# compilation in Table 1 of "Parameters of the Earth's Free Core Nutation from Diurnal Strain Tides",
+# Sci. Rep. 10, 2020, doi:10.1038/s41598-020-66426-7).
 PUBLISHED_CHANDLER_CPSD = 0.0026010 + 0.0001361j
 PUBLISHED_FCN_CPSD = -1.0023181 + 0.000025j
 SIDEREAL_PER_SOLAR_DAY = ERA_RATE_RAD_D / (2.0 * np.pi)
@@ -166,17 +169,17 @@ def _matrices(sigma, p):
     return m, rhs
 
 
-def transfer(sigma, p=DEFAULT):
-    """Non-rigid / rigid nutation amplitude at terrestrial frequency sigma (cpsd) for the model p, complex.
+def transfer(sigma, p=None):
+    """Non-rigid / rigid nutation amplitude at terrestrial frequency sigma (cpsd) for the model p (None: DEFAULT).
 
     The two-layer model equals 1 at sigma = -1 (precession) and for the RIGID parameters.
     """
-    return p.transfer(sigma)
+    return (p or DEFAULT).transfer(sigma)
 
 
-def normal_modes(p=DEFAULT):
-    """(Chandler wobble, free core nutation) terrestrial frequencies (cpsd) of the model p."""
-    return p.normal_modes()
+def normal_modes(p=None):
+    """(Chandler wobble, free core nutation) terrestrial frequencies (cpsd) of the model p (None: DEFAULT)."""
+    return (p or DEFAULT).normal_modes()
 
 
 def celestial_period_days(sigma):
@@ -225,7 +228,7 @@ def circular_terms(t_d, x, y, phases, rates):
     return coef[3:], nu, basis
 
 
-def nonrigid_nutation(t_d, x, y, phases, rates, p=DEFAULT):
+def nonrigid_nutation(t_d, x, y, phases, rates, p=None):
     """Non-rigid (x, y) from the rigid (x, y) = (dpsi sin eps, deps), rad, term by term.
 
     Each circular term c exp(+-i phase) of the arguments the span resolves becomes
@@ -234,5 +237,5 @@ def nonrigid_nutation(t_d, x, y, phases, rates, p=DEFAULT):
     """
     keep = resolvable(rates, t_d[-1] - t_d[0])
     amplitudes, nu, basis = circular_terms(t_d, x, y, phases[keep], rates[keep])
-    dz = basis @ ((p.transfer(nu - 1.0) - 1.0) * amplitudes)
+    dz = basis @ ((transfer(nu - 1.0, p) - 1.0) * amplitudes)
     return x + dz.real, y + dz.imag
