@@ -40,6 +40,14 @@ def test_fcn_period_of_each_model_is_mhb2000s(model, bound_d):
     assert fcn.imag == pytest.approx(nonrigid.PUBLISHED_FCN_CPSD.imag, rel=0.3)
 
 
+@pytest.mark.parametrize("sigma, printed_d", [(-1.00231887299, 430.0665), (-1.00231810920, 430.2082)])
+def test_fcn_frequency_to_period_as_herring_prints_it(sigma, printed_d):
+    """Herring's nutation routines print their FCN as a pair: "RFCN Freq. -1.00231887299 cyc per sidreal day,
+    Period 430.0665 solar days" (the IERS 1996 model) and "-1.00231810920 ..., 430.2082" (MHB_2000); this
+    module's conversion gives the same periods (retrograde: negative) to the 4 printed decimals."""
+    assert nonrigid.celestial_period_days(complex(sigma)) == pytest.approx(-printed_d, abs=1e-4)
+
+
 def test_resonance_form_is_the_published_one_in_the_rigid_limit_at_precession():
     """T(-1) = R + A_CW / (-1 - s_CW) + A_FCN / (-1 - s_FCN): the published factors give the precession
     (sigma = -1) its rigid value to 7e-5 (they are rounded VLBI estimates), which fixes the form (with
