@@ -79,7 +79,8 @@ def bench_system(system, t_out, error, methods=None, budget_s=10.0):
     """Work-precision rows for every requested (default: every suitable) method."""
     names = methods or [m for m in METHODS if get_method(m)().supports(system)]
     for name in names:
-        get_method(name)                 # ScenarioError for an unknown name
+        if name not in METHODS:
+            raise ScenarioError("--methods", name, f"method names, of {sorted(METHODS)}")
     return [row for name in names for row in run_method(name, system, t_out, error, budget_s)]
 
 
@@ -145,12 +146,13 @@ def write(rows, out, title, command, note=""):
 
 def bench_scenario(path, methods=None, out=None, budget_s=10.0, overrides=()):
     """Load a scenario, build its system and write the work-precision table; returns (rows, paths)."""
-    from .scenarios import load_scenario
+    from .scenarios import load_scenario, scenario_errors
 
     scenario = load_scenario(path, overrides)
     if not hasattr(scenario.module, "build"):
         raise ScenarioError("scene.kind", scenario.kind, "a scene kind whose module defines build() for benchmarking")
-    system, t_out, error = scenario.module.build(scenario)
+    with scenario_errors(scenario):
+        system, t_out, error = scenario.module.build(scenario)
     rows = bench_system(system, t_out, error, methods, budget_s)
     command = " ".join(["spinorbit bench", str(path), *(f"--set {shlex.quote(o)}" for o in overrides),
                         *([f"--methods {','.join(methods)}"] if methods else [])])
