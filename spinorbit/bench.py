@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .analysis.ladder import converged_error, work_precision  # noqa: F401  (converged_error: scenes still import it here)
+from .analysis.ladder import cheapest, converged_error, work_precision  # noqa: F401  (converged_error: scenes still import it here)
 from .errors import ScenarioError
 from .integrators import METHODS, get_method
 
@@ -86,11 +86,8 @@ def bench_system(system, t_out, error, methods=None, budget_s=10.0):
 
 def fastest_at(rows, level, error="error_rad", wall="wall_s"):
     """{method: least ``wall`` over rows whose ``error`` is <= level}."""
-    best = {}
-    for row in rows:
-        if row[error] <= level:
-            best[row["method"]] = min(best.get(row["method"], math.inf), row[wall])
-    return best
+    best = {m: cheapest([r for r in rows if r["method"] == m], error, level, wall) for m in {r["method"] for r in rows}}
+    return {m: row[wall] for m, row in best.items() if row is not None}
 
 
 def markdown(rows, title, command, note=""):
