@@ -8,7 +8,8 @@ unknown key, a missing table, a wrong unit or an impossible value raises
 accepted.
 
 Quantities are strings with units, parsed by astropy (``"384400 km"``,
-``"13.18 deg/d"``); bare numbers are accepted only for dimensionless keys.
+``"13.18 deg/d"``); bare numbers are accepted only for dimensionless keys
+(``schema.py``: the keys, their ranges and the conversions).
 Times are ISO strings in TDB; ``span.end`` may also be a duration from
 ``span.start`` (``"100 yr"``, ``"1073.15 d"``).
 
