@@ -10,8 +10,13 @@ import re
 import numpy as np
 
 from .errors import IntegrationError
+<<<<<<< HEAD
 from .run_result import RunResult, attitude_table
 from .scenarios import Scenario, load_scenario
+=======
+from .run_result import RunResult, attitude_table  # noqa: F401  (RunResult: scenes.common still imports it here)
+from .scenarios import Scenario, load_scenario, scenario_errors
+>>>>>>> h10small
 
 
 def run_scenario(scenario, overrides=()):
@@ -19,7 +24,8 @@ def run_scenario(scenario, overrides=()):
     if not isinstance(scenario, Scenario):
         scenario = load_scenario(scenario, overrides)
     try:
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):   # NaN/inf are reported as not measured
+        # NaN/inf are reported as not measured; the library's InputError names its scenario key
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"), scenario_errors(scenario):
             result = scenario.module.run(scenario)
     except IntegrationError as exc:
         if getattr(exc, "result", None) is None and getattr(exc, "partial", None) is not None:
