@@ -10,13 +10,8 @@ import re
 import numpy as np
 
 from .errors import IntegrationError
-<<<<<<< HEAD
 from .run_result import RunResult, attitude_table
-from .scenarios import Scenario, load_scenario
-=======
-from .run_result import RunResult, attitude_table  # noqa: F401  (RunResult: scenes.common still imports it here)
 from .scenarios import Scenario, load_scenario, scenario_errors
->>>>>>> h10small
 
 
 def run_scenario(scenario, overrides=()):
