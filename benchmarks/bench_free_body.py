@@ -16,9 +16,9 @@ from scipy.integrate import solve_ivp
 sys.path.insert(0, str(Path(__file__).parent))
 import models  # noqa: E402
 
+from spinorbit.analysis.ladder import work_precision  # noqa: E402
 from spinorbit.bench import fastest_at  # noqa: E402
 from spinorbit.dynamics import torque_free_system  # noqa: E402
-from spinorbit.integrators import integrate  # noqa: E402
 from spinorbit.rotations import quat_angle  # noqa: E402
 from spinorbit.theory import FreeRigidBody  # noqa: E402
 
@@ -34,17 +34,17 @@ def main():
     error = lambda q: float(quat_angle(q / np.linalg.norm(q, axis=1, keepdims=True), q_exact).max())
     system = torque_free_system(MOMENTS, Q0, OMEGA0)
     y0 = system.y0
-    rows = []
-    for method, steps in [("rk8", [0.5 / 2**k for k in range(6)]),
-                          ("suzuki4", [0.1 / 2**k for k in range(8)]),
-                          ("strang", [0.01 / 2**k for k in range(5)])]:
-        for h in steps:
-            s = integrate(system, T_OUT, method, step=h)
-            rows.append((method, f"step={h:.3g}", s.wall_s, s.nfev, error(s.quaternion)))
+    ladder = [(method, {"step": h}) for method, steps in [("rk8", [0.5 / 2**k for k in range(6)]),
+                                                          ("suzuki4", [0.1 / 2**k for k in range(8)]),
+                                                          ("strang", [0.01 / 2**k for k in range(5)])] for h in steps]
+    ladder += [("dop853", {"rtol": 10.0**-k, "atol": 10.0**-k * 1e-3}) for k in range(6, 14)]
+    rows = [("dop853 + numba rhs" if r["method"] == "dop853" else r["method"],
+             f"step={r['step']:.3g}" if "step" in r else f"rtol=1e-{round(-math.log10(r['rtol']))}",
+             r["wall_s"], r["rhs_evaluations"], r["error_rad"])
+            for r in work_precision(system, T_OUT, ladder, lambda s: {"error_rad": error(s.quaternion)})
+            if "failed" not in r]
     for k in range(6, 14):
         rtol = 10.0**-k
-        s = integrate(system, T_OUT, "dop853", rtol=rtol, atol=rtol * 1e-3)
-        rows.append(("dop853 + numba rhs", f"rtol=1e-{k}", s.wall_s, s.nfev, error(s.quaternion)))
         nfev = [0]
 
         def fun(t, y):

@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .analysis.ladder import work_precision
+from .analysis.ladder import cheapest, work_precision
 from .errors import ScenarioError
 from .integrators import METHODS, get_method
 
@@ -79,17 +79,15 @@ def bench_system(system, t_out, error, methods=None, budget_s=10.0):
     """Work-precision rows for every requested (default: every suitable) method."""
     names = methods or [m for m in METHODS if get_method(m)().supports(system)]
     for name in names:
-        get_method(name)                 # ScenarioError for an unknown name
+        if name not in METHODS:
+            raise ScenarioError("--methods", name, f"method names, of {sorted(METHODS)}")
     return [row for name in names for row in run_method(name, system, t_out, error, budget_s)]
 
 
 def fastest_at(rows, level, error="error_rad", wall="wall_s"):
     """{method: least ``wall`` over rows whose ``error`` is <= level}."""
-    best = {}
-    for row in rows:
-        if row[error] <= level:
-            best[row["method"]] = min(best.get(row["method"], math.inf), row[wall])
-    return best
+    best = {m: cheapest([r for r in rows if r["method"] == m], error, level, wall) for m in {r["method"] for r in rows}}
+    return {m: row[wall] for m, row in best.items() if row is not None}
 
 
 def markdown(rows, title, command, note=""):
@@ -145,12 +143,13 @@ def write(rows, out, title, command, note=""):
 
 def bench_scenario(path, methods=None, out=None, budget_s=10.0, overrides=()):
     """Load a scenario, build its system and write the work-precision table; returns (rows, paths)."""
-    from .scenarios import load_scenario
+    from .scenarios import load_scenario, scenario_errors
 
     scenario = load_scenario(path, overrides)
     if not hasattr(scenario.module, "build"):
         raise ScenarioError("scene.kind", scenario.kind, "a scene kind whose module defines build() for benchmarking")
-    system, t_out, error = scenario.module.build(scenario)
+    with scenario_errors(scenario):
+        system, t_out, error = scenario.module.build(scenario)
     rows = bench_system(system, t_out, error, methods, budget_s)
     command = " ".join(["spinorbit bench", str(path), *(f"--set {shlex.quote(o)}" for o in overrides),
                         *([f"--methods {','.join(methods)}"] if methods else [])])

@@ -32,8 +32,9 @@ import numpy as np
 from numba import njit
 
 from .constants import ARCSEC, JULIAN_CENTURY_D
-from .bodies.earth import (A_AXIS_LONGITUDE_DEG, B_MINUS_A_OVER_C, ERA_RATE_RAD_D,  # noqa: F401 (the model's)
-                           GEODESIC_PRECESSION_ARCSEC_CY, H_D, J2, J2_RATE_PER_CY)
+from .bodies.earth import (A_AXIS_LONGITUDE_DEG, B_MINUS_A_OVER_C, C_MR2,  # noqa: F401 (the model's)
+                           EQUATORIAL_RADIUS_KM, ERA_RATE_RAD_D, GEODESIC_PRECESSION_ARCSEC_CY, H_D, J2, J2_RATE_PER_CY,
+                           J4)
 from .dynamics import SpinSystem, euler_omega_dot
 from .errors import PhysicsError
 from .linker import link, template
@@ -57,12 +58,14 @@ def earth_params(moments, gm, data, extra, term_params=((),)):
             np.asarray(extra, dtype=float))
 
 
-def extra_parameters(ecliptic_pole, geodesic=True, j2_rate=True):
-    """``extra`` = [Omega_gp (3), k_J2]: geodesic precession about ``ecliptic_pole`` (GCRS unit vector)."""
+def extra_parameters(ecliptic_pole, geodesic=True, j2_rate=True, j4=False):
+    """``extra`` = [Omega_gp (3), k_J2, J4 R^2/(C/MR^2)]: geodesic precession about ``ecliptic_pole``
+    (GCRS unit vector), the secular J2 rate, and the J4 coefficient (km^2, 0 = off; gyroscopic model)."""
     rate = GEODESIC_PRECESSION_ARCSEC_CY * ARCSEC / JULIAN_CENTURY_D if geodesic else 0.0
     k = J2_RATE_PER_CY / J2 / JULIAN_CENTURY_D if j2_rate else 0.0
+    j4_coef = J4 * EQUATORIAL_RADIUS_KM**2 / C_MR2 if j4 else 0.0
     pole = np.asarray(ecliptic_pole, dtype=float)
-    return np.array([*(rate * pole / np.linalg.norm(pole)), k])
+    return np.array([*(rate * pole / np.linalg.norm(pole)), k, j4_coef])
 
 
 # --- full model: Euler's equations with the daily spin ------------------------
@@ -163,7 +166,25 @@ def make_figure_axis(positions):
     return link(figure_axis, tensor=make_tidal_tensor(positions))
 
 
-@template("tensor")
+@njit(cache=True)
+def j4_torque(r_all, gm, z, j4_coef):
+    """Inertial torque per C of the point masses on the Earth's J4 (axisymmetric about the unit axis z).
+
+    From U_4 = GM_E J4 R^4 P4(s)/r^5 (s = z.r/r): N = G m M_E J4 R^4 P4'(s) (r x z)/r^6, per
+    C = (C/MR^2) M_E R^2: GM_m [J4 R^2/(C/MR^2)] P4'(s) (r x z)/r^6, P4'(s) = (35 s^3 - 15 s)/2.
+    (The same steps for J2 give (C - A)/C (T z) x z, the tidal-tensor torque.)
+    """
+    total = np.zeros(3)
+    for i in range(gm.shape[0]):
+        r = r_all[i]
+        r2 = dot3(r, r)
+        rn = math.sqrt(r2)
+        s = dot3(r, z) / rn
+        total += gm[i] * j4_coef * 0.5 * (35.0 * s**3 - 15.0 * s) / (r2 * r2 * r2) * cross3(r, z)
+    return total
+
+
+@template("tensor", "positions")
 def gyroscopic_rhs(t, y, p):
     """dL/dt = N(z(L)) + Omega_gp x L for y = [q_L, 0, 0, |L|/C]."""
     moments, extra = p[0], p[4]
@@ -173,6 +194,8 @@ def gyroscopic_rhs(t, y, p):
     t_dot = (tensor(t + _H_DIFF, p) - tensor(t - _H_DIFF, p)) / (2.0 * _H_DIFF)
     z = _slow_figure_axis(t0, t_dot, ell, lc, moments)
     torque = _axis_torque(t0, z, moments[2] - 0.5 * (moments[0] + moments[1]))
+    if extra[4] != 0.0:
+        torque += j4_torque(positions(t, p[2]), p[1], z, extra[4])
     ell_dot = (torque - dot3(torque, ell) * ell) / lc + cross3(extra[:3], ell)
     w = cross3(ell, ell_dot)          # inertial rate of the twist-free L frame
     dy = np.zeros_like(y)
@@ -185,7 +208,7 @@ def gyroscopic_rhs(t, y, p):
 
 def make_gyroscopic_rhs(positions):
     """rhs(t, y, p) of dL/dt = N(z(L)) + Omega_gp x L for y = [q_L, 0, 0, |L|/C]."""
-    return link(gyroscopic_rhs, tensor=make_tidal_tensor(positions))
+    return link(gyroscopic_rhs, tensor=make_tidal_tensor(positions), positions=positions)
 
 
 @njit(cache=True)

@@ -26,6 +26,17 @@ def _short(text, limit=ECHO_CHARS):
     return text if len(text) <= limit else f"{text[:limit]}... ({len(text)} characters)"
 
 
+class InputError(SpinorbitError, ValueError):
+    """An argument the library cannot use, in the library's words: the argument's name (``step``,
+    ``radius``, ``source``), what was given and what is accepted, on one line.  The edge
+    (``scenarios.scenario_error``) turns it into a ScenarioError on the scenario key that set it.
+    """
+
+    def __init__(self, name, given, accepted):
+        self.name, self.given, self.accepted = name, given, accepted
+        super().__init__(f"{_short(str(name))}: got {_short(repr(given))}; expected {' '.join(str(accepted).split())}")
+
+
 class PhysicsError(SpinorbitError, ValueError):
     """Parameters that do not describe a physical system (e.g. a non-rigid inertia)."""
 

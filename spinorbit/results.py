@@ -11,7 +11,7 @@ import numpy as np
 
 from .errors import IntegrationError
 from .run_result import RunResult, attitude_table
-from .scenarios import Scenario, load_scenario
+from .scenarios import Scenario, load_scenario, scenario_errors
 
 
 def run_scenario(scenario, overrides=()):
@@ -19,7 +19,8 @@ def run_scenario(scenario, overrides=()):
     if not isinstance(scenario, Scenario):
         scenario = load_scenario(scenario, overrides)
     try:
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):   # NaN/inf are reported as not measured
+        # NaN/inf are reported as not measured; the library's InputError names its scenario key
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"), scenario_errors(scenario):
             result = scenario.module.run(scenario)
     except IntegrationError as exc:
         if getattr(exc, "result", None) is None and getattr(exc, "partial", None) is not None:

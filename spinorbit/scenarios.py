@@ -8,7 +8,8 @@ unknown key, a missing table, a wrong unit or an impossible value raises
 accepted.
 
 Quantities are strings with units, parsed by astropy (``"384400 km"``,
-``"13.18 deg/d"``); bare numbers are accepted only for dimensionless keys.
+``"13.18 deg/d"``); bare numbers are accepted only for dimensionless keys
+(``schema.py``: the keys, their ranges and the conversions).
 Times are ISO strings in TDB; ``span.end`` may also be a duration from
 ``span.start`` (``"100 yr"``, ``"1073.15 d"``).
 
@@ -22,11 +23,12 @@ filling the memory.  Files must be UTF-8 and nest at most ``MAX_DEPTH`` levels.
 import datetime
 import math
 import tomllib
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
 
-from .errors import ScenarioError
+from .errors import InputError, ScenarioError
 from .schema import INTEGRATOR_OPTIONS, MAX_TEXT, REQUIRED, Key, checked_float, finite_float, parse_tdb_days
 # Until the Moon and Earth scenes import them from schema (their own import of scenarios closes a cycle):
 from .schema import ANGLE, DISTANCE, GM, RATE, SAMPLE_STEP, SPIN, tdb_days_to_time  # noqa: F401
@@ -83,7 +85,8 @@ class Scenario:
         self._check_cycles()
         from .integrators import get_method
 
-        get_method(self["integrator.method"])(**self.integrator_options())   # checks method and options now
+        with scenario_errors(self):
+            get_method(self["integrator.method"])(**self.integrator_options())   # checks method and options now
 
     def __getitem__(self, key):
         if key not in self.values:
@@ -217,6 +220,24 @@ class Scenario:
                 raise ScenarioError(key, _lookup(self.data, key, Key()) if _has(self.data, key) else rate,
                                     f"a value giving at most {MAX_CYCLES:.0e} cycles over the {span:.6g} d span "
                                     f"(this one gives {cycles:.3g}{how}); change {key} or shorten the span")
+
+
+# The library names an argument it cannot use (errors.InputError); the scenario key that sets it:
+ARGUMENT_KEYS = {"method": "integrator.method", "step": "integrator.step", "free_flow": "integrator.free_flow",
+                 "source": "orbit.source", "bodies": "orbit.bodies", "radius": "orbit.radius", "a": "orbit.a",
+                 "e": "orbit.e", "f": "orbit.f", "beta": "orbit.beta", "t_out": "span"}
+
+
+@contextmanager
+def scenario_errors(scenario):
+    """Turn a library InputError raised inside into a ScenarioError on the scenario key that set the argument
+    (an ``[integrator]`` option by its own name, else ARGUMENT_KEYS)."""
+    try:
+        yield
+    except InputError as exc:
+        options = scenario.data.get("integrator", {})
+        key = f"integrator.{exc.name}" if exc.name in options else ARGUMENT_KEYS.get(exc.name, exc.name)
+        raise ScenarioError(key, exc.given, exc.accepted) from None
 
 
 def check_depth(data, where, limit=MAX_DEPTH):

@@ -8,7 +8,7 @@ import pytest
 from jplephem.spk import SPK
 
 from spinorbit.cli import main
-from spinorbit.errors import ScenarioError
+from spinorbit.errors import InputError
 from spinorbit.orbits.sources import sample_orbits
 
 DE421 = importlib.resources.files("skyfield_data") / "data" / "de421.bsp"
@@ -32,10 +32,10 @@ def edited_de421(path, t_tdb_d, edit):
 
 
 def refusal(path):
-    with pytest.raises(ScenarioError) as info:
+    with pytest.raises(InputError) as info:
         sample_orbits(str(path), "moon", ("earth", "sun"), -3.0, 8.0)
     message = str(info.value)
-    assert message.startswith(f"orbit.source: got '{path}'") and "\n" not in message
+    assert message.startswith(f"source: got '{path}'") and "\n" not in message
     return message
 
 

@@ -140,3 +140,20 @@ def test_full_model_against_gyroscopic_on_de421():
 def test_bad_model_name_is_a_scenario_error():
     with pytest.raises(ScenarioError, match="earth.model"):
         run_scenario(f"{SCENARIOS}.toml", ["earth.model=\"euler\""])
+
+
+def test_j4_torque_equals_the_degree4_recursion():
+    """The closed form N = GM J4 R^2 P4'(s) (r x z)/(c r^6) per C equals the harmonics term's
+    Montenbruck-Gill recursion with C40 = -J4 (per M R^2, divided by c = C/MR^2)."""
+    from spinorbit.rotations import matrix_from_quat
+    from spinorbit.terms import harmonics
+
+    c_nm, s_nm = np.zeros((5, 5)), np.zeros((5, 5))
+    c_nm[4, 0] = -earth.J4
+    rot = matrix_from_quat(np.array([0.8, 0.3, -0.4, 0.33]) / np.linalg.norm([0.8, 0.3, -0.4, 0.33]))
+    r = np.array([[2.1e5, -3.0e5, 1.1e5], [1.0e8, 1.1e8, 0.4e8]])
+    gm = np.array([4.0e12, 9.9e20])
+    recursion = rot @ harmonics.torque(0.0, np.zeros(7), rot, np.eye(3), r, gm,
+                                       (earth.EQUATORIAL_RADIUS_KM, c_nm, s_nm, 4, 4)) / earth.C_MR2
+    closed = earth.j4_torque(r, gm, rot[:, 2], earth.J4 * earth.EQUATORIAL_RADIUS_KM**2 / earth.C_MR2)
+    assert np.abs(closed - recursion).max() < 1e-12 * np.abs(closed).max()

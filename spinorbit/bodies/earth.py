@@ -11,6 +11,9 @@ import math
 H_D = 3.27379448e-3                      # (C - A)/C, IAU 2006 (P03)
 J2 = 1.0826359e-3                        # IAU 2006 (P03)
 J2_RATE_PER_CY = -3.001e-9               # dJ2/dt, P03
+J4 = -3.0 * 5.39965866638991e-7          # -C40 = -3 C40_bar, EGM2008 (Pavlis et al. 2012, JGR 117, B04406)
+C_MR2 = 0.3307                           # C/(M a^2) (IERS Conventions 2010, ch. 1; Groten 2004: 0.3307007)
+EQUATORIAL_RADIUS_KM = 6378.1366         # a, IERS Conventions 2010 Table 1.1
 B_MINUS_A_OVER_C = 1.904e-5              # 4 C22 / (C/MR^2), EGM2008 C22 = 1.5745e-6, C/MR^2 = 0.3307
 A_AXIS_LONGITUDE_DEG = -14.93            # longitude of the axis of least moment (EGM2008 C22, S22)
 ERA_RATE_RAD_D = 2 * math.pi * 1.00273781191135448   # Earth rotation angle rate, rad per UT1 day

@@ -6,7 +6,7 @@ contract every method follows.
 """
 from importlib import import_module
 
-from ..errors import ScenarioError
+from ..errors import InputError
 from .base import Integrator, Solution
 
 METHODS = {
@@ -26,7 +26,7 @@ def get_method(method):
     if isinstance(method, type) and issubclass(method, Integrator):
         return method
     if method not in METHODS:
-        raise ScenarioError("integrator.method", method, f"one of {sorted(METHODS)}")
+        raise InputError("method", method, f"one of {sorted(METHODS)}")
     module, cls = METHODS[method].split(":")
     return getattr(import_module(module), cls)
 

@@ -7,14 +7,14 @@ Contract for subclass authors (numbered so reviews can point at it):
    ``kind`` ("adaptive", "fixed", "structure-preserving", "averaged") and
    ``options`` (dict of accepted option names -> default values).
 2. ``__init__(**options)`` accepts only the names in ``options``; anything else
-   raises ScenarioError naming ``integrator.<key>`` and the accepted names.
+   raises InputError naming the option and the accepted names.
 3. ``solve(system, t_out)`` integrates a :class:`~spinorbit.dynamics.SpinSystem`
    from ``system.t0`` and returns a :class:`Solution` holding the state at every
    time in ``t_out`` (running away from ``system.t0`` in one direction: ascending
    for a forward run, descending for a backward one), with the quaternion
    renormalised.
 4. ``supports(system)`` says whether the method can run this system (e.g. a
-   splitting method needs ``system.torque``); ``solve`` raises ScenarioError
+   splitting method needs ``system.torque``); ``solve`` raises InputError
    otherwise.
 5. Failure (NaN, step-size underflow, max steps) raises IntegrationError with
    the time and state, advice, and ``.partial`` = the Solution up to there.
@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import IntegrationError, ScenarioError
+from ..errors import InputError, IntegrationError
 
 
 @dataclass
@@ -58,7 +58,7 @@ class Integrator:
     def __init__(self, **options):
         unknown = sorted(set(options) - set(self.options))
         if unknown:
-            raise ScenarioError(f"integrator.{unknown[0]}", options[unknown[0]],
+            raise InputError(unknown[0], options[unknown[0]],
                                 f"one of {sorted(self.options)} for method '{self.name}'")
         self.settings = {**self.options, **options}
         self.label = self.name                 # of its progress bar; None: no bar
@@ -74,10 +74,10 @@ class Integrator:
         forward = t_out.size > 0 and t_out[-1] >= system.t0
         steps = np.diff(np.concatenate([[system.t0], t_out])) * (1 if forward else -1)
         if t_out.ndim != 1 or t_out.size == 0 or not np.all(np.isfinite(t_out)) or np.any(steps < 0):
-            raise ScenarioError("span", f"{t_out.size} output times",
+            raise InputError("t_out", f"{t_out.size} output times",
                                 "finite times running away from t0 in one direction (forward or backward)")
         if not self.supports(system):
-            raise ScenarioError("integrator.method", self.name,
+            raise InputError("method", self.name,
                                 f"a method that supports system '{system.name}' (this one needs a rigid body with an external torque)")
         return t_out
 

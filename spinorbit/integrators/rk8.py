@@ -15,7 +15,7 @@ import time
 
 import numpy as np
 
-from ..errors import IntegrationError, ScenarioError
+from ..errors import InputError, IntegrationError
 from ..linker import link, template
 from ..progress import progress
 from ..rotations import put
@@ -174,7 +174,7 @@ class RK8(Integrator):
         t_out = self._check_times(system, t_out)
         h = float(self.settings["step"])
         if not h > 0:
-            raise ScenarioError("integrator.step", h, "a positive step in days")
+            raise InputError("step", h, "a positive step in days")
         h = h if t_out[-1] >= system.t0 else -h
         step = link(rk_step, rhs=system.rhs)
         if self.DENSE is not None and _landing_shortens(t_out, system.t0, h):

@@ -47,7 +47,7 @@ import time
 import numpy as np
 from numba import njit
 
-from ..errors import IntegrationError, ScenarioError
+from ..errors import InputError, IntegrationError
 from ..linker import link, template
 from ..progress import progress
 from ..rotations import put
@@ -200,10 +200,10 @@ class Strang(Integrator):
         t_out = self._check_times(system, t_out)
         h = float(self.settings["step"])
         if not h > 0:
-            raise ScenarioError("integrator.step", h, "a positive step in days")
+            raise InputError("step", h, "a positive step in days")
         flow = self.settings["free_flow"]
         if flow not in FREE_FLOWS:
-            raise ScenarioError("integrator.free_flow", flow, f"one of {list(FREE_FLOWS)}")
+            raise InputError("free_flow", flow, f"one of {list(FREE_FLOWS)}")
         moments = np.asarray(system.moments, dtype=float)
         frame_rate = np.asarray(system.meta.get("frame_rate", np.zeros(3)), dtype=float)
         loop = link(split_loop, torque=system.torque)

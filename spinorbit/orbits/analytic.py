@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
-from ..errors import ScenarioError
+from ..errors import InputError
 
 
 
@@ -54,7 +54,7 @@ class CircularOrbits:
         self.gm, self.radius, self.rate, self.phase, self.inclination = _per_body(
             n, self.gm, self.radius, self.rate, self.phase, self.inclination)
         if np.any(self.radius <= 0):
-            raise ScenarioError("orbit.radius", self.radius.tolist(), "positive distances")
+            raise InputError("radius", self.radius.tolist(), "positive distances")
         self.data = (self.radius, self.rate, self.phase, self.inclination)
 
     kernel = staticmethod(_circle_positions)
@@ -118,9 +118,9 @@ class KeplerOrbit:
         n = len(self.names)
         self.gm, self.a, self.e = _per_body(n, self.gm, self.a, self.e)
         if np.any(self.a <= 0):
-            raise ScenarioError("orbit.a", self.a.tolist(), "positive semi-major axes")
+            raise InputError("a", self.a.tolist(), "positive semi-major axes")
         if np.any((self.e < 0) | (self.e >= 1)):
-            raise ScenarioError("orbit.e", self.e.tolist(), "eccentricities in [0, 1)")
+            raise InputError("e", self.e.tolist(), "eccentricities in [0, 1)")
         if self.mean_motion is None:
             self.mean_motion = np.sqrt(self.gm / self.a**3)
         self.mean_motion, self.mean_anomaly, self.periapsis, self.inclination, self.node = _per_body(
@@ -175,9 +175,9 @@ class UnevenCircle:
         self.gm, self.f, self.delta, self.alpha, self.beta, self.a_freq, self.phase = _per_body(
             n, self.gm, self.f, self.delta, self.alpha, self.beta, self.a_freq, self.phase)
         if np.any(self.f <= 0):
-            raise ScenarioError("orbit.f", self.f.tolist(), "positive mean distances")
+            raise InputError("f", self.f.tolist(), "positive mean distances")
         if np.any(np.abs(self.beta) >= 1):
-            raise ScenarioError("orbit.beta", self.beta.tolist(), "|beta| < 1 (1/s^3 must stay positive)")
+            raise InputError("beta", self.beta.tolist(), "|beta| < 1 (1/s^3 must stay positive)")
         self.data = (self.f, self.delta, self.alpha, self.beta, self.a_freq, self.phase)
 
     kernel = staticmethod(_uneven_circle_positions)

@@ -21,7 +21,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..errors import EphemerisRangeError, ScenarioError
+from ..errors import EphemerisRangeError, InputError
 
 
 @njit(cache=True)
@@ -105,11 +105,11 @@ class HermiteOrbits:
         if pos.ndim != 3 or pos.shape != vel.shape or pos.shape[0] != len(self.names) \
                 or pos.shape[1] < 2 or pos.shape[2] != 3 \
                 or (accelerations is not None and np.shape(accelerations) != pos.shape):
-            raise ScenarioError("positions/velocities/accelerations",
+            raise InputError("positions/velocities/accelerations",
                                 f"shapes {pos.shape}, {vel.shape}, {np.shape(accelerations)}",
                                 f"equal shapes ({len(self.names)}, n_samples >= 2, 3)")
         if not step > 0:
-            raise ScenarioError("step", step, "a positive step in days")
+            raise InputError("step", step, "a positive step in days")
         self.source = source
         self.step = float(step)
         self.span = (float(t_start), float(t_start) + (pos.shape[1] - 1) * self.step)
@@ -178,7 +178,7 @@ def _jump(t, err, distance):
 def grid(t_start, t_end, step):
     """Times t_start + k * step, k = 0..n, with the last one at or after t_end (days)."""
     if not t_end > t_start:
-        raise ScenarioError("span", (t_start, t_end), "end after start")
+        raise InputError("t_start/t_end", (t_start, t_end), "end after start")
     n = max(1, math.ceil((t_end - t_start) / step))
     n += t_start + n * step < t_end
     return t_start + step * np.arange(n + 1)

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from ..constants import J2000_JD
-from ..errors import EphemerisRangeError, ScenarioError
+from ..errors import EphemerisRangeError, InputError
 
 EPHEMERIDES_DIR = Path(__file__).resolve().parents[2] / "ephemerides"
 
@@ -37,27 +37,27 @@ def kernel_path(source):
         return Path(getattr(importlib.import_module(f"naif_{source}"), source))
     except (ImportError, AttributeError):
         shipped = sorted(p.stem for p in EPHEMERIDES_DIR.glob("*.bsp"))
-        raise ScenarioError("orbit.source", source,
+        raise InputError("source", source,
                             f"'de421', a .bsp in ephemerides/ ({shipped or 'none there'}), "
                             f"or an installed naif-{source} package") from None
 
 
 def _open_spk(spk_class, path):
-    """jplephem's SPK for ``path``; a missing, unreadable or truncated file is a ScenarioError on orbit.source."""
+    """jplephem's SPK for ``path``; a missing, unreadable or truncated file is an InputError on source."""
     accepted = "a JPL SPK kernel (.bsp): 'de421', a .bsp in ephemerides/, or a path to one"
     if not path.is_file():
-        raise ScenarioError("orbit.source", str(path), f"{accepted} (no such file)")
+        raise InputError("source", str(path), f"{accepted} (no such file)")
     try:
         spk = spk_class.open(str(path))
     except (OSError, ValueError, TypeError, IndexError, EOFError) as exc:
         reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-        raise ScenarioError("orbit.source", str(path), f"{accepted}; this file cannot be read ({reason})") from None
+        raise InputError("source", str(path), f"{accepted}; this file cannot be read ({reason})") from None
     size = path.stat().st_size
     short = [seg for seg in spk.segments if seg.end_i * 8 > size]     # DAF addresses are 8-byte words
     if short or not spk.segments:
         spk.close()
         detail = f"segment of body {short[0].target} ends at byte {short[0].end_i * 8}" if short else "no segments"
-        raise ScenarioError("orbit.source", str(path), f"{accepted}; this file is truncated or empty "
+        raise InputError("source", str(path), f"{accepted}; this file is truncated or empty "
                                                         f"({size} bytes, {detail})")
     return spk
 
@@ -89,7 +89,7 @@ class JPLKernel:
         for code in NAIF.get(name, ()):
             if code == 0 or code in self._parent:
                 return code
-        raise ScenarioError("body", name, f"one of {sorted(n for n in NAIF if self._has(n))}")
+        raise InputError("body", name, f"one of {sorted(n for n in NAIF if self._has(n))}")
 
     def _has(self, name):
         return any(c == 0 or c in self._parent for c in NAIF[name])
@@ -173,7 +173,7 @@ class DE421Arrays:
             return emb_p - share * moon_p, emb_v - share * moon_v
         key = {"earth_moon_barycenter": "earthmoon"}.get(name, name)
         if key not in eph.names or key in ("librations", "nutations"):
-            raise ScenarioError("body", name, f"one of {sorted(NAIF)}")
+            raise InputError("body", name, f"one of {sorted(NAIF)}")
         return state(key)
 
     def relative_states(self, target, center, t_tdb_days):

@@ -7,7 +7,7 @@ error at every mid-point (``max_error_km``, ``max_relative_error`` per body).
 import numpy as np
 
 from ..constants import GM_KM3_D2
-from ..errors import ScenarioError
+from ..errors import InputError
 
 # Common grid step, days.  Quintic Hermite, measured over 2000-2001 (max at mid-points,
 # |dr|/r): Moon-centred Earth 0.25 d 3.7e-12, Moon-centred Sun 0.25 d 8.7e-15 (the cubic
@@ -20,7 +20,7 @@ def gm_of(bodies, table=GM_KM3_D2):
     """GM of each body, km^3/day^2 (DE421 values)."""
     unknown = [b for b in bodies if b not in table]
     if unknown:
-        raise ScenarioError("orbit.bodies", unknown, f"bodies with a known GM: {sorted(table)}")
+        raise InputError("bodies", unknown, f"bodies with a known GM: {sorted(table)}")
     return np.array([table[b] for b in bodies])
 
 
@@ -57,17 +57,17 @@ def sample_orbits(source, center, bodies, t_start, t_end, step=None, measure=Tru
         states = [ephemeris.relative_states(b, center, times) for b in bodies]
         for body, (pos, vel) in zip(bodies, states):
             if not (np.isfinite(pos).all() and np.isfinite(vel).all()):
-                raise ScenarioError("orbit.source", source, f"a kernel with finite coefficients ({body} relative "
+                raise InputError("source", source, f"a kernel with finite coefficients ({body} relative "
                                                             f"to {center} is not finite in kernel {ephemeris.name!r})")
         orbits = HermiteOrbits(bodies, gm_of(bodies), t_start, step, [s[0] for s in states],
                                [s[1] for s in states], source=ephemeris.name)
     else:
-        raise ScenarioError("orbit.source", source, SOURCES)
+        raise InputError("source", source, SOURCES)
     if measure and reference is not None:
         orbits.measure_error(reference)
         if orbits.jump is not None:
             body, t, err, typical = orbits.jump
-            raise ScenarioError("orbit.source", source,
+            raise InputError("source", source,
                                 f"a kernel whose bodies move smoothly: {bodies[body]} relative to {center} jumps "
                                 f"near t = {t:.6g} d TDB from J2000 (interpolation error {err:.3g} km there, "
                                 f"{typical:.3g} km typical)")

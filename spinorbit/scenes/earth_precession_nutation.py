@@ -41,11 +41,13 @@ SCHEMA = {
                                  "the rigid model's own nutation (from a first gyroscopic pass)"),
     "earth.geodesic_precession": Key(type=bool, default=True),
     "earth.j2_rate": Key(type=bool, default=True),
+    "earth.j4": Key(type=bool, default=False, help="the Moon's and Sun's torques on the Earth's J4 (EGM2008; "
+                                                   "gyroscopic model)"),
     "earth.nonrigid": Key(type=bool, default=False,
                           help="multiply the integrated rigid nutation, term by term, by the response of an "
                                "elastic mantle with a fluid core (spinorbit.nonrigid, MHB2000 parameters)"),
     "orbit.source": Key(type=str, default="de421", choices=("de421", "circular")),
-    "orbit.planets": Key(type=bool, default=False, help="add the direct torques of Venus and Jupiter"),
+    "orbit.planets": Key(type=bool, default=False, help="add the direct torques of the planets (Mercury to Saturn)"),
     "orbit.sample_step": Key(**SAMPLE_STEP, default=0.25),
     "comparison.gyroscopic_step": Key(unit="d", default=1.0, positive=True, count="integrator steps",
                                       help="rk8 step of the gyroscopic run compared with the full model"),
@@ -91,6 +93,7 @@ def verdict(scenario, comparison):
     return Verdict("IAU 2006/2000A (ERFA)", tuple(checks))
 
 
+PLANETS = ("mercury", "venus", "mars", "jupiter", "saturn")  # direct torques; Uranus, Neptune: GM/r^3 ~1e-3 of Jupiter's
 CIRCLES = euler_p96.CIRCLES              # Euler's circles (P96): mean distance (km), sidereal period (d)
 
 
@@ -160,7 +163,10 @@ def build_system(scenario, t):
     pole_ecl = erfa_pole.ecliptic_pole_j2000() if plane_tilt is None else \
         np.array([0.0, -math.sin(plane_tilt), math.cos(plane_tilt)])
     moments = earth.earth_moments(scenario["earth.dynamical_ellipticity"], scenario["earth.b_minus_a_over_c"])
-    extra = earth.extra_parameters(pole_ecl, scenario["earth.geodesic_precession"], scenario["earth.j2_rate"])
+    if scenario["earth.j4"] and scenario["earth.model"] != "gyroscopic":
+        raise ScenarioError("earth.j4", True, 'false with earth.model = "full" (J4 acts in the gyroscopic model)')
+    extra = earth.extra_parameters(pole_ecl, scenario["earth.geodesic_precession"], scenario["earth.j2_rate"],
+                                   scenario["earth.j4"])
     params = earth.earth_params(moments, orbits.gm, orbits.data, extra)
     z0 = erfa_pole.cip_vector(t0)
     if scenario["earth.start_pole"] != "iau" and plane_tilt is None:
@@ -193,7 +199,7 @@ def build(scenario):
 
 def _orbits(scenario):
     """(orbit source, tilt of the circles' plane or None): DE421 sampled once, or Euler's circles."""
-    bodies = ("moon", "sun") + (("venus", "jupiter") if scenario["orbit.planets"] else ())
+    bodies = ("moon", "sun") + (PLANETS if scenario["orbit.planets"] else ())
     if scenario["orbit.source"] == "circular":
         from ..orbits.analytic import CircularOrbits
         from ..references.erfa_pole import EPS0_ARCSEC

@@ -15,6 +15,8 @@ import math
 import numpy as np
 
 from ..analysis.ladder import settings, work_precision
+from ..errors import ScenarioError
+from ..integrators import METHODS
 from ..schema import DISTANCE, GM, RATE, Key
 from ..verdict import Check, Verdict
 from . import common
@@ -85,6 +87,9 @@ def build(scenario):
 
 
 def run(scenario):
+    for method in scenario["stress.methods"]:
+        if not isinstance(method, str) or method not in METHODS:
+            raise ScenarioError("stress.methods", method, f"method names, of {sorted(METHODS)}")
     t = scenario.output_times()
     rows, passed = {}, True
     for offset in scenario["stress.offsets"]:
