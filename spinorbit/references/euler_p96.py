@@ -13,12 +13,14 @@ CIRCLES = {"moon": (384400.0, 27.321661), "sun": (149597870.7, 365.256363)}
 
 def precession_rate(moments, spin_rad_d, tilt_rad):
     """Euler's P96 rate (rad/d) of a body of principal ``moments`` spinning at ``spin_rad_d``, its equator
-    at ``tilt_rad`` to the circles' plane: sum over Moon and Sun of N cos n, N = 3/2 GM (C - A)/(w C r^3)."""
-    from ..theory import SymmetricPrecession
+    at ``tilt_rad`` to the circles' plane: the sum over Moon and Sun of N cos n (theory.precession_constant
+    N, times the gyroscopic ratio A/C: the figure axis follows the angular momentum)."""
+    from ..theory import SymmetricPrecession, precession_constant
 
     rate = 0.0
     for name, (radius, period) in CIRCLES.items():
-        big_n = 1.5 * GM_KM3_D2[name] * (moments[2] - moments[0]) / (spin_rad_d * moments[2] * radius**3)
+        big_n = precession_constant(GM_KM3_D2[name], radius, spin_rad_d, moments[2], moments[0])
+        big_n *= moments[0] / moments[2]
         rate += SymmetricPrecession(spin_rad_d, 2 * math.pi / period, big_n, tilt_rad).precession_rate
     return rate
 
