@@ -8,8 +8,8 @@ ERFA ``bpn2xy(pnm06a)``, fits the precession rate and the main nutation terms,
 and puts Euler's P96 rate N cos n (§846) for circular orbits beside them.
 The rigid-minus-IAU differences of the nutation terms are the non-rigid
 response (MHB2000: fluid core, mantle anelasticity, oceans), not errors;
-``earth.nonrigid = true`` applies that response (spinorbit.nonrigid: elastic
-mantle and fluid core) to the integrated rigid nutation, term by term.
+``earth.nonrigid = true`` applies that response (spinorbit.nonrigid's transfer
+function) to the integrated rigid nutation, term by term.
 
 Verdict (``verdict``): on DE421, the CIP X, Y rms against IAU 2006/2000A (1 mas with the
 non-rigid layer) and the precession rate in longitude minus IAU 2006's (over >= 50 yr);
@@ -44,8 +44,8 @@ SCHEMA = {
     "earth.j4": Key(type=bool, default=False, help="the Moon's and Sun's torques on the Earth's J4 (EGM2008; "
                                                    "gyroscopic model)"),
     "earth.nonrigid": Key(type=bool, default=False,
-                          help="multiply the integrated rigid nutation, term by term, by the response of an "
-                               "elastic mantle with a fluid core (spinorbit.nonrigid, MHB2000 parameters)"),
+                          help="multiply the integrated rigid nutation, term by term, by the non-rigid Earth's "
+                               "transfer function (spinorbit.nonrigid)"),
     "orbit.source": Key(type=str, default="de421", choices=("de421", "circular")),
     "orbit.planets": Key(type=bool, default=False, help="add the direct torques of the planets (Mercury to Saturn)"),
     "orbit.sample_step": Key(**SAMPLE_STEP, default=0.25),
@@ -240,7 +240,7 @@ def _a_axis(erfa_pole, t0, z0):
 
 def _nonrigid_pole(erfa_pole, t, z):
     """Figure axes (n, 3) of the non-rigid Earth: the rigid nutation (x, y) = (dpsi sin eps_A, deps) about
-    the IAU 2006 mean pole, times the two-layer response term by term, plus MHB2000's nonlinear precession
+    the IAU 2006 mean pole, times the transfer function term by term, plus MHB2000's nonlinear precession
     accumulated from the start (spinorbit.nonrigid)."""
     from ..references import arguments
 
