@@ -46,6 +46,7 @@ Units: km, rad/day, GM km^3/day^2, moments in units of M R^2 (R = gravity refere
 radius).  State y = [q (4), w_m (3)] or [q, w_m, w_c (3)] with a core.
 """
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
@@ -58,8 +59,23 @@ from .terms.base import fuse
 # Layout of the float vector ``consts`` in the parameters (see moon_params).
 R_KM, K2_MASS_RATIO, K2_ROT, TAU_D, KV, C_CORE, N_MEAN, F_CORE = range(8)
 
-LEVEL_TERMS = {1: ("point_mass",), 2: ("point_mass", "harmonics"), 3: ("point_mass", "harmonics", "earth_j2"),
-               4: ("point_mass", "harmonics", "earth_j2")}
+@dataclass(frozen=True)
+class Level:
+    """A level of the lunar model: its terms (spinorbit.terms), the Moon's own physics, the attracting bodies."""
+
+    name: str
+    terms: tuple
+    core: bool = False
+    tides: bool = False
+    bodies: tuple = ("earth", "sun")
+
+
+LEVELS = {1: Level("Euler: degree-2 Moon, Earth + Sun point masses", ("point_mass",)),
+          2: Level("+ Moon degree 3 and 4", ("point_mass", "harmonics")),
+          3: Level("+ oblate fluid core, tidal and rotational distortion, Earth's J2 on the figure",
+                   ("point_mass", "harmonics", "earth_j2"), core=True, tides=True),
+          4: Level("+ Venus, Mars, Jupiter, Saturn on the figure", ("point_mass", "harmonics", "earth_j2"), core=True,
+                   tides=True, bodies=("earth", "sun", "venus", "jupiter", "mars", "saturn"))}
 N_MEAN_RAD_D = 2 * math.pi / 27.321661                      # sidereal month, rad/day
 
 

@@ -155,6 +155,19 @@ def earth_precession_nutation(t, dx_mas, dy_mas, nutation, iau):
     return figures
 
 
+def driven_by(t, pole_rad, lon_rad, source, other):
+    """A lunar run's pole and longitude minus the same run's driven by ``other`` (arcsec), against the year."""
+    from .constants import ARCSEC
+
+    return plot_series(2000.0 + np.asarray(t) / 365.25, np.array([pole_rad, lon_rad]) / ARCSEC, "year (TDB)",
+                       f"{source} - {other} driven [arcsec]", ["pole", "longitude"])
+
+
+def full_minus_gyroscopic(t, diff_mas):
+    """The full model's figure axis minus the gyroscopic model's, mas, against the year."""
+    return plot_series(2000.0 + np.asarray(t) / 365.25, diff_mas, "year (TDB)", "full - gyroscopic figure axis [mas]")
+
+
 def _period_d(text):
     """Days in a period written "27.55 d" or "273 yr"."""
     value, unit = text.split()

@@ -128,3 +128,10 @@ def test_no_import_cycle_between_rooms():
     cycle = find_cycle(edges)
     assert cycle is None, "import cycle between rooms: " + " -> ".join(cycle) + "\n" + "\n".join(
         f"  {a} -> {b}: {', '.join(edges[a, b])}" for a, b in zip(cycle, cycle[1:]))
+
+
+@pytest.mark.parametrize("path", sorted((PACKAGE / "scenes").glob("*.py")), ids=lambda p: p.name)
+def test_scene_modules_are_thin(path):
+    """A scene declares (bodies, terms, orbit source, integrator, reference, analyses) in at most 150 lines;
+    models, fits and comparisons live below it."""
+    assert len(path.read_text().splitlines()) <= 150

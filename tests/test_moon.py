@@ -9,11 +9,12 @@ import pytest
 
 from spinorbit.errors import EphemerisRangeError
 from spinorbit.analysis.librations import pole_and_longitude_difference
+from spinorbit.bodies.moon import de421
 from spinorbit.references import moon_de421 as ref
 from spinorbit.rotations import omega_body_from_euler313_rates
 from tests.units import arcsec, mas
 
-C = ref.moon_constants()
+C = de421()
 
 
 def test_angles_at_epoch_equal_header():

@@ -5,10 +5,22 @@ import math
 
 import numpy as np
 
-from ..constants import GM_KM3_D2
+from ..constants import ARCSEC, GM_KM3_D2
 
 # Euler's circles: mean distance (km) and sidereal period (d) of the Moon and the Sun.
 CIRCLES = {"moon": (384400.0, 27.321661), "sun": (149597870.7, 365.256363)}
+
+
+def circles():
+    """(orbit source, tilt): Euler's circles of the Moon and the Sun in the J2000 ecliptic (his hypothesis, §844),
+    tilted by the IAU 2006 obliquity at J2000 from the GCRS equator."""
+    from ..orbits.analytic import CircularOrbits
+    from .erfa_pole import EPS0_ARCSEC
+
+    tilt = EPS0_ARCSEC * ARCSEC
+    names = tuple(CIRCLES)
+    return CircularOrbits(names, [GM_KM3_D2[b] for b in names], [CIRCLES[b][0] for b in names],
+                          [2 * math.pi / CIRCLES[b][1] for b in names], None, [tilt, tilt]), tilt
 
 
 def precession_rate(moments, spin_rad_d, tilt_rad):

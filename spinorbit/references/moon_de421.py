@@ -1,4 +1,4 @@
-"""JPL DE421 lunar orientation and lunar model constants (edge module).
+"""JPL DE421 lunar orientation (edge module); the lunar constants are spinorbit.bodies.moon's.
 
 Two independent routes to the DE421 mantle orientation (JPL 3-1-3 angles
 phi, theta, psi: ICRF -> lunar principal axes, M = Rz(psi) Rx(theta) Rz(phi)):
@@ -11,13 +11,11 @@ phi, theta, psi: ICRF -> lunar principal axes, M = Rz(psi) Rx(theta) Rz(phi)):
   frame kernel ``moon_080317.tf`` (both shipped by ``lunarsky``), through skyfield's
   ``PlanetaryConstants`` (frame ``MOON_PA_DE421``).
 
-:data:`MOON` holds the DE421 lunar constants (``constants.npy``, the ephemeris
-header) under physical names with units.  References: Williams, Boggs & Folkner
+References: Williams, Boggs & Folkner
 (2008), JPL IOM 335-JW,DB,WF-20080314-001 "DE421 lunar orbit, physical librations
 and surface coordinates"; Folkner et al. (2014), IPN PR 42-196 (the equations).
 Times: TDB days from J2000.0.
 """
-from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
 
@@ -25,6 +23,8 @@ import numpy as np
 from numba import njit
 from numpy.polynomial import chebyshev
 
+from ..bodies.de421_header import header
+from ..bodies.moon import de421 as moon_constants
 from ..constants import J2000_JD
 from ..errors import EphemerisRangeError
 from ..rotations import cross3, dot3, matrix_from_euler313, omega_body_from_euler313_rates
@@ -37,83 +37,6 @@ def _de421_dir():
     import de421
 
     return Path(de421.__file__).parent
-
-
-@cache
-def header():
-    """The DE421 header constants, name -> value (DE units: au, day, rad)."""
-    return {name.decode(): float(value) for name, value in np.load(_de421_dir() / "constants.npy")}
-
-
-@dataclass(frozen=True)
-class MoonConstants:
-    """DE421 lunar model constants, named with their units.
-
-    Moments (``moments``, units of M R^2, R = ``radius_km``) follow from the
-    undistorted J2, beta = (C - A)/B, gamma = (B - A)/C as in Folkner et al.
-    (2014, eq. for I): C = 2 J2 (1 + beta) / (2 beta - gamma + beta gamma),
-    B = C (1 + gamma)/(1 + beta), A = C (1 - beta gamma)/(1 + beta).
-    """
-
-    epoch_tdb_d: float            # JDEPOC - J2000: epoch of the initial state
-    angles0_rad: np.ndarray       # (PHI, THT, PSI) at the epoch
-    omega0_rad_d: np.ndarray      # mantle angular velocity, body axes (OMEGAX/Y/Z)
-    omega_core0_rad_d: np.ndarray  # fluid-core angular velocity, mantle axes (OMGCX/Y/Z)
-    beta: float                   # LBET = (C - A)/B
-    gamma: float                  # LGAM = (B - A)/C
-    j2: float                     # J2M, undistorted
-    c22: float                    # C22M
-    c_nm: np.ndarray              # unnormalised C_nm, shape (5, 5), degree 3-4 (C_n0 = -J_n)
-    s_nm: np.ndarray              # unnormalised S_nm, shape (5, 5)
-    radius_km: float              # AM, reference radius of the lunar gravity field
-    k2: float                     # K2M, lunar potential Love number
-    tau_d: float                  # TAUM, time delay of the lunar tide, days
-    kv_over_c_per_d: float        # KVC = k_nu / C, core-mantle friction, 1/day
-    core_c_over_c: float          # IFAC = C_core / C
-    core_flattening: float        # COBLAT = (C_c - A_c)/C_c, oblateness of the core-mantle boundary
-    earth_j2: float               # J2E, acting on the Moon's figure
-    earth_radius_km: float        # RE, J2E's reference radius
-    gm_km3_d2: dict               # GM of sun, earth, moon (DE421), km^3/day^2
-    au_km: float
-    emrat: float                  # Earth/Moon mass ratio
-
-    @property
-    def c_mr2(self):
-        """C/(M R^2) of the whole Moon (undistorted)."""
-        b, g = self.beta, self.gamma
-        return 2 * self.j2 * (1 + b) / (2 * b - g + b * g)
-
-    @property
-    def moments(self):
-        """(A, B, C) of the whole undistorted Moon, units of M R^2."""
-        b, g, c = self.beta, self.gamma, self.c_mr2
-        return np.array([c * (1 - b * g) / (1 + b), c * (1 + g) / (1 + b), c])
-
-
-@cache
-def moon_constants():
-    """:class:`MoonConstants` read from the DE421 header."""
-    h = header()
-    c_nm, s_nm = np.zeros((5, 5)), np.zeros((5, 5))
-    c_nm[3, 0], c_nm[4, 0] = -h["J3M"], -h["J4M"]
-    for n in (3, 4):
-        for m in range(1, n + 1):
-            c_nm[n, m], s_nm[n, m] = h[f"C{n}{m}M"], h[f"S{n}{m}M"]
-    au = h["AU"]
-    gm = lambda x: x * au**3                       # au^3/d^2 -> km^3/d^2
-    gmb = h["GMB"]
-    return MoonConstants(
-        epoch_tdb_d=h["JDEPOC"] - J2000_JD,
-        angles0_rad=np.array([h["PHI"], h["THT"], h["PSI"]]),
-        omega0_rad_d=np.array([h["OMEGAX"], h["OMEGAY"], h["OMEGAZ"]]),
-        omega_core0_rad_d=np.array([h["OMGCX"], h["OMGCY"], h["OMGCZ"]]),
-        beta=h["LBET"], gamma=h["LGAM"], j2=h["J2M"], c22=h["C22M"], c_nm=c_nm, s_nm=s_nm,
-        radius_km=h["AM"], k2=h["K2M"], tau_d=h["TAUM"], kv_over_c_per_d=h["KVC"],
-        core_c_over_c=h["IFAC"], core_flattening=h["COBLAT"], earth_j2=h["J2E"], earth_radius_km=h["RE"],
-        gm_km3_d2={"sun": gm(h["GMS"]), "earth": gm(gmb * h["EMRAT"] / (1 + h["EMRAT"])),
-                   "moon": gm(gmb / (1 + h["EMRAT"]))},
-        au_km=au, emrat=h["EMRAT"],
-    )
 
 
 @cache
@@ -227,6 +150,14 @@ def pck_matrix(t_tdb_d):
         raise EphemerisRangeError("moon_pa_de421 PCK", f"{t.min():.6g} to {t.max():.6g}", (start, end))
     times = load.timescale().tdb_jd(J2000_JD, t)
     return np.moveaxis(_pck_frame().rotation_at(times), -1, 0).reshape(t.size, 3, 3)
+
+
+def initial_state(t_tdb_d, core=False):
+    """DE421's Moon at ``t_tdb_d``: [q (body -> ICRF), w_m (body axes, rad/d)] and, with ``core``, the core's w_c."""
+    from ..rotations import quat_from_euler313
+
+    y0 = np.concatenate([quat_from_euler313(*librations([t_tdb_d])[0][0]), orientation([t_tdb_d])[1][0]])
+    return np.concatenate([y0, core_angular_velocity(t_tdb_d)]) if core else y0
 
 
 def core_angular_velocity(t_tdb_d, step_d=0.25):
