@@ -61,11 +61,14 @@ def write_plots(result, out):
     summary = result.summary
     span = summary.get("span", {}).get("years", "")
     for name, draw in result.figures.items():
-        fig = plt.figure(figsize=getattr(draw, "figsize", (8, 4.5)))
+        width, height = getattr(draw, "figsize", (8, 4.5))
+        fig = plt.figure(figsize=(width, height))
         draw(fig)
         title = getattr(draw, "title", name.replace("_", " "))
         fig.suptitle(f"{summary.get('scene', '')}: {title} ({span})", fontsize=11)
-        fig.tight_layout()
+        # fixed margins (inches) instead of tight_layout, which measures every tick label (1.7 s of 4 figures)
+        fig.subplots_adjust(left=1.0 / width, right=1 - 0.25 / width, bottom=0.55 / height, top=1 - 0.5 / height,
+                            hspace=0.3 * 4.5 / height)
         paths.append(_atomic(out / f"{name}.png", lambda p: fig.savefig(p, dpi=110, format="png")))
         plt.close(fig)
     return paths
