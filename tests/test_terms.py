@@ -76,36 +76,35 @@ def _brute(points, m, s_vec, gm):
     return (w[:, None] * d).sum(axis=0), np.cross(points, w[:, None] * d).sum(axis=0)
 
 
+U = np.array([0.6, 0.48, 0.64])
+
+
+def _assert_shrinks(symmetric, order, relative_error):
+    """relative_error(moments, points, masses, s) at s = 40, 80, 160 body sizes: below 0.1, falling 2^order-fold."""
+    moments, points, m = _cloud(symmetric)
+    errors = np.array([relative_error(moments, points, m, s) for s in (40.0, 80.0, 160.0)])
+    assert errors[0] < 0.1
+    np.testing.assert_allclose(errors[:-1] / errors[1:], 2.0**order, rtol=0.05)
+
+
 @pytest.mark.parametrize("symmetric, order", [(False, 1), (True, 2)])
 def test_torque_remainder_shrinks_as_816_says(symmetric, order):
     """The neglected part is O(size/s) of the 1/s^3 torque, O((size/s)^2) without odd moments (§816)."""
-    moments, points, m = _cloud(symmetric)
-    u = np.array([0.6, 0.48, 0.64])
-    errors = []
-    for s in (40.0, 80.0, 160.0):
-        _, exact = _brute(points, m, s * u, 1.0)
-        model = point_mass_torque(moments, s * u, 1.0)
-        errors.append(np.linalg.norm(exact - model) / np.linalg.norm(model))
-    ratios = np.array(errors[:-1]) / np.array(errors[1:])
-    assert errors[0] < 0.1
-    np.testing.assert_allclose(ratios, 2.0**order, rtol=0.05)
+    def error(moments, points, m, s):
+        model = point_mass_torque(moments, s * U, 1.0)
+        return np.linalg.norm(_brute(points, m, s * U, 1.0)[1] - model) / np.linalg.norm(model)
+
+    _assert_shrinks(symmetric, order, error)
 
 
 @pytest.mark.parametrize("symmetric, order", [(False, 1), (True, 2)])
 def test_figure_force_818_against_cloud(symmetric, order):
     """§818: the force to order 1/s^4; its error relative to the 1/s^4 part shrinks like (size/s)^order."""
-    moments, points, m = _cloud(symmetric)
-    u = np.array([0.6, 0.48, 0.64])
-    errors = []
-    for s in (40.0, 80.0, 160.0):
-        exact, _ = _brute(points, m, s * u, 1.0)
-        model = figure_force(moments, 1.0, s * u, 1.0)
-        second = model - u / s**2                                    # the 1/s^4 part
-        errors.append(np.linalg.norm(exact - model) / np.linalg.norm(second))
-    ratios = np.array(errors[:-1]) / np.array(errors[1:])
-    assert errors[0] < 0.1
-    np.testing.assert_allclose(ratios, 2.0**order, rtol=0.05)
+    def error(moments, points, m, s):
+        model = figure_force(moments, 1.0, s * U, 1.0)
+        return np.linalg.norm(_brute(points, m, s * U, 1.0)[0] - model) / np.linalg.norm(model - U / s**2)
 
+    _assert_shrinks(symmetric, order, error)
 
 # --- harmonics --------------------------------------------------------------------------
 
