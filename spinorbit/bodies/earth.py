@@ -2,11 +2,14 @@
 
 IAU 2006 precession (Capitaine, Wallace & Chapront 2003, "P03"): H_d = (C - A)/C and J2 with
 its rate.  The DE421 header (bodies.de421_header) has J2E at RE, which DE421 lets act on the
-Moon's figure (terms.figure_figure), and the tide parameters K2E0/1/2, TAUE0/1/2.  Triaxiality: EGM2008 C22 with C/(M a^2) = 0.3307.
+Moon's figure (terms.figure_figure), and the Earth's tides (``de421_tides``).  Triaxiality:
+EGM2008 C22 with C/(M a^2) = 0.3307.
 Rotation: the Earth rotation angle rate (IERS Conventions 2010, eq. 5.15); geodesic
 precession (de Sitter) of the dynamical frame against the GCRS (IERS Conventions 2010, §5.6.4).
 """
 import math
+
+from .de421_header import header
 
 H_D = 3.27379448e-3                      # (C - A)/C, IAU 2006 (P03)
 J2 = 1.0826359e-3                        # IAU 2006 (P03)
@@ -18,3 +21,10 @@ B_MINUS_A_OVER_C = 1.904e-5              # 4 C22 / (C/MR^2), EGM2008 C22 = 1.574
 A_AXIS_LONGITUDE_DEG = -14.93            # longitude of the axis of least moment (EGM2008 C22, S22)
 ERA_RATE_RAD_D = 2 * math.pi * 1.00273781191135448   # Earth rotation angle rate, rad per UT1 day
 GEODESIC_PRECESSION_ARCSEC_CY = 1.919883  # rate of the dynamical frame w.r.t. GCRS, prograde
+
+
+def de421_tides():
+    """The Earth's tides of DE421, per band (0 zonal, 1 diurnal, 2 semi-diurnal): {band: (k2, time delay d)}
+    from the header's K2E0/1/2 and TAUE0/1/2 (Folkner et al. 2014, IPN PR 42-196, the tidal acceleration)."""
+    h = header()
+    return {band: (h[f"K2E{band}"], h[f"TAUE{band}"]) for band in (0, 1, 2)}
