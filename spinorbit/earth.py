@@ -44,6 +44,10 @@ from .terms import point_mass
 from .terms.base import fuse
 
 POINT_MASSES = (point_mass.build(None),)
+# The Earth's heliocentric orbit: eccentricity and the Sun's mean anomaly l' = l'_0 + n' t (rad, rad/d),
+# Simon et al. 1994 as in the IERS Conventions 2010 (eq. 5.43, linear part).
+EARTH_ORBIT_ECCENTRICITY = 0.0167086
+SUN_MEAN_ANOMALY_RAD = (math.radians(357.52910918), math.radians(129596581.0481 / 3600.0) / JULIAN_CENTURY_D)
 
 
 def earth_moments(h_d=H_D, b_minus_a_over_c=0.0):
@@ -58,14 +62,25 @@ def earth_params(moments, gm, data, extra, term_params=((),)):
             np.asarray(extra, dtype=float))
 
 
-def extra_parameters(ecliptic_pole, geodesic=True, j2_rate=True, j4=False):
-    """``extra`` = [Omega_gp (3), k_J2, J4 R^2/(C/MR^2)]: geodesic precession about ``ecliptic_pole``
-    (GCRS unit vector), the secular J2 rate, and the J4 coefficient (km^2, 0 = off; gyroscopic model)."""
+def extra_parameters(ecliptic_pole, geodesic=True, j2_rate=True, j4=False, geodesic_nutation=False):
+    """``extra`` = [Omega_gp (3), k_J2, J4 R^2/(C/MR^2), 3 e, l'_0, n']: geodesic precession about
+    ``ecliptic_pole`` (GCRS unit vector), the secular J2 rate, the J4 coefficient (km^2, 0 = off), and the
+    annual modulation of the geodesic precession (0 = off; both for the gyroscopic model)."""
     rate = GEODESIC_PRECESSION_ARCSEC_CY * ARCSEC / JULIAN_CENTURY_D if geodesic else 0.0
     k = J2_RATE_PER_CY / J2 / JULIAN_CENTURY_D if j2_rate else 0.0
     j4_coef = J4 * EQUATORIAL_RADIUS_KM**2 / C_MR2 if j4 else 0.0
+    modulation = 3.0 * EARTH_ORBIT_ECCENTRICITY if geodesic and geodesic_nutation else 0.0
     pole = np.asarray(ecliptic_pole, dtype=float)
-    return np.array([*(rate * pole / np.linalg.norm(pole)), k, j4_coef])
+    return np.array([*(rate * pole / np.linalg.norm(pole)), k, j4_coef, modulation, *SUN_MEAN_ANOMALY_RAD])
+
+
+
+@njit(cache=True)
+def geodesic_rate(extra, t):
+    """The dynamical frame's rate against the GCRS (rad/d, GCRS) at TDB day t: de Sitter's precession, whose
+    size goes as h/r^3 over the Earth's orbit, (1 + e cos f)^3 ~ 1 + 3 e cos l' to first order in e; the
+    annual term integrates to the geodesic nutation, 3 e Omega_gp / n' = 0.153 mas in psi (Fukushima 1991)."""
+    return extra[:3] * (1.0 + extra[5] * math.cos(extra[6] + extra[7] * t))
 
 
 # --- full model: Euler's equations with the daily spin ------------------------
@@ -196,7 +211,7 @@ def gyroscopic_rhs(t, y, p):
     torque = _axis_torque(t0, z, moments[2] - 0.5 * (moments[0] + moments[1]))
     if extra[4] != 0.0:
         torque += j4_torque(positions(t, p[2]), p[1], z, extra[4])
-    ell_dot = (torque - dot3(torque, ell) * ell) / lc + cross3(extra[:3], ell)
+    ell_dot = (torque - dot3(torque, ell) * ell) / lc + cross3(geodesic_rate(extra, t), ell)
     w = cross3(ell, ell_dot)          # inertial rate of the twist-free L frame
     dy = np.zeros_like(y)
     dy[0] = -0.5 * (w[0] * y[1] + w[1] * y[2] + w[2] * y[3])      # dq/dt = (0, w) q / 2

@@ -19,13 +19,13 @@ NONRIGID_TABLE_TERMS = {"18.6 yr": (0, 0, 0, 0, 1), "9.3 yr": (0, 0, 0, 0, 2), "
 
 
 def start_on_iau(orbits_and_tilt, moments, t0, t, rigid_start_pole, model, geodesic_precession, j2_rate, j4,
-                 forced_start):
+                 geodesic_nutation, forced_start):
     """(SpinSystem, orbits, params, (z0, x0, ecliptic pole, tilt or None)) of the Earth model started at t0
     on the IAU pole (or the IAU mean pole plus the rigid model's own nutation, ``rigid_start_pole``)."""
     orbits, plane_tilt = orbits_and_tilt
     pole_ecl = erfa_pole.ecliptic_pole_j2000() if plane_tilt is None else \
         np.array([0.0, -math.sin(plane_tilt), math.cos(plane_tilt)])
-    extra = earth.extra_parameters(pole_ecl, geodesic_precession, j2_rate, j4)
+    extra = earth.extra_parameters(pole_ecl, geodesic_precession, j2_rate, j4, geodesic_nutation)
     params = earth.earth_params(moments, orbits.gm, orbits.data, extra)
     z0 = erfa_pole.cip_vector(t0)
     if rigid_start_pole and plane_tilt is None:

@@ -1,11 +1,9 @@
 """The Earth's precession and nutation (Euler ch. 16 P91/P96) against IAU 2006/2000A (ERFA).
 
-A rigid oblate Earth (spinorbit.earth, H_d from IAU 2006) under the Moon's and Sun's torques (DE421, or
-Euler's circles), started at ``span.start`` on the IAU pole with forced initial conditions; the CIP X, Y,
-the fitted precession rate and main nutation terms, Euler's P96 rate N cos n (§846) beside them
-(spinorbit.earth_vs_iau does the comparing).  The rigid-minus-IAU nutation is the non-rigid response,
-not an error; ``earth.nonrigid = true`` applies it (spinorbit.nonrigid's transfer function).
-Verdict: ``verdict`` below, each check with its reason.
+A rigid oblate Earth (spinorbit.earth, H_d from IAU 2006) under the Moon's and Sun's torques (DE421, or Euler's
+circles), started on the IAU pole with forced initial conditions; the CIP X, Y, the fitted precession rate and
+nutation terms, Euler's P96 rate N cos n (§846) beside them (spinorbit.earth_vs_iau compares).  The rigid-minus-
+IAU nutation is the non-rigid response, not an error; ``earth.nonrigid`` applies it (spinorbit.nonrigid).
 """
 from .. import earth
 from ..analysis.precession import RATE_MIN_SPAN_D
@@ -25,14 +23,14 @@ SCHEMA = {
     "earth.geodesic_precession": Key(type=bool, default=True),
     "earth.j2_rate": Key(type=bool, default=True),
     "earth.j4": Key(type=bool, default=False, help="torques on the Earth's J4 (EGM2008; gyroscopic model)"),
+    "earth.geodesic_nutation": Key(type=bool, default=False, help="the geodesic precession's annual term (gyroscopic)"),
     "earth.nonrigid": Key(type=bool, default=False, help="the rigid nutation times spinorbit.nonrigid's response"),
     "orbit.source": Key(type=str, default="de421", choices=("de421", "circular")),
     "orbit.planets": Key(type=bool, default=False, help="add the direct torques of the planets (Mercury to Saturn)"),
     "orbit.sample_step": Key(**SAMPLE_STEP, default=0.25),
     "comparison.gyroscopic_step": Key(unit="d", default=1.0, positive=True, count="integrator steps",
                                       help="rk8 step of the gyroscopic run compared with the full model"),
-    "comparison.free_nutation_span": Key(unit="d", default=610.0, positive=True, max=1e6, help="full model: "
-                                         "the 0.125-d run's span fitted for the Euler period"),
+    "comparison.free_nutation_span": Key(unit="d", default=610.0, positive=True, max=1e6, help="for the Euler period"),
 }
 
 _RIGID_VS_IAU = ("IAU 2000A is a non-rigid Earth (MHB2000): its 18.6-yr nutation differs from a rigid "
@@ -114,10 +112,12 @@ def build_system(scenario, t):
     if scenario["earth.nonrigid"] and scenario["orbit.source"] == "circular":
         raise ScenarioError("earth.nonrigid", True, 'false with orbit.source = "circular" (the non-rigid '
                                                     'response is applied on the luni-solar arguments of DE421)')
-    if scenario["earth.j4"] and scenario["earth.model"] != "gyroscopic":
-        raise ScenarioError("earth.j4", True, 'false with earth.model = "full" (J4 acts in the gyroscopic model)')
+    for key in ("earth.j4", "earth.geodesic_nutation"):
+        if scenario[key] and scenario["earth.model"] != "gyroscopic":
+            raise ScenarioError(key, True, 'false with earth.model = "full" (it acts in the gyroscopic model)')
     moments = earth.earth_moments(scenario["earth.dynamical_ellipticity"], scenario["earth.b_minus_a_over_c"])
-    flags = {k: scenario[f"earth.{k}"] for k in ("model", "geodesic_precession", "j2_rate", "j4", "forced_start")}
+    flags = {k: scenario[f"earth.{k}"] for k in ("model", "geodesic_precession", "j2_rate", "j4", "geodesic_nutation",
+                                                 "forced_start")}
     return vs.start_on_iau(_orbits(scenario), moments, scenario.t_start, t,
                            scenario["earth.start_pole"] != "iau", **flags)
 
