@@ -35,8 +35,6 @@ def table(solution, mats, de421, lib):
     return table
 
 
-
-
 def error_vs_runtime(system, t_out, de421_mats):
     """LADDER's wall time and max attitude error vs a converged rk8 run and vs DE421, arcsec."""
     from .analysis.ladder import work_precision
