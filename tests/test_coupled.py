@@ -151,7 +151,7 @@ def test_figures_off_is_the_kepler_orbit(start):
     """With every figure off the relative orbit is Kepler's with GM_e + GM_m: half a year (6.7 orbits,
     mean anomaly M = 42 rad) agrees to rounding.  The rounding walk of the energy, eps sqrt(N) over
     N = 3650 steps, moves the mean motion by 1.5 times that and the phase by M 1.5 eps sqrt(N) = 1.2e-12
-    (measured 1.2e-12); bound 1e-11 relative (4 m)."""
+    (measured 1.2e-12); bound 1e-11 relative (4 mm)."""
     p = coupled.parameters(())
     t = np.linspace(0.0, SPAN_D, 51)
     ys = fixed_step(coupled.rhs, p, 0.0, start, t, STEP_D)
