@@ -159,3 +159,17 @@ def test_figures_off_is_the_kepler_orbit(start):
     exact = kepler(p[0].sum(), start[:3], start[3:6], t)
     error = np.linalg.norm(ys[:, :3] - exact, axis=1) / np.linalg.norm(exact, axis=1)
     assert error.max() < 1e-11
+
+
+def test_the_stress_scene_reports_the_drifts_and_judges_only_a_decade():
+    """scenarios/stress/coupled_conservation.toml over 20 days: the drifts it reports are at rounding
+    (4 eps sqrt(N), N = 400 steps), and a span under 10 yr is not judged."""
+    from pathlib import Path
+
+    from spinorbit.results import run_scenario
+
+    path = Path(__file__).parents[1] / "scenarios" / "stress" / "coupled_conservation.toml"
+    summary = run_scenario(path, ['span.end="20 d"', "output.plots=false"]).summary
+    for name in ("L_norm_rel_drift", "L_vector_rel_drift", "energy_rel_drift"):
+        assert summary["comparison"][name] < 4 * EPS * math.sqrt(400)
+    assert summary["comparison"]["passed"] is None and summary["verdict"]["result"] == "not-compared"
