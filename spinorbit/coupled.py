@@ -10,7 +10,9 @@ the monopole; the Moon's degree-2 figure (terms.point_mass) and degree 3-4 field
 the Earth as a point mass; the Earth's degree-2 figure and J3, J4 with the Moon as a point mass; the
 Earth's J2 with the Moon's degree 2 (terms.figure_figure, the pole the Earth's body z axis).  The Moon:
 rigid, DE421's moments and field (bodies.moon); the Earth: rigid, axisymmetric, C = C/(M a^2) M a^2,
-A = B = C (1 - H_d) (bodies.earth), J3 and J4 from the DE421 header at RE.  No Sun, no tides.
+A = B = C (1 - H_d) (bodies.earth), J3 from the DE421 header (J3E) and J4 from EGM2008 (bodies.earth.J4,
+-1.62e-6), both at the header's RE (= EGM2008's a): the header's J4E is +1.619974e-6, the opposite of
+the Earth's known sign.  No Sun, no tides.
 
 The relative acceleration is F_moon / m_m - F_earth / m_e = F_moon / mu (mu = m_e m_m / (m_e + m_m)),
 and the total angular momentum mu r x v + R_m I_m w_m + R_e I_e w_e and the energy
@@ -43,7 +45,7 @@ def parameters(figures=FIGURES):
     c_e = earth.C_MR2 * gm[0] * earth.EQUATORIAL_RADIUS_KM ** 2
     moments_e = np.array([c_e * (1 - earth.H_D), c_e * (1 - earth.H_D), c_e])
     c_nm_e = np.zeros((5, 5))
-    c_nm_e[3, 0], c_nm_e[4, 0] = -h["J3E"], -h["J4E"]
+    c_nm_e[3, 0], c_nm_e[4, 0] = -h["J3E"], -earth.J4
     moon_field = (float(moon.radius_km), np.ascontiguousarray(moon.c_nm), np.ascontiguousarray(moon.s_nm), 3, 4)
     earth_field = (float(h["RE"]), c_nm_e, np.zeros((5, 5)), 3, 4)
     on = np.array([1.0 if name in figures else 0.0 for name in FIGURES])

@@ -25,7 +25,7 @@ FIGURES = ("moon_figure", "moon_harmonics", "earth_figure", "earth_harmonics", "
 HELP = {"moon_figure": "the Moon's degree 2 and the Earth as a point mass",
         "moon_harmonics": "the Moon's degrees 3-4 (DE421) and the Earth as a point mass",
         "earth_figure": "the Earth's degree 2 (H_d, C/Ma^2) and the Moon as a point mass",
-        "earth_harmonics": "the Earth's J3, J4 (DE421 header) and the Moon as a point mass",
+        "earth_harmonics": "the Earth's J3 (DE421 header), J4 (EGM2008) and the Moon as a point mass",
         "figure_figure": "the Earth's J2 with the Moon's degree 2"}
 SCHEMA = {
     **{f"model.{name}": Key(type=bool, default=True, help=text) for name, text in HELP.items()},
