@@ -115,7 +115,7 @@ def drifts(start, params):
 
 def test_angular_momentum_and_energy_are_conserved_to_rounding(drifts):
     """Half a year of the full system at h = 0.05 and 0.025 d.  RK8's truncation in the orbit
-    ((n h)^9 ~ 1e-19 a step) and in the spins ((w_e h / 2)^9 / 9! ~ 2e-13 a step, a phase error of the
+    ((n h)^9 ~ 4e-18 a step) and in the spins ((w_e h / 2)^9 / 9! ~ 2e-13 a step, a phase error of the
     axisymmetric Earth's turn that leaves L and E alone) is below rounding; what remains is the
     rounding of y + h sum b k, a few eps per step, random-walking over the N = 3650-7300 steps:
     ~eps sqrt(N) = 2e-14.  Bound: 4 eps sqrt(N) at the finer step (7e-14); and halving the step does
