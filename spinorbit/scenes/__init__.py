@@ -22,6 +22,7 @@ SCENES = {
     "stress_mercury": "spinorbit.scenes.stress_mercury",
     "stress_hyperion": "spinorbit.scenes.stress_hyperion",
     "stress_fast_spin": "spinorbit.scenes.stress_fast_spin",
+    "coupled_conservation": "spinorbit.scenes.coupled_conservation",
 }
 
 

@@ -107,6 +107,17 @@ def reaction_torque(t, y, rot, inertia, r_icrf, gm, p):
     return matvec3(rot, -cross3(pole, grad))
 
 
+@njit(cache=True, nogil=True)
+def with_pole(rot, inertia, r_icrf, pole_icrf, gm_j2_r2):
+    """The term with the attractor's unit pole given directly (ICRF), e.g. from its own attitude, instead of a
+    pole table: (torque on the figure, body axes; force on the attractor, ICRF; torque on the attractor's
+    figure, ICRF), r_icrf (3,) km the attractor from the figure."""
+    r, pole = mat_t_vec3(rot, r_icrf), mat_t_vec3(rot, pole_icrf)
+    force = -matvec3(rot, _energy_gradient(inertia, r, pole, gm_j2_r2, False))
+    reaction = matvec3(rot, -cross3(pole, _energy_gradient(inertia, r, pole, gm_j2_r2, True)))
+    return figure_torque(inertia, r, pole, gm_j2_r2), force, reaction
+
+
 def oblate_attractor(name, context, gm_j2_r2, pole_table, term_name):
     """A figure_figure Term for attractor ``name`` with GM J2 R^2 (km^5/d^2) and its pole table."""
     grid, samples = pole_table

@@ -19,9 +19,8 @@ from .base import Term
 
 
 @njit(cache=True, nogil=True)
-def gradient(r, radius, c_nm, s_nm, n_min, n_max):
-    """grad W at r (body axes, km), degrees n_min..n_max, unnormalised coefficients (C_n0 = -J_n): 1/km^2."""
-    top = n_max + 1
+def _recursion(r, radius, top):
+    """Montenbruck & Gill's V_nm, W_nm (n, m <= top) at r (body axes, km): (R/r)^(n+1) P_nm (cos, sin) m lambda."""
     x, y, z = r[0], r[1], r[2]
     r2 = x * x + y * y + z * z
     rho = radius * radius / r2
@@ -39,6 +38,24 @@ def gradient(r, radius, c_nm, s_nm, n_min, n_max):
         for n in range(m + 2, top + 1):
             v[n, m] = ((2 * n - 1) * z0 * v[n - 1, m] - (n + m - 1) * rho * v[n - 2, m]) / (n - m)
             w[n, m] = ((2 * n - 1) * z0 * w[n - 1, m] - (n + m - 1) * rho * w[n - 2, m]) / (n - m)
+    return v, w
+
+
+@njit(cache=True, nogil=True)
+def potential(r, radius, c_nm, s_nm, n_min, n_max):
+    """W at r (body axes, km), degrees n_min..n_max: sum (C_nm V_nm + S_nm W_nm) / R, 1/km."""
+    v, w = _recursion(r, radius, n_max)
+    total = 0.0
+    for n in range(n_min, n_max + 1):
+        for m in range(n + 1):
+            total += c_nm[n, m] * v[n, m] + s_nm[n, m] * w[n, m]
+    return total / radius
+
+
+@njit(cache=True, nogil=True)
+def gradient(r, radius, c_nm, s_nm, n_min, n_max):
+    """grad W at r (body axes, km), degrees n_min..n_max, unnormalised coefficients (C_n0 = -J_n): 1/km^2."""
+    v, w = _recursion(r, radius, n_max + 1)
     ax = ay = az = 0.0
     for n in range(n_min, n_max + 1):
         c = c_nm[n, 0]
@@ -77,6 +94,16 @@ def force(t, y, rot, inertia, r_icrf, gm, p):
         r = mat_t_vec3(rot, r_icrf[i])
         out[i] = matvec3(rot, gm[i] / (radius * radius) * gradient(r, radius, c_nm, s_nm, n_min, n_max))
     return out
+
+
+@njit(cache=True, nogil=True)
+def energy(t, y, rot, inertia, r_icrf, gm, p):
+    """The masses' energy in the field, sum of -(GM/R^2) W(r) (per M R^2, the unit of ``torque``): F = -grad_r of it."""
+    radius, c_nm, s_nm, n_min, n_max = p
+    total = 0.0
+    for i in range(gm.shape[0]):
+        total -= gm[i] / (radius * radius) * potential(mat_t_vec3(rot, r_icrf[i]), radius, c_nm, s_nm, n_min, n_max)
+    return total
 
 
 def build(context):

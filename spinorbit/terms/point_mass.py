@@ -7,7 +7,8 @@ the force on the figure's centre):
 
     F = GM [ (tr I r - 3 I r) / r^5 - 5/2 (r^2 tr I - 3 r.I r) r / r^7 ]
 
-so that r x F = -N: the torque on the figure is the reaction of the moment of F.
+so that r x F = -N: the torque on the figure is the reaction of the moment of F; the interaction
+energy is GM U_2 (``energy``), and F = -grad_r of it.
 """
 import numpy as np
 from numba import njit
@@ -42,6 +43,20 @@ def force(t, y, rot, inertia, r_icrf, gm, p):
                      - 2.5 * (r2 * trace - 3.0 * dot3(r, ir)) * r / (r2 * r2 * r2 * np.sqrt(r2)))
         out[i] = matvec3(rot, f)
     return out
+
+
+@njit(cache=True, nogil=True)
+def energy(t, y, rot, inertia, r_icrf, gm, p):
+    """MacCullagh's interaction energy, sum over the masses of -GM (r^2 tr I - 3 r.I r) / (2 r^5):
+    [inertia unit]/d^2 (with GM in km^3/d^2, the energy times G over the figure's inertia unit)."""
+    inertia = anisotropic(inertia)             # the isotropic part cancels in r^2 tr I - 3 r.I r
+    trace = inertia[0, 0] + inertia[1, 1] + inertia[2, 2]
+    total = 0.0
+    for i in range(gm.shape[0]):
+        r = mat_t_vec3(rot, r_icrf[i])
+        r2 = dot3(r, r)
+        total -= 0.5 * gm[i] * (r2 * trace - 3.0 * dot3(r, matvec3(inertia, r))) / (r2 * r2 * np.sqrt(r2))
+    return total
 
 
 def build(context):
