@@ -60,15 +60,21 @@ def _diag(d):
 
 
 @njit(cache=True, nogil=True)
+def _geometry(y, p):
+    """Both attitudes (body -> ICRF), both inertia tensors (body axes), the Moon from the Earth and the Earth
+    from the Moon as (1, 3) rows: what every interaction is evaluated with."""
+    at_moon, at_earth = np.empty((1, 3)), np.empty((1, 3))
+    for k in range(3):
+        at_moon[0, k], at_earth[0, k] = y[k], -y[k]
+    return (matrix_from_quat(y[6:10]), matrix_from_quat(y[13:17]), _diag(p[1]), _diag(p[2]), at_moon, at_earth)
+
+
+@njit(cache=True, nogil=True)
 def interactions(y, p):
     """The figures' part: (force on the Moon, ICRF; torque on the Moon, its body axes; torque on the Earth,
     its body axes), G-scaled.  The force on the Earth is minus the force on the Moon."""
     gm, moments_m, moments_e, moon_field, earth_field, on = p
-    rot_m, rot_e = matrix_from_quat(y[6:10]), matrix_from_quat(y[13:17])
-    inertia_m, inertia_e = _diag(moments_m), _diag(moments_e)
-    at_moon, at_earth = np.empty((1, 3)), np.empty((1, 3))
-    for k in range(3):
-        at_moon[0, k], at_earth[0, k] = y[k], -y[k]
+    rot_m, rot_e, inertia_m, inertia_e, at_moon, at_earth = _geometry(y, p)
     gm_e, gm_m = gm[0:1], gm[1:2]
     force, n_m, n_e = np.zeros(3), np.zeros(3), np.zeros(3)
     if on[0] != 0.0:        # the Moon's degree 2 and the Earth as a point mass
@@ -117,11 +123,7 @@ def rhs(t, y, p):
 def energy(y, p):
     """Total energy, G-scaled (km^5/d^4): orbit, both spins and the figures' interaction energies."""
     gm, moments_m, moments_e, moon_field, earth_field, on = p
-    rot_m, rot_e = matrix_from_quat(y[6:10]), matrix_from_quat(y[13:17])
-    inertia_m, inertia_e = _diag(moments_m), _diag(moments_e)
-    at_moon, at_earth = np.empty((1, 3)), np.empty((1, 3))
-    for k in range(3):
-        at_moon[0, k], at_earth[0, k] = y[k], -y[k]
+    rot_m, rot_e, inertia_m, inertia_e, at_moon, at_earth = _geometry(y, p)
     gm_e, gm_m = gm[0:1], gm[1:2]
     mu = gm[0] * gm[1] / (gm[0] + gm[1])
     total = 0.5 * mu * dot3(y[3:6], y[3:6]) - gm[0] * gm[1] / np.sqrt(dot3(y[0:3], y[0:3]))
