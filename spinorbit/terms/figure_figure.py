@@ -54,13 +54,15 @@ def energy(inertia, x, pole, gm_j2_r2):
     r2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2]
     r = np.sqrt(r2)
     s = pole[0] * x[0] + pole[1] * x[1] + pole[2] * x[2]
+    inv5 = 1.0 / (r2 * r2 * r)
+    inv7, inv9 = inv5 / r2, inv5 / (r2 * r2)
     total = 0.0 * r2
     for i in range(3):
         for j in range(3):
             d = 1.0 if i == j else 0.0
-            ss = (2.0 * pole[i] * pole[j] / r ** 5 - 10.0 * s * (pole[i] * x[j] + pole[j] * x[i]) / r ** 7
-                  - 5.0 * s * s * d / r ** 7 + 35.0 * s * s * x[i] * x[j] / r ** 9)
-            rr = 15.0 * x[i] * x[j] / r ** 7 - 3.0 * d / r ** 5
+            ss = (2.0 * pole[i] * pole[j] * inv5 - 10.0 * s * (pole[i] * x[j] + pole[j] * x[i]) * inv7
+                  - 5.0 * s * s * d * inv7 + 35.0 * s * s * x[i] * x[j] * inv9)
+            rr = 15.0 * x[i] * x[j] * inv7 - 3.0 * d * inv5
             total += inertia[i, j] * (3.0 * ss - rr)
     return -0.25 * gm_j2_r2 * total
 
