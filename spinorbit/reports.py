@@ -10,6 +10,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .schema import dotted_items
+
 
 def write_run(result, out_dir, status="ok", error=None, fork_plots=False):
     """Write everything a RunResult holds into ``out_dir``; return the list of paths.
@@ -87,7 +89,7 @@ def report_markdown(summary, plots):
         lines += verdict_markdown(summary["verdict"])
     lines += ["## Numbers", "", "| quantity | value |", "|---|---|"]
     tables = []
-    for key, value in _flat({k: v for k, v in summary.items() if k not in SKIP}):
+    for key, value in dotted_items({k: v for k, v in summary.items() if k not in SKIP}):
         if isinstance(value, list) and value and all(isinstance(row, dict) for row in value):
             tables.append((key, value))
         else:
@@ -98,7 +100,7 @@ def report_markdown(summary, plots):
     lines += [f"![{p.stem}]({p.name})" for p in plots]
     if "provenance" in summary:
         lines += ["", "## Provenance", "", "| item | value |", "|---|---|"]
-        lines += [f"| {key} | {_fmt(value)} |" for key, value in _flat(summary["provenance"])
+        lines += [f"| {key} | {_fmt(value)} |" for key, value in dotted_items(summary["provenance"])
                   if not key.startswith("settings.")]
         lines.append("")
     return "\n".join(lines) + "\n"
@@ -135,15 +137,6 @@ def rows_markdown(rows):
             cells.append(_fmt(float(fitted) - float(published)) if both else "")
         lines.append("| " + " | ".join(cells) + " |")
     return lines
-
-
-def _flat(d, prefix=""):
-    for key, value in d.items():
-        name = f"{prefix}{key}"
-        if isinstance(value, dict):
-            yield from _flat(value, name + ".")
-        else:
-            yield name, value
 
 
 def _fmt(value):

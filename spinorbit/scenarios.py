@@ -29,9 +29,8 @@ from pathlib import Path
 import numpy as np
 
 from .errors import InputError, ScenarioError
-from .schema import INTEGRATOR_OPTIONS, MAX_TEXT, REQUIRED, Key, checked_float, finite_float, parse_tdb_days
-# Until the Moon and Earth scenes import them from schema (their own import of scenarios closes a cycle):
-from .schema import ANGLE, DISTANCE, GM, RATE, SAMPLE_STEP, SPIN, tdb_days_to_time  # noqa: F401
+from .schema import (INTEGRATOR_OPTIONS, MAX_TEXT, REQUIRED, Key, checked_float, dotted_items, finite_float,
+                     parse_tdb_days)
 
 MAX_DEPTH = 8                  # nesting of tables and arrays in a scenario
 # What a step over the span may ask for: count limit and bytes per item (estimate).
@@ -124,7 +123,7 @@ class Scenario:
                 raise ScenarioError(table, content, "a table")
             if table in OPEN_TABLES:
                 continue
-            for name in _flatten(content, table):
+            for name, _ in dotted_items(content, table + "."):
                 if name not in self.schema:
                     accepted = sorted(k for k in self.schema if k.startswith(table + "."))
                     raise ScenarioError(name, _lookup(self.data, name, Key(type=object)), f"one of the keys {accepted}")
@@ -272,15 +271,6 @@ def _toml_datetime_text(key, value):
     if getattr(value, "tzinfo", None) is not None:
         raise ScenarioError(key, value.isoformat(), "a TDB time without a time-zone offset, e.g. 2000-01-01T12:00:00")
     return value.isoformat()
-
-
-def _flatten(table, prefix):
-    for name, value in table.items():
-        key = f"{prefix}.{name}"
-        if isinstance(value, dict):
-            yield from _flatten(value, key)
-        else:
-            yield key
 
 
 def _has(data, key):

@@ -156,3 +156,13 @@ def checked_float(key, value, spec):
     return number
 
 
+
+
+def dotted_items(table, prefix=""):
+    """(dotted key, value) of every leaf of a nested dict (a TOML table, a summary): {"a": {"b": 1}} -> ("a.b", 1)."""
+    for name, value in table.items():
+        key = f"{prefix}{name}"
+        if isinstance(value, dict):
+            yield from dotted_items(value, key + ".")
+        else:
+            yield key, value

@@ -20,6 +20,7 @@ from hypothesis import strategies as st
 
 from spinorbit.cli import main
 from spinorbit.errors import ScenarioError
+from spinorbit.schema import dotted_items
 from spinorbit.scenarios import LIMITS, Scenario, load_scenario
 
 ROOT = Path(__file__).parents[1]
@@ -65,19 +66,10 @@ VALUES = st.one_of(
 )
 
 
-def leaf_keys(table, prefix=""):
-    for name, value in table.items():
-        key = f"{prefix}{name}"
-        if isinstance(value, dict):
-            yield from leaf_keys(value, key + ".")
-        else:
-            yield key
-
-
 def keys_of(name):
     extra = ["integrator.rtol", "integrator.atol", "integrator.step", "integrator.max_step", "scene.kind",
              "span", "orbit", "body.moments", "orbit.step", "x" * 300, "span.end.deeper"]
-    return sorted(set(leaf_keys(SCENES[name])) | set(extra))
+    return sorted({key for key, _ in dotted_items(SCENES[name])} | set(extra))
 
 
 def assign(data, key, value):
