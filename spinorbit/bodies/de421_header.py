@@ -5,8 +5,6 @@ from pathlib import Path
 
 import numpy as np
 
-J2000_JD = 2451545.0
-
 
 @cache
 def header():
@@ -17,9 +15,17 @@ def header():
     return {name.decode(): float(value) for name, value in np.load(path)}
 
 
+# Body name -> key of its GM in the header (au^3/d^2); the Earth and the Moon share GMB by EMRAT.
+GM_KEYS = {"sun": "GMS", "mercury": "GM1", "venus": "GM2", "mars": "GM4", "jupiter": "GM5",
+           "saturn": "GM6", "uranus": "GM7", "neptune": "GM8"}
+
+
 def gm_km3_d2(name):
-    """GM of the Sun, Earth or Moon from the header (GMS, GMB and EMRAT), km^3/d^2."""
+    """GM of a body from the header (planets: their system barycentres), km^3/d^2."""
     h = header()
-    au3 = h["AU"] ** 3
-    earth_share = h["EMRAT"] / (1 + h["EMRAT"])
-    return {"sun": h["GMS"], "earth": h["GMB"] * earth_share, "moon": h["GMB"] * (1 - earth_share)}[name] * au3
+    if name in ("earth", "moon"):
+        earth_share = h["EMRAT"] / (1 + h["EMRAT"])
+        gm = h["GMB"] * (earth_share if name == "earth" else 1 - earth_share)
+    else:
+        gm = h[GM_KEYS[name]]
+    return gm * h["AU"] ** 3

@@ -1,15 +1,13 @@
 """Mercury: mass, degree-2 figure, moments and spin state, from the published measurements.
 
-GM: DE421 header (GM1).  Degree-2 gravity: Verma & Margot 2016 (JGR Planets 121, 1627),
-normalised C20 = -2.25100e-5, C22 = 1.24973e-5 (here unnormalised: J2 = -sqrt(5) C20,
+GM: DE421 header (GM1; ``de421_header.gm_km3_d2("mercury")``).  Degree-2 gravity: Verma & Margot
+2016 (JGR Planets 121, 1627), normalised C20 = -2.25100e-5, C22 = 1.24973e-5 (here unnormalised: J2 = -sqrt(5) C20,
 C22 = sqrt(5/12) C22_bar).  Moments and spin: Margot et al. 2012 (JGR 117, E00L09):
 C/(M R^2) = 0.346 +- 0.014 (from the obliquity, the Cassini state), C_m/C = 0.431 +- 0.025
 (the librating shell, from the libration amplitude itself), forced libration amplitude
 38.5 +- 1.6 arcsec, obliquity 2.04 +- 0.08 arcmin.  Radius: 2439.4 km (IAU WGCCRE 2015).
 """
 import math
-
-from .de421_header import header
 
 RADIUS_KM = 2439.4
 J2 = math.sqrt(5.0) * 2.25100e-5
@@ -18,12 +16,6 @@ C_MR2 = 0.346
 C_MANTLE_OVER_C = 0.431
 LIBRATION_AMPLITUDE_ARCSEC = (38.5, 1.6)
 OBLIQUITY_ARCMIN = (2.04, 0.08)
-
-
-def gm_km3_d2():
-    """GM of Mercury from the DE421 header (GM1, au^3/d^2), km^3/d^2."""
-    h = header()
-    return h["GM1"] * h["AU"] ** 3
 
 
 def b_minus_a_over_c():

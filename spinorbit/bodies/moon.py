@@ -12,7 +12,8 @@ from functools import cache
 
 import numpy as np
 
-from .de421_header import J2000_JD, gm_km3_d2, header
+from ..constants import J2000_JD
+from .de421_header import gm_km3_d2, header
 
 
 @dataclass(frozen=True)

@@ -202,11 +202,3 @@ def open_ephemeris(source, t_start, t_end):
         kernel = DE421Arrays()
     kernel.check_span(t_start, t_end)
     return kernel
-
-
-def de421_constants():
-    """DE421 header constants from the ``de421`` package, e.g. 'GMS' (AU^3/d^2), 'AU' (km), 'J2E'."""
-    import de421
-
-    table = np.load(Path(de421.__file__).parent / "constants.npy")
-    return {key.decode("ascii"): float(value) for key, value in table}

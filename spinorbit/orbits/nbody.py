@@ -10,22 +10,15 @@ import numpy as np
 from ..constants import DAY_S, JULIAN_YEAR_D
 from ..progress import progress
 from .interpolant import HermiteOrbits, grid
-from .kernel import DE421Arrays, JPLKernel, de421_constants
+from ..bodies.de421_header import gm_km3_d2, header
+from .kernel import DE421Arrays, JPLKernel
 
-# Body name -> key of its GM in the DE421 header (AU^3/day^2); Earth and Moon from GMB, EMRAT.
-GM_KEYS = {"sun": "GMS", "mercury": "GM1", "venus": "GM2", "mars": "GM4", "jupiter": "GM5",
-           "saturn": "GM6", "uranus": "GM7", "neptune": "GM8"}
 BODIES = ("sun", "mercury", "venus", "earth", "moon", "mars", "jupiter", "saturn", "uranus", "neptune")
 
 
 def de421_gm():
     """GM of each body in :data:`BODIES`, km^3/day^2, from the DE421 header."""
-    c = de421_constants()
-    au3 = c["AU"] ** 3
-    gm = {name: c[key] * au3 for name, key in GM_KEYS.items()}
-    gmb = c["GMB"] * au3
-    gm["earth"], gm["moon"] = gmb * c["EMRAT"] / (1 + c["EMRAT"]), gmb / (1 + c["EMRAT"])
-    return gm
+    return {name: gm_km3_d2(name) for name in BODIES}
 
 
 class ReboundOrbits(HermiteOrbits):
@@ -58,11 +51,11 @@ class ReboundOrbits(HermiteOrbits):
         if gr:
             force = extras.load_force("gr_full")
             extras.add_force(force)
-            force.params["c"] = de421_constants()["CLIGHT"] * DAY_S
+            force.params["c"] = header()["CLIGHT"] * DAY_S
         if earth_j2:
             force = extras.load_force("gravitational_harmonics")
             extras.add_force(force)
-            c = de421_constants()
+            c = header()
             sim.particles["earth"].params["J2"] = c["J2E"]
             sim.particles["earth"].params["R_eq"] = c["RE"]
         self.simulation, self.extras = sim, extras        # keep extras alive with sim
