@@ -15,7 +15,6 @@ GM_E, GM_M, GM_S, R_E = P[:4]
 Q = GM_M / GM_E
 OMEGA = 6.300387486754831          # the Earth's spin, rad/d
 DAY_PER_CY = 36525.0
-RNG = np.random.default_rng(11)
 
 
 def unit(v):
@@ -24,15 +23,17 @@ def unit(v):
 
 def geometry():
     """A Moon, a Sun and a pole in general position (km, km/d, rad/d; ICRF)."""
+    rng = np.random.default_rng(11)
     pole = unit(np.array([0.1, -0.35, 0.93]))
-    r = 384400.0 * unit(RNG.normal(size=3))
-    v = 88000.0 * unit(np.cross(unit(RNG.normal(size=3)), r))
-    r_sun = 1.496e8 * unit(RNG.normal(size=3))
+    r = 384400.0 * unit(rng.normal(size=3))
+    v = 88000.0 * unit(np.cross(unit(rng.normal(size=3)), r))
+    r_sun = 1.496e8 * unit(rng.normal(size=3))
     v_sun = 2.57e6 * unit(np.cross(pole, r_sun))
     return r, v, r_sun, v_sun, OMEGA * pole
 
 
-def with_(k2=None, tau=None, gm_sun=None):
+def parameters_with(k2=None, tau=None, gm_sun=None):
+    """DE421's parameters with the Love numbers, the delays or the Sun's GM replaced."""
     p = P.copy()
     if k2 is not None:
         p[4:7] = k2
@@ -47,7 +48,7 @@ def test_zero_delay_equal_love_numbers_is_the_static_tide():
     """k20 = k21 = k22 = k2, no delay, the Moon's own tide: the static Love-number potential
     k2 GM_M R^5 / r^6 (a body's own tide, P2(1) = 1) pulls (1 + q) 3 k2 GM_M R^5 r / r^8, radially."""
     r, v, r_sun, v_sun, spin = geometry()
-    p = with_(k2=0.3, tau=0.0, gm_sun=0.0)
+    p = parameters_with(k2=0.3, tau=0.0, gm_sun=0.0)
     a = earth_tides.acceleration(r, v, r_sun, v_sun, spin, p)
     s = np.linalg.norm(r)
     expected = -3.0 * 0.3 * (1 + Q) * GM_M * R_E**5 * r / s**8
@@ -71,7 +72,7 @@ def test_zero_delay_is_the_gradient_of_the_static_band_potential():
     """With DE421's unequal k2m and no delay the Moon's own tide is conservative, the gradient of the
     band potential above (by the complex step), but not central: it torques the Earth."""
     r, v, r_sun, v_sun, spin = geometry()
-    p = with_(tau=0.0, gm_sun=0.0)
+    p = parameters_with(tau=0.0, gm_sun=0.0)
     a = earth_tides.acceleration(r, v, r_sun, v_sun, spin, p)
     pole = unit(spin)
     h = 1e-20 * np.linalg.norm(r)
@@ -82,9 +83,9 @@ def test_zero_delay_is_the_gradient_of_the_static_band_potential():
 
 def test_semidiurnal_recession_is_the_lagged_bulge_closed_form():
     """Circular equatorial orbit, the Moon's semi-diurnal tide (k22, tau2 of DE421): the bulge leads by
-    delta = (Omega - n) tau2, its torque is 3/2 k2 G m^2 R^5 sin(2 delta) / a^6 (Murray & Dermott 1999,
-    §4.9), whence da/dt = 3 k2 q n a (R/a)^5 sin 2 delta and dn/dt = -3/2 (n/a) da/dt, with
-    n^2 a^3 = G(M_E + M_M).  The model's along-track acceleration T gives da/dt = 2 T / n (Gauss, e = 0).
+    delta = (Omega - n) tau2, its torque is 3/2 k2 G m^2 R^5 sin(2 delta) / a^6 (Murray & Dermott
+    1999, Solar System Dynamics, ch. 4), whence da/dt = 3 k2 q n a (R/a)^5 sin 2 delta and
+    dn/dt = -3/2 (n/a) da/dt, with    n^2 a^3 = G(M_E + M_M).  The model's along-track acceleration T gives da/dt = 2 T / n (Gauss, e = 0).
     Its delayed position is two-body exact to (n tau2)^3/6 = 6e-10 rad, i.e. 1.4e-8 of delta: 1e-7."""
     pole = unit(np.array([0.3, -0.2, 0.9]))                      # any pole: the formula is frame-free
     x_axis = unit(np.cross(pole, [1.0, 0.0, 0.0]))
@@ -93,7 +94,7 @@ def test_semidiurnal_recession_is_the_lagged_bulge_closed_form():
     r = a_km * x_axis
     v = n * a_km * np.cross(pole, x_axis)
     k22, tau2 = P[6], P[9]
-    p = with_(k2=[0.0, 0.0, k22], gm_sun=0.0)
+    p = parameters_with(k2=[0.0, 0.0, k22], gm_sun=0.0)
     acc = earth_tides.acceleration(r, v, np.array([1.5e8, 0, 0]), np.zeros(3), OMEGA * pole, p)
     along = acc @ unit(v)
     da_dt = 2.0 * along / n
@@ -128,7 +129,7 @@ def test_reaction_is_the_moons_torque_on_the_tidal_bulge(gm_sun):
     the Moon on the tidal bulge's inertia (band by band, each delayed) vanish to rounding, and
     torque_on_earth is that torque: for the Moon-raised tide and with the Sun-raised one."""
     r, v, r_sun, v_sun, spin = geometry()
-    p = with_(gm_sun=gm_sun)
+    p = parameters_with(gm_sun=gm_sun)
     pole, rate = unit(spin), np.linalg.norm(spin)
     inertia = np.zeros((3, 3))
     for x, u, gm, gm_pair in ((r, v, GM_M, GM_E + GM_M), (r_sun, v_sun, gm_sun, GM_S + GM_E + GM_M)):
