@@ -61,6 +61,7 @@ def accelerations(pos, vel, gm, c, targets):
     acc, potential = newtonian(pos, gm)
     newton = np.empty((targets.shape[0], 3))
     correction = np.zeros((targets.shape[0], 3))
+    d = np.empty(3)
     for m in range(targets.shape[0]):
         i = targets[m]
         vi = vel[i]
@@ -71,7 +72,8 @@ def accelerations(pos, vel, gm, c, targets):
             if j == i or gm[j] == 0.0:
                 continue
             vj = vel[j]
-            d = pos[j] - pos[i]                                  # r_j - r_i
+            for x in range(3):
+                d[x] = pos[j, x] - pos[i, x]                     # r_j - r_i
             r = math.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
             vj2 = vj[0] * vj[0] + vj[1] * vj[1] + vj[2] * vj[2]
             vivj = vi[0] * vj[0] + vi[1] * vj[1] + vi[2] * vj[2]
