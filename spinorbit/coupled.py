@@ -73,8 +73,17 @@ def _geometry(y, p):
 def interactions(y, p):
     """The figures' part: (force on the Moon, ICRF; torque on the Moon, its body axes; torque on the Earth,
     its body axes), G-scaled.  The force on the Earth is minus the force on the Moon."""
-    gm, moments_m, moments_e, moon_field, earth_field, on = p
     rot_m, rot_e, inertia_m, inertia_e, at_moon, at_earth = _geometry(y, p)
+    return figure_forces(rot_m, inertia_m, rot_e, inertia_e, at_moon, p)
+
+
+@njit(cache=True, nogil=True)
+def figure_forces(rot_m, inertia_m, rot_e, inertia_e, at_moon, p):
+    """:func:`interactions` for given attitudes (body -> ICRF), G-scaled inertia tensors (body axes) and the
+    Moon seen from the Earth ((1, 3), km, ICRF); the Earth's degree 2 is its inertia's, the rest is p's."""
+    gm, moments_m, moments_e, moon_field, earth_field, on = p
+    at_earth = -at_moon
+    y = np.zeros(1)                               # the terms' state argument, which none of these reads
     gm_e, gm_m = gm[0:1], gm[1:2]
     force, n_m, n_e = np.zeros(3), np.zeros(3), np.zeros(3)
     if on[0] != 0.0:        # the Moon's degree 2 and the Earth as a point mass
@@ -94,7 +103,7 @@ def interactions(y, p):
     if on[4] != 0.0:        # the Earth's J2 (G (C - A)) with the Moon's degree 2
         pole = np.array([rot_e[0, 2], rot_e[1, 2], rot_e[2, 2]])
         torque, pull, reaction = figure_figure.with_pole(rot_m, inertia_m, at_earth[0], pole,
-                                                         moments_e[2] - moments_e[0])
+                                                         inertia_e[2, 2] - inertia_e[0, 0])
         n_m += torque
         force -= pull
         n_e += mat_t_vec3(rot_e, reaction)

@@ -114,6 +114,16 @@ def distortion(omega, r_del, v_del, consts):
     return delta, delta_rate
 
 
+@njit(cache=True)
+def delayed_in_mantle(rot, omega, x, v, tau):
+    """The Earth's position x (km) and velocity v (km/d), ICRF, at t - tau, seen in the mantle axes of t - tau
+    (carried round with the mantle by w tau): (r_del, v_del), the rate relative to the mantle."""
+    wn = math.sqrt(dot3(omega, omega))
+    axis = omega / wn
+    r_del = rotate_about(mat_t_vec3(rot, x), axis, wn * tau)
+    return r_del, rotate_about(mat_t_vec3(rot, v), axis, wn * tau) - cross3(omega, r_del)
+
+
 _DT_DIFF = 1e-3        # days, central difference for the Earth's velocity at t - tau
 
 
@@ -127,28 +137,35 @@ def moon_rhs(t, y, p):
     inertia_rate = np.zeros((3, 3))
     if WITH_TIDES:
         tau = consts[TAU_D]
-        wn = math.sqrt(dot3(omega, omega))
-        axis = omega / wn
-        r_del = rotate_about(mat_t_vec3(rot, positions(t - tau, data)[0]), axis, wn * tau)
         vel_i = (positions(t - tau + _DT_DIFF, data)[0] - positions(t - tau - _DT_DIFF, data)[0]) / (2 * _DT_DIFF)
-        v_del = rotate_about(mat_t_vec3(rot, vel_i), axis, wn * tau) - cross3(omega, r_del)
+        r_del, v_del = delayed_in_mantle(rot, omega, positions(t - tau, data)[0], vel_i, tau)
         delta, inertia_rate = distortion(omega, r_del, v_del, consts)
         inertia = inertia + delta
     torque = terms(t, y, rot, inertia, positions(t, data), gm, term_params)
     dy = np.empty_like(y)
     put(dy[:4], quat_rate(q, omega))
-    if WITH_CORE:                  # torques act with the whole Moon's I; the mantle turns with I - I_c
-        c_core = consts[C_CORE]
-        core_moments = np.array([c_core * (1.0 - consts[F_CORE]), c_core * (1.0 - consts[F_CORE]), c_core])
-        inertia = inertia - diag3(core_moments)
-        omega_c = y[7:10]
-        n_cmb = consts[KV] * (omega_c - omega) + (c_core - core_moments[0]) * omega_c[2] * np.array(
-            [-omega_c[1], omega_c[0], 0.0])
-        torque += n_cmb
-        put(dy[7:10], (-cross3(omega, core_moments * omega_c) - n_cmb) / core_moments)
-    rhs_vec = torque - cross3(omega, matvec3(inertia, omega)) - matvec3(inertia_rate, omega)
-    put(dy[4:7], solve3(inertia, rhs_vec))
+    if WITH_CORE:
+        mantle_rate, core_rate = mantle_and_core_rates(omega, y[7:10], inertia, inertia_rate, torque, consts)
+        put(dy[7:10], core_rate)
+    else:
+        mantle_rate = solve3(inertia, torque - cross3(omega, matvec3(inertia, omega)) - matvec3(inertia_rate, omega))
+    put(dy[4:7], mantle_rate)
     return dy
+
+
+@njit(cache=True)
+def mantle_and_core_rates(omega, omega_c, inertia, inertia_rate, torque, consts):
+    """(dw_m/dt, dw_c/dt), rad/d^2, mantle axes: the torque (M R^2 rad/d^2) acts with the whole Moon's I
+    (M R^2, with its distortion and rate); the mantle turns with I - I_c, the core by the boundary's torque."""
+    c_core = consts[C_CORE]
+    core_moments = np.array([c_core * (1.0 - consts[F_CORE]), c_core * (1.0 - consts[F_CORE]), c_core])
+    inertia = inertia - diag3(core_moments)
+    n_cmb = consts[KV] * (omega_c - omega) + (c_core - core_moments[0]) * omega_c[2] * np.array(
+        [-omega_c[1], omega_c[0], 0.0])
+    torque = torque + n_cmb
+    core_rate = (-cross3(omega, core_moments * omega_c) - n_cmb) / core_moments
+    rhs_vec = torque - cross3(omega, matvec3(inertia, omega)) - matvec3(inertia_rate, omega)
+    return solve3(inertia, rhs_vec), core_rate
 
 
 def make_moon_rhs(positions, terms, core=False, tides=False):

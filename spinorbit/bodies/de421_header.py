@@ -17,7 +17,7 @@ def header():
 
 # Body name -> key of its GM in the header (au^3/d^2); the Earth and the Moon share GMB by EMRAT.
 GM_KEYS = {"sun": "GMS", "mercury": "GM1", "venus": "GM2", "mars": "GM4", "jupiter": "GM5",
-           "saturn": "GM6", "uranus": "GM7", "neptune": "GM8"}
+           "saturn": "GM6", "uranus": "GM7", "neptune": "GM8", "pluto": "GM9"}
 
 
 def gm_km3_d2(name):

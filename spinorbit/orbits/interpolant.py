@@ -49,6 +49,38 @@ def hermite_positions(t, data):
     return out
 
 
+@njit(cache=True)
+def hermite_states(t, data):
+    """Positions (n, 3) km and velocities (n, 3) km/d at t: hermite_positions and its time derivative."""
+    grid, pos, vel, acc = data
+    n, m = pos.shape[0], pos.shape[1]
+    h = grid[1]
+    s = (t - grid[0]) / h
+    r_out, v_out = np.empty((n, 3)), np.empty((n, 3))
+    if not (s >= 0.0 and s <= m - 1):
+        r_out[:] = np.nan
+        v_out[:] = np.nan
+        return r_out, v_out
+    k = min(int(s), m - 2)
+    x = s - k
+    x1 = 1.0 - x
+    x3, y3 = x * x * x, x1 * x1 * x1
+    p0, p1 = y3 * (1.0 + 3.0 * x + 6.0 * x * x), x3 * (1.0 + 3.0 * x1 + 6.0 * x1 * x1)
+    v0, v1 = h * x * y3 * (1.0 + 3.0 * x), -h * x3 * x1 * (1.0 + 3.0 * x1)
+    a0, a1 = 0.5 * h * h * x * x * y3, 0.5 * h * h * x3 * x1 * x1
+    # d/dt of the six basis functions (d/dx over h)
+    dp1 = 30.0 * x * x * x1 * x1 / h
+    dv0, dv1 = x1 * x1 * (1.0 - 3.0 * x) * (1.0 + 5.0 * x), x * x * (3.0 * x - 2.0) * (6.0 - 5.0 * x)
+    da0, da1 = 0.5 * h * x * x1 * x1 * (2.0 - 5.0 * x), -0.5 * h * x * x * x1 * (5.0 * x - 3.0)
+    for i in range(n):
+        for j in range(3):
+            r_out[i, j] = (p0 * pos[i, k, j] + v0 * vel[i, k, j] + a0 * acc[i, k, j]
+                           + p1 * pos[i, k + 1, j] + v1 * vel[i, k + 1, j] + a1 * acc[i, k + 1, j])
+            v_out[i, j] = (dp1 * (pos[i, k + 1, j] - pos[i, k, j]) + dv0 * vel[i, k, j] + da0 * acc[i, k, j]
+                           + dv1 * vel[i, k + 1, j] + da1 * acc[i, k + 1, j])
+    return r_out, v_out
+
+
 def _weights(offsets):
     """First-derivative weights on integer ``offsets``, exact for polynomials of degree < len(offsets)."""
     rhs = np.zeros(len(offsets))

@@ -23,6 +23,7 @@ SCENES = {
     "stress_hyperion": "spinorbit.scenes.stress_hyperion",
     "stress_fast_spin": "spinorbit.scenes.stress_fast_spin",
     "coupled_conservation": "spinorbit.scenes.coupled_conservation",
+    "earth_moon_coupled": "spinorbit.scenes.earth_moon_coupled",
 }
 
 

@@ -1,0 +1,226 @@
+"""The Earth-Moon system in the solar system: the Moon's orbit, the Moon's mantle and core and the Earth's
+spin in one state, coupled both ways; the Sun, the planets and the Earth-Moon barycentre from the ephemeris.
+
+State (19,): ``y = [r (3), v (3), q (4), w_m (3), w_c (3), l (3)]``
+- r, v: the Moon from the Earth, km and km/d, ICRF;
+- q, w_m, w_c: the Moon's attitude (body -> ICRF) and its mantle's and fluid core's angular velocities
+  (mantle axes, rad/d), the lunar model of spinorbit.moon level 3 (DE421's moments, field, core, tides);
+- l: the Earth's spin angular momentum, G-scaled (G C w, km^5/d^3, ICRF).  The Earth is gyroscopic: its
+  figure axis is taken along l (they differ by A/(C w) l x dl/dt/|l|, ~1e-8 rad), which leaves out the
+  free nutation of a day's period and lets the step follow the month.  Axisymmetric: C - A = J2E M RE^2
+  (the DE421 header's J2, as DE421 used it on the orbit) and C = (C - A)/H_d (IAU 2006's dynamical
+  ellipticity, which sets the precession rate; C/(M RE^2) = 0.330694); J3, J4 as in coupled.
+
+Forces on the relative orbit (each figure's torque with its reaction force, Euler §818; Folkner et al. 2014,
+IPN PR 42-196):
+- Newton: the Earth-Moon monopole and the direct and indirect pulls of the Sun and the planets (barycentres
+  of their systems, DE421's GMs), with the Earth and the Moon placed about DE421's Earth-Moon barycentre;
+- EIH: the 1PN point-mass correction of every body (spinorbit.relativity), the Moon's minus the Earth's;
+- the figures of the Earth and the Moon on each other (coupled.figure_forces) and the Sun on both figures
+  (the Moon's degrees 2-4, the Earth's degree 2), the reactions on the Sun dropped (it comes from DE421);
+- the tides raised on the Earth by the Moon and the Sun (spinorbit.terms.earth_tides, DE421's K2E, TAUE),
+  their torque on the Earth; the Moon's tidal and rotational distortion enters through its inertia.
+
+The Earth's spin feels the Moon's and the Sun's torques, the tides' reaction, and the geodesic precession
+(3/2) GM_sun / (c^2 |x|^3) x x w of the heliocentric Earth (x, w).  The planets' torques on the figures
+(level 4) and the Sun's on the Earth's J3, J4 are left out (below 0.02"/cy in the Earth's precession).
+
+Units: km, d, G-scaled masses (GM, km^3/d^2) and inertias (G I, km^5/d^2), so that forces are G times the
+physical ones; the Moon's own equations (spinorbit.moon) keep its moments in M R^2.
+"""
+import numpy as np
+from numba import njit
+
+from . import coupled
+from .bodies import earth
+from .bodies.de421_header import gm_km3_d2, header
+from .bodies.moon import de421
+from .moon import delayed_in_mantle, distortion, mantle_and_core_rates, moon_params, TAU_D
+from .orbits.interpolant import hermite_states
+from .relativity import accelerations as eih_accelerations
+from .rotations import cross3, dot3, matrix_from_quat, matvec3, put, quat_rate
+from .terms import earth_tides, harmonics, point_mass
+
+# The bodies read from the ephemeris (barycentric); the Earth and the Moon sit about the barycentre EMB.
+EXTERNAL = ("sun", "mercury", "venus", "earth_moon_barycenter", "mars", "jupiter", "saturn", "uranus",
+            "neptune", "pluto")
+SUN, EMB = 0, 3
+# What can be switched off: the flags of the parameters, in this order.
+SWITCHES = ("relativity", "earth_tides", "moon_distortion", "geodesic", "planets")
+
+
+def parameters(external_data, switches=SWITCHES):
+    """p = (external data, gm (10,), figures (coupled.parameters), moon (consts, moments M R^2, G M R^2),
+    earth (C, C - A, G-scaled), tides, flags (5,), c km/d) for :func:`rhs`."""
+    unknown = sorted(set(switches) - set(SWITCHES))
+    if unknown:
+        raise ValueError(f"unknown switch {unknown[0]!r}; known: {list(SWITCHES)}")
+    h, moon = header(), de421()
+    gm_ext = np.array([0.0 if name == "earth_moon_barycenter" else gm_km3_d2(name) for name in EXTERNAL])
+    figures = coupled.parameters()
+    gm = figures[0]
+    c_minus_a = h["J2E"] * gm[0] * h["RE"] ** 2
+    c_e = c_minus_a / earth.H_D
+    figures = (gm, figures[1], np.array([c_e - c_minus_a, c_e - c_minus_a, c_e]), *figures[3:])
+    consts = moon_params(moon, gm, None, ())[4]
+    moon_part = (consts, np.asarray(moon.moments, dtype=float), gm[1] * moon.radius_km ** 2)
+    flags = np.array([1.0 if name in switches else 0.0 for name in SWITCHES])
+    return (external_data, gm_ext, figures, moon_part, figures[2], earth_tides.parameters(), flags,
+            h["CLIGHT"] * 86400.0)
+
+
+@njit(cache=True, nogil=True)
+def _frame(z):
+    """A rotation matrix whose third column is the unit vector z (its x axis: e_x made normal to z)."""
+    x = np.array([1.0, 0.0, 0.0]) - z[0] * z
+    x = x / np.sqrt(dot3(x, x))
+    y = cross3(z, x)
+    m = np.empty((3, 3))
+    for i in range(3):
+        m[i, 0], m[i, 1], m[i, 2] = x[i], y[i], z[i]
+    return m
+
+
+@njit(cache=True, nogil=True)
+def _diag(d):
+    m = np.zeros((3, 3))
+    m[0, 0], m[1, 1], m[2, 2] = d[0], d[1], d[2]
+    return m
+
+
+@njit(cache=True, nogil=True)
+def _point_masses(pos, vel, gm_ext, gm, r, v, planets):
+    """Barycentric positions, velocities and GMs of the point masses: the Sun, the planets (if ``planets``),
+    the Earth and the Moon last, these two about the EMB by their mass shares."""
+    f_m = gm[1] / (gm[0] + gm[1])
+    count = 2
+    for j in range(pos.shape[0]):
+        if j != EMB and (j == SUN or planets):
+            count += 1
+    x, w, mu = np.empty((count, 3)), np.empty((count, 3)), np.empty(count)
+    k = 0
+    for j in range(pos.shape[0]):
+        if j != EMB and (j == SUN or planets):
+            x[k], w[k], mu[k] = pos[j], vel[j], gm_ext[j]
+            k += 1
+    x[k], w[k], mu[k] = pos[EMB] - f_m * r, vel[EMB] - f_m * v, gm[0]
+    x[k + 1], w[k + 1], mu[k + 1] = pos[EMB] + (1.0 - f_m) * r, vel[EMB] + (1.0 - f_m) * v, gm[1]
+    return x, w, mu
+
+
+@njit(cache=True, nogil=True)
+def _orbit_newton(x, mu, r):
+    """The relative acceleration r'' of the point masses (Newton), km/d^2: the monopole exactly, the others
+    as the difference of their pulls on the Moon (last) and on the Earth (second last)."""
+    n = x.shape[0]
+    r2 = dot3(r, r)
+    acc = -(mu[n - 2] + mu[n - 1]) / (r2 * np.sqrt(r2)) * r
+    for j in range(n - 2):
+        to_moon, to_earth = x[j] - x[n - 1], x[j] - x[n - 2]
+        dm, de = dot3(to_moon, to_moon), dot3(to_earth, to_earth)
+        acc += mu[j] * (to_moon / (dm * np.sqrt(dm)) - to_earth / (de * np.sqrt(de)))
+    return acc
+
+
+@njit(cache=True, nogil=True)
+def rhs(t, y, p):
+    """dy/dt of the Earth-Moon system (state in the module docstring), t TDB days from J2000."""
+    data, gm_ext, figures, moon_part, moments_e, tide_p, flags, c = p
+    consts, moments_m, gm_r2_m = moon_part
+    gm = figures[0]
+    pos, vel = hermite_states(t, data)
+    r, v, q, omega, omega_c, spin = y[0:3], y[3:6], y[6:10], y[10:13], y[13:16], y[16:19]
+    x, w, mu = _point_masses(pos, vel, gm_ext, gm, r, v, flags[4] != 0.0)
+    n = x.shape[0]
+    acc = _orbit_newton(x, mu, r)
+    if flags[0] != 0.0:
+        targets = np.array([n - 2, n - 1])
+        correction = eih_accelerations(x, w, mu, c, targets)[1]
+        acc += correction[1] - correction[0]
+
+    # the Moon's inertia (M R^2), distorted by the tide the Earth raised tau earlier and by its spin
+    rot_m = matrix_from_quat(q)
+    inertia = _diag(moments_m)
+    inertia_rate = np.zeros((3, 3))
+    if flags[2] != 0.0:
+        tau = consts[TAU_D]
+        r3 = dot3(r, r) ** 1.5
+        kepler = -(gm[0] + gm[1]) / r3 * r
+        r_del, v_del = delayed_in_mantle(rot_m, omega, -(r - tau * v + 0.5 * tau * tau * kepler),
+                                         -(v - tau * kepler), tau)
+        delta, inertia_rate = distortion(omega, r_del, v_del, consts)
+        inertia = inertia + delta
+
+    # the figures: Earth <-> Moon both ways, the Sun on both
+    l_norm = np.sqrt(dot3(spin, spin))
+    rot_e = _frame(spin / l_norm)
+    inertia_e = _diag(moments_e)
+    at_moon = np.empty((1, 3))
+    at_moon[0] = r
+    force, n_m, n_e = coupled.figure_forces(rot_m, gm_r2_m * inertia, rot_e, inertia_e, at_moon, figures)
+    mu_em = gm[0] * gm[1] / (gm[0] + gm[1])
+    acc += force / mu_em
+    sun_m, sun_e = np.empty((1, 3)), np.empty((1, 3))
+    sun_m[0], sun_e[0] = pos[SUN] - x[n - 1], pos[SUN] - x[n - 2]
+    gm_s = gm_ext[SUN:SUN + 1]
+    n_m += point_mass.torque(t, y, rot_m, gm_r2_m * inertia, sun_m, gm_s, ())
+    pull_m = point_mass.force(t, y, rot_m, gm_r2_m * inertia, sun_m, gm_s, ())[0]
+    moon_field = figures[3]
+    n_m += gm_r2_m * harmonics.torque(t, y, rot_m, inertia, sun_m, gm_s, moon_field)
+    pull_m += gm_r2_m * harmonics.force(t, y, rot_m, inertia, sun_m, gm_s, moon_field)[0]
+    n_e += point_mass.torque(t, y, rot_e, inertia_e, sun_e, gm_s, ())
+    pull_e = point_mass.force(t, y, rot_e, inertia_e, sun_e, gm_s, ())[0]
+    acc += -pull_m / gm[1] + pull_e / gm[0]          # the forces on the Sun, reversed, per mass
+
+    torque_e = matvec3(rot_e, n_e)
+    spin_rate = spin / moments_e[2]
+    if flags[1] != 0.0:
+        r_sun, v_sun = sun_e[0], vel[SUN] - w[n - 2]
+        acc += earth_tides.acceleration(r, v, r_sun, v_sun, spin_rate, tide_p)
+        torque_e += earth_tides.torque_on_earth(r, v, r_sun, v_sun, spin_rate, tide_p)
+    if flags[3] != 0.0:
+        helio, helio_v = -sun_e[0], w[n - 2] - vel[SUN]
+        h3 = dot3(helio, helio) ** 1.5
+        torque_e += cross3(1.5 * gm_s[0] / (c * c * h3) * cross3(helio, helio_v), spin)
+
+    dy = np.empty(19)
+    put(dy[0:3], v)
+    put(dy[3:6], acc)
+    put(dy[6:10], quat_rate(q, omega))
+    mantle_rate, core_rate = mantle_and_core_rates(omega, omega_c, inertia, inertia_rate, n_m / gm_r2_m, consts)
+    put(dy[10:13], mantle_rate)
+    put(dy[13:16], core_rate)
+    put(dy[16:19], torque_e)
+    return dy
+
+
+def sample_external(t_start, t_end, step_d=1.0):
+    """The EXTERNAL bodies from DE421, barycentric, sampled every ``step_d`` days over [t_start, t_end]
+    (TDB days): a HermiteOrbits whose ``data`` :func:`rhs` reads."""
+    from .orbits.interpolant import HermiteOrbits, grid
+    from .orbits.kernel import open_ephemeris
+
+    t = grid(t_start, t_end, step_d)
+    ephemeris = open_ephemeris("de421", t[0], t[-1])
+    states = [ephemeris.relative_states(name, "solar_system_barycenter", t) for name in EXTERNAL]
+    gm = [0.0 if name == "earth_moon_barycenter" else gm_km3_d2(name) for name in EXTERNAL]
+    return HermiteOrbits(EXTERNAL, gm, t[0], step_d, np.array([s[0] for s in states]),
+                         np.array([s[1] for s in states]), source="de421")
+
+
+def start_state(t0, spin_axis, spin_rate_rad_d, p):
+    """DE421's geocentric Moon and lunar orientation, rates and core at t0, the Earth spinning at
+    ``spin_rate_rad_d`` about ``spin_axis`` (ICRF unit vector): the state (19,)."""
+    from .orbits.kernel import open_ephemeris
+    from .references import moon_de421
+
+    pos, vel = open_ephemeris("de421", t0, t0).relative_states("moon", "earth", [t0])
+    moon = moon_de421.initial_state(t0, core=True)
+    axis = np.asarray(spin_axis, dtype=float) / np.linalg.norm(spin_axis)
+    return np.concatenate([pos[0], vel[0], moon, p[4][2] * spin_rate_rad_d * axis])
+
+
+def earth_axis(states):
+    """The Earth's spin axis (unit, ICRF) of states (n, 19)."""
+    spin = np.atleast_2d(states)[:, 16:19]
+    return spin / np.linalg.norm(spin, axis=1)[:, None]
