@@ -40,6 +40,7 @@ class Checkpoint:
 
     def __init__(self, path, resume=False, settings=None, every_s=30.0):
         self.path, self.resume, self.settings, self.every_s = Path(path), resume, settings, every_s
+        self.resumed_outputs = 0             # outputs a resumed run took from the file
 
     def load(self, fingerprint):
         """The outputs (k, dim) a matching checkpoint holds, or None when resume is off or there is none."""
@@ -53,8 +54,9 @@ class Checkpoint:
                                 "to start afresh") from None
         differ = [text for name, text in WHAT_DIFFERS.items() if stored.get(name) != fingerprint[name]]
         if differ:
-            raise ScenarioError("--resume", str(self.path), f"a checkpoint of this run (it was written by a run that differs in: "
-                                f"{', '.join(differ)}); run without --resume to start afresh")
+            raise ScenarioError("--resume", str(self.path), "a checkpoint of this run (it was written by a run that "
+                                f"differs in: {', '.join(differ)}); run without --resume to start afresh")
+        self.resumed_outputs = len(outputs)
         return outputs
 
     def save(self, fingerprint, outputs):

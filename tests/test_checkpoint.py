@@ -1,5 +1,6 @@
 """Checkpointed fixed-step runs: a run interrupted and resumed gives the states, and the run directory,
 of one that was not, bit for bit; a checkpoint of another run is refused."""
+import json
 from pathlib import Path
 
 import numpy as np
@@ -24,7 +25,8 @@ def system():
     p = coupled.parameters()
     gm, r = float(p[0].sum()), 384400.0
     n = np.sqrt(gm / r**3)
-    y0 = coupled.state([r, 0, 0], [0, n * r, 0], [1.0, 0, 0, 0], [0, 0, n], [1.0, 0, 0, 0], [0, 0, earth.ERA_RATE_RAD_D])
+    y0 = coupled.state([r, 0, 0], [0, n * r, 0], [1.0, 0, 0, 0], [0, 0, n],
+                       [1.0, 0, 0, 0], [0, 0, earth.ERA_RATE_RAD_D])
     return p, y0
 
 
@@ -110,6 +112,7 @@ def test_resumed_cli_run_writes_the_uninterrupted_run(uninterrupted, tmp_path, m
     assert sum(made) == 2 + 61 - 18                      # warm-up, then the outputs after the checkpoint
     assert not checkpoint.exists()                       # a committed run leaves nothing to resume
     assert (out / "timeseries.ecsv").read_bytes() == (uninterrupted / "timeseries.ecsv").read_bytes()
+    assert json.loads((out / "summary.json").read_text())["run"]["resumed_after_outputs"] == 18
 
 
 def test_resume_with_no_checkpoint_says_so(tmp_path, capsys):
