@@ -85,7 +85,7 @@ def fixed_step(rhs, params, t0, y0, t_out, step, checkpoint=None, label=None):
         states[:done] = stored
         print(f"resuming from {checkpoint.path} at output {done} of {t_out.size}", file=sys.stderr)
     saved, last_save = done, time.monotonic()
-    with progress(label, float(t0), float(t_out[-1])) as advance_to:
+    with progress(label, float(t_out[done - 1] if done else t0), float(t_out[-1])) as advance_to:   # what is left
         try:
             for part in output_chunks(t_out.size):
                 if part.stop <= done:
