@@ -6,11 +6,15 @@
 Exit codes: 0 the run finished (whatever its verdict); 2 bad input (one line
 ``error: <key>: got ...; expected ...``); 3 the integration failed (what it has is
 written); 4 with ``run --strict``, the run finished but its verdict is ``fail``;
-1 ``sweep`` with failed runs.
+1 ``sweep`` with failed runs; 130 interrupted (Ctrl-C or SIGTERM; a checkpointed run can continue
+with ``run --resume``).
 """
 import argparse
+import contextlib
 import os
+import signal
 import sys
+import threading
 from pathlib import Path
 
 from .errors import IntegrationError, SpinorbitError
@@ -31,6 +35,8 @@ def main(argv=None):
     run.add_argument("--strict", action="store_true", help=f"exit {EXIT_VERDICT_FAIL} when the verdict is 'fail'")
     run.add_argument("--force", action="store_true",
                      help="overwrite files in --out that spinorbit did not write (others are kept)")
+    run.add_argument("--resume", action="store_true",
+                     help="continue an interrupted run from <out>.checkpoint.npz (long fixed-step scenes)")
     sweep = sub.add_parser("sweep", help="run a parameter sweep / ensemble on Dask (local cluster by default)")
     sweep.add_argument("scenario")
     sweep.add_argument("--vary", action="append", required=True, metavar="KEY=V1,V2,...",
@@ -51,7 +57,8 @@ def main(argv=None):
         os.environ["SPINORBIT_QUIET"] = "1"          # read by spinorbit.progress, here and in Dask workers
     try:
         if args.command == "run":
-            return _run(args)
+            with _sigterm_interrupts():
+                return _run(args)
         if args.command == "sweep":
             return _sweep(args)
         if args.command == "bench":
@@ -60,12 +67,33 @@ def main(argv=None):
     except IntegrationError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 3
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return 130
     except SpinorbitError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
 
 
+@contextlib.contextmanager
+def _sigterm_interrupts():
+    """SIGTERM (a batch scheduler's stop) interrupts as Ctrl-C does, so that a run's checkpoint is kept."""
+    if threading.current_thread() is not threading.main_thread():      # only the main thread sets handlers
+        yield
+        return
+    previous = signal.signal(signal.SIGTERM, _interrupt)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _interrupt(signum, frame):
+    raise KeyboardInterrupt
+
+
 def _run(args):
+    from .checkpoint import Checkpoint
     from .reports import write_run
     from .results import run_scenario
     from .rundir import RunDirectory
@@ -74,6 +102,12 @@ def _run(args):
     scenario = load_scenario(args.scenario, args.overrides)
     out = Path(args.out or Path("runs") / scenario.name)
     with RunDirectory(out, force=args.force) as run_dir:        # locked; foreign files refused up front
+        scenario.checkpoint = Checkpoint(run_dir.checkpoint, args.resume, scenario.data)
+        if args.resume and not run_dir.checkpoint.exists():
+            print(f"no checkpoint at {run_dir.checkpoint}: starting from the beginning", file=sys.stderr)
+        elif run_dir.checkpoint.exists() and not args.resume:
+            print(f"{run_dir.checkpoint} holds an interrupted run: starting from the beginning "
+                  "(--resume continues it)", file=sys.stderr)
         try:
             result = run_scenario(scenario)
         except IntegrationError as exc:

@@ -30,6 +30,9 @@ def run_scenario(scenario, overrides=()):
     from .verdict import evaluate, spec_of
 
     summary = mark_unmeasured({**base_summary(scenario), **result.summary, "status": "ok"})
+    resumed = getattr(scenario.checkpoint, "resumed_outputs", 0)
+    if resumed:                          # run.wall_s is then this process's part only
+        summary.setdefault("run", {})["resumed_after_outputs"] = resumed
     comparison = summary.get("comparison", {})
     summary["verdict"] = evaluate(spec_of(scenario, comparison), comparison, abs(scenario.t_end - scenario.t_start),
                                   scenario.name, span_label(scenario))

@@ -6,7 +6,9 @@ directory in (``out`` -> ``.<name>.old-<pid>``, new -> ``out``, old removed).
 So ``out`` always holds one whole run, the old or the new one: a crash between
 the two renames leaves a complete new directory (it has its manifest) that the
 next run moves into place.  A failed run leaves a good previous run alone and
-puts its partial output beside it in ``<out>.failed``.  A lock refuses a
+puts its partial output beside it in ``<out>.failed``.  A long run's checkpoint
+(spinorbit.checkpoint) lives beside it in ``<out>.checkpoint.npz``: a failed or
+interrupted run leaves it, a committed run removes it.  A lock refuses a
 second run into the same ``out`` while the first is alive.  The lock is an
 flock on ``.<name>.lock`` in the parent, which the kernel drops when its holder
 exits, even on kill -9; the file itself stays.  Files in ``out``
@@ -43,6 +45,7 @@ class RunDirectory:
         self.new = parent / f".{name}.new-{os.getpid()}"
         self.old = parent / f".{name}.old-{os.getpid()}"
         self.failed = parent / f"{name}.failed"
+        self.checkpoint = parent / f"{name}.checkpoint.npz"
         self.foreign = []
         self._lock_fd = None
 
@@ -74,6 +77,7 @@ class RunDirectory:
         """Write a whole run aside with ``write(path)`` and swap it in as ``out``; return ``out``."""
         self._write_aside(write, "ok", carry_foreign=True)
         self._swap(self.out)
+        _remove(self.checkpoint)                       # the run is whole: nothing left to resume
         return self.out
 
     def fail(self, write):
@@ -139,7 +143,7 @@ class RunDirectory:
                 os.replace(complete[-1], self.out)
             elif olds:
                 os.replace(olds[-1], self.out)
-        for stale in (*news, *olds):
+        for stale in (*news, *olds, *parent.glob(f".{self.checkpoint.name}.tmp-*")):
             _remove(stale)
 
 

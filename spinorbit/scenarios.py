@@ -67,6 +67,7 @@ class Scenario:
         self.data = data
         self.path = Path(path) if path else None
         self.name = self.path.stem if self.path else "scenario"
+        self.checkpoint = None          # a checkpoint.Checkpoint when the command line runs it (--resume)
         from .scenes import scene_module            # the scene registry (lazy imports)
 
         check_depth(data, str(self.path) if self.path else "scenario")
