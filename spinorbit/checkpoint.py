@@ -42,6 +42,11 @@ class Checkpoint:
         self.path, self.resume, self.settings, self.every_s = Path(path), resume, settings, every_s
         self.resumed_outputs = 0             # outputs a resumed run took from the file
 
+    def part(self, name):
+        """The checkpoint of a scene's further run ``name``: ``<out>.checkpoint-<name>.npz``, removed with this one."""
+        return Checkpoint(self.path.with_name(f"{self.path.stem}-{name}{self.path.suffix}"), self.resume,
+                          self.settings, self.every_s)
+
     def load(self, fingerprint):
         """The outputs (k, dim) a matching checkpoint holds, or None when resume is off or there is none."""
         if not self.resume or not self.path.exists():
@@ -97,6 +102,9 @@ def fixed_step(rhs, params, t0, y0, t_out, step, checkpoint=None, label=None):
                 if checkpoint is not None and time.monotonic() - last_save >= checkpoint.every_s:
                     checkpoint.save(fingerprint, states[:done])
                     saved, last_save = done, time.monotonic()
+            if checkpoint is not None and done > saved:          # whole: a scene's next run may be interrupted
+                checkpoint.save(fingerprint, states[:done])
+                saved = done
         except BaseException:
             if checkpoint is not None and done > 0:
                 if done > saved:

@@ -208,18 +208,6 @@ def sample_external(t_start, t_end, step_d=1.0):
                          np.array([s[1] for s in states]), source="de421")
 
 
-def start_state(t0, spin_axis, spin_rate_rad_d, p):
-    """DE421's geocentric Moon and lunar orientation, rates and core at t0, the Earth spinning at
-    ``spin_rate_rad_d`` about ``spin_axis`` (ICRF unit vector): the state (19,)."""
-    from .orbits.kernel import open_ephemeris
-    from .references import moon_de421
-
-    pos, vel = open_ephemeris("de421", t0, t0).relative_states("moon", "earth", [t0])
-    moon = moon_de421.initial_state(t0, core=True)
-    axis = np.asarray(spin_axis, dtype=float) / np.linalg.norm(spin_axis)
-    return np.concatenate([pos[0], vel[0], moon, p[4][2] * spin_rate_rad_d * axis])
-
-
 def earth_axis(states):
     """The Earth's spin axis (unit, ICRF) of states (n, 19)."""
     spin = np.atleast_2d(states)[:, 16:19]

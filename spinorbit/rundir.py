@@ -77,7 +77,8 @@ class RunDirectory:
         """Write a whole run aside with ``write(path)`` and swap it in as ``out``; return ``out``."""
         self._write_aside(write, "ok", carry_foreign=True)
         self._swap(self.out)
-        _remove(self.checkpoint)                       # the run is whole: nothing left to resume
+        for done in (self.checkpoint, *self.checkpoint.parent.glob(f"{self.checkpoint.stem}-*.npz")):
+            _remove(done)                              # the run is whole: nothing left to resume
         return self.out
 
     def fail(self, write):

@@ -10,6 +10,7 @@ import pytest
 
 from spinorbit import earth_moon
 from spinorbit.bodies import earth
+from spinorbit.earth_moon_vs_de421 import start_state
 from spinorbit.integrators.rk8 import fixed_step
 from spinorbit.orbits.kernel import open_ephemeris
 from spinorbit.references.erfa_pole import cip_vector
@@ -36,7 +37,7 @@ def run(external, switches=earth_moon.SWITCHES, closed=False, step=STEP_D):
         tides[2] = 0.0                          # GM of the Sun in the tide parameters
         p[5] = tides
     p = tuple(p)
-    y0 = earth_moon.start_state(T0, cip_vector(T0), earth.ERA_RATE_RAD_D, p)
+    y0 = start_state(T0, cip_vector(T0), earth.ERA_RATE_RAD_D, p)
     t = np.linspace(T0, T0 + SPAN_D, 488)
     return t, fixed_step(earth_moon.rhs, p, T0, y0, t, step), p
 

@@ -51,9 +51,10 @@ def verdict(scenario, comparison):
     return Verdict("DE421", tuple(checks))
 
 
-def integrate(scenario, switches, label):
-    """(states (n, 19) at the output times, the run's point) with the scene's model and ``switches``."""
-    from .. import earth_moon
+def integrate(scenario, switches, label, checkpoint):
+    """(states (n, 19) at the output times, the run's point) with the scene's model and ``switches``;
+    progress under ``label``, checkpointed (``spinorbit run --resume``) with ``checkpoint``."""
+    from .. import checkpoint as chunked, earth_moon, earth_moon_vs_de421 as vs
     from ..bodies import earth
     from ..integrators.rk8 import fixed_step
     from ..references.erfa_pole import cip_vector
@@ -62,11 +63,11 @@ def integrate(scenario, switches, label):
     first, last = scenario.bounds
     external = earth_moon.sample_external(first - 1.0, last + 1.0, scenario["orbit.step"])
     p = earth_moon.parameters(external.data, switches)
-    y0 = earth_moon.start_state(t0, cip_vector(t0), earth.ERA_RATE_RAD_D, p)
+    y0 = vs.start_state(t0, cip_vector(t0), earth.ERA_RATE_RAD_D, p)
     step = float(scenario.integrator_options().get("step", 0.5))
     fixed_step(earth_moon.rhs, p, t0, y0, t[:2], step)                 # compile outside the timing
     started = time.perf_counter()
-    states = fixed_step(earth_moon.rhs, p, t0, y0, t, step)
+    states = chunked.fixed_step(earth_moon.rhs, p, t0, y0, t, step, checkpoint, label)
     wall = time.perf_counter() - started
     steps = int(np.ceil(abs(t[-1] - t0) / step - 1e-9))
     return states, {"method": "rk8", "step_d": step, "steps": steps, "rhs_evaluations": 12 * steps,
@@ -81,7 +82,7 @@ def run(scenario):
         raise ScenarioError("integrator.method", scenario["integrator.method"], "rk8 (the compiled fixed step)")
     switches = tuple(name for name in earth_moon.SWITCHES if scenario[f"model.{name}"])
     t = scenario.output_times()
-    states, point = integrate(scenario, switches, "coupled")
+    states, point = integrate(scenario, switches, f"{scenario.name}", scenario.checkpoint)
     direction, distance = vs.orbit_errors(t, states)
     mats, de421, pole, longitude, lunar = vs.lunar_errors(t, states)
     axis = earth_moon.earth_axis(states)
@@ -91,7 +92,9 @@ def run(scenario):
     if scenario["compare.tides_off"]:
         if "earth_tides" not in switches:
             raise ScenarioError("compare.tides_off", True, "false when model.earth_tides is false")
-        without, point_off = integrate(scenario, tuple(s for s in switches if s != "earth_tides"), "tides off")
+        part = None if scenario.checkpoint is None else scenario.checkpoint.part("tides_off")
+        without, point_off = integrate(scenario, tuple(s for s in switches if s != "earth_tides"),
+                                       f"{scenario.name} (tides off)", part)
         tidal = vs.tidal_acceleration(t, states, without)
         summary["comparison"].update({f"tidal_{name}": value for name, value in tidal.items()})
         summary["run_tides_off"] = point_off
