@@ -38,7 +38,7 @@ from .bodies.moon import de421
 from .moon import delayed_in_mantle, distortion, mantle_and_core_rates, moon_params, TAU_D
 from .orbits.interpolant import hermite_states
 from .relativity import accelerations as eih_accelerations
-from .rotations import cross3, dot3, matrix_from_quat, matvec3, put, quat_rate
+from .rotations import cross3, dot3, mat_t_vec3, matrix_from_quat, matvec3, put, quat_rate
 from .terms import earth_tides, harmonics, point_mass
 
 # The bodies read from the ephemeris (barycentric); the Earth and the Moon sit about the barycentre EMB.
@@ -163,13 +163,11 @@ def rhs(t, y, p):
     sun_m, sun_e = np.empty((1, 3)), np.empty((1, 3))
     sun_m[0], sun_e[0] = pos[SUN] - x[n - 1], pos[SUN] - x[n - 2]
     gm_s = gm_ext[SUN:SUN + 1]
-    n_m += point_mass.torque(t, y, rot_m, gm_r2_m * inertia, sun_m, gm_s, ())
-    pull_m = point_mass.force(t, y, rot_m, gm_r2_m * inertia, sun_m, gm_s, ())[0]
-    moon_field = figures[3]
-    n_m += gm_r2_m * harmonics.torque(t, y, rot_m, inertia, sun_m, gm_s, moon_field)
-    pull_m += gm_r2_m * harmonics.force(t, y, rot_m, inertia, sun_m, gm_s, moon_field)[0]
-    n_e += point_mass.torque(t, y, rot_e, inertia_e, sun_e, gm_s, ())
+    pull_m = (point_mass.force(t, y, rot_m, gm_r2_m * inertia, sun_m, gm_s, ())[0]
+              + gm_r2_m * harmonics.force(t, y, rot_m, inertia, sun_m, gm_s, figures[3])[0])
     pull_e = point_mass.force(t, y, rot_e, inertia_e, sun_e, gm_s, ())[0]
+    n_m -= mat_t_vec3(rot_m, cross3(sun_m[0], pull_m))          # each figure's torque: -r x (its pull on the Sun)
+    n_e -= mat_t_vec3(rot_e, cross3(sun_e[0], pull_e))
     acc += -pull_m / gm[1] + pull_e / gm[0]          # the forces on the Sun, reversed, per mass
 
     torque_e = matvec3(rot_e, n_e)
