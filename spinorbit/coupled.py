@@ -26,6 +26,7 @@ from .bodies import earth
 from .bodies.de421_header import gm_km3_d2, header
 from .bodies.moon import de421
 from .dynamics import euler_omega_dot
+from .errors import InputError
 from .rotations import cross3, dot3, mat_t_vec3, matrix_from_quat, matvec3, put, quat_from_matrix, quat_rate
 from .terms import figure_figure, harmonics, point_mass
 
@@ -38,7 +39,7 @@ def parameters(figures=FIGURES):
     G-scaled principal moments (km^5/d^2), fields as terms.harmonics' parameters (degrees 3-4)."""
     unknown = sorted(set(figures) - set(FIGURES))
     if unknown:
-        raise ValueError(f"unknown interaction {unknown[0]!r}; known: {list(FIGURES)}")
+        raise InputError("figures", unknown, f"names from {list(FIGURES)}")
     moon, h = de421(), header()
     gm = np.array([gm_km3_d2("earth"), gm_km3_d2("moon")])
     moments_m = moon.moments * gm[1] * moon.radius_km ** 2

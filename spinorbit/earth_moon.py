@@ -35,9 +35,10 @@ from . import coupled
 from .bodies import earth
 from .bodies.de421_header import gm_km3_d2, header
 from .bodies.moon import de421
-from .moon import delayed_in_mantle, distortion, mantle_and_core_rates, moon_params, TAU_D
+from .errors import InputError
+from .moon import TAU_D, delayed_in_mantle, distortion, mantle_and_core_rates, moon_params
 from .orbits.interpolant import hermite_states
-from .relativity import accelerations as eih_accelerations
+from .relativity import accelerations as eih_accelerations, c_km_d
 from .rotations import cross3, dot3, mat_t_vec3, matrix_from_quat, matvec3, put, quat_rate
 from .terms import earth_tides, harmonics, point_mass
 
@@ -50,11 +51,12 @@ SWITCHES = ("relativity", "earth_tides", "moon_distortion", "geodesic", "planets
 
 
 def parameters(external_data, switches=SWITCHES):
-    """p = (external data, gm (10,), figures (coupled.parameters), moon (consts, moments M R^2, G M R^2),
-    earth (C, C - A, G-scaled), tides, flags (5,), c km/d) for :func:`rhs`."""
+    """p = (external data, gm (10,), figures (coupled.parameters, with the Earth's moments below), moon
+    (consts, moments M R^2, G M R^2), the Earth's moments (A, A, C; G-scaled, km^5/d^2), tides, flags (5,),
+    c km/d) for :func:`rhs`; ``switches``: the SWITCHES on."""
     unknown = sorted(set(switches) - set(SWITCHES))
     if unknown:
-        raise ValueError(f"unknown switch {unknown[0]!r}; known: {list(SWITCHES)}")
+        raise InputError("switches", unknown, f"names from {list(SWITCHES)}")
     h, moon = header(), de421()
     gm_ext = np.array([0.0 if name == "earth_moon_barycenter" else gm_km3_d2(name) for name in EXTERNAL])
     figures = coupled.parameters()
@@ -65,8 +67,7 @@ def parameters(external_data, switches=SWITCHES):
     consts = moon_params(moon, gm, None, ())[4]
     moon_part = (consts, np.asarray(moon.moments, dtype=float), gm[1] * moon.radius_km ** 2)
     flags = np.array([1.0 if name in switches else 0.0 for name in SWITCHES])
-    return (external_data, gm_ext, figures, moon_part, figures[2], earth_tides.parameters(), flags,
-            h["CLIGHT"] * 86400.0)
+    return external_data, gm_ext, figures, moon_part, figures[2], earth_tides.parameters(), flags, c_km_d()
 
 
 @njit(cache=True, nogil=True)
@@ -123,6 +124,33 @@ def _orbit_newton(x, mu, r):
 
 
 @njit(cache=True, nogil=True)
+def _lunar_inertia(r, v, rot_m, omega, moments_m, consts, gm_pair, distorted):
+    """The Moon's inertia (M R^2, mantle axes) and its rate: with ``distorted``, the tide the Earth raised tau
+    earlier (its position then from r, v to second order in tau) and the spin's flattening (spinorbit.moon)."""
+    inertia = _diag(moments_m)
+    if not distorted:
+        return inertia, np.zeros((3, 3))
+    tau = consts[TAU_D]
+    kepler = -gm_pair / dot3(r, r) ** 1.5 * r
+    r_del, v_del = delayed_in_mantle(rot_m, omega, -(r - tau * v + 0.5 * tau * tau * kepler), -(v - tau * kepler), tau)
+    delta, inertia_rate = distortion(omega, r_del, v_del, consts)
+    return inertia + delta, inertia_rate
+
+
+@njit(cache=True, nogil=True)
+def _sun_on_figures(sun_m, sun_e, rot_m, inertia, gm_r2_m, field_m, rot_e, inertia_e, gm_s):
+    """The Sun on the Moon's degrees 2-4 and the Earth's degree 2: (the pulls on the Sun from each figure,
+    ICRF; the torques on the Moon and the Earth, body axes), G-scaled; sun_m, sun_e (1, 3) km, the Sun from
+    each.  Each torque is the reaction of its pull, -r x F (Euler §818)."""
+    y = np.zeros(1)                               # the terms' state argument, which none of these reads
+    pull_m = (point_mass.force(0.0, y, rot_m, gm_r2_m * inertia, sun_m, gm_s, ())[0]
+              + gm_r2_m * harmonics.force(0.0, y, rot_m, inertia, sun_m, gm_s, field_m)[0])
+    pull_e = point_mass.force(0.0, y, rot_e, inertia_e, sun_e, gm_s, ())[0]
+    return (pull_m, pull_e, -mat_t_vec3(rot_m, cross3(sun_m[0], pull_m)),
+            -mat_t_vec3(rot_e, cross3(sun_e[0], pull_e)))
+
+
+@njit(cache=True, nogil=True)
 def rhs(t, y, p):
     """dy/dt of the Earth-Moon system (state in the module docstring), t TDB days from J2000."""
     data, gm_ext, figures, moon_part, moments_e, tide_p, flags, c = p
@@ -131,61 +159,38 @@ def rhs(t, y, p):
     pos, vel = hermite_states(t, data)
     r, v, q, omega, omega_c, spin = y[0:3], y[3:6], y[6:10], y[10:13], y[13:16], y[16:19]
     x, w, mu = _point_masses(pos, vel, gm_ext, gm, r, v, flags[4] != 0.0)
-    n = x.shape[0]
+    n = x.shape[0]                                  # the Earth is x[n - 2], the Moon x[n - 1]
     acc = _orbit_newton(x, mu, r)
     if flags[0] != 0.0:
-        targets = np.array([n - 2, n - 1])
-        correction = eih_accelerations(x, w, mu, c, targets)[1]
+        correction = eih_accelerations(x, w, mu, c, np.array([n - 2, n - 1]))[1]
         acc += correction[1] - correction[0]
 
-    # the Moon's inertia (M R^2), distorted by the tide the Earth raised tau earlier and by its spin
     rot_m = matrix_from_quat(q)
-    inertia = _diag(moments_m)
-    inertia_rate = np.zeros((3, 3))
-    if flags[2] != 0.0:
-        tau = consts[TAU_D]
-        r3 = dot3(r, r) ** 1.5
-        kepler = -(gm[0] + gm[1]) / r3 * r
-        r_del, v_del = delayed_in_mantle(rot_m, omega, -(r - tau * v + 0.5 * tau * tau * kepler),
-                                         -(v - tau * kepler), tau)
-        delta, inertia_rate = distortion(omega, r_del, v_del, consts)
-        inertia = inertia + delta
-
-    # the figures: Earth <-> Moon both ways, the Sun on both
-    l_norm = np.sqrt(dot3(spin, spin))
-    rot_e = _frame(spin / l_norm)
+    inertia, inertia_rate = _lunar_inertia(r, v, rot_m, omega, moments_m, consts, gm[0] + gm[1], flags[2] != 0.0)
+    rot_e = _frame(spin / np.sqrt(dot3(spin, spin)))
     inertia_e = _diag(moments_e)
-    at_moon = np.empty((1, 3))
-    at_moon[0] = r
+    at_moon, sun_m, sun_e = np.empty((1, 3)), np.empty((1, 3)), np.empty((1, 3))
+    at_moon[0], sun_m[0], sun_e[0] = r, pos[SUN] - x[n - 1], pos[SUN] - x[n - 2]
     force, n_m, n_e = coupled.figure_forces(rot_m, gm_r2_m * inertia, rot_e, inertia_e, at_moon, figures)
-    mu_em = gm[0] * gm[1] / (gm[0] + gm[1])
-    acc += force / mu_em
-    sun_m, sun_e = np.empty((1, 3)), np.empty((1, 3))
-    sun_m[0], sun_e[0] = pos[SUN] - x[n - 1], pos[SUN] - x[n - 2]
-    gm_s = gm_ext[SUN:SUN + 1]
-    pull_m = (point_mass.force(t, y, rot_m, gm_r2_m * inertia, sun_m, gm_s, ())[0]
-              + gm_r2_m * harmonics.force(t, y, rot_m, inertia, sun_m, gm_s, figures[3])[0])
-    pull_e = point_mass.force(t, y, rot_e, inertia_e, sun_e, gm_s, ())[0]
-    n_m -= mat_t_vec3(rot_m, cross3(sun_m[0], pull_m))          # each figure's torque: -r x (its pull on the Sun)
-    n_e -= mat_t_vec3(rot_e, cross3(sun_e[0], pull_e))
-    acc += -pull_m / gm[1] + pull_e / gm[0]          # the forces on the Sun, reversed, per mass
+    pull_m, pull_e, sun_n_m, sun_n_e = _sun_on_figures(sun_m, sun_e, rot_m, inertia, gm_r2_m, figures[3], rot_e,
+                                                       inertia_e, gm_ext[SUN:SUN + 1])
+    acc += force * (gm[0] + gm[1]) / (gm[0] * gm[1]) - pull_m / gm[1] + pull_e / gm[0]
 
-    torque_e = matvec3(rot_e, n_e)
-    spin_rate = spin / moments_e[2]
+    torque_e = matvec3(rot_e, n_e + sun_n_e)
     if flags[1] != 0.0:
-        r_sun, v_sun = sun_e[0], vel[SUN] - w[n - 2]
+        r_sun, v_sun, spin_rate = sun_e[0], vel[SUN] - w[n - 2], spin / moments_e[2]
         acc += earth_tides.acceleration(r, v, r_sun, v_sun, spin_rate, tide_p)
         torque_e += earth_tides.torque_on_earth(r, v, r_sun, v_sun, spin_rate, tide_p)
-    if flags[3] != 0.0:
+    if flags[3] != 0.0:                             # geodesic precession of the heliocentric Earth (x, w)
         helio, helio_v = -sun_e[0], w[n - 2] - vel[SUN]
-        h3 = dot3(helio, helio) ** 1.5
-        torque_e += cross3(1.5 * gm_s[0] / (c * c * h3) * cross3(helio, helio_v), spin)
+        torque_e += cross3(1.5 * gm_ext[SUN] / (c * c * dot3(helio, helio) ** 1.5) * cross3(helio, helio_v), spin)
 
     dy = np.empty(19)
     put(dy[0:3], v)
     put(dy[3:6], acc)
     put(dy[6:10], quat_rate(q, omega))
-    mantle_rate, core_rate = mantle_and_core_rates(omega, omega_c, inertia, inertia_rate, n_m / gm_r2_m, consts)
+    mantle_rate, core_rate = mantle_and_core_rates(omega, omega_c, inertia, inertia_rate, (n_m + sun_n_m) / gm_r2_m,
+                                                   consts)
     put(dy[10:13], mantle_rate)
     put(dy[13:16], core_rate)
     put(dy[16:19], torque_e)
