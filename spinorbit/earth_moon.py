@@ -1,5 +1,6 @@
 """The Earth-Moon system in the solar system: the Moon's orbit, the Moon's mantle and core and the Earth's
-spin in one state, coupled both ways; the Sun, the planets and the Earth-Moon barycentre from the ephemeris.
+spin in one state, coupled both ways; the Sun, the planets and the Earth-Moon barycentre from the ephemeris
+(or a REBOUND run, :func:`sample_external`).
 
 State (19,): ``y = [r (3), v (3), q (4), w_m (3), w_c (3), l (3)]``
 - r, v: the Moon from the Earth, km and km/d, ICRF;

@@ -90,9 +90,9 @@ def test_rebound_externals_move_the_moon_no_more_than_their_departure_from_de421
     """The Sun, planets and EMB from a REBOUND run (spinorbit.orbits.nbody, from DE421's state at T0 - 1 d)
     instead of DE421: over 60 days the heliocentric EMB departs from DE421's by dR (measured 1.1 m; REBOUND
     lacks DE421's asteroids, whose pull on the Earth, ~2e-5 km/d^2, moves it < 50 m in 60 d), and the Moon
-    then feels the Sun's tide (scale T = GM_s r/R^3, 114 km/d^2) changed by ~3 T dR/R; a steady perturbing
+    then feels the Sun's tide (scale T = GM_s r/R^3, 126 km/d^2) changed by ~3 T dR/R; a steady perturbing
     acceleration e displaces an orbit by at most ~3 e t^2 within a few months (its mean motion drifts): the
-    coupled Moon may move by 9 T (dR/R) t^2 = 2.7 cm (measured 0.2 mm).  Wrong frames or a wrong EMB would
+    coupled Moon may move by 9 T (dR/R) t^2 = 3 cm (measured 0.23 mm).  Wrong frames or a wrong EMB would
     move it by kilometres."""
     span = 60.0
     rebound = earth_moon.sample_external(T0 - 1.0, T0 + span + 1.0, source="rebound")
