@@ -44,8 +44,8 @@ class ReboundOrbits(HermiteOrbits):
     """``bodies`` relative to ``center``, integrated by REBOUND from ``t_start`` to ``t_end`` (TDB d).
 
     bodies, center: names in :data:`BODIES` or :data:`EMB`; center None: barycentric, in the
-    simulation's frame (the kernel's solar-system barycentre at t_start; it then drifts by the pull
-    of the kernel's bodies REBOUND lacks, the asteroids).
+    simulation's frame, the kernel's barycentric one at t_start kept inertial (DE421's barycentre
+    holds its asteroids too, so the bodies' own centre of mass moves in it: 6.6e-4 km/d in 1969).
     kernel: the JPLKernel or DE421Arrays giving the initial barycentric states at t_start
     (default: the DE421 .bsp).
     gr: REBOUNDx ``gr_full`` (all bodies, c in km/day); earth_j2: REBOUNDx
