@@ -1,5 +1,6 @@
 """The Earth-Moon system in the solar system: the Moon's orbit, the Moon's mantle and core and the Earth's
-spin in one state, coupled both ways; the Sun, the planets and the Earth-Moon barycentre from the ephemeris.
+spin in one state, coupled both ways; the Sun, the planets and the Earth-Moon barycentre from the ephemeris
+(or a REBOUND run, :func:`sample_external`).
 
 State (19,): ``y = [r (3), v (3), q (4), w_m (3), w_c (3), l (3)]``
 - r, v: the Moon from the Earth, km and km/d, ICRF;
@@ -197,16 +198,28 @@ def rhs(t, y, p):
     return dy
 
 
-def sample_external(t_start, t_end, step_d=1.0):
-    """The EXTERNAL bodies from DE421, barycentric, sampled every ``step_d`` days over [t_start, t_end]
-    (TDB days): a HermiteOrbits whose ``data`` :func:`rhs` reads."""
+def sample_external(t_start, t_end, step_d=1.0, source="de421"):
+    """The EXTERNAL bodies, barycentric, sampled every ``step_d`` days over [t_start, t_end] (TDB days):
+    a HermiteOrbits whose ``data`` :func:`rhs` reads (the EMB's GM 0: the Earth and Moon are the state's).
+
+    source: "de421" (the ephemeris) or "rebound" (spinorbit.orbits.nbody: an N-body run of the Sun, the
+    planets, Pluto, the Earth and the Moon from DE421's state at t_start, the EMB from its Earth and Moon;
+    for spans or epochs no ephemeris covers)."""
     from .orbits.interpolant import HermiteOrbits, grid
     from .orbits.kernel import open_ephemeris
 
+    if source not in ("de421", "rebound"):
+        raise InputError("source", source, "'de421' or 'rebound'")
+    gm = [0.0 if name == "earth_moon_barycenter" else gm_km3_d2(name) for name in EXTERNAL]
+    if source == "rebound":
+        from .orbits.nbody import ReboundOrbits
+
+        orbits = ReboundOrbits(None, EXTERNAL, t_start, t_end, step_d, open_ephemeris("de421", t_start, t_start))
+        pos, vel, _ = orbits.data[1:]
+        return HermiteOrbits(EXTERNAL, gm, t_start, step_d, pos, vel, source="rebound")
     t = grid(t_start, t_end, step_d)
     ephemeris = open_ephemeris("de421", t[0], t[-1])
     states = [ephemeris.relative_states(name, "solar_system_barycenter", t) for name in EXTERNAL]
-    gm = [0.0 if name == "earth_moon_barycenter" else gm_km3_d2(name) for name in EXTERNAL]
     return HermiteOrbits(EXTERNAL, gm, t[0], step_d, np.array([s[0] for s in states]),
                          np.array([s[1] for s in states]), source="de421")
 

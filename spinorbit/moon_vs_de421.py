@@ -10,6 +10,13 @@ from .constants import ARCSEC
 LADDER = ([("rk8", {"step": h}) for h in (4.0, 2.0, 1.0, 0.5)]          # report.error_vs_runtime
           + [("dop853", {"rtol": r, "atol": r * 1e-2}) for r in (1e-8, 1e-10, 1e-12)])
 CONVERGED = ("rk8", {"step": 0.25})
+# What a run driven by another source can reach (the verdict's note; measured in benchmarks/RESULTS.md).
+SOURCE_NOTES = {"rebound": (
+    "orbits from rebound: expect no better than REBOUND's lunar orbit, which lacks the figures and tides and "
+    "drifts from DE421's (the Moon's direction 0.3\" in 1 yr, 3\" in 10 yr, 23\" and 41 km over 1969-2019; "
+    "the longitude follows it: 19.8\"); for DE421's accuracy from REBOUND's bodies run "
+    "scenarios/earth_moon_coupled_rebound.toml (the Moon integrated with the coupled forces: longitude 0.032\", "
+    "pole 0.004\" over 1969-2019)")}
 
 
 def table(solution, mats, de421, lib):

@@ -55,6 +55,17 @@ def test_every_shipped_scene_declares_its_comparison():
             assert all(c.source for c in spec.checks), path.name
 
 
+def test_the_rebound_driven_moon_fails_and_names_the_accurate_rebound_path():
+    """moon_libration_rebound.toml with its measured drift (pole 0.33", longitude 19.8" over 50 yr,
+    benchmarks/RESULTS.md) fails against level 3's targets; its note says what to expect and names the coupled
+    scene on REBOUND's bodies, which exists and takes them from REBOUND."""
+    spec = spec_of(load_scenario(SCENARIOS / "moon_libration_rebound.toml"))
+    assert evaluate(spec, {"pole_error_max_arcsec": 0.33, "longitude_error_max_arcsec": 19.8}, 18262.5)["result"] == "fail"
+    coupled = SCENARIOS / "earth_moon_coupled_rebound.toml"
+    assert "23\" and 41 km over 1969-2019" in spec.note and coupled.name in spec.note
+    assert load_scenario(coupled)["orbit.source"] == "rebound"
+
+
 def test_title_follows_the_span():
     scenario = load_scenario(SCENARIOS / "moon_libration.toml", ["span.start=2000-01-01T12:00:00", "span.end=20 yr"])
     assert base_summary(scenario)["title"] == "Moon: physical libration vs DE421 (level 3, 2000–2020)"

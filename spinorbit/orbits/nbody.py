@@ -1,29 +1,51 @@
 """Orbits from a REBOUND N-body run: IAS15 with REBOUNDx ``gr_full`` and the Earth's J2.
 
-Sun, Mercury..Neptune, Earth and Moon start from a JPL kernel's barycentric
-states at an epoch, are integrated once over the span, and sampled into a
-:class:`HermiteOrbits` relative to the spinning body.  Units inside REBOUND:
-km, days, G = 1 with masses given as GM (km^3/day^2), DE421 values.
+Sun, Mercury..Neptune, Earth, Moon and Pluto start from a JPL kernel's barycentric states at an
+epoch, are integrated once over the span, and sampled into a :class:`HermiteOrbits` relative to
+the spinning body, or barycentric (the simulation's own frame).  The Earth-Moon barycentre is a
+body too, from the Earth and Moon particles.  Units inside REBOUND: km, days, G = 1 with masses
+given as GM (km^3/day^2), DE421 values.
 """
 import numpy as np
 
 from ..constants import DAY_S, JULIAN_YEAR_D
+from ..errors import InputError
 from ..progress import progress
 from .interpolant import HermiteOrbits, grid
 from ..bodies.de421_header import gm_km3_d2, header
 from .kernel import DE421Arrays, JPLKernel
 
-BODIES = ("sun", "mercury", "venus", "earth", "moon", "mars", "jupiter", "saturn", "uranus", "neptune")
+BODIES = ("sun", "mercury", "venus", "earth", "moon", "mars", "jupiter", "saturn", "uranus", "neptune",
+          "pluto")
+EMB = "earth_moon_barycenter"           # the GM-weighted mean of the Earth and Moon particles
 
 
 def de421_gm():
-    """GM of each body in :data:`BODIES`, km^3/day^2, from the DE421 header."""
-    return {name: gm_km3_d2(name) for name in BODIES}
+    """GM of each body in :data:`BODIES` and of the EMB (the Earth's plus the Moon's), km^3/day^2,
+    from the DE421 header."""
+    gm = {name: gm_km3_d2(name) for name in BODIES}
+    gm[EMB] = gm["earth"] + gm["moon"]
+    return gm
+
+
+def weights(name, gm):
+    """Weights (len(BODIES),) on the particles' states that give body ``name`` (a BODIES name or EMB);
+    None gives zeros (the barycentric frame's origin)."""
+    row = np.zeros(len(BODIES))
+    if name == EMB:
+        row[BODIES.index("earth")] = gm["earth"] / gm[EMB]
+        row[BODIES.index("moon")] = gm["moon"] / gm[EMB]
+    elif name is not None:
+        row[BODIES.index(name)] = 1.0
+    return row
 
 
 class ReboundOrbits(HermiteOrbits):
     """``bodies`` relative to ``center``, integrated by REBOUND from ``t_start`` to ``t_end`` (TDB d).
 
+    bodies, center: names in :data:`BODIES` or :data:`EMB`; center None: barycentric, in the
+    simulation's frame, the kernel's barycentric one at t_start kept inertial (DE421's barycentre
+    holds its asteroids too, so the bodies' own centre of mass moves in it: 6.6e-4 km/d in 1969).
     kernel: the JPLKernel or DE421Arrays giving the initial barycentric states at t_start
     (default: the DE421 .bsp).
     gr: REBOUNDx ``gr_full`` (all bodies, c in km/day); earth_j2: REBOUNDx
@@ -36,9 +58,12 @@ class ReboundOrbits(HermiteOrbits):
         import rebound
         import reboundx
 
+        gm = de421_gm()
+        unknown = [b for b in (*bodies, center) if b is not None and b not in gm]
+        if unknown:
+            raise InputError("bodies", unknown, f"bodies of the REBOUND run: {sorted(gm)}")
         kernel = JPLKernel() if kernel is None else kernel
         kernel.check_span(t_start, t_start)
-        gm = de421_gm()
         sim = rebound.Simulation()
         sim.G = 1.0
         sim.integrator = "ias15"
@@ -63,16 +88,15 @@ class ReboundOrbits(HermiteOrbits):
         times = grid(t_start, t_end, step)
         n = len(BODIES)
         xyz, vxyz = np.empty((n, 3)), np.empty((n, 3))
-        index = [BODIES.index(b) for b in bodies]
-        c = BODIES.index(center)
+        relative = np.array([weights(b, gm) - weights(center, gm) for b in bodies])
         pos = np.empty((len(bodies), times.size, 3))
         vel = np.empty_like(pos)
         with progress("rebound", times[0], times[-1]) as advance_to:
             for k, t in enumerate(times):
                 sim.integrate(t - t_start, exact_finish_time=1)
                 sim.serialize_particle_data(xyz=xyz, vxvyvz=vxyz)
-                pos[:, k] = xyz[index] - xyz[c]
-                vel[:, k] = vxyz[index] - vxyz[c]
+                pos[:, k] = relative @ xyz
+                vel[:, k] = relative @ vxyz
                 if k % 256 == 0:
                     advance_to(t)
         super().__init__(bodies, [gm[b] for b in bodies], t_start, step, pos, vel, source="rebound")
@@ -88,4 +112,3 @@ def moon_drift(years, t_start=0.0, step=0.01):
     truth = DE421Arrays().relative_states("moon", "earth", t)[0]
     angle = np.arctan2(np.linalg.norm(np.cross(ours, truth), axis=1), (ours * truth).sum(1))
     return float(angle.max()), float(np.linalg.norm(ours - truth, axis=1).max())
-

@@ -2,10 +2,12 @@
 
 One state holds the geocentric Moon's orbit, the Moon's mantle and core (level 3 of spinorbit.moon) and the
 Earth's spin (gyroscopic); every interaction acts with its reaction, the Sun, the planets and the Earth-Moon
-barycentre come from DE421 (spinorbit.earth_moon).  Started from DE421's state at span.start (the Moon's
-orbit, orientation, rates and core), the Earth spinning at the Earth rotation angle's rate about the IAU
-2006/2000A pole; nothing fitted.  Compared with DE421: the Moon's direction and range, the lunar pole and
-longitude; the Earth's axis against the CIP (reported, not judged: DE421 turned its Earth by IAU 1976).
+barycentre come from DE421 (spinorbit.earth_moon), or with ``orbit.source = "rebound"`` from a REBOUND N-body
+run started from DE421 a day before the span (for epochs no ephemeris covers).  Started from DE421's state at
+span.start (the Moon's orbit, orientation, rates and core), the Earth spinning at the Earth rotation angle's
+rate about the IAU 2006/2000A pole; nothing fitted.  Compared with DE421: the Moon's direction and range, the
+lunar pole and longitude; the Earth's axis against the CIP (reported, not judged: DE421 turned its Earth by
+IAU 1976).
 
 ``compare.tides_off``: the same run again without the Earth's tides; the difference gives the Moon's tidal
 secular acceleration (n_dot, "/cy^2) and recession (mm/yr), judged against lunar laser ranging (Williams &
@@ -27,8 +29,10 @@ HELP = {"relativity": "the EIH (1PN) point-mass correction on the orbit",
         "planets": "Mercury to Pluto as point masses on the orbit"}
 SCHEMA = {
     **{f"model.{name}": Key(type=bool, default=True, help=text) for name, text in HELP.items()},
+    "orbit.source": Key(type=str, default="de421", choices=("de421", "rebound"),
+                        help="the Sun, planets and Earth-Moon barycentre: DE421, or a REBOUND run from its state"),
     "orbit.step": Key(unit="d", default=1.0, min=0.0625, max=4.0,
-                      help="sampling step of the Sun, planets and Earth-Moon barycentre from DE421"),
+                      help="sampling step of the Sun, planets and Earth-Moon barycentre"),
     "compare.tides_off": Key(type=bool, default=False,
                              help="also run without the Earth's tides: the Moon's tidal secular acceleration"),
 }
@@ -51,17 +55,25 @@ def verdict(scenario, comparison):
     return Verdict("DE421", tuple(checks))
 
 
-def integrate(scenario, switches, label, checkpoint):
-    """(states (n, 19) at the output times, the run's point) with the scene's model and ``switches``;
-    progress under ``label``, checkpointed (``spinorbit run --resume``) with ``checkpoint``."""
+def external_bodies(scenario):
+    """(the Sun, planets and EMB sampled from orbit.source over the span, the sampling's wall time s)."""
+    from .. import earth_moon
+
+    first, last = scenario.bounds
+    started = time.perf_counter()
+    external = earth_moon.sample_external(first - 1.0, last + 1.0, scenario["orbit.step"], scenario["orbit.source"])
+    return external, time.perf_counter() - started
+
+
+def integrate(scenario, external, switches, label, checkpoint):
+    """(states (n, 19) at the output times, the run's point) with the scene's model, ``external`` bodies and
+    ``switches``; progress under ``label``, checkpointed (``spinorbit run --resume``) with ``checkpoint``."""
     from .. import checkpoint as chunked, earth_moon, earth_moon_vs_de421 as vs
     from ..bodies import earth
     from ..integrators.rk8 import fixed_step
     from ..references.erfa_pole import cip_vector
 
     t0, t = scenario.t_start, scenario.output_times()
-    first, last = scenario.bounds
-    external = earth_moon.sample_external(first - 1.0, last + 1.0, scenario["orbit.step"])
     p = earth_moon.parameters(external.data, switches)
     y0 = vs.start_state(t0, cip_vector(t0), earth.ERA_RATE_RAD_D, p)
     step = float(scenario.integrator_options().get("step", 0.5))
@@ -82,18 +94,20 @@ def run(scenario):
         raise ScenarioError("integrator.method", scenario["integrator.method"], "rk8 (the compiled fixed step)")
     switches = tuple(name for name in earth_moon.SWITCHES if scenario[f"model.{name}"])
     t = scenario.output_times()
-    states, point = integrate(scenario, switches, f"{scenario.name}", scenario.checkpoint)
+    external, sampled = external_bodies(scenario)
+    states, point = integrate(scenario, external, switches, f"{scenario.name}", scenario.checkpoint)
     direction, distance = vs.orbit_errors(t, states)
     mats, de421, pole, longitude, lunar = vs.lunar_errors(t, states)
     axis = earth_moon.earth_axis(states)
     axis_error = vs.earth_axis_error(t, axis)
     summary = {"comparison": vs.metrics(direction, distance, lunar, axis_error), "run": point,
-               "reference": de421.provenance, "model": {"switches": list(switches)}}
+               "reference": de421.provenance, "model": {"switches": list(switches)},
+               "external_bodies": {"source": external.source, "step_d": external.step, "wall_s": sampled}}
     if scenario["compare.tides_off"]:
         if "earth_tides" not in switches:
             raise ScenarioError("compare.tides_off", True, "false when model.earth_tides is false")
         part = None if scenario.checkpoint is None else scenario.checkpoint.part("tides_off")
-        without, point_off = integrate(scenario, tuple(s for s in switches if s != "earth_tides"),
+        without, point_off = integrate(scenario, external, tuple(s for s in switches if s != "earth_tides"),
                                        f"{scenario.name} (tides off)", part)
         tidal = vs.tidal_acceleration(t, states, without)
         summary["comparison"].update({f"tidal_{name}": value for name, value in tidal.items()})

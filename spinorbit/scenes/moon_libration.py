@@ -7,8 +7,8 @@ the physical librations and the sub-Earth point, the main longitude terms beside
 
 Verdict: max pole and longitude error against DE421 at the level's target (TOLERANCES); level 1 is held
 to level 2's and fails it.  Driven by REBOUND the run fails too (REBOUND's lunar orbit drifts from DE421's,
-3" in 10 yr, and the libration follows it): no tolerance is fitted to that drift; ``compare.source``
-reports the DE421-driven difference beside it.
+3" in 10 yr, and the libration follows it): no tolerance is fitted to that drift; the note says what to expect
+and names the accurate REBOUND path; ``compare.source`` reports the DE421-driven difference beside it.
 """
 import numpy as np
 
@@ -38,8 +38,9 @@ def verdict(scenario, comparison):
         notes.append("Euler's degree-2 Moon is held to the level-2 target; the Moon's degree-3 field it lacks "
                      "is what level 2 adds")
     if source != "de421":
-        notes.append(f"orbits from {source}: the libration follows that orbit's departure from DE421's "
-                     "(REBOUND's lunar orbit drifts ~3\" in 10 yr)")
+        from ..moon_vs_de421 import SOURCE_NOTES
+        notes.append(SOURCE_NOTES.get(source, f"orbits from {source}: the libration follows that orbit's "
+                                              "departure from DE421's"))
     checks = (Check("pole", "pole_error_max_arcsec", pole, "″", why),
               Check("longitude", "longitude_error_max_arcsec", lon, "″", why))
     return Verdict("DE421", checks, "; ".join(notes))
