@@ -27,7 +27,7 @@ from .bodies.de421_header import gm_km3_d2, header
 from .bodies.moon import de421
 from .dynamics import euler_omega_dot
 from .errors import InputError
-from .rotations import cross3, dot3, mat_t_vec3, matrix_from_quat, matvec3, put, quat_from_matrix, quat_rate
+from .rotations import cross3, diag3, dot3, mat_t_vec3, matrix_from_quat, matvec3, put, quat_from_matrix, quat_rate
 from .terms import figure_figure, harmonics, point_mass
 
 # Which interactions are on: the ``on`` flags of the parameters, in this order.
@@ -54,20 +54,13 @@ def parameters(figures=FIGURES):
 
 
 @njit(cache=True, nogil=True)
-def _diag(d):
-    m = np.zeros((3, 3))
-    m[0, 0], m[1, 1], m[2, 2] = d[0], d[1], d[2]
-    return m
-
-
-@njit(cache=True, nogil=True)
 def _geometry(y, p):
     """Both attitudes (body -> ICRF), both inertia tensors (body axes), the Moon from the Earth and the Earth
     from the Moon as (1, 3) rows: what every interaction is evaluated with."""
     at_moon, at_earth = np.empty((1, 3)), np.empty((1, 3))
     for k in range(3):
         at_moon[0, k], at_earth[0, k] = y[k], -y[k]
-    return (matrix_from_quat(y[6:10]), matrix_from_quat(y[13:17]), _diag(p[1]), _diag(p[2]), at_moon, at_earth)
+    return (matrix_from_quat(y[6:10]), matrix_from_quat(y[13:17]), diag3(p[1]), diag3(p[2]), at_moon, at_earth)
 
 
 @njit(cache=True, nogil=True)

@@ -40,7 +40,7 @@ from .errors import InputError
 from .moon import TAU_D, delayed_in_mantle, distortion, mantle_and_core_rates, moon_params
 from .orbits.interpolant import hermite_states
 from .relativity import accelerations as eih_accelerations, c_km_d
-from .rotations import cross3, dot3, mat_t_vec3, matrix_from_quat, matvec3, put, quat_rate
+from .rotations import cross3, diag3, dot3, mat_t_vec3, matrix_from_quat, matvec3, put, quat_rate
 from .terms import earth_tides, harmonics, point_mass
 
 # The bodies read from the ephemeris (barycentric); the Earth and the Moon sit about the barycentre EMB.
@@ -84,13 +84,6 @@ def _frame(z):
 
 
 @njit(cache=True, nogil=True)
-def _diag(d):
-    m = np.zeros((3, 3))
-    m[0, 0], m[1, 1], m[2, 2] = d[0], d[1], d[2]
-    return m
-
-
-@njit(cache=True, nogil=True)
 def _point_masses(pos, vel, gm_ext, gm, r, v, planets):
     """Barycentric positions, velocities and GMs of the point masses: the Sun, the planets (if ``planets``),
     the Earth and the Moon last, these two about the EMB by their mass shares."""
@@ -128,7 +121,7 @@ def _orbit_newton(x, mu, r):
 def _lunar_inertia(r, v, rot_m, omega, moments_m, consts, gm_pair, distorted):
     """The Moon's inertia (M R^2, mantle axes) and its rate: with ``distorted``, the tide the Earth raised tau
     earlier (its position then from r, v to second order in tau) and the spin's flattening (spinorbit.moon)."""
-    inertia = _diag(moments_m)
+    inertia = diag3(moments_m)
     if not distorted:
         return inertia, np.zeros((3, 3))
     tau = consts[TAU_D]
@@ -169,7 +162,7 @@ def rhs(t, y, p):
     rot_m = matrix_from_quat(q)
     inertia, inertia_rate = _lunar_inertia(r, v, rot_m, omega, moments_m, consts, gm[0] + gm[1], flags[2] != 0.0)
     rot_e = _frame(spin / np.sqrt(dot3(spin, spin)))
-    inertia_e = _diag(moments_e)
+    inertia_e = diag3(moments_e)
     at_moon, sun_m, sun_e = np.empty((1, 3)), np.empty((1, 3)), np.empty((1, 3))
     at_moon[0], sun_m[0], sun_e[0] = r, pos[SUN] - x[n - 1], pos[SUN] - x[n - 2]
     force, n_m, n_e = coupled.figure_forces(rot_m, gm_r2_m * inertia, rot_e, inertia_e, at_moon, figures)

@@ -25,24 +25,41 @@ from ..errors import EphemerisRangeError, InputError
 
 
 @njit(cache=True)
-def hermite_positions(t, data):
-    """data = (grid [t0, h], positions (n, m, 3) km, velocities km/d, accelerations km/d^2) -> (n, 3) km."""
-    grid, pos, vel, acc = data
-    n, m = pos.shape[0], pos.shape[1]
-    h = grid[1]
-    s = (t - grid[0]) / h
-    out = np.empty((n, 3))
-    if not (s >= 0.0 and s <= m - 1):        # also catches t = NaN
-        out[:] = np.nan
-        return out
+def _interval(t, data):
+    """(k, x): t lies in the grid's interval k at fraction x; k = -1 outside the grid (or t NaN)."""
+    grid, m = data[0], data[1].shape[1]
+    s = (t - grid[0]) / grid[1]
+    if not (s >= 0.0 and s <= m - 1):
+        return -1, 0.0
     k = min(int(s), m - 2)
-    x = s - k
+    return k, s - k
+
+
+@njit(cache=True)
+def _basis(x, h):
+    """The quintic Hermite basis at fraction x of an interval h: weights of (p, v, a) at its two knots."""
     x1 = 1.0 - x
     x3, y3 = x * x * x, x1 * x1 * x1
-    p0, p1 = y3 * (1.0 + 3.0 * x + 6.0 * x * x), x3 * (1.0 + 3.0 * x1 + 6.0 * x1 * x1)
-    v0, v1 = h * x * y3 * (1.0 + 3.0 * x), -h * x3 * x1 * (1.0 + 3.0 * x1)
-    a0, a1 = 0.5 * h * h * x * x * y3, 0.5 * h * h * x3 * x1 * x1
-    for i in range(n):
+    return (y3 * (1.0 + 3.0 * x + 6.0 * x * x), h * x * y3 * (1.0 + 3.0 * x), 0.5 * h * h * x * x * y3,
+            x3 * (1.0 + 3.0 * x1 + 6.0 * x1 * x1), -h * x3 * x1 * (1.0 + 3.0 * x1), 0.5 * h * h * x3 * x1 * x1)
+
+
+@njit(cache=True)
+def _basis_rate(x, h):
+    """d/dt of :func:`_basis`."""
+    x1 = 1.0 - x
+    dp = 30.0 * x * x * x1 * x1 / h
+    return (-dp, x1 * x1 * (1.0 - 3.0 * x) * (1.0 + 5.0 * x), 0.5 * h * x * x1 * x1 * (2.0 - 5.0 * x),
+            dp, x * x * (3.0 * x - 2.0) * (6.0 - 5.0 * x), -0.5 * h * x * x * x1 * (5.0 * x - 3.0))
+
+
+@njit(cache=True)
+def _combine(weights, data, k):
+    """(n, 3): the basis ``weights`` applied to the samples at knots k and k + 1."""
+    pos, vel, acc = data[1], data[2], data[3]
+    p0, v0, a0, p1, v1, a1 = weights
+    out = np.empty((pos.shape[0], 3))
+    for i in range(pos.shape[0]):
         for j in range(3):
             out[i, j] = (p0 * pos[i, k, j] + v0 * vel[i, k, j] + a0 * acc[i, k, j]
                          + p1 * pos[i, k + 1, j] + v1 * vel[i, k + 1, j] + a1 * acc[i, k + 1, j])
@@ -50,35 +67,23 @@ def hermite_positions(t, data):
 
 
 @njit(cache=True)
+def hermite_positions(t, data):
+    """data = (grid [t0, h], positions (n, m, 3) km, velocities km/d, accelerations km/d^2) -> (n, 3) km."""
+    k, x = _interval(t, data)
+    if k < 0:
+        return np.full((data[1].shape[0], 3), np.nan)
+    return _combine(_basis(x, data[0][1]), data, k)
+
+
+@njit(cache=True)
 def hermite_states(t, data):
     """Positions (n, 3) km and velocities (n, 3) km/d at t: hermite_positions and its time derivative."""
-    grid, pos, vel, acc = data
-    n, m = pos.shape[0], pos.shape[1]
-    h = grid[1]
-    s = (t - grid[0]) / h
-    r_out, v_out = np.empty((n, 3)), np.empty((n, 3))
-    if not (s >= 0.0 and s <= m - 1):
-        r_out[:] = np.nan
-        v_out[:] = np.nan
-        return r_out, v_out
-    k = min(int(s), m - 2)
-    x = s - k
-    x1 = 1.0 - x
-    x3, y3 = x * x * x, x1 * x1 * x1
-    p0, p1 = y3 * (1.0 + 3.0 * x + 6.0 * x * x), x3 * (1.0 + 3.0 * x1 + 6.0 * x1 * x1)
-    v0, v1 = h * x * y3 * (1.0 + 3.0 * x), -h * x3 * x1 * (1.0 + 3.0 * x1)
-    a0, a1 = 0.5 * h * h * x * x * y3, 0.5 * h * h * x3 * x1 * x1
-    # d/dt of the six basis functions (d/dx over h)
-    dp1 = 30.0 * x * x * x1 * x1 / h
-    dv0, dv1 = x1 * x1 * (1.0 - 3.0 * x) * (1.0 + 5.0 * x), x * x * (3.0 * x - 2.0) * (6.0 - 5.0 * x)
-    da0, da1 = 0.5 * h * x * x1 * x1 * (2.0 - 5.0 * x), -0.5 * h * x * x * x1 * (5.0 * x - 3.0)
-    for i in range(n):
-        for j in range(3):
-            r_out[i, j] = (p0 * pos[i, k, j] + v0 * vel[i, k, j] + a0 * acc[i, k, j]
-                           + p1 * pos[i, k + 1, j] + v1 * vel[i, k + 1, j] + a1 * acc[i, k + 1, j])
-            v_out[i, j] = (dp1 * (pos[i, k + 1, j] - pos[i, k, j]) + dv0 * vel[i, k, j] + da0 * acc[i, k, j]
-                           + dv1 * vel[i, k + 1, j] + da1 * acc[i, k + 1, j])
-    return r_out, v_out
+    k, x = _interval(t, data)
+    if k < 0:
+        nan = np.full((data[1].shape[0], 3), np.nan)
+        return nan, nan.copy()
+    h = data[0][1]
+    return _combine(_basis(x, h), data, k), _combine(_basis_rate(x, h), data, k)
 
 
 def _weights(offsets):
