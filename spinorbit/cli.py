@@ -66,14 +66,15 @@ def main(argv=None):
 
 
 def _run(args):
-    from .reports import write_run
+    from .reports import painter, write_run
     from .results import run_scenario
     from .rundir import RunDirectory
     from .scenarios import load_scenario
 
     scenario = load_scenario(args.scenario, args.overrides)
     out = Path(args.out or Path("runs") / scenario.name)
-    with RunDirectory(out, force=args.force) as run_dir:        # locked; foreign files refused up front
+    # the painter is forked before the lock is taken, so that it never holds it
+    with painter(scenario["output.plots"]) as paint, RunDirectory(out, force=args.force) as run_dir:
         try:
             result = run_scenario(scenario)
         except IntegrationError as exc:
@@ -83,7 +84,7 @@ def _run(args):
                 kept = "" if where == run_dir.out else f"; the previous run in {out}/ is kept"
                 print(f"partial output written to {where}/{kept}", file=sys.stderr)
             raise
-        run_dir.commit(lambda d: write_run(result, d, fork_plots=True))
+        run_dir.commit(lambda d: write_run(result, d, painter=paint))
     verdict = result.summary["verdict"]
     print(verdict["headline"])
     if verdict.get("note"):
