@@ -7,6 +7,7 @@ import io
 import json
 import math
 import os
+import pickle
 import sys
 from contextlib import contextmanager
 from pathlib import Path
@@ -80,7 +81,8 @@ class Painter:
     def draw(self, figures, summary, out):
         """Send the figures (name -> draw(fig), picklable: spinorbit.plots) to be drawn into ``out``."""
         self._paths = [Path(out) / f"{name}.png" for name in figures]
-        self._conn.send((figures, summary, Path(out)))
+        self._conn.send_bytes(pickle.dumps((figures, summary, Path(out))))  # multiprocessing's pickler
+                                                                              # drops a partial's attributes
 
     def wait(self):
         """The PNG paths, once the child has drawn them."""
@@ -122,7 +124,7 @@ def _paint(conn):
     fig.savefig(io.BytesIO(), format="png")
     plt.close(fig)
     try:
-        figures, summary, out = conn.recv()
+        figures, summary, out = pickle.loads(conn.recv_bytes())
     except EOFError:
         return
     write_plots(figures, summary, out)

@@ -56,12 +56,17 @@ def test_thinned_keeps_every_pixel_column_extremes():
 
 
 def test_painter_draws_what_it_is_sent(tmp_path):
-    """The child forked before the run draws the (pickled) figures into the run directory."""
-    figures = {"curve": plots.titled(plots.plot_series(np.arange(10.0), np.arange(10.0) ** 2, "x", "y"), "a curve")}
+    """The child forked before the run draws the (pickled) figures into the run directory, at their
+    own size (plots.plot_panels: 1 + 2.2 in a panel, 110 dpi) and with their own title."""
+    x = np.arange(10.0)
+    figures = {"panels": plots.titled(plots.plot_panels(x, [([x], ["a"], "y")] * 3, "x"), "three panels")}
     with painter() as paint:
         if paint is None:
             pytest.skip("no fork on this platform")
         paint.draw(figures, {"scene": "test"}, tmp_path)
         paths = paint.wait()
-    assert paths == [tmp_path / "curve.png"]
-    assert paths[0].read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert paths == [tmp_path / "panels.png"]
+    png = paths[0].read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    width, height = int.from_bytes(png[16:20], "big"), int.from_bytes(png[20:24], "big")
+    assert (width, height) == (8 * 110, round(7.6 * 110))
