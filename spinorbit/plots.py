@@ -159,7 +159,7 @@ def moon_libration(t, table, rows, labelled, zoom, zoom_reference):
                                               "the last two years, model and DE421")}
 
 
-def lyapunov_map(theta, rate, exponent, threshold):
+def plot_lyapunov_map(theta, rate, exponent, threshold):
     """Lyapunov exponent (1/T) over a grid of theta - f (rad) and rate / n at periapsis, the chaotic border
     (``threshold``) drawn."""
     return partial(_lyapunov_map, theta=theta, rate=rate, exponent=exponent, threshold=threshold)

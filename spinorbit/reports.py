@@ -72,11 +72,16 @@ class Painter:
     def __init__(self, context):
         sys.stdout.flush()                 # nothing buffered is written twice by the child
         sys.stderr.flush()
-        self._conn, theirs = context.Pipe()
-        self._child = context.Process(target=_paint, args=(theirs,), daemon=True)
+        theirs, self._conn = context.Pipe(duplex=False)
+        self._child = context.Process(target=_paint, args=(theirs, self._conn), daemon=True)
         self._child.start()
         theirs.close()
         self._paths = []
+
+    @property
+    def pid(self):
+        """The child's process id."""
+        return self._child.pid
 
     def draw(self, figures, summary, out):
         """Send the figures (name -> draw(fig), picklable: spinorbit.plots) to be drawn into ``out``."""
@@ -112,8 +117,9 @@ def painter(plots=True):
             started.end()
 
 
-def _paint(conn):
+def _paint(conn, parents_end):
     """The Painter's child: prepare matplotlib, then draw the one job sent (or end when the pipe closes)."""
+    parents_end.close()              # else the parent's death, which closes its copy, would not end the pipe
     import matplotlib
 
     matplotlib.use("Agg")

@@ -1,4 +1,11 @@
 """The run directory's writers against astropy's and matplotlib's own: the ECSV, the plots drawn in a child."""
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
 import numpy as np
 import pytest
 from astropy.table import QTable
@@ -70,3 +77,18 @@ def test_painter_draws_what_it_is_sent(tmp_path):
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
     width, height = int.from_bytes(png[16:20], "big"), int.from_bytes(png[20:24], "big")
     assert (width, height) == (8 * 110, round(7.6 * 110))
+
+
+@pytest.mark.skipif(not Path("/proc").is_dir(), reason="reads /proc")
+def test_painter_ends_when_its_parent_dies(tmp_path):
+    """A parent killed before sending anything (kill -9, os._exit) leaves no painter waiting for ever."""
+    code = ("import os; from spinorbit.reports import painter; "
+            "paint = painter().__enter__(); print(paint.pid, flush=True); os._exit(0)")
+    pid = int(subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout)
+    for _ in range(600):                                  # it ends once matplotlib is imported (~1 s)
+        stat = Path(f"/proc/{pid}/stat")
+        if not stat.exists() or stat.read_text().split(")")[-1].split()[0] == "Z":
+            return
+        time.sleep(0.1)
+    os.kill(pid, signal.SIGKILL)
+    pytest.fail(f"painter {pid} still running 60 s after its parent died")

@@ -131,7 +131,7 @@ def run(scenario):
     details = {"map": {"theta_minus_f_rad": theta, "rate_over_n": rate, "exponent_per_T": exponent},
                "method": "Benettin et al. (1980): two trajectories, renormalised to d0 every orbital period"}
     shown = min(regular.size, long_run.shape[0])
-    figures = {"lyapunov_map": plots.lyapunov_map(theta, rate, exponent, scenario["lyapunov.chaotic_min"]),
+    figures = {"lyapunov_map": plots.plot_lyapunov_map(theta, rate, exponent, scenario["lyapunov.chaotic_min"]),
                "lyapunov_running": common.plot_series(
                    np.arange(1, shown + 1), [regular[:shown], long_run[:shown, 0]], "orbital periods",
                    "running exponent [1/T]", ["regular (small (B-A)/C)", "Hyperion nominal"], logy=True)}
