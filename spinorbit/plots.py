@@ -22,6 +22,7 @@ def _series(fig, x, ys, xlabel, ylabel, labels, logy):
     ax.set_ylabel(ylabel)
     if logy:
         ax.set_yscale("log")
+        plain_log_labels(ax)
     if labels is not None:
         ax.legend()
     ax.grid(alpha=0.3)
@@ -67,6 +68,16 @@ def thinned(x, y, log=False):
     return x[keep], y[keep]
 
 
+def plain_log_labels(ax):
+    """Label the decades of ``ax``'s log axes as plain numbers ("100", "0.001"), not mathtext's 10^k,
+    which costs ~40 ms a label to parse (0.35 s of the Moon's spectrum figure)."""
+    from matplotlib.ticker import FuncFormatter
+
+    for axis in (ax.xaxis, ax.yaxis):
+        if axis.get_scale() == "log":
+            axis.set_major_formatter(FuncFormatter(lambda value, _: f"{value:g}"))
+
+
 def titled(draw, title):
     """Give a drawing function the plot title reports.write_plots puts above it (with scene and span)."""
     draw.title = title
@@ -88,6 +99,7 @@ def _error_vs_cost(fig, rows, errors, methods):
                       label=f"{method} {label}")
     ax.set_xlabel("wall time [s]")
     ax.set_ylabel("max attitude error [arcsec]")
+    plain_log_labels(ax)
     ax.legend()
     ax.grid(alpha=0.3, which="both")
 
@@ -110,6 +122,7 @@ def _spectrum(fig, period, amplitude, terms, labelled):
     ax.set_xlabel("period [d]")
     ax.set_ylabel("amplitude of tau [arcsec]")
     ax.set_ylim(1e-3, None)
+    plain_log_labels(ax)
     ax.legend(fontsize=8, loc="lower right")
     ax.grid(alpha=0.3, which="both")
 
