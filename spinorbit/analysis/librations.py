@@ -32,8 +32,12 @@ def physical_librations(icrf_to_body, icrf_to_ecliptic, mean_longitude, node, ea
 
 
 def icrf_to_body(quaternions):
-    """ICRF-to-body matrices (n, 3, 3) of body-to-ICRF quaternions (n, 4) (an integrated attitude)."""
-    return np.array([matrix_from_quat(q).T for q in quaternions])
+    """ICRF-to-body matrices (n, 3, 3) of body-to-ICRF quaternions (n, 4) (an integrated attitude).
+
+    The compiled ``matrix_from_quat``'s own Python source applied to whole columns at once (the same
+    operations on each element; 27,000 compiled calls from Python took 0.1 s)."""
+    columns = np.asarray(quaternions, dtype=float).T                    # (4, n)
+    return np.ascontiguousarray(np.transpose(matrix_from_quat.py_func(columns), (2, 1, 0)))
 
 
 def pole_and_longitude_difference(m_a, m_b):

@@ -76,20 +76,9 @@ def lyapunov_map(scenario, p, period):
     return theta, rate, running[-1].reshape(th.shape)
 
 
-def plot_map(theta, rate, exponent, threshold):
-    def draw(fig):
-        ax = fig.add_subplot()
-        image = ax.pcolormesh(np.degrees(theta), rate, exponent, shading="nearest", cmap="magma")
-        ax.contour(np.degrees(theta), rate, exponent, [threshold], colors="cyan", linewidths=0.8)
-        fig.colorbar(image, ax=ax, label="Lyapunov exponent [1/orbital period]")
-        ax.set_xlabel("theta - f at periapsis [deg]")
-        ax.set_ylabel("dtheta/dt / n at periapsis")
-        ax.set_title(f"Hyperion-like, planar: chaotic (> {threshold:g}/T, cyan) vs regular")
-
-    return draw
-
-
 def run(scenario):
+    from .. import plots
+
     moments = scenario["body.moments"]
     gamma = (moments[1] - moments[0]) / moments[2]
     gm, a, e = scenario["orbit.gm"], scenario["orbit.a"], scenario["orbit.e"]
@@ -142,7 +131,7 @@ def run(scenario):
     details = {"map": {"theta_minus_f_rad": theta, "rate_over_n": rate, "exponent_per_T": exponent},
                "method": "Benettin et al. (1980): two trajectories, renormalised to d0 every orbital period"}
     shown = min(regular.size, long_run.shape[0])
-    figures = {"lyapunov_map": plot_map(theta, rate, exponent, scenario["lyapunov.chaotic_min"]),
+    figures = {"lyapunov_map": plots.plot_lyapunov_map(theta, rate, exponent, scenario["lyapunov.chaotic_min"]),
                "lyapunov_running": common.plot_series(
                    np.arange(1, shown + 1), [regular[:shown], long_run[:shown, 0]], "orbital periods",
                    "running exponent [1/T]", ["regular (small (B-A)/C)", "Hyperion nominal"], logy=True)}
