@@ -178,8 +178,9 @@ def rhs(t, y, p):
     torque_e = matvec3(rot_e, n_e + sun_n_e)
     if flags[1] != 0.0:
         r_sun, v_sun, spin_rate = sun_e[0], vel[SUN] - w[n - 2], spin / moments_e[2]
-        acc += earth_tides.acceleration(r, v, r_sun, v_sun, spin_rate, tide_p)
-        torque_e += earth_tides.torque_on_earth(r, v, r_sun, v_sun, spin_rate, tide_p)
+        tide = earth_tides.acceleration(r, v, r_sun, v_sun, spin_rate, tide_p)
+        acc += tide
+        torque_e += earth_tides.reaction(r, tide, tide_p)
     if flags[3] != 0.0:                             # geodesic precession of the heliocentric Earth (x, w)
         helio, helio_v = -sun_e[0], w[n - 2] - vel[SUN]
         torque_e += cross3(1.5 * gm_ext[SUN] / (c * c * dot3(helio, helio) ** 1.5) * cross3(helio, helio_v), spin)

@@ -63,28 +63,46 @@ def parameters():
 @njit(cache=True, nogil=True)
 def delayed(x, u, gm, pole, rate, tau, band):
     """s_m: a body at x (km) moving at u (km/d) about the Earth with GM (km^3/d^2), where it was tau (d)
-    ago, rotated by rate tau (rad) about the unit pole (bands 1, 2); ICRF, km."""
-    x2 = dot3(x, x)
-    back = x - tau * u - (0.5 * tau * tau * gm / (x2 * math.sqrt(x2))) * x
+    ago, rotated by rate tau (rad) about the unit pole (bands 1, 2); ICRF, km.  (Written out by component:
+    this runs six times per rhs.)"""
+    x2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2]
+    f = 0.5 * tau * tau * gm / (x2 * math.sqrt(x2))
+    b0, b1, b2 = x[0] - tau * u[0] - f * x[0], x[1] - tau * u[1] - f * x[1], x[2] - tau * u[2] - f * x[2]
+    out = np.empty(3)
     if band == 0:
-        return back
+        out[0], out[1], out[2] = b0, b1, b2
+        return out
     c, s = math.cos(rate * tau), math.sin(rate * tau)
-    return c * back + s * cross3(pole, back) + ((1.0 - c) * dot3(pole, back)) * pole
+    d = (1.0 - c) * (pole[0] * b0 + pole[1] * b1 + pole[2] * b2)
+    out[0] = c * b0 + s * (pole[1] * b2 - pole[2] * b1) + d * pole[0]
+    out[1] = c * b1 + s * (pole[2] * b0 - pole[0] * b2) + d * pole[1]
+    out[2] = c * b2 + s * (pole[0] * b1 - pole[1] * b0) + d * pole[2]
+    return out
 
 
 @njit(cache=True, nogil=True)
 def band_gradient(r, s, pole, band):
     """grad_r [A_m(r, s) / (r^5 s^5)] at r (km) for the tide of band m raised from s (km), 1/km^5."""
     z, zs = dot3(r, pole), dot3(s, pole)
-    rho, rhos = r - z * pole, s - zs * pole
+    rho0, rho1, rho2 = r[0] - z * pole[0], r[1] - z * pole[1], r[2] - z * pole[2]
+    rhos0, rhos1, rhos2 = s[0] - zs * pole[0], s[1] - zs * pole[1], s[2] - zs * pole[2]
+    rhos_rho, rhos2_ = rhos0 * rho0 + rhos1 * rho1 + rhos2 * rho2, rhos0 * rhos0 + rhos1 * rhos1 + rhos2 * rhos2
     if band == 0:
-        q = (0.5 * (2.0 * zs * zs - dot3(rhos, rhos))) * (2.0 * z * pole - rho)
+        f = 0.5 * (2.0 * zs * zs - rhos2_)
+        q0, q1, q2 = f * (2.0 * z * pole[0] - rho0), f * (2.0 * z * pole[1] - rho1), f * (2.0 * z * pole[2] - rho2)
     elif band == 1:
-        q = (3.0 * zs) * (z * rhos + dot3(rhos, rho) * pole)
+        f = 3.0 * zs
+        q0, q1, q2 = f * (z * rhos0 + rhos_rho * pole[0]), f * (z * rhos1 + rhos_rho * pole[1]), f * (
+            z * rhos2 + rhos_rho * pole[2])
     else:
-        q = (3.0 * dot3(rhos, rho)) * rhos - (1.5 * dot3(rhos, rhos)) * rho
+        f, g = 3.0 * rhos_rho, 1.5 * rhos2_
+        q0, q1, q2 = f * rhos0 - g * rho0, f * rhos1 - g * rho1, f * rhos2 - g * rho2
     r2, s2 = dot3(r, r), dot3(s, s)
-    return (2.0 * q - (5.0 * dot3(r, q) / r2) * r) / (r2 * r2 * math.sqrt(r2) * s2 * s2 * math.sqrt(s2))
+    rq = 5.0 * (r[0] * q0 + r[1] * q1 + r[2] * q2) / r2
+    scale = 1.0 / (r2 * r2 * math.sqrt(r2) * s2 * s2 * math.sqrt(s2))
+    out = np.empty(3)
+    out[0], out[1], out[2] = (2.0 * q0 - rq * r[0]) * scale, (2.0 * q1 - rq * r[1]) * scale, (2.0 * q2 - rq * r[2]) * scale
+    return out
 
 
 @njit(cache=True, nogil=True)
@@ -113,5 +131,11 @@ def acceleration(r, v, r_sun, v_sun, spin, p):
 def torque_on_earth(r, v, r_sun, v_sun, spin, p):
     """The Moon's torque on the Earth's tides, -mu r x a (G-scaled, km^5/d^4, ICRF): the orbit gains
     mu r x a of angular momentum, the Earth's spin loses as much."""
+    return reaction(r, acceleration(r, v, r_sun, v_sun, spin, p), p)
+
+
+@njit(cache=True, nogil=True)
+def reaction(r, a, p):
+    """:func:`torque_on_earth` from the tidal acceleration ``a`` already computed at r."""
     mu = p[GM_E] * p[GM_M] / (p[GM_E] + p[GM_M])
-    return -mu * cross3(r, acceleration(r, v, r_sun, v_sun, spin, p))
+    return -mu * cross3(r, a)
