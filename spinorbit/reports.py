@@ -97,9 +97,12 @@ class Painter:
         return self._paths
 
     def end(self):
+        """Close the pipe and end the child if it still runs: SIGKILL, not SIGTERM, which a child caught
+        before its own code starts would answer with this process's handler (cli turns SIGTERM into
+        KeyboardInterrupt) and unwind, as a second copy of this process, through this process's frames."""
         self._conn.close()
         if self._child.is_alive():
-            self._child.terminate()
+            self._child.kill()
         self._child.join()
 
 
