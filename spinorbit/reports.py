@@ -8,6 +8,7 @@ import json
 import math
 import os
 import pickle
+import signal
 import sys
 from contextlib import contextmanager
 from pathlib import Path
@@ -74,7 +75,13 @@ class Painter:
         sys.stderr.flush()
         theirs, self._conn = context.Pipe(duplex=False)
         self._child = context.Process(target=_paint, args=(theirs, self._conn), daemon=True)
-        self._child.start()
+        # Ctrl-C and SIGTERM are held until the child has its own handlers: one arriving between the fork
+        # and the child's code would run this process's handlers there and unwind through its frames
+        held = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM})
+        try:
+            self._child.start()
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, held)
         theirs.close()
         self._paths = []
 
@@ -97,9 +104,7 @@ class Painter:
         return self._paths
 
     def end(self):
-        """Close the pipe and end the child if it still runs: SIGKILL, not SIGTERM, which a child caught
-        before its own code starts would answer with this process's handler (cli turns SIGTERM into
-        KeyboardInterrupt) and unwind, as a second copy of this process, through this process's frames."""
+        """Close the pipe and end the child if it still runs."""
         self._conn.close()
         if self._child.is_alive():
             self._child.kill()
@@ -122,6 +127,9 @@ def painter(plots=True):
 
 def _paint(conn, parents_end):
     """The Painter's child: prepare matplotlib, then draw the one job sent (or end when the pipe closes)."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)      # the parent answers Ctrl-C, and ends this child
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT, signal.SIGTERM})
     parents_end.close()              # else the parent's death, which closes its copy, would not end the pipe
     import matplotlib
 
