@@ -7,6 +7,7 @@ Edge module (astropy units); the scene declares, this compares.
 import numpy as np
 
 from .constants import ARCSEC, JULIAN_CENTURY_D
+from .rotations import vector_angle
 
 MAS = ARCSEC / 1000.0
 
@@ -29,16 +30,14 @@ def orbit_errors(t, states):
 
     de421, _ = open_ephemeris("de421", t[0], t[-1]).relative_states("moon", "earth", t)
     r = states[:, 0:3]
-    cross = np.linalg.norm(np.cross(r, de421), axis=1)
-    return np.arctan2(cross, np.sum(r * de421, axis=1)), np.linalg.norm(r, axis=1) - np.linalg.norm(de421, axis=1)
+    return vector_angle(r, de421), np.linalg.norm(r, axis=1) - np.linalg.norm(de421, axis=1)
 
 
 def earth_axis_error(t, axis):
     """Angle (rad) of the Earth's spin axis (n, 3) from the IAU 2006/2000A CIP (ERFA) at TDB days t."""
     from .references.erfa_pole import cip_vector
 
-    cip = cip_vector(t)
-    return np.arctan2(np.linalg.norm(np.cross(axis, cip), axis=1), np.sum(axis * cip, axis=1))
+    return vector_angle(axis, cip_vector(t))
 
 
 def metrics(direction, distance, lunar, earth_axis):

@@ -225,3 +225,9 @@ def quat_angle(q_a, q_b):
     v = (q_a[..., :1] * q_b[..., 1:] - q_b[..., :1] * q_a[..., 1:]
          - np.cross(q_a[..., 1:], q_b[..., 1:]))
     return 2.0 * np.arctan2(np.linalg.norm(v, axis=-1), np.abs(w))
+
+
+def vector_angle(a, b):
+    """Angle (rad) between vectors a and b, shape (..., 3); atan2(|a x b|, a.b), accurate near 0 and pi."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    return np.arctan2(np.linalg.norm(np.cross(a, b), axis=-1), np.sum(a * b, axis=-1))

@@ -9,7 +9,7 @@ tau = phi_e + psi_e - (L + 180 deg), rho = theta_e - I, sigma = phi_e - (Om + 18
 import numpy as np
 
 from ..constants import ARCSEC
-from ..rotations import euler313_from_matrix, matrix_from_quat
+from ..rotations import euler313_from_matrix, matrix_from_quat, vector_angle
 
 INCLINATION_RAD = np.radians(1.54242)       # mean inclination of the lunar equator to the ecliptic (Meeus ch. 53)
 
@@ -49,7 +49,7 @@ def pole_and_longitude_difference(m_a, m_b):
     """
     m_a, m_b = np.asarray(m_a), np.asarray(m_b)
     z_a, z_b = m_a[:, 2, :], m_b[:, 2, :]
-    pole = np.arctan2(np.linalg.norm(np.cross(z_a, z_b), axis=1), np.sum(z_a * z_b, axis=1))
+    pole = vector_angle(z_a, z_b)
     rel = np.einsum("nij,nkj->nik", m_a, m_b)
     longitude = np.arctan2(rel[:, 0, 1] - rel[:, 1, 0], rel[:, 0, 0] + rel[:, 1, 1])
     return pole, longitude

@@ -11,6 +11,7 @@ import numpy as np
 from ..constants import DAY_S, JULIAN_YEAR_D
 from ..errors import InputError
 from ..progress import progress
+from ..rotations import vector_angle
 from .interpolant import HermiteOrbits, grid
 from ..bodies.de421_header import gm_km3_d2, header
 from .kernel import DE421Arrays, JPLKernel
@@ -110,5 +111,5 @@ def moon_drift(years, t_start=0.0, step=0.01):
     t = t_start + np.linspace(0.0, years * JULIAN_YEAR_D, int(years / step) + 1)
     ours = ReboundOrbits("earth", ("moon",), t[0], t[-1]).positions(t)[:, 0]
     truth = DE421Arrays().relative_states("moon", "earth", t)[0]
-    angle = np.arctan2(np.linalg.norm(np.cross(ours, truth), axis=1), (ours * truth).sum(1))
+    angle = vector_angle(ours, truth)
     return float(angle.max()), float(np.linalg.norm(ours - truth, axis=1).max())
