@@ -199,7 +199,7 @@ def rhs(t, y, p):
 
 def sample_external(t_start, t_end, step_d=1.0, source="de421"):
     """The EXTERNAL bodies, barycentric, sampled every ``step_d`` days over [t_start, t_end] (TDB days):
-    a HermiteOrbits whose ``data`` :func:`rhs` reads (the EMB's GM 0: the Earth and Moon are the state's).
+    a HermiteOrbits whose ``data`` :func:`rhs` reads (the GMs it uses are :func:`parameters`').
 
     source: "de421" (the ephemeris) or "rebound" (spinorbit.orbits.nbody: an N-body run of the Sun, the
     planets, Pluto, the Earth and the Moon from DE421's state at t_start, the EMB from its Earth and Moon;
@@ -209,13 +209,11 @@ def sample_external(t_start, t_end, step_d=1.0, source="de421"):
 
     if source not in ("de421", "rebound"):
         raise InputError("source", source, "'de421' or 'rebound'")
-    gm = [0.0 if name == "earth_moon_barycenter" else gm_km3_d2(name) for name in EXTERNAL]
     if source == "rebound":
         from .orbits.nbody import ReboundOrbits
 
-        orbits = ReboundOrbits(None, EXTERNAL, t_start, t_end, step_d, open_ephemeris("de421", t_start, t_start))
-        pos, vel, _ = orbits.data[1:]
-        return HermiteOrbits(EXTERNAL, gm, t_start, step_d, pos, vel, source="rebound")
+        return ReboundOrbits(None, EXTERNAL, t_start, t_end, step_d, open_ephemeris("de421", t_start, t_start))
+    gm = [0.0 if name == "earth_moon_barycenter" else gm_km3_d2(name) for name in EXTERNAL]
     t = grid(t_start, t_end, step_d)
     ephemeris = open_ephemeris("de421", t[0], t[-1])
     states = [ephemeris.relative_states(name, "solar_system_barycenter", t) for name in EXTERNAL]

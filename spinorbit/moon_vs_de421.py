@@ -15,8 +15,8 @@ SOURCE_NOTES = {"rebound": (
     "orbits from rebound: expect no better than REBOUND's lunar orbit, which lacks the figures and tides and "
     "drifts from DE421's (the Moon's direction 0.3\" in 1 yr, 3\" in 10 yr, 23\" and 41 km over 1969-2019; "
     "the longitude follows it: 19.8\"); for DE421's accuracy from REBOUND's bodies run "
-    "scenarios/earth_moon_coupled_rebound.toml (the Moon integrated with the coupled forces: longitude 0.032\", "
-    "pole 0.004\" over 1969-2019)")}
+    "scenarios/earth_moon_coupled_rebound.toml (the Moon integrated with the coupled forces: longitude 0.019\", "
+    "pole 0.0034\" over 1969-2019)")}
 
 
 def table(solution, mats, de421, lib):

@@ -65,17 +65,13 @@ def external_bodies(scenario):
     return external, time.perf_counter() - started
 
 
-def integrate(scenario, external, switches, label, checkpoint):
-    """(states (n, 19) at the output times, the run's point) with the scene's model, ``external`` bodies and
-    ``switches``; progress under ``label``, checkpointed (``spinorbit run --resume``) with ``checkpoint``."""
-    from .. import checkpoint as chunked, earth_moon, earth_moon_vs_de421 as vs
-    from ..bodies import earth
+def integrate(scenario, p, y0, label, checkpoint):
+    """(states (n, 19) at the output times, the run's point) of earth_moon.rhs with parameters p from y0;
+    progress under ``label``, checkpointed (``spinorbit run --resume``) with ``checkpoint``."""
+    from .. import checkpoint as chunked, earth_moon
     from ..integrators.rk8 import fixed_step
-    from ..references.erfa_pole import cip_vector
 
     t0, t = scenario.t_start, scenario.output_times()
-    p = earth_moon.parameters(external.data, switches)
-    y0 = vs.start_state(t0, cip_vector(t0), earth.ERA_RATE_RAD_D, p)
     step = float(scenario.integrator_options().get("step", 0.5))
     fixed_step(earth_moon.rhs, p, t0, y0, t[:2], step)                 # compile outside the timing
     started = time.perf_counter()
@@ -89,13 +85,17 @@ def integrate(scenario, external, switches, label, checkpoint):
 def run(scenario):
     from .. import earth_moon
     from .. import earth_moon_vs_de421 as vs
+    from ..bodies import earth
+    from ..references.erfa_pole import cip_vector
 
     if scenario["integrator.method"] != "rk8":
         raise ScenarioError("integrator.method", scenario["integrator.method"], "rk8 (the compiled fixed step)")
     switches = tuple(name for name in earth_moon.SWITCHES if scenario[f"model.{name}"])
-    t = scenario.output_times()
+    t, t0 = scenario.output_times(), scenario.t_start
     external, sampled = external_bodies(scenario)
-    states, point = integrate(scenario, external, switches, f"{scenario.name}", scenario.checkpoint)
+    p = earth_moon.parameters(external.data, switches)
+    y0 = vs.start_state(t0, cip_vector(t0), earth.ERA_RATE_RAD_D, p)
+    states, point = integrate(scenario, p, y0, f"{scenario.name}", scenario.checkpoint)
     direction, distance = vs.orbit_errors(t, states)
     mats, de421, pole, longitude, lunar = vs.lunar_errors(t, states)
     axis = earth_moon.earth_axis(states)
@@ -107,8 +107,8 @@ def run(scenario):
         if "earth_tides" not in switches:
             raise ScenarioError("compare.tides_off", True, "false when model.earth_tides is false")
         part = None if scenario.checkpoint is None else scenario.checkpoint.part("tides_off")
-        without, point_off = integrate(scenario, external, tuple(s for s in switches if s != "earth_tides"),
-                                       f"{scenario.name} (tides off)", part)
+        tides_off = earth_moon.parameters(external.data, tuple(s for s in switches if s != "earth_tides"))
+        without, point_off = integrate(scenario, tides_off, y0, f"{scenario.name} (tides off)", part)
         tidal = vs.tidal_acceleration(t, states, without)
         summary["comparison"].update({f"tidal_{name}": value for name, value in tidal.items()})
         summary["run_tides_off"] = point_off
