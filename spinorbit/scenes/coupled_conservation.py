@@ -12,8 +12,6 @@ shorter run up linearly overstates it).  Passes when all three are within
 ``stress.tolerance_per_century`` (basis: benchmarks/RESULTS.md, the closed Earth-Moon system); a span
 under 10 yr is not compared.
 """
-import time
-
 import numpy as np
 
 from ..constants import JULIAN_CENTURY_D
@@ -61,18 +59,13 @@ def start_state(t0):
 
 def run(scenario):
     from .. import coupled
-    from ..checkpoint import fixed_step
 
     if scenario["integrator.method"] != "rk8":
         raise ScenarioError("integrator.method", scenario["integrator.method"], "rk8 (the compiled fixed step)")
-    step = float(scenario.integrator_options().get("step", 0.05))
     t0, t = scenario.t_start, scenario.output_times()
     p = coupled.parameters(tuple(name for name in FIGURES if scenario[f"model.{name}"]))
-    y0 = start_state(t0)
-    fixed_step(coupled.rhs, p, t0, y0, t[:2], step)                 # compile outside the timing
-    started = time.perf_counter()
-    states = fixed_step(coupled.rhs, p, t0, y0, t, step, scenario.checkpoint, label=scenario.name)
-    wall = time.perf_counter() - started
+    states, point = common.fixed_step_run(scenario, coupled.rhs, p, start_state(t0), 0.05, scenario.checkpoint,
+                                          scenario.name)
 
     energy, big_l = coupled.invariants(states, p)
     norm = np.linalg.norm(big_l, axis=1)
@@ -92,8 +85,6 @@ def run(scenario):
     else:
         comparison["passed"] = None
         summary["not_measured"] = {"comparison.passed": "a span under 10 yr: the per-century drift is not judged"}
-    steps = int(np.ceil(abs(t[-1] - t0) / step - 1e-9))
-    point = {"method": "rk8", "step_d": step, "steps": steps, "rhs_evaluations": 12 * steps, "wall_s": wall}
 
     from astropy.table import QTable
 

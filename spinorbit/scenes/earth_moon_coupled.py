@@ -15,8 +15,6 @@ Boggs 2016: -25.8"/cy^2, 38.3 mm/yr, +-1) on spans of 100 yr or more.
 """
 import time
 
-import numpy as np
-
 from ..errors import ScenarioError
 from ..schema import Key
 from ..verdict import Check, Verdict
@@ -65,23 +63,6 @@ def external_bodies(scenario):
     return external, time.perf_counter() - started
 
 
-def integrate(scenario, p, y0, label, checkpoint):
-    """(states (n, 19) at the output times, the run's point) of earth_moon.rhs with parameters p from y0;
-    progress under ``label``, checkpointed (``spinorbit run --resume``) with ``checkpoint``."""
-    from .. import checkpoint as chunked, earth_moon
-    from ..integrators.rk8 import fixed_step
-
-    t0, t = scenario.t_start, scenario.output_times()
-    step = float(scenario.integrator_options().get("step", 0.5))
-    fixed_step(earth_moon.rhs, p, t0, y0, t[:2], step)                 # compile outside the timing
-    started = time.perf_counter()
-    states = chunked.fixed_step(earth_moon.rhs, p, t0, y0, t, step, checkpoint, label)
-    wall = time.perf_counter() - started
-    steps = int(np.ceil(abs(t[-1] - t0) / step - 1e-9))
-    return states, {"method": "rk8", "step_d": step, "steps": steps, "rhs_evaluations": 12 * steps,
-                    "wall_s": wall, "label": label}
-
-
 def run(scenario):
     from .. import earth_moon
     from .. import earth_moon_vs_de421 as vs
@@ -95,7 +76,7 @@ def run(scenario):
     external, sampled = external_bodies(scenario)
     p = earth_moon.parameters(external.data, switches)
     y0 = vs.start_state(t0, cip_vector(t0), earth.ERA_RATE_RAD_D, p)
-    states, point = integrate(scenario, p, y0, f"{scenario.name}", scenario.checkpoint)
+    states, point = common.fixed_step_run(scenario, earth_moon.rhs, p, y0, 0.5, scenario.checkpoint, scenario.name)
     direction, distance = vs.orbit_errors(t, states)
     mats, de421, pole, longitude, lunar = vs.lunar_errors(t, states)
     axis = earth_moon.earth_axis(states)
@@ -108,7 +89,8 @@ def run(scenario):
             raise ScenarioError("compare.tides_off", True, "false when model.earth_tides is false")
         part = None if scenario.checkpoint is None else scenario.checkpoint.part("tides_off")
         tides_off = earth_moon.parameters(external.data, tuple(s for s in switches if s != "earth_tides"))
-        without, point_off = integrate(scenario, tides_off, y0, f"{scenario.name} (tides off)", part)
+        without, point_off = common.fixed_step_run(scenario, earth_moon.rhs, tides_off, y0, 0.5, part,
+                                                   f"{scenario.name} (tides off)")
         tidal = vs.tidal_acceleration(t, states, without)
         summary["comparison"].update({f"tidal_{name}": value for name, value in tidal.items()})
         summary["run_tides_off"] = point_off
