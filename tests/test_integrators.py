@@ -144,6 +144,18 @@ def test_rk8_step_does_not_depend_on_output_cadence():
     assert error_coarse < 1e-9 and error_fine < 1.2 * error_coarse
 
 
+def test_rk8_runs_one_compiled_loop_whatever_the_layout_of_the_output_times(torqued):
+    """Output times given as a strided view (every other output, as the error estimate's coarse run takes them)
+    run the loop compiled for contiguous ones: one specialisation, not one per array layout (each costs seconds)."""
+    from spinorbit.integrators.rk8 import rk_fixed, rk_step
+    from spinorbit.linker import link
+
+    system, t = torqued[0], np.linspace(0.0, 50.0, 1001)
+    integrate(system, t, "rk8", step=0.05)
+    integrate(system, t[::2], "rk8", step=0.1)
+    assert len(link(rk_fixed, rk_step=link(rk_step, rhs=system.rhs)).signatures) == 1
+
+
 @pytest.mark.parametrize("method, options", [("rk8", {"step": 0.05}), ("rk4", {"step": 0.005}),
                                              ("strang", {"step": 0.05}), ("suzuki4", {"step": 0.05}),
                                              ("dop853", {"rtol": 1e-13, "atol": 1e-15})])

@@ -70,7 +70,7 @@ class Integrator:
         raise NotImplementedError
 
     def _check_times(self, system, t_out):
-        t_out = np.asarray(t_out, dtype=float)
+        t_out = np.ascontiguousarray(t_out, dtype=float)
         forward = t_out.size > 0 and t_out[-1] >= system.t0
         steps = np.diff(np.concatenate([[system.t0], t_out])) * (1 if forward else -1)
         if t_out.ndim != 1 or t_out.size == 0 or not np.all(np.isfinite(t_out)) or np.any(steps < 0):
