@@ -54,6 +54,32 @@ def mean_pole(t):
     return erfa_pole.pole_from_angles(t, psi_bar, eps_a)
 
 
+def turned(t, moon, toward=0.0, along=0.0):
+    """The Moon's geocentric positions (n, 3, GCRS) turned by a small angle so that its orbit's mean pole moves by
+    ``toward`` (rad, toward the equator pole) and ``along`` (rad, along the equinox) in the ecliptic of date."""
+    import erfa
+
+    to_ecliptic = erfa.ecm06(2451545.0, t)
+    ecliptic = np.einsum("nij,nj->ni", to_ecliptic, moon)
+    ecliptic += np.cross([-toward, along, 0.0], ecliptic)
+    return np.einsum("nji,nj->ni", to_ecliptic, ecliptic)
+
+
+def integrated(t, rate):
+    """The running integral of a rate ("/cy) sampled at t (d), arcsec."""
+    return cumulative_trapezoid(rate, t / JULIAN_CENTURY_D, initial=0.0)
+
+
+def tilt_check(toward=1.0 * ARCSEC):
+    """The first-order psi rate's change ("/cy) when DE421's lunar orbit is tilted ``toward`` the equator, over
+    1950-2050 (the noise of the fit is common to both and cancels)."""
+    t = np.arange(-0.5 * JULIAN_CENTURY_D, 0.5 * JULIAN_CENTURY_D, 0.5)
+    (moon, sun), gm, _ = lunisolar(t)
+    z, args = mean_pole(t), arguments.named(t, {str(m): m for m in nonrigid.LUNISOLAR_ARGUMENTS})
+    rate = lambda m: fit_harmonics(t, integrated(t, torque_rates(t, z, [m, sun], gm)[0]), args, degree=3).poly[1]
+    return rate(turned(t, moon, toward)) - rate(moon)
+
+
 def first_order(half_span_cy=1.0, step_d=0.5):
     """{body: rate at J2000 ("/cy) for fits of degree 3 and 5} of the torque on the IAU 2006 mean pole,
     integrated over J2000 +- ``half_span_cy`` (DE421 arrays) and fitted with the 45 luni-solar arguments."""
@@ -63,7 +89,7 @@ def first_order(half_span_cy=1.0, step_d=0.5):
     out = {}
     for name, sel in (("moon", [0]), ("sun", [1]), ("moon + sun", [0, 1])):
         rate = torque_rates(t, z, [positions[i] for i in sel], gm[sel])[0]
-        psi = cumulative_trapezoid(rate, t / JULIAN_CENTURY_D, initial=0.0)
+        psi = integrated(t, rate)
         out[name] = [fit_harmonics(t, psi, args, degree=d).poly[1] for d in (3, 5)]
     return out
 
@@ -144,6 +170,9 @@ def main():
           f"{along / ARCSEC:.4f}\" along the equinox; tilt row -(lunar share) cos 2eps / (sin eps cos eps) delta "
           f"= {tilt_row:.5f}\"/cy (P03 {P03_TILT_A:.5f}: {mas(tilt_row - P03_TILT_A)} mas/cy), so (r0)1 alone: "
           f"{mas(np.mean(first_indirect) - (tilt_row - P03_TILT_A))} mas/cy")
+    per_arcsec = -moon * math.cos(2 * EPS0) / (math.sin(EPS0) * math.cos(EPS0)) * ARCSEC
+    print(f"check of that formula: DE421's lunar orbit tilted 1\" more toward the equator moves the first-order "
+          f"rate by {mas(tilt_check())} mas/cy; the formula: {mas(per_arcsec)}")
     scale = P03_R0 / (H_D * math.cos(EPS0))
     print(f"P03's (r0)1 / (H_d cos eps0) = {scale:.3f}\"/cy; the model's is "
           f"{np.mean(first_indirect) / (P03_R0 + P03_TILT_A):+.2e} off it")

@@ -10,9 +10,14 @@ about 1 min).  Prints, in mas:
 * the layer (``nonrigid.IERS1996``) applied to a pure in-phase rigid 18.6-yr term, against the out-of-phase
   coefficients T. Herring's KSV_1996_3 series prints for that term (IERS Conventions 1996: the rigid
   KSRE95 series times the same resonance factors): what is left is the rigid series' own out-of-phase
-  part (Williams 1994; Souchay & Kinoshita 1996).
+  part (Williams 1994; Souchay & Kinoshita 1996);
+* the first-order torque of DE421's Moon and Sun on the IAU 2006 mean pole (no run), with the Moon's orbit as
+  it is and turned so that its mean pole's offset along the equinox (the planets' tilt of the lunar orbit,
+  -1.517", precession_budget.laplace_tilt) is taken out: what that offset puts into the out-of-phase part.
 """
 import numpy as np
+
+from precession_budget import integrated, laplace_tilt, lunisolar, mean_pole, turned
 
 from spinorbit import earth_vs_iau, nonrigid
 from spinorbit.analysis.spans import resolvable
@@ -33,6 +38,18 @@ def fit_om(t, values, phases, degree, poisson):
     coef = np.linalg.lstsq(np.column_stack(cols), values, rcond=None)[0]
     n = phases.shape[0]
     return coef[degree + 1] / MAS, coef[degree + 1 + n] / MAS
+
+
+def first_order_term(along):
+    """18.6-yr (dpsi sin, dpsi cos, deps cos, deps sin), mas, of the first-order torque (DE421 Moon and Sun on
+    the IAU 2006 mean pole, 1950-2050, integrated) with the Moon's orbit turned so that its mean pole moves by
+    ``along`` rad along the equinox of the ecliptic of date."""
+    t = np.arange(-0.5 * JULIAN_CENTURY_D, 0.5 * JULIAN_CENTURY_D, 0.5)
+    (moon, sun), gm, _ = lunisolar(t)
+    rates = earth_vs_iau.torque_rates(t, mean_pole(t), [turned(t, moon, along=along), sun], gm)
+    phases = arguments.phases(t, nonrigid.LUNISOLAR_ARGUMENTS)[0]
+    (ps, pc), (es, ec) = (fit_om(t, integrated(t, r) * ARCSEC, phases, 3, False) for r in rates)
+    return ps, pc, ec, es
 
 
 def main():
@@ -71,6 +88,11 @@ def main():
           f"part: {KSV_1996_OUT_MAS[0] - out_psi:+.3f}, {KSV_1996_OUT_MAS[1] - out_eps:+.3f}); IAU 2000A prints "
           f"{IAU_2000A_OUT_MAS[0]:.4f}, {IAU_2000A_OUT_MAS[1]:.4f} (IAU 2000A - KSV_1996_3: "
           f"{IAU_2000A_OUT_MAS[0] - KSV_1996_OUT_MAS[0]:+.3f}, {IAU_2000A_OUT_MAS[1] - KSV_1996_OUT_MAS[1]:+.3f})")
+
+    along = laplace_tilt()[1]
+    for label, shift in (("as DE421 has it", 0.0), (f"its {along / ARCSEC:.3f}\" along the equinox taken out", -along)):
+        ps, pc, ec, es = first_order_term(shift)
+        print(f"first-order torque, lunar orbit {label}: dpsi {ps:.3f} sin, {pc:.3f} cos; deps {ec:.3f} cos, {es:.3f} sin")
 
 
 if __name__ == "__main__":
