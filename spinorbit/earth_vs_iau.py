@@ -9,7 +9,7 @@ import numpy as np
 
 from . import earth, nonrigid
 from .analysis.precession import compare_with_iau, fit_pole, periodic_part, term_table
-from .constants import MAS
+from .constants import ARCSEC, JULIAN_CENTURY_D, MAS
 from .integrators import integrate
 from .references import arguments, erfa_pole
 
@@ -67,6 +67,19 @@ def precession_nutation(t, z, iau):
     nutation = {"psi_mean": iau["psi_bar_rad"] + mean[0], "eps_mean": iau["eps_a_rad"] + mean[1],
                 "dpsi": offsets[0] - mean[0], "deps": offsets[1] - mean[1]}
     return comparison, not_measured, nutation
+
+
+def torque_rates(t, poles, positions, gm, h_d=earth.H_D):
+    """(dpsi/dt, deps/dt), "/cy, of the Fukushima-Williams angles of the axes ``poles`` (n, 3, GCRS) under the
+    point masses' torque alone, H_d (T z) x z / omega (the axes held where they are: the first-order rate);
+    ``positions``: per body (n, 3) km, geocentric GCRS; ``gm``: km^3/d^2 per body."""
+    zdot = np.zeros_like(poles)
+    for r, g in zip(positions, gm):
+        dist = np.linalg.norm(r, axis=1)
+        tz = (3.0 * g * np.einsum("ij,ij->i", r, poles) / dist**5)[:, None] * r
+        zdot += h_d * np.cross(tz, poles) / earth.ERA_RATE_RAD_D
+    plus, minus = erfa_pole.pole_angles(t, poles + zdot), erfa_pole.pole_angles(t, poles - zdot)
+    return tuple((p - m) / 2.0 * JULIAN_CENTURY_D / ARCSEC for p, m in zip(plus, minus))
 
 
 def rigid_start(orbits, params, t0, z0, t):

@@ -141,8 +141,8 @@ def test_cip_against_iau_2006_2000a_over_a_decade(decade):
     c = on["comparison"]
     # Rigid 24.9 / 21.8 mas rms; non-rigid (IERS 1996 resonance factors) measured 1.17 / 0.13 mas.  A decade
     # does not separate the 18.6-yr term from the quadratic, and what the quadratic takes is not scaled by T
-    # (T - 1 = -0.3 % of 6.9" in X at most); the precession rate left (-7 mas/cy in psi, RESULTS.md) adds up
-    # to 0.3 mas in X: bound 2 mas.
+    # (T - 1 = -0.3 % of 6.9" in X at most); the precession rate left (-3 mas/cy in psi, RESULTS.md) adds up
+    # to 0.1 mas in X: bound 2 mas.
     assert c["x_rms_mas"] * mas < 2 * mas and c["y_rms_mas"] * mas < 2 * mas
 
 

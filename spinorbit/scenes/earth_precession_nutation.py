@@ -38,8 +38,8 @@ _RIGID_VS_IAU = ("IAU 2000A is a non-rigid Earth (MHB2000): its 18.6-yr nutation
                  "project targets X <= 40, Y <= 25 mas rms")
 _NONRIGID_VS_IAU = ("IAU 2000A is MHB2000's transfer function on a rigid-Earth series, its residuals against VLBI "
                     "~0.2 mas; a non-rigid layer from published parameters should come within 1 mas rms")
-_RATE = ("H_d is IAU 2006's, so the rate matches IAU 2006 to the torques left out: the planets' direct torques "
-         "(+0.031\"/cy), the torques on J4 (+0.0026\"/cy), MHB2000's nonlinear terms (-0.021\"/cy), RESULTS.md")
+_RATE = ("H_d is IAU 2006's, so the rate matches IAU 2006 to the torques left out (planets +0.031\"/cy, J4 +0.0026, "
+         "MHB2000's nonlinear -0.021) and to the first-order scale factor H_d came with (-0.004), RESULTS.md")
 
 
 def verdict(scenario, comparison):

@@ -1,0 +1,99 @@
+"""The non-rigid scene's 18.6-yr nutation out of phase, taken apart.
+
+Run: ``python benchmarks/term_18_6yr.py`` (one 1950-2050 run of the non-rigid scenario with the layer off;
+about 1 min).  Prints, in mas:
+
+* the 18.6-yr term of the rigid run, the non-rigid pole (the layer applied to it) and IAU 2000A (ERFA),
+  fitted as the scene fits them (quadratic + the resolved luni-solar arguments), then with a cubic and
+  with Poisson terms T sin Om, T cos Om added: if the secular line or IAU 2000A's time-dependent
+  amplitude leaked into the out-of-phase part, non-rigid - IAU would move with the design;
+* the layer (``nonrigid.IERS1996``) applied to a pure in-phase rigid 18.6-yr term, against the out-of-phase
+  coefficients T. Herring's KSV_1996_3 series prints for that term (IERS Conventions 1996: the rigid
+  KSRE95 series times the same resonance factors): what is left is the rigid series' own out-of-phase
+  part (Williams 1994; Souchay & Kinoshita 1996);
+* the first-order torque of DE421's Moon and Sun on the IAU 2006 mean pole (no run), with the Moon's orbit as
+  it is and turned so that its mean pole's offset along the equinox (the planets' tilt of the lunar orbit,
+  -1.517", precession_budget.laplace_tilt) is taken out: what that offset puts into the out-of-phase part.
+"""
+import numpy as np
+
+from precession_budget import integrated, laplace_tilt, lunisolar, mean_pole, turned
+
+from spinorbit import earth_vs_iau, nonrigid
+from spinorbit.analysis.spans import resolvable
+from spinorbit.constants import ARCSEC, JULIAN_CENTURY_D, MAS
+from spinorbit.references import arguments, erfa_pole
+from spinorbit.results import run_scenario
+
+SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"
+KSV_1996_OUT_MAS = (3.608, 1.543)      # KSV_1996_3, term (0 0 0 0 1): out-of-phase dpsi (cos), deps (sin)
+IAU_2000A_OUT_MAS = (3.3386, 1.5377)   # IERS Conventions 2010 Table 5.3a, the same term
+
+
+def fit_om(t, values, phases, degree, poisson):
+    """(sin Om, cos Om) coefficients, mas, of a fit with a polynomial of ``degree`` and the arguments."""
+    big_t, om = t / JULIAN_CENTURY_D, phases[0]
+    cols = [big_t**k for k in range(degree + 1)] + list(np.sin(phases)) + list(np.cos(phases))
+    cols += [big_t * np.sin(om), big_t * np.cos(om)] if poisson else []
+    coef = np.linalg.lstsq(np.column_stack(cols), values, rcond=None)[0]
+    n = phases.shape[0]
+    return coef[degree + 1] / MAS, coef[degree + 1 + n] / MAS
+
+
+def first_order_term(along):
+    """18.6-yr (dpsi sin, dpsi cos, deps cos, deps sin), mas, of the first-order torque (DE421 Moon and Sun on
+    the IAU 2006 mean pole, 1950-2050, integrated) with the Moon's orbit turned so that its mean pole moves by
+    ``along`` rad along the equinox of the ecliptic of date."""
+    t = np.arange(-0.5 * JULIAN_CENTURY_D, 0.5 * JULIAN_CENTURY_D, 0.5)
+    (moon, sun), gm, _ = lunisolar(t)
+    rates = earth_vs_iau.torque_rates(t, mean_pole(t), [turned(t, moon, along=along), sun], gm)
+    phases = arguments.phases(t, nonrigid.LUNISOLAR_ARGUMENTS)[0]
+    (ps, pc), (es, ec) = (fit_om(t, integrated(t, r) * ARCSEC, phases, 3, False) for r in rates)
+    return ps, pc, ec, es
+
+
+def main():
+    result = run_scenario(SCENARIO, ["earth.nonrigid=false", "output.plots=false", "integrator.estimate_error=false"])
+    table = result.table
+    t = np.asarray(table["time"].tdb.jd - 2451545.0)
+    x, y = (np.asarray(table[k].to_value("rad")) for k in ("cip_x", "cip_y"))
+    rigid = np.column_stack([x, y, np.sqrt(1.0 - x**2 - y**2)])
+    iau = erfa_pole.IauPole()(t)
+    phases, rates = arguments.phases(t, nonrigid.LUNISOLAR_ARGUMENTS)
+    phases = phases[resolvable(rates, t[-1] - t[0])]
+    series = {"rigid": erfa_pole.about_mean_pole(t, rigid),
+              "non-rigid": erfa_pole.about_mean_pole(t, earth_vs_iau.nonrigid_pole(t, rigid)),
+              "IAU 2000A": (iau["dpsi_rad"], iau["deps_rad"])}
+    print("| design | series | dpsi in (sin) | dpsi out (cos) | deps in (cos) | deps out (sin) |\n|---|---|---|---|---|---|")
+    for degree, poisson in ((2, False), (3, False), (2, True)):
+        parts = {}
+        for name, (dpsi, deps) in series.items():
+            (ps, pc), (es, ec) = fit_om(t, dpsi, phases, degree, poisson), fit_om(t, deps, phases, degree, poisson)
+            parts[name] = (ps, pc, ec, es)
+            label = f"degree {degree}" + (" + T sin, T cos" if poisson else "")
+            print(f"| {label} | {name} | {ps:.3f} | {pc:.3f} | {ec:.3f} | {es:.3f} |")
+        diff = np.subtract(parts["non-rigid"], parts["IAU 2000A"])
+        print(f"| | non-rigid - IAU | {diff[0]:+.3f} | **{diff[1]:+.3f}** | {diff[2]:+.3f} | {diff[3]:+.3f} |")
+    # the layer on a pure in-phase rigid term with the rigid run's amplitudes
+    sin_eps = np.sin(84381.406 * ARCSEC)
+    grid = np.arange(-50 * 365.25, 50 * 365.25, 2.0)
+    ph, rt = arguments.phases(grid, nonrigid.LUNISOLAR_ARGUMENTS)
+    a_psi, _, b_eps, _ = parts["rigid"]
+    xn, yn = nonrigid.nonrigid_nutation(grid, a_psi * MAS * sin_eps * np.sin(ph[0]), b_eps * MAS * np.cos(ph[0]), ph, rt)
+    design = np.column_stack([np.sin(ph[0]), np.cos(ph[0]), np.ones_like(grid)])
+    out_psi = np.linalg.lstsq(design, xn / sin_eps / MAS, rcond=None)[0][1]
+    out_eps = np.linalg.lstsq(design, yn / MAS, rcond=None)[0][0]
+    print(f"\nIERS1996 factors on a pure in-phase rigid term: out of phase dpsi {out_psi:.3f}, deps {out_eps:.3f}; "
+          f"KSV_1996_3 prints {KSV_1996_OUT_MAS[0]:.3f}, {KSV_1996_OUT_MAS[1]:.3f} (its rigid series' own out-of-phase "
+          f"part: {KSV_1996_OUT_MAS[0] - out_psi:+.3f}, {KSV_1996_OUT_MAS[1] - out_eps:+.3f}); IAU 2000A prints "
+          f"{IAU_2000A_OUT_MAS[0]:.4f}, {IAU_2000A_OUT_MAS[1]:.4f} (IAU 2000A - KSV_1996_3: "
+          f"{IAU_2000A_OUT_MAS[0] - KSV_1996_OUT_MAS[0]:+.3f}, {IAU_2000A_OUT_MAS[1] - KSV_1996_OUT_MAS[1]:+.3f})")
+
+    along = laplace_tilt()[1]
+    for label, shift in (("as DE421 has it", 0.0), (f"its {along / ARCSEC:.3f}\" along the equinox taken out", -along)):
+        ps, pc, ec, es = first_order_term(shift)
+        print(f"first-order torque, lunar orbit {label}: dpsi {ps:.3f} sin, {pc:.3f} cos; deps {ec:.3f} cos, {es:.3f} sin")
+
+
+if __name__ == "__main__":
+    main()
