@@ -51,8 +51,7 @@ SCHEMA = {
     "model.tides": Key(type=bool, default=True, help="tidal/rotational distortion at levels 3-4"),
     "model.terms": Key(type=list, default=[], help="terms added to the level's, e.g. [\"sun_j2\"]"),
     "orbit.source": Key(type=str, default="de421", help="'de421', a .bsp name, or 'rebound'"),
-    "orbit.step": Key(**SAMPLE_STEP, default=0.5, help="sampling step of the orbit interpolant (0.5 d: 5.5e-4 km "
-                      "from DE421; the lunar angles move < 1e-5\" from 0.25 d's, benchmarks/RESULTS.md)"),
+    "orbit.step": Key(**SAMPLE_STEP, default=0.5, help="orbit sampling step (0.5 d: 5.5e-4 km off DE421, RESULTS.md)"),
     "compare.source": Key(type=str, default="", help="also run driven by this source and report the difference"),
     "report.error_vs_runtime": Key(type=bool, default=False, help="rk8 steps and dop853 tolerances vs a converged run"),
 }
