@@ -18,7 +18,8 @@ Contract for subclass authors (numbered so reviews can point at it):
    otherwise.
 5. Failure (NaN, step-size underflow, max steps) raises IntegrationError with
    the time and state, advice, and ``.partial`` = the Solution up to there.
-6. ``nfev`` counts right-hand-side (or torque) evaluations; ``wall_s`` is the
+6. ``nfev`` counts right-hand-side (or torque) evaluations, ``nsteps`` the steps (None where the
+   method does not report them: scipy's solve_ivp); ``wall_s`` is the
    wall time of the solve excluding one-off compilation (warm up first).
 """
 from dataclasses import dataclass, field
@@ -36,7 +37,7 @@ class Solution:
     y: np.ndarray
     method: str
     nfev: int = 0
-    nsteps: int = 0
+    nsteps: int | None = 0      # None where the method does not report it (scipy's solve_ivp)
     wall_s: float = 0.0
     options: dict = field(default_factory=dict)
 

@@ -43,7 +43,7 @@ class ScipyIVP(Integrator):
         wall = time.perf_counter() - start
         y = sol.y.T
         partial = Solution(sol.t, normalise_quaternions(y) if len(y) else y, self.name, nfev[0],
-                           int(sol.t.size), wall, dict(self.settings))
+                           None, wall, dict(self.settings))     # solve_ivp does not report its steps
         if sol.status != 0:
             t_fail, y_fail, nan = last_finite
             advice = ("The right-hand side became non-finite just after this time: check the torque model "
@@ -53,7 +53,6 @@ class ScipyIVP(Integrator):
             err.partial = partial
             raise err
         check_finite(y, t_out[-1], self.name, partial)
-        partial.nsteps = int(sol.nfev)  # solve_ivp does not report steps; nfev is the honest count
         return partial
 
 
