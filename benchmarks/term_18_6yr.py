@@ -13,7 +13,8 @@ about 1 min).  Prints, in mas:
   part (Williams 1994; Souchay & Kinoshita 1996);
 * the first-order torque of DE421's Moon and Sun on the IAU 2006 mean pole (no run), with the Moon's orbit as
   it is and turned so that its mean pole's offset along the equinox (the planets' tilt of the lunar orbit,
-  -1.517", precession_budget.laplace_tilt) is taken out: what that offset puts into the out-of-phase part.
+  -1.517", precession_budget.laplace_tilt) is taken out: what that offset puts into the out-of-phase part;
+* how far DE421's lunar node leads the series' Om, and what that lead puts into the out-of-phase part.
 """
 import numpy as np
 
@@ -21,7 +22,8 @@ from precession_budget import integrated, laplace_tilt, lunisolar, mean_pole, tu
 
 from spinorbit import earth_vs_iau, nonrigid
 from spinorbit.analysis.spans import resolvable
-from spinorbit.constants import ARCSEC, JULIAN_CENTURY_D, MAS
+from spinorbit.constants import ARCSEC, J2000_JD, JULIAN_CENTURY_D, MAS
+from spinorbit.orbits.kernel import open_ephemeris
 from spinorbit.references import arguments, erfa_pole
 from spinorbit.results import run_scenario
 
@@ -50,6 +52,19 @@ def first_order_term(along):
     phases = arguments.phases(t, nonrigid.LUNISOLAR_ARGUMENTS)[0]
     (ps, pc), (es, ec) = (fit_om(t, integrated(t, r) * ARCSEC, phases, 3, False) for r in rates)
     return ps, pc, ec, es
+
+
+def node_lead(step_d=0.5):
+    """How far (rad) DE421's lunar node leads the series' Om over 1950-2050: the phase of the Moon's orbital
+    pole about the ecliptic pole of date (IAU 2006) against Om - 90 deg, Hann-weighted so that the node's
+    periodic terms (1.5 deg at 173 d and smaller) average out."""
+    import erfa
+
+    t = np.arange(-0.5 * JULIAN_CENTURY_D, 0.5 * JULIAN_CENTURY_D, step_d)
+    r, v = open_ephemeris("de421", t[0], t[-1]).relative_states("moon", "earth", t)
+    normal = np.einsum("nij,nj->ni", erfa.ecm06(J2000_JD, t), np.cross(r, v))
+    pole = (normal[:, 0] + 1j * normal[:, 1]) / np.linalg.norm(normal, axis=1)
+    return np.angle(np.sum(np.hanning(t.size) * pole * np.exp(-1j * (arguments.delaunay(t)[4] - np.pi / 2))))
 
 
 def main():
@@ -93,6 +108,10 @@ def main():
     for label, shift in (("as DE421 has it", 0.0), (f"its {along / ARCSEC:.3f}\" along the equinox taken out", -along)):
         ps, pc, ec, es = first_order_term(shift)
         print(f"first-order torque, lunar orbit {label}: dpsi {ps:.3f} sin, {pc:.3f} cos; deps {ec:.3f} cos, {es:.3f} sin")
+        if shift == 0.0:
+            lead = node_lead()      # -17.2" sin(Om + lead) has cos Om coefficient (sin coefficient) x lead
+            print(f"DE421's lunar node leads Om by {lead / ARCSEC:.2f}\" (1950-2050): {ps * lead:+.3f} mas in dpsi out "
+                  f"of phase, {ec * -lead:+.3f} in deps")
 
 
 if __name__ == "__main__":
