@@ -67,8 +67,8 @@ def energy(inertia, x, pole, gm_j2_r2):
 @njit(cache=True, nogil=True)
 def energy_gradients(inertia, r, pole, gm_j2_r2):
     """(grad_r E, grad_p E), body axes, [inertia unit]/(km d^2) and [inertia unit]/d^2, of :func:`energy`
-    at r (km), pole p treated as a free vector.  With A = anisotropic(I) (symmetric), u = r/|r|,
-    s = u.p, a = u.A u, b = p.A u, c = p.A p, T = tr A, energy is E = -k Q / (4 |r|^5) with
+    at r (km), pole p treated as a free vector.  With k = gm_j2_r2 (GM J2 R^2, km^5/d^2), A = anisotropic(I)
+    (I symmetric), u = r/|r|, s = u.p, a = u.A u, b = p.A u, c = p.A p, T = tr A, E = -k Q / (4 |r|^5) with
     Q = 6 c - 60 s b + (105 s^2 - 15) a + (3 - 15 s^2) T, and with m = 210 s a - 60 b - 30 T s
 
         dQ/du = m p - 60 s A p + (210 s^2 - 30) A u,     dQ/dp = m u - 60 s A u + 12 A p,
