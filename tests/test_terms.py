@@ -4,7 +4,8 @@ equals reaction for every term (spinorbit.terms).
 point_mass: Euler's P, Q, R (§815) and a point cloud (§816, §818); harmonics: degree 2 equals the
 point-mass torque, degree 3 against a finite-difference potential; figure_figure (the Earth's or
 the Sun's J2): Folkner et al.'s torque against the Hessian of the J2 potential and against three
-point masses with the same quadrupole; and, for all, rot N + sum r x F (+ the attractor's own
+point masses with the same quadrupole, its force and the attractor's torque against the complex-step
+derivatives of the interaction energy; and, for all, rot N + sum r x F (+ the attractor's own
 torque) = 0 and the force as minus the energy's gradient."""
 import math
 
@@ -182,8 +183,32 @@ def test_figure_figure_torque_equals_three_point_masses_with_the_same_quadrupole
     assert errors[-1] < 2e-5
 
 
+def complex_step_gradient(f, x, step=1e-20):
+    """grad f at real x (3,) by the complex step, exact to rounding: Im f(x + i h e_m) / h, h = step |x|."""
+    h = step * np.linalg.norm(x)
+    return np.array([f(x + 1j * h * e).imag / h for e in np.eye(3)])
+
+
+def test_figure_figure_energy_gradients_equal_the_complex_step():
+    """The closed-form grad_r E and grad_p E equal the complex-step derivatives of the interaction energy
+    at random geometries (inertia off-diagonal, pole off the axes, distances from 2 to 1e6 units)."""
+    rng = np.random.default_rng(2014)
+    for _ in range(20):
+        inertia = np.diag(C.moments) + 1e-4 * rng.standard_normal((3, 3))
+        inertia = (inertia + inertia.T) / 2
+        r = rng.standard_normal(3) * 10.0 ** rng.uniform(0.3, 6.0)
+        pole = rng.standard_normal(3)
+        pole /= np.linalg.norm(pole)
+        k = 10.0 ** rng.uniform(-3.0, 20.0)
+        grad_r, grad_p = figure_figure.energy_gradients(inertia, r, pole, k)
+        expected_r = complex_step_gradient(lambda x: figure_figure.energy(inertia, x, pole + 0j, k), r)
+        expected_p = complex_step_gradient(lambda x: figure_figure.energy(inertia, r + 0j, x, k), pole)
+        assert np.abs(grad_r - expected_r).max() < 1e-13 * np.linalg.norm(expected_r)
+        assert np.abs(grad_p - expected_p).max() < 1e-13 * np.linalg.norm(expected_p)
+
+
 def test_figure_figure_force_is_minus_the_energy_gradient():
-    """The complex-step force equals a central finite difference of the interaction energy."""
+    """The term's force equals a central finite difference of the interaction energy."""
     r = np.array([3.1e5, -2.2e5, 0.4e5])
     p = (0, 2.0e20, np.array([0.0, 1.0]), np.array([POLE, POLE]))
     force = figure_figure.force(0.0, NO_STATE, np.eye(3), INERTIA, r[None], np.array([1.0]), p)[0]

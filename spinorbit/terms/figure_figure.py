@@ -9,7 +9,7 @@ pole and s = u.p (all in the figure's body axes):
 It derives from the interaction energy of the figure in the attractor's J2 potential,
 E = -1/2 I : grad grad U_J2 (U_J2 = GM J2 R^2 (3 (p.x)^2/x^2 - 1) / (2 x^3), harmonic, so
 the trace of I drops out).  The force on the attractor and the torque on its own figure follow
-from E by differentiation, here by the complex step (exact to rounding): F = -grad_r E,
+from E by differentiation (closed forms in :func:`energy_gradients`): F = -grad_r E,
 N_attractor = -p x grad_p E; action equals reaction (rot N + r x F + N_attractor = 0).
 """
 import math
@@ -20,9 +20,6 @@ from numba import njit
 from ..bodies.de421_header import header
 from ..rotations import cross3, dot3, mat_t_vec3, matvec3
 from .base import Term, anisotropic
-
-_STEP = 1e-20           # complex step, relative to the vector differentiated
-
 
 @njit(cache=True, nogil=True)
 def pole_at(t, grid, samples):
@@ -49,7 +46,7 @@ def figure_torque(inertia, r, pole, gm_j2_r2):
 
 @njit(cache=True, nogil=True)
 def energy(inertia, x, pole, gm_j2_r2):
-    """E = -1/2 I : grad grad U_J2 at x (real or complex: the complex step differentiates it)."""
+    """E = -1/2 I : grad grad U_J2 at x (km), [inertia unit]/d^2; real or complex (the tests differentiate it)."""
     inertia = anisotropic(inertia)              # grad grad U_J2 is trace-free: the isotropic part adds 0
     r2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2]
     r = np.sqrt(r2)
@@ -68,18 +65,30 @@ def energy(inertia, x, pole, gm_j2_r2):
 
 
 @njit(cache=True, nogil=True)
-def _energy_gradient(inertia, r, pole, gm_j2_r2, of_pole):
-    """grad E with respect to r (of_pole False) or to the pole (True), by the complex step."""
-    out = np.zeros(3)
-    scale = math.sqrt(dot3(pole, pole) if of_pole else dot3(r, r))
-    for m in range(3):
-        rc, pc = r.astype(np.complex128), pole.astype(np.complex128)
-        if of_pole:
-            pc[m] += 1j * _STEP * scale
-        else:
-            rc[m] += 1j * _STEP * scale
-        out[m] = energy(inertia, rc, pc, gm_j2_r2).imag / (_STEP * scale)
-    return out
+def energy_gradients(inertia, r, pole, gm_j2_r2):
+    """(grad_r E, grad_p E), body axes, [inertia unit]/(km d^2) and [inertia unit]/d^2, of :func:`energy`
+    at r (km), pole p treated as a free vector.  With k = gm_j2_r2 (GM J2 R^2, km^5/d^2), A = anisotropic(I)
+    (I symmetric), u = r/|r|, s = u.p, a = u.A u, b = p.A u, c = p.A p, T = tr A, E = -k Q / (4 |r|^5) with
+    Q = 6 c - 60 s b + (105 s^2 - 15) a + (3 - 15 s^2) T, and with m = 210 s a - 60 b - 30 T s
+
+        dQ/du = m p - 60 s A p + (210 s^2 - 30) A u,     dQ/dp = m u - 60 s A u + 12 A p,
+        grad_r E = -k / (4 |r|^6) [dQ/du - (5 Q + u.dQ/du) u],     grad_p E = -k / (4 |r|^5) dQ/dp."""
+    inertia = anisotropic(inertia)
+    rn = math.sqrt(dot3(r, r))
+    u = r / rn
+    s = dot3(u, pole)
+    iu, ip = matvec3(inertia, u), matvec3(inertia, pole)
+    a, b, c = dot3(u, iu), dot3(pole, iu), dot3(pole, ip)
+    trace = inertia[0, 0] + inertia[1, 1] + inertia[2, 2]
+    q = 6.0 * c - 60.0 * s * b + (105.0 * s * s - 15.0) * a + (3.0 - 15.0 * s * s) * trace
+    m = 210.0 * s * a - 60.0 * b - 30.0 * trace * s
+    radial = 5.0 * q + m * s - 60.0 * s * b + (210.0 * s * s - 30.0) * a      # 5 Q + u.dQ/du
+    scale = -0.25 * gm_j2_r2 / (rn * rn * rn * rn * rn)
+    grad_r, grad_p = np.empty(3), np.empty(3)
+    for k in range(3):          # written out by component: no temporary arrays
+        grad_r[k] = scale / rn * (m * pole[k] - 60.0 * s * ip[k] + (210.0 * s * s - 30.0) * iu[k] - radial * u[k])
+        grad_p[k] = scale * (m * u[k] - 60.0 * s * iu[k] + 12.0 * ip[k])
+    return grad_r, grad_p
 
 
 @njit(cache=True, nogil=True)
@@ -96,7 +105,7 @@ def force(t, y, rot, inertia, r_icrf, gm, p):
     index, gm_j2_r2, grid, samples = p
     out = np.zeros((gm.shape[0], 3))
     pole = mat_t_vec3(rot, pole_at(t, grid, samples))
-    out[index] = -matvec3(rot, _energy_gradient(inertia, mat_t_vec3(rot, r_icrf[index]), pole, gm_j2_r2, False))
+    out[index] = -matvec3(rot, energy_gradients(inertia, mat_t_vec3(rot, r_icrf[index]), pole, gm_j2_r2)[0])
     return out
 
 
@@ -105,7 +114,7 @@ def reaction_torque(t, y, rot, inertia, r_icrf, gm, p):
     """Torque on the attractor's own figure, ICRF: -p x grad_p E."""
     index, gm_j2_r2, grid, samples = p
     pole = mat_t_vec3(rot, pole_at(t, grid, samples))
-    grad = _energy_gradient(inertia, mat_t_vec3(rot, r_icrf[index]), pole, gm_j2_r2, True)
+    grad = energy_gradients(inertia, mat_t_vec3(rot, r_icrf[index]), pole, gm_j2_r2)[1]
     return matvec3(rot, -cross3(pole, grad))
 
 
@@ -115,8 +124,9 @@ def with_pole(rot, inertia, r_icrf, pole_icrf, gm_j2_r2):
     pole table: (torque on the figure, body axes; force on the attractor, ICRF; torque on the attractor's
     figure, ICRF), r_icrf (3,) km the attractor from the figure."""
     r, pole = mat_t_vec3(rot, r_icrf), mat_t_vec3(rot, pole_icrf)
-    force = -matvec3(rot, _energy_gradient(inertia, r, pole, gm_j2_r2, False))
-    reaction = matvec3(rot, -cross3(pole, _energy_gradient(inertia, r, pole, gm_j2_r2, True)))
+    grad_r, grad_p = energy_gradients(inertia, r, pole, gm_j2_r2)
+    force = -matvec3(rot, grad_r)
+    reaction = matvec3(rot, -cross3(pole, grad_p))
     return figure_torque(inertia, r, pole, gm_j2_r2), force, reaction
 
 
