@@ -149,7 +149,8 @@ def fixed_step(rhs, params, t0, y0, t_out, step, max_steps=10**9):
     IntegrationError if the state becomes non-finite or max_steps runs out.
     """
     loop = link(rk_fixed, rk_step=link(rk_step, rhs=rhs))
-    y, n_done, steps, t_fail = loop(params, float(t0), np.asarray(y0, dtype=float), np.asarray(t_out, dtype=float),
+    y, n_done, steps, t_fail = loop(params, float(t0), np.ascontiguousarray(y0, dtype=float),
+                                    np.ascontiguousarray(t_out, dtype=float),
                                     float(step), RK8.A, RK8.B, RK8.C, max_steps)
     if n_done < len(t_out):
         raise IntegrationError("rk8: state became non-finite or exceeded max_steps", t_fail, y0,
