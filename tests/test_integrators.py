@@ -144,6 +144,13 @@ def test_rk8_step_does_not_depend_on_output_cadence():
     assert error_coarse < 1e-9 and error_fine < 1.2 * error_coarse
 
 
+@pytest.mark.parametrize("t_out", [5.0, [], [1.0, math.nan], [1.0, 3.0, 2.0], [[1.0, 2.0]]])
+def test_bad_output_times_get_one_clear_error(t_out, torqued):
+    """A scalar, an empty, non-finite, back-and-forth or 2-d set of output times is refused by name."""
+    with pytest.raises(InputError, match=r"^t_out: got .*expected a 1-d array of finite times"):
+        integrate(torqued[0], t_out, "rk8", step=0.1)
+
+
 def test_rk8_runs_one_compiled_loop_whatever_the_layout_of_the_output_times(torqued):
     """Output times given as a strided view (every other output, as the error estimate's coarse run takes them)
     run the loop compiled for contiguous ones: one specialisation, not one per array layout (each costs seconds)."""

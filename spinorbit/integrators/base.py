@@ -71,16 +71,19 @@ class Integrator:
         raise NotImplementedError
 
     def _check_times(self, system, t_out):
-        t_out = np.ascontiguousarray(t_out, dtype=float)
-        forward = t_out.size > 0 and t_out[-1] >= system.t0
-        steps = np.diff(np.concatenate([[system.t0], t_out])) * (1 if forward else -1)
-        if t_out.ndim != 1 or t_out.size == 0 or not np.all(np.isfinite(t_out)) or np.any(steps < 0):
-            raise InputError("t_out", f"{t_out.size} output times",
-                                "finite times running away from t0 in one direction (forward or backward)")
+        t_out = np.asarray(t_out, dtype=float)
+        ordered = t_out.ndim == 1 and t_out.size > 0 and np.all(np.isfinite(t_out))
+        if ordered:
+            steps = np.diff(np.concatenate([[system.t0], t_out]))
+            ordered = np.all(steps >= 0) or np.all(steps <= 0)
+        if not ordered:
+            shape = "" if t_out.ndim == 1 else f" in {t_out.ndim} dimensions"
+            raise InputError("t_out", f"{t_out.size} output times{shape}",
+                             "a 1-d array of finite times running away from t0 in one direction (forward or backward)")
         if not self.supports(system):
             raise InputError("method", self.name,
                                 f"a method that supports system '{system.name}' (this one needs a rigid body with an external torque)")
-        return t_out
+        return np.ascontiguousarray(t_out)        # one compiled loop whatever the caller's layout
 
 
 def output_chunks(n, count=200):
