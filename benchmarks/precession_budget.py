@@ -54,8 +54,16 @@ def lunisolar(t):
 
 
 def mean_pole(t):
-    _, _, psi_bar, eps_a = erfa_pole.mean_angles(t)
-    return erfa_pole.pole_from_angles(t, psi_bar, eps_a)
+    return erfa_pole.from_mean_pole(t, 0.0, 0.0)
+
+
+def lunar_orbit_pole(t):
+    """Unit normals (n, 3) of the Moon's geocentric orbit from the ephemeris, in the IAU 2006 ecliptic of date."""
+    import erfa
+
+    r, v = open_ephemeris(EPHEMERIS, t[0], t[-1]).relative_states("moon", "earth", t)
+    normal = np.einsum("nij,nj->ni", erfa.ecm06(2451545.0, t), np.cross(r, v))
+    return normal / np.linalg.norm(normal, axis=1)[:, None]
 
 
 def turned(t, moon, toward=0.0, along=0.0):
@@ -102,12 +110,8 @@ def laplace_tilt(half_span_cy=1.0, step_d=0.25, window_yr=3.0):
     """(toward the equator pole, along the equinox), rad: the mean pole of the Moon's geocentric orbit in the
     IAU 2006 ecliptic of date, from DE421 (a running mean over ``window_yr``, then a fit of a quadratic and the
     45 arguments with the 8.85-yr perigee terms): the Laplace plane's tilt, Earth's J2 and the planets'."""
-    import erfa
-
     t = np.arange(-half_span_cy * JULIAN_CENTURY_D, half_span_cy * JULIAN_CENTURY_D, step_d)
-    r, v = open_ephemeris(EPHEMERIS, t[0], t[-1]).relative_states("moon", "earth", t)
-    normal = np.cross(r, v)
-    normal = np.einsum("nij,nj->ni", erfa.ecm06(2451545.0, t), normal / np.linalg.norm(normal, axis=1)[:, None])
+    normal = lunar_orbit_pole(t)
     kernel = np.ones(int(round(window_yr * 365.25 / step_d)))
     kernel /= kernel.size
     ts = np.convolve(t, kernel, mode="valid")

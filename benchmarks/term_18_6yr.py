@@ -18,12 +18,11 @@ about 1 min).  Prints, in mas:
 """
 import numpy as np
 
-from precession_budget import integrated, laplace_tilt, lunisolar, mean_pole, turned
+from precession_budget import integrated, laplace_tilt, lunar_orbit_pole, lunisolar, mean_pole, turned
 
 from spinorbit import earth_vs_iau, nonrigid
 from spinorbit.analysis.spans import resolvable
-from spinorbit.constants import ARCSEC, J2000_JD, JULIAN_CENTURY_D, MAS
-from spinorbit.orbits.kernel import open_ephemeris
+from spinorbit.constants import ARCSEC, JULIAN_CENTURY_D, MAS
 from spinorbit.references import arguments, erfa_pole
 from spinorbit.results import run_scenario
 
@@ -58,12 +57,9 @@ def node_lead(step_d=0.5):
     """How far (rad) DE421's lunar node leads the series' Om over 1950-2050: the phase of the Moon's orbital
     pole about the ecliptic pole of date (IAU 2006) against Om - 90 deg, Hann-weighted so that the node's
     periodic terms (1.5 deg at 173 d and smaller) average out."""
-    import erfa
-
     t = np.arange(-0.5 * JULIAN_CENTURY_D, 0.5 * JULIAN_CENTURY_D, step_d)
-    r, v = open_ephemeris("de421", t[0], t[-1]).relative_states("moon", "earth", t)
-    normal = np.einsum("nij,nj->ni", erfa.ecm06(J2000_JD, t), np.cross(r, v))
-    pole = (normal[:, 0] + 1j * normal[:, 1]) / np.linalg.norm(normal, axis=1)
+    normal = lunar_orbit_pole(t)
+    pole = normal[:, 0] + 1j * normal[:, 1]
     return np.angle(np.sum(np.hanning(t.size) * pole * np.exp(-1j * (arguments.delaunay(t)[4] - np.pi / 2))))
 
 
