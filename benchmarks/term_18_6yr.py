@@ -14,7 +14,14 @@ about 1 min).  Prints, in mas:
 * the first-order torque of DE421's Moon and Sun on the IAU 2006 mean pole (no run), with the Moon's orbit as
   it is and turned so that its mean pole's offset along the equinox (the planets' tilt of the lunar orbit,
   -1.517", precession_budget.laplace_tilt) is taken out: what that offset puts into the out-of-phase part;
-* how far DE421's lunar node leads the series' Om, and what that lead puts into the out-of-phase part.
+* how far DE421's lunar node leads the series' Om, and what that lead puts into the out-of-phase part;
+* what the drift of the mean obliquity (-46.84"/cy) puts into the out-of-phase part: a forced term dpsi/dt =
+  F(t) cos Om with F = F0 + F1 T integrates to (F0 + F1 T) sin Om / Om' + F1 cos Om / Om'^2, so a Poisson term
+  A1 T sin Om comes with B = A1 / Om' in cos Om.  The first-order torque fitted with T sin Om, T cos Om on the
+  mean pole, on that pole held at eps0, and with the displacement dpsi sin eps_A integrated before dividing by
+  sin eps_A (as in the run, where the ecliptic of date turns under the pole and takes back the 1/sin eps share):
+  against the closed forms of the two shares of the in-phase A0's drift, A0 (-2 tan 2eps) eps' / Om' (the
+  torque's) and A0 (-cot eps) eps' / Om' (the kinematic 1/sin eps).
 """
 import numpy as np
 
@@ -29,6 +36,9 @@ from spinorbit.results import run_scenario
 SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"
 KSV_1996_OUT_MAS = (3.608, 1.543)      # KSV_1996_3, term (0 0 0 0 1): out-of-phase dpsi (cos), deps (sin)
 IAU_2000A_OUT_MAS = (3.3386, 1.5377)   # IERS Conventions 2010 Table 5.3a, the same term
+OM_RATE = -6962890.5431 * ARCSEC       # rad/cy, Om's rate (IERS Conventions 2010, eq. 5.43)
+EPS_A_RATE = -46.836769 * ARCSEC       # rad/cy, the IAU 2006 mean obliquity's rate at J2000 (P03)
+EPS0 = 84381.406 * ARCSEC
 
 
 def fit_om(t, values, phases, degree, poisson):
@@ -51,6 +61,28 @@ def first_order_term(along):
     phases = arguments.phases(t, nonrigid.LUNISOLAR_ARGUMENTS)[0]
     (ps, pc), (es, ec) = (fit_om(t, integrated(t, r) * ARCSEC, phases, 3, False) for r in rates)
     return ps, pc, ec, es
+
+
+def obliquity_drift(along):
+    """Three (A1 mas/cy, B mas): the 18.6-yr dpsi's A1 T sin Om and B cos Om in a fit with a cubic, the arguments
+    and T sin Om, T cos Om, of the first-order torque (as first_order_term, the Moon's orbit turned by ``along``)
+    integrated on the IAU 2006 mean pole, on that pole held at eps0 (its obliquity's drift taken out), and on the
+    mean pole with the displacement dpsi sin eps_A integrated and then divided by sin eps_A."""
+    t = np.arange(-0.5 * JULIAN_CENTURY_D, 0.5 * JULIAN_CENTURY_D, 0.5)
+    (moon, sun), gm, _ = lunisolar(t)
+    bodies, (_, _, psi_bar, eps_a) = [turned(t, moon, along=along), sun], erfa_pole.mean_angles(t)
+    phases = arguments.phases(t, nonrigid.LUNISOLAR_ARGUMENTS)[0]
+    big_t, om = t / JULIAN_CENTURY_D, phases[0]
+    design = np.column_stack([big_t**k for k in range(4)] + list(np.sin(phases)) + list(np.cos(phases))
+                             + [big_t * np.sin(om), big_t * np.cos(om)])
+
+    def fit(rate, weight=1.0):
+        coef = np.linalg.lstsq(design, integrated(t, rate * weight) / weight * ARCSEC, rcond=None)[0]
+        return coef[-2] / MAS, coef[4 + phases.shape[0]] / MAS
+
+    held = erfa_pole.pole_from_angles(t, psi_bar, np.full_like(t, EPS0))
+    on_mean, on_held = (earth_vs_iau.torque_rates(t, z, bodies, gm)[0] for z in (mean_pole(t), held))
+    return fit(on_mean), fit(on_held), fit(on_mean, np.sin(eps_a))
 
 
 def node_lead(step_d=0.5):
@@ -86,7 +118,7 @@ def main():
         diff = np.subtract(parts["non-rigid"], parts["IAU 2000A"])
         print(f"| | non-rigid - IAU | {diff[0]:+.3f} | **{diff[1]:+.3f}** | {diff[2]:+.3f} | {diff[3]:+.3f} |")
     # the layer on a pure in-phase rigid term with the rigid run's amplitudes
-    sin_eps = np.sin(84381.406 * ARCSEC)
+    sin_eps = np.sin(EPS0)
     grid = np.arange(-50 * 365.25, 50 * 365.25, 2.0)
     ph, rt = arguments.phases(grid, nonrigid.LUNISOLAR_ARGUMENTS)
     a_psi, _, b_eps, _ = parts["rigid"]
@@ -101,6 +133,8 @@ def main():
           f"{IAU_2000A_OUT_MAS[0] - KSV_1996_OUT_MAS[0]:+.3f}, {IAU_2000A_OUT_MAS[1] - KSV_1996_OUT_MAS[1]:+.3f})")
 
     along = laplace_tilt()[1]
+    shares = (-2 * np.tan(2 * EPS0), -1 / np.tan(EPS0))     # d ln(cos 2eps / sin eps) / d eps, by factor
+    torque_share, sin_share = (a_psi * f * EPS_A_RATE / OM_RATE for f in shares)
     for label, shift in (("as DE421 has it", 0.0), (f"its {along / ARCSEC:.3f}\" along the equinox taken out", -along)):
         ps, pc, ec, es = first_order_term(shift)
         print(f"first-order torque, lunar orbit {label}: dpsi {ps:.3f} sin, {pc:.3f} cos; deps {ec:.3f} cos, {es:.3f} sin")
@@ -108,7 +142,12 @@ def main():
             lead = node_lead()      # -17.2" sin(Om + lead) has cos Om coefficient (sin coefficient) x lead
             print(f"DE421's lunar node leads Om by {lead / ARCSEC:.2f}\" (1950-2050): {ps * lead:+.3f} mas in dpsi out "
                   f"of phase, {ec * -lead:+.3f} in deps")
-
+        (a1, b), (a1_held, b_held), (_, b_disp) = obliquity_drift(shift)
+        print(f"  the same with T sin Om, T cos Om: A1 {a1:.2f} mas/cy, B {b:+.3f} (A1/Om' {a1 / OM_RATE:+.3f}); "
+              f"pole held at eps0: A1 {a1_held:.2f}, B {b_held:+.3f}, so the drift of eps_A puts in {b - b_held:+.3f} "
+              f"(dA1/Om' {(a1 - a1_held) / OM_RATE:+.3f}); dpsi sin eps_A integrated, then / sin eps_A: B "
+              f"{b_disp:+.3f}, the drift's {b_disp - b_held:+.3f}; closed forms: torque (cos 2eps) share "
+              f"{torque_share:+.3f}, 1/sin eps share {sin_share:+.3f}")
 
 if __name__ == "__main__":
     main()
