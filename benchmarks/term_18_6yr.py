@@ -149,5 +149,6 @@ def main():
               f"{b_disp:+.3f}, the drift's {b_disp - b_held:+.3f}; closed forms: torque (cos 2eps) share "
               f"{torque_share:+.3f}, 1/sin eps share {sin_share:+.3f}")
 
+
 if __name__ == "__main__":
     main()
