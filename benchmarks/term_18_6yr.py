@@ -25,7 +25,7 @@ about 1 min).  Prints, in mas:
 """
 import numpy as np
 
-from precession_budget import integrated, laplace_tilt, lunar_orbit_pole, lunisolar, mean_pole, turned
+from precession_budget import EPS0, integrated, laplace_tilt, lunar_orbit_pole, lunisolar, mean_pole, turned
 
 from spinorbit import earth_vs_iau, nonrigid
 from spinorbit.analysis.spans import resolvable
@@ -38,28 +38,34 @@ KSV_1996_OUT_MAS = (3.608, 1.543)      # KSV_1996_3, term (0 0 0 0 1): out-of-ph
 IAU_2000A_OUT_MAS = (3.3386, 1.5377)   # IERS Conventions 2010 Table 5.3a, the same term
 OM_RATE = -6962890.5431 * ARCSEC       # rad/cy, Om's rate (IERS Conventions 2010, eq. 5.43)
 EPS_A_RATE = -46.836769 * ARCSEC       # rad/cy, the IAU 2006 mean obliquity's rate at J2000 (P03)
-EPS0 = 84381.406 * ARCSEC
 
 
 def fit_om(t, values, phases, degree, poisson):
-    """(sin Om, cos Om) coefficients, mas, of a fit with a polynomial of ``degree`` and the arguments."""
+    """(sin Om, cos Om) coefficients, mas, of a fit with a polynomial of ``degree`` and the arguments, and with
+    ``poisson`` also T sin Om, T cos Om: then a third, the T sin Om coefficient (mas/cy; else None)."""
     big_t, om = t / JULIAN_CENTURY_D, phases[0]
     cols = [big_t**k for k in range(degree + 1)] + list(np.sin(phases)) + list(np.cos(phases))
     cols += [big_t * np.sin(om), big_t * np.cos(om)] if poisson else []
     coef = np.linalg.lstsq(np.column_stack(cols), values, rcond=None)[0]
     n = phases.shape[0]
-    return coef[degree + 1] / MAS, coef[degree + 1 + n] / MAS
+    return coef[degree + 1] / MAS, coef[degree + 1 + n] / MAS, coef[-2] / MAS if poisson else None
+
+
+def first_order_inputs(along):
+    """(t (d), the Moon and the Sun (n, 3) km geocentric GCRS, their GMs, the luni-solar phases) over 1950-2050,
+    from DE421, the Moon's orbit turned so that its mean pole moves by ``along`` rad along the equinox of the
+    ecliptic of date."""
+    t = np.arange(-0.5 * JULIAN_CENTURY_D, 0.5 * JULIAN_CENTURY_D, 0.5)
+    (moon, sun), gm, _ = lunisolar(t)
+    return t, [turned(t, moon, along=along), sun], gm, arguments.phases(t, nonrigid.LUNISOLAR_ARGUMENTS)[0]
 
 
 def first_order_term(along):
     """18.6-yr (dpsi sin, dpsi cos, deps cos, deps sin), mas, of the first-order torque (DE421 Moon and Sun on
-    the IAU 2006 mean pole, 1950-2050, integrated) with the Moon's orbit turned so that its mean pole moves by
-    ``along`` rad along the equinox of the ecliptic of date."""
-    t = np.arange(-0.5 * JULIAN_CENTURY_D, 0.5 * JULIAN_CENTURY_D, 0.5)
-    (moon, sun), gm, _ = lunisolar(t)
-    rates = earth_vs_iau.torque_rates(t, mean_pole(t), [turned(t, moon, along=along), sun], gm)
-    phases = arguments.phases(t, nonrigid.LUNISOLAR_ARGUMENTS)[0]
-    (ps, pc), (es, ec) = (fit_om(t, integrated(t, r) * ARCSEC, phases, 3, False) for r in rates)
+    the IAU 2006 mean pole, 1950-2050, integrated), the Moon's orbit turned by ``along`` (first_order_inputs)."""
+    t, bodies, gm, phases = first_order_inputs(along)
+    rates = earth_vs_iau.torque_rates(t, mean_pole(t), bodies, gm)
+    (ps, pc, _), (es, ec, _) = (fit_om(t, integrated(t, r) * ARCSEC, phases, 3, False) for r in rates)
     return ps, pc, ec, es
 
 
@@ -68,17 +74,12 @@ def obliquity_drift(along):
     and T sin Om, T cos Om, of the first-order torque (as first_order_term, the Moon's orbit turned by ``along``)
     integrated on the IAU 2006 mean pole, on that pole held at eps0 (its obliquity's drift taken out), and on the
     mean pole with the displacement dpsi sin eps_A integrated and then divided by sin eps_A."""
-    t = np.arange(-0.5 * JULIAN_CENTURY_D, 0.5 * JULIAN_CENTURY_D, 0.5)
-    (moon, sun), gm, _ = lunisolar(t)
-    bodies, (_, _, psi_bar, eps_a) = [turned(t, moon, along=along), sun], erfa_pole.mean_angles(t)
-    phases = arguments.phases(t, nonrigid.LUNISOLAR_ARGUMENTS)[0]
-    big_t, om = t / JULIAN_CENTURY_D, phases[0]
-    design = np.column_stack([big_t**k for k in range(4)] + list(np.sin(phases)) + list(np.cos(phases))
-                             + [big_t * np.sin(om), big_t * np.cos(om)])
+    t, bodies, gm, phases = first_order_inputs(along)
+    _, _, psi_bar, eps_a = erfa_pole.mean_angles(t)
 
     def fit(rate, weight=1.0):
-        coef = np.linalg.lstsq(design, integrated(t, rate * weight) / weight * ARCSEC, rcond=None)[0]
-        return coef[-2] / MAS, coef[4 + phases.shape[0]] / MAS
+        _, b, a1 = fit_om(t, integrated(t, rate * weight) / weight * ARCSEC, phases, 3, True)
+        return a1, b
 
     held = erfa_pole.pole_from_angles(t, psi_bar, np.full_like(t, EPS0))
     on_mean, on_held = (earth_vs_iau.torque_rates(t, z, bodies, gm)[0] for z in (mean_pole(t), held))
@@ -111,7 +112,7 @@ def main():
     for degree, poisson in ((2, False), (3, False), (2, True)):
         parts = {}
         for name, (dpsi, deps) in series.items():
-            (ps, pc), (es, ec) = fit_om(t, dpsi, phases, degree, poisson), fit_om(t, deps, phases, degree, poisson)
+            (ps, pc, _), (es, ec, _) = (fit_om(t, v, phases, degree, poisson) for v in (dpsi, deps))
             parts[name] = (ps, pc, ec, es)
             label = f"degree {degree}" + (" + T sin, T cos" if poisson else "")
             print(f"| {label} | {name} | {ps:.3f} | {pc:.3f} | {ec:.3f} | {es:.3f} |")
