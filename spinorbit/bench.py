@@ -1,7 +1,7 @@
 """Work-precision of the integrators on one scene: ``spinorbit bench SCENE.toml``.
 
 A scene module that can be benchmarked defines ``build(scenario) -> (system,
-t_out, error)``: the :class:`~spinorbit.dynamics.SpinSystem`, the output times
+t_out, error)``: the System (spinorbit.models), the output times
 (TDB days) and ``error(solution)``, the maximum attitude error in rad against
 the scene's closed form or a converged run
 (:func:`spinorbit.analysis.ladder.converged_error`).
@@ -35,7 +35,8 @@ def time_scale(system):
     scene gives one (e.g. a gyroscopic model, whose state holds no spin), else 2 pi / |omega0|."""
     if "time_scale" in system.meta:
         return float(system.meta["time_scale"])
-    rate = float(np.linalg.norm(system.y0[4:7]))
+    omega = [part.index for part in system.layout.slices if part.name.endswith(".omega")]
+    rate = float(np.linalg.norm(system.y0[omega[0]])) if omega else 0.0
     return 2 * math.pi / rate if rate > 0 else 1.0
 
 

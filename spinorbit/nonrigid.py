@@ -43,7 +43,7 @@ import numpy as np
 
 from .analysis.spans import resolvable
 from .constants import ARCSEC, JULIAN_CENTURY_D
-from .earth import ERA_RATE_RAD_D, H_D
+from .bodies.earth import ERA_RATE_RAD_D, H_D
 
 
 @dataclass(frozen=True)

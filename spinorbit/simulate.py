@@ -1,15 +1,16 @@
-"""Layer 3: system + output times + integrator -> Solution, with its own error estimate.
+"""Layer 3: system + output times + integrator -> Solution, with its own error estimate: the one integrator door.
 
-Every run reports a point on the error-against-run-time plane: the wall time
-of the solve and an estimate of its integration error in the attitude (arcsec)
-and the angular velocity (relative), from a second run of the same method:
+Every run reports a point on the error-against-run-time plane: the wall time of the solve and an estimate of
+its integration error, from a second run of the same method:
 
-* fixed-step methods of order p: a run at twice the step, and Richardson's
-  estimate |y_2h - y_h| / (2^p - 1) of the error of y_h (half the cost of the
-  run itself; it assumes the step is in the method's asymptotic regime, which
-  the benchmarks' work-precision ladders show for every shipped scene);
-* adaptive methods (and fixed-step runs unstable at twice the step): a run with
-  tolerances divided by 100 (or half the step), and |y - y_ref|.
+* fixed-step methods of order p: a run at twice the step, and Richardson's estimate |y_2h - y_h| / (2^p - 1)
+  of the error of y_h (half the cost of the run itself; it assumes the step is in the method's asymptotic
+  regime, which the benchmarks' work-precision ladders show for every shipped scene);
+* adaptive methods (and fixed-step runs unstable at twice the step): a run with tolerances divided by 100 (or
+  half the step), and |y - y_ref|.
+
+The estimate is read off the System's layout: the attitudes (every quaternion, and a gyroscopic spin's
+direction) as an angle in arcsec, the angular velocities relative to their size, the positions in km.
 """
 from concurrent.futures import ThreadPoolExecutor
 
@@ -18,7 +19,7 @@ import numpy as np
 from .constants import ARCSEC
 from .errors import IntegrationError
 from .integrators import get_method
-from .rotations import quat_angle
+from .rotations import quat_angle, vector_angle
 
 
 def refined_options(method_cls, options):
@@ -55,26 +56,57 @@ def error_estimate(method_cls, options, system, t_out):
             "difference from a run at half the step or tolerances / 100")
 
 
-def simulate(system, t_out, method="dop853", options=None, estimate_error=True):
-    """Integrate; return (solution, {wall_s, integration_error_attitude_arcsec, ...}).
+def differences(layout, states, other, scale):
+    """{integration_error_*: value} of two runs' states by kind of slice: the attitudes (arcsec; quaternions and
+    gyroscopic spins' directions), the angular velocities in body axes (``*.omega``, relative to their size), the
+    positions (``*.r``, km), and every other slice relative to its size (``integration_error_<slice>_rel``)."""
+    attitude, omega, position, out = [0.0], [], [], {}
+    for part in layout.slices:
+        a, b = states[:, part.index], other[:, part.index]
+        relative = np.abs(a - b).max() / max(np.abs(b).max(), 1e-300) / scale
+        if part.kind == "quaternion":
+            attitude.append(quat_angle(a, b).max())
+        elif part.name.endswith(".spin"):
+            attitude.append(vector_angle(a, b).max())
+        elif part.name.endswith(".r"):
+            position.append(np.linalg.norm(a - b, axis=1).max())
+        elif part.name.endswith(".omega"):
+            omega.append(relative)
+        else:
+            out[f"integration_error_{part.name.replace('.', '_')}_rel"] = float(relative)
+    out["integration_error_attitude_arcsec"] = float(max(attitude) / scale / ARCSEC)
+    if omega:
+        out["integration_error_omega_rel"] = float(max(omega))
+    if position:
+        out["integration_error_position_km"] = float(max(position) / scale)
+    return out
 
-    A compiled method's error-estimate run goes on in a second thread meanwhile
-    (the kernels release the GIL), so on two cores it adds little to the wall time;
-    ``wall_s`` is the main run's own.
+
+def simulate(system, t_out, method="dop853", options=None, estimate_error=True, checkpoint=None, label=None):
+    """Integrate; return (solution, {method, wall_s, rhs_evaluations, steps, integration_error_*, ...}).
+
+    ``checkpoint`` (spinorbit.checkpoint.Checkpoint or None) is offered the outputs as the run goes, by a method
+    that can resume (rk8 landing on its outputs; the others run without one); ``label`` names the progress bar
+    (default: the method).  A compiled method's
+    error-estimate run goes on in a second thread meanwhile (the kernels release the GIL), so on two cores it
+    adds little to the wall time; ``wall_s`` is the main run's own.
     """
     method_cls = get_method(method)
     options = options or {}
+    integrator = method_cls(**options)
+    integrator.checkpoint = checkpoint if method_cls.resumable else None
+    integrator.label = label or method_cls.name
     concurrent = estimate_error and method_cls.kind != "adaptive"
     with ThreadPoolExecutor(max_workers=1) as pool:
         estimate = pool.submit(error_estimate, method_cls, options, system, t_out) if concurrent else None
-        solution = method_cls(**options).solve(system, t_out)
-    point = {"method": method_cls.name, "wall_s": solution.wall_s,
-             "rhs_evaluations": solution.nfev, "steps": solution.nsteps}
+        solution = integrator.solve(system, t_out)
+    point = {"method": method_cls.name, "wall_s": solution.wall_s, "rhs_evaluations": solution.nfev,
+             "steps": solution.nsteps}
+    if "step" in integrator.settings:
+        point["step_d"] = float(integrator.settings["step"])
     if estimate_error:
         other, covered, scale, how = (estimate.result() if concurrent
                                       else error_estimate(method_cls, options, system, t_out))
-        attitude = quat_angle(solution.quaternion[covered], other.quaternion).max() / scale / ARCSEC
-        omega = np.abs(solution.omega[covered] - other.omega).max() / np.abs(other.omega).max() / scale
-        point.update(integration_error_attitude_arcsec=float(attitude), integration_error_omega_rel=float(omega),
+        point.update(differences(system.layout, solution.y[covered], other.y, scale),
                      integration_error_method=how)
     return solution, point

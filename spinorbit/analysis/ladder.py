@@ -4,9 +4,11 @@ Layer 2.  The work-precision tables of ``spinorbit bench``, the stress scenes'
 per-integrator comparisons and the Moon's error-vs-runtime figure are all this
 ladder with their own settings and error functions.
 """
+import numpy as np
+
 from ..errors import IntegrationError
 from ..integrators import get_method, integrate
-from ..rotations import quat_angle
+from ..rotations import quat_angle, vector_angle
 
 
 def work_precision(system, t_out, settings, error, until=None):
@@ -43,9 +45,18 @@ def converged_error(system, t_out, step, method="rk8"):
     """
     a = integrate(system, t_out, method, step=step)
     b = integrate(system, t_out, method, step=step / 2)
-    q_ref = b.quaternion
-    agreement = float(quat_angle(a.quaternion, q_ref).max())
-    return (lambda solution: float(quat_angle(solution.quaternion, q_ref).max())), agreement
+    agreement = float(attitude_difference(a, b).max())
+    return (lambda solution: float(attitude_difference(solution, b).max())), agreement
+
+
+def attitude_difference(solution, reference):
+    """The angle (rad, per output) between two solutions' attitudes: the first turning body's quaternion, or the
+    direction of its spin angular momentum for a gyroscopic body."""
+    layout = solution.layout
+    if layout.quaternions:
+        return quat_angle(solution.quaternion, reference.quaternion)
+    spin = next(s.name for s in layout.slices if s.name.endswith(".spin"))
+    return np.asarray(vector_angle(solution.part(spin), reference.part(spin)))
 
 
 def settings(methods, **options):

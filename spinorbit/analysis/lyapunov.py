@@ -10,9 +10,8 @@ a chaotic one's tends to a positive limit.
 Any flow fits: ``advance(k, pairs) -> pairs`` carries n (reference, neighbour)
 pairs, shape (n, 2, dim), over interval k.  The flows below cover a compiled
 rhs on a vector of independent copies (all pairs in one integration), scipy's
-DOP853 on the same, and a SpinSystem integrated by any registered method.
+DOP853 on the same, and a System integrated by any registered method.
 """
-import dataclasses
 import math
 
 import numpy as np
@@ -66,10 +65,10 @@ def scipy_flow(rhs, params, t0, interval, rtol=1e-12, atol=1e-12):
 
 
 def system_flow(system, interval, method="rk8", **options):
-    """advance() for a SpinSystem: each state integrated on its own from system.t0 + k interval."""
+    """advance() for a System: each state integrated on its own from system.t0 + k interval."""
     def advance(k, pairs):
         t = system.t0 + k * interval
-        return np.array([[integrate(dataclasses.replace(system, t0=t, y0=y), [t, t + interval], method,
+        return np.array([[integrate(system.with_start(t, y), [t, t + interval], method,
                                     **options).y[-1] for y in pair] for pair in pairs])
 
     return advance

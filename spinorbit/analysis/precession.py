@@ -84,3 +84,20 @@ def node_rate(t_tdb_d, poles, ecliptic_pole, periodic=None):
     x /= np.linalg.norm(x)
     node = np.unwrap(np.arctan2(poles @ x, -(poles @ np.cross(ecliptic_pole, x))))
     return -fit_harmonics(t_tdb_d, node, periodic or {}, degree=1).poly[1]
+
+
+def free_nutation_amplitude(t, omega_body, moments):
+    """Amplitude (rad) of the free (Euler) nutation, the angle between figure axis and L it adds.
+
+    Least-squares fit of m = (w_x + i w_y)/w_z to a + b exp(i sigma_E t) with the
+    Euler (Chandler, rigid) frequency sigma_E = w_z (C - A)/A in body axes
+    (ch. 15; ~305 d for the Earth).  tan(angle) = (A/C)|m| for an axisymmetric top.
+    Sample densely enough to resolve the forced nearly-diurnal terms (<= 0.25 d).
+    """
+    a, c = 0.5 * (moments[0] + moments[1]), moments[2]
+    w_z = float(np.mean(omega_body[:, 2]))
+    m = (omega_body[:, 0] + 1j * omega_body[:, 1]) / omega_body[:, 2]
+    sigma = w_z * (c - a) / a
+    design = np.column_stack([np.ones_like(t), np.exp(1j * sigma * (t - t[0]))])
+    coef = np.linalg.lstsq(design, m, rcond=None)[0]
+    return float(a / c * abs(coef[1]))

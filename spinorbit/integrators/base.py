@@ -8,10 +8,11 @@ Contract for subclass authors (numbered so reviews can point at it):
    ``options`` (dict of accepted option names -> default values).
 2. ``__init__(**options)`` accepts only the names in ``options``; anything else
    raises InputError naming the option and the accepted names.
-3. ``solve(system, t_out)`` integrates a :class:`~spinorbit.dynamics.SpinSystem`
-   from ``system.t0`` and returns a :class:`Solution` holding the state at every
-   time in ``t_out`` (running away from ``system.t0`` in one direction: ascending
-   for a forward run, descending for a backward one), with the quaternion
+3. ``solve(system, t_out)`` integrates a System (spinorbit.models: ``rhs``,
+   ``params``, ``t0``, ``y0`` and the state's ``layout``) from ``system.t0`` and
+   returns a :class:`Solution` holding the state at every time in ``t_out``
+   (running away from ``system.t0`` in one direction: ascending for a forward
+   run, descending for a backward one), every quaternion slice of the layout
    renormalised.
 4. ``supports(system)`` says whether the method can run this system (e.g. a
    splitting method needs ``system.torque``); ``solve`` raises InputError
@@ -21,6 +22,9 @@ Contract for subclass authors (numbered so reviews can point at it):
 6. ``nfev`` counts right-hand-side (or torque) evaluations, ``nsteps`` the steps (None where the
    method does not report them: scipy's solve_ivp); ``wall_s`` is the
    wall time of the solve excluding one-off compilation (warm up first).
+7. Hooks, set on the instance before ``solve``: ``label`` names its progress bar (None: no bar);
+   ``checkpoint`` (spinorbit.checkpoint.Checkpoint or None) is offered the outputs so far between
+   compiled chunks and resumes from them, by the methods whose ``resumable`` is True.
 """
 from dataclasses import dataclass, field
 
@@ -31,7 +35,7 @@ from ..errors import InputError, IntegrationError
 
 @dataclass
 class Solution:
-    """States at output times: t (n,) in the system's time unit, y (n, dim)."""
+    """States at output times: t (n,) in the system's time unit, y (n, dim) laid out by ``layout``."""
 
     t: np.ndarray
     y: np.ndarray
@@ -40,14 +44,22 @@ class Solution:
     nsteps: int | None = 0      # None where the method does not report it (scipy's solve_ivp)
     wall_s: float = 0.0
     options: dict = field(default_factory=dict)
+    layout: object = None
+
+    def part(self, name):
+        """The states' slice ``name`` (e.g. "moon.q"), (n, size)."""
+        return self.y[:, self.layout[name]]
 
     @property
     def quaternion(self):
-        return self.y[:, :4]
+        """The first body's attitude quaternions (n, 4)."""
+        return self.y[:, self.layout.quaternions[0]]
 
     @property
     def omega(self):
-        return self.y[:, 4:7]
+        """The first body's angular velocities, body axes (n, 3)."""
+        body = next(s.name.split(".")[0] for s in self.layout.slices if s.kind == "quaternion")
+        return self.part(f"{body}.omega")
 
 
 class Integrator:
@@ -55,6 +67,8 @@ class Integrator:
     order = None
     kind = "adaptive"
     options: dict = {}
+    resumable = False
+    checkpoint = None
 
     def __init__(self, **options):
         unknown = sorted(set(options) - set(self.options))
@@ -101,7 +115,6 @@ def check_finite(y, t, method, partial=None):
         raise err
 
 
-def normalise_quaternions(y):
-    y = np.array(y, dtype=float)
-    y[:, :4] /= np.linalg.norm(y[:, :4], axis=1, keepdims=True)
-    return y
+def normalised(system, y):
+    """The states (n, dim) with every quaternion of the system's layout made unit."""
+    return system.layout.normalise(y) if len(y) else np.array(y, dtype=float)

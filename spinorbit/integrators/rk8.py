@@ -11,6 +11,7 @@ more rhs calls in each step that holds an output, Hairer, Norsett & Wanner
 II.6); otherwise the step is shortened slightly to land on every output.
 A span that ends before its start is integrated backward with the step negated.
 """
+import sys
 import time
 
 import numpy as np
@@ -20,7 +21,7 @@ from ..linker import link, template
 from ..progress import progress
 from ..rotations import put
 from . import dop853_tableau as dop853
-from .base import Integrator, Solution, normalise_quaternions, output_chunks
+from .base import Integrator, Solution, normalised, output_chunks
 
 
 @template("rhs")
@@ -143,26 +144,39 @@ def _landing_shortens(t_out, t0, h):
 
 
 def fixed_step(rhs, params, t0, y0, t_out, step, max_steps=10**9):
-    """States (len(t_out), dim) of y' = rhs(t, y, params) from (t0, y0), any state layout.
+    """States (len(t_out), dim) of y' = rhs(t, y, params) from (t0, y0), any state (no quaternion renormalised):
+    the RK8 with steps <= ``step`` landing on every output; IntegrationError if the state becomes non-finite or
+    max_steps runs out."""
+    from ..models.layout import Layout
 
-    The compiled RK8 loop with steps <= ``step`` landing on every output time;
-    IntegrationError if the state becomes non-finite or max_steps runs out.
-    """
-    loop = link(rk_fixed, rk_step=link(rk_step, rhs=rhs))
-    y, n_done, steps, t_fail = loop(params, float(t0), np.ascontiguousarray(y0, dtype=float),
-                                    np.ascontiguousarray(t_out, dtype=float),
-                                    float(step), RK8.A, RK8.B, RK8.C, max_steps)
-    if n_done < len(t_out):
-        raise IntegrationError("rk8: state became non-finite or exceeded max_steps", t_fail, y0,
-                               "Reduce the step.")
-    return y
+    y0 = np.ascontiguousarray(y0, dtype=float)
+    ode = _Bare(rhs, params, float(t0), y0, Layout([("y", y0.size, "vector", "")]))
+    integrator = RK8(step=step, max_steps=max_steps)
+    integrator.label, integrator.lands = None, True
+    return integrator.solve(ode, t_out).y
+
+
+class _Bare:
+    """An equation with no model behind it (what :func:`fixed_step` integrates)."""
+
+    def __init__(self, rhs, params, t0, y0, layout):
+        self.rhs, self.params, self.t0, self.y0, self.layout, self.name = rhs, params, t0, y0, layout, "ode"
+        self.torque, self.meta = None, {}
 
 
 class RK8(Integrator):
-    """Fixed-step 8th-order explicit Runge-Kutta, compiled; option ``step`` (time units, days)."""
+    """Fixed-step 8th-order explicit Runge-Kutta, compiled; option ``step`` (time units, days).
+
+    The one fixed-step driver: the compiled loop runs in chunks (at most 200, ending on outputs, so that they
+    depend only on the number of outputs) with the progress bar advanced and the checkpoint offered the
+    outputs between them; a run resumed from a checkpoint continues from its last output and gives the same
+    states, bit for bit, as one that was never interrupted.
+    """
 
     name, order, kind = "rk8", 8, "fixed"
     options = {"step": 1.0, "max_steps": 10**9}
+    resumable = True
+    lands = False               # True: land on every output even where dense output would take fewer steps
     # Butcher tableau (methods as data): the 12-stage 8th-order part of DOP853,
     # and its continuous extension (three more stages, interpolation matrix D).
     A = np.ascontiguousarray(dop853.A[:12, :12])
@@ -178,64 +192,125 @@ class RK8(Integrator):
             raise InputError("step", h, "a positive step in days")
         h = h if t_out[-1] >= system.t0 else -h
         step = link(rk_step, rhs=system.rhs)
-        if self.DENSE is not None and _landing_shortens(t_out, system.t0, h):
-            run = self._dense(link(rk8_dense, rhs=system.rhs, rk_step=step), system, t_out, h)
+        if self.DENSE is not None and not self.lands and _landing_shortens(t_out, system.t0, h):
+            run = _Dense(link(rk8_dense, rhs=system.rhs, rk_step=step), self, system, t_out, h)
         else:
-            run = self._landing(link(rk_fixed, rk_step=step), system, t_out, h)
+            run = _Landing(link(rk_fixed, rk_step=step), self, system, t_out, h)
         start = time.perf_counter()
-        y, n_done, steps, t_fail, extra = run()
+        run.drive(self.label, self.checkpoint)
         wall = time.perf_counter() - start
-        solution = Solution(t_out[:n_done], normalise_quaternions(y[:n_done]), self.name,
-                            steps * len(self.B) + extra, steps, wall, dict(self.settings))
-        if n_done < t_out.size:
-            over = steps >= int(self.settings["max_steps"])
+        solution = Solution(t_out[:run.done], normalised(system, run.y_out[:run.done]), self.name,
+                            run.steps * len(self.B) + run.extra, run.steps, wall, dict(self.settings), system.layout)
+        if run.done < t_out.size:
+            over = run.steps >= int(self.settings["max_steps"])
             err = IntegrationError(f"{self.name}: {'exceeded max_steps' if over else 'state became non-finite'}",
-                                   t_fail, y[n_done - 1] if n_done else system.y0,
+                                   run.t, run.y_out[run.done - 1] if run.done else system.y0,
                                    "Raise integrator.max_steps." if over else
                                    "Reduce integrator.step, or use an adaptive method (dop853) to find the difficulty.")
             err.partial = solution
             raise err
         return solution
 
-    def _dense(self, loop, system, t_out, h):
-        """run() of the uniform-step loop, resumed every few hundredth of the run for the progress bar."""
-        max_steps = int(self.settings["max_steps"])
-        tableau = (self.A, self.B, self.C, *self.DENSE)
-        y_out = np.empty((t_out.size, system.y0.size))
-        t0 = float(system.t0)
-        loop(system.params, t0, system.y0, 0, 0, y_out, t_out[:1], h, *tableau, 0)    # compile outside the timing
-        chunk = max(1, int(abs(t_out[-1] - t0) / abs(h)) // 200)
 
-        def run():
-            i, steps, y, extra, ok, t = 0, 0, system.y0, 0, True, t0
-            with progress(self.label, t0, float(t_out[-1])) as advance_to:
-                while ok and i < t_out.size and steps < max_steps:
-                    i, steps, t, y, more, ok = loop(system.params, t0, y, steps, i, y_out, t_out, h, *tableau,
-                                                    min(steps + chunk, max_steps))
-                    extra += more
-                    advance_to(t)
-            return y_out, i, steps, t, extra
+class _Run:
+    """One run of a compiled loop, advanced chunk by chunk (:meth:`drive`), with what it has done so far."""
 
-        return run
+    def __init__(self, loop, method, system, t_out, h):
+        self.loop, self.system, self.t_out, self.h = loop, system, t_out, h
+        self.tableau = (method.A, method.B, method.C)
+        self.max_steps = int(method.settings["max_steps"])
+        self.y_out = np.empty((t_out.size, system.y0.size))
+        self.t, self.y, self.steps, self.done, self.extra, self.failed = float(system.t0), system.y0, 0, 0, 0, False
+        self.compile()
 
-    def _landing(self, loop, system, t_out, h):
-        """run() of the loop that lands on every output, resumed at outputs for the progress bar."""
-        max_steps = int(self.settings["max_steps"])
-        tableau = (self.A, self.B, self.C)
-        loop(system.params, float(system.t0), system.y0, t_out[:1], h, *tableau, 0)   # compile
+    def drive(self, label, checkpoint):
+        """Advance to the end (or a failure): progress between chunks, the checkpoint saved as it asks and when
+        the run stops on an exception."""
+        fingerprint = None
+        if checkpoint is not None:
+            fingerprint = self.fingerprint(checkpoint)
+            stored = checkpoint.load(fingerprint)
+            if stored is not None:
+                self.restore(stored)
+                print(f"resuming from {checkpoint.path} at output {self.done} of {self.t_out.size}", file=sys.stderr)
+        saved, last_save = self.done, time.monotonic()
+        with progress(label, self.t, float(self.t_out[-1])) as advance_to:
+            try:
+                while not self.failed and self.done < self.t_out.size:
+                    _uninterrupted(self.advance)
+                    advance_to(self.t)
+                    if checkpoint is not None and time.monotonic() - last_save >= checkpoint.every_s:
+                        checkpoint.save(fingerprint, self.y_out[:self.done])
+                        saved, last_save = self.done, time.monotonic()
+                if checkpoint is not None and self.done > saved:     # whole: a scene's next run may be interrupted
+                    checkpoint.save(fingerprint, self.y_out[:self.done])
+                    saved = self.done
+            except BaseException:
+                if checkpoint is not None and self.done > saved:
+                    checkpoint.save(fingerprint, self.y_out[:self.done])
+                    print(f"checkpoint: {self.done} of {self.t_out.size} outputs in {checkpoint.path} "
+                          "(continue with --resume)", file=sys.stderr)
+                raise
 
-        def run():
-            y_out = np.empty((t_out.size, system.y0.size))
-            t, y, steps, n_done = float(system.t0), system.y0, 0, 0
-            with progress(self.label, t, float(t_out[-1])) as advance_to:
-                for part in output_chunks(t_out.size):
-                    states, n, more, t_fail = loop(system.params, t, y, t_out[part], h, *tableau, max_steps - steps)
-                    y_out[part.start:part.start + n] = states[:n]
-                    steps, n_done = steps + more, n_done + n
-                    if n < part.stop - part.start:
-                        return y_out, n_done, steps, t_fail, 0
-                    t, y = float(t_out[part.stop - 1]), states[-1]
-                    advance_to(t)
-            return y_out, n_done, steps, t, 0
+    def fingerprint(self, checkpoint):
+        from ..checkpoint import run_fingerprint
 
-        return run
+        s = self.system
+        return run_fingerprint(s.rhs, s.params, s.t0, s.y0, self.t_out, abs(self.h), checkpoint)
+
+
+class _Landing(_Run):
+    """The loop that lands on every output (uniform sub-steps between outputs), resumed at outputs."""
+
+    def compile(self):
+        self.loop(self.system.params, self.t, self.y, self.t_out[:1], self.h, *self.tableau, 0)
+        self.chunks, self.next_chunk = output_chunks(self.t_out.size), 0
+
+    def advance(self):
+        part = self.chunks[self.next_chunk]
+        states, n, more, t_fail = self.loop(self.system.params, self.t, self.y, self.t_out[part], self.h,
+                                            *self.tableau, self.max_steps - self.steps)
+        self.y_out[part.start:part.start + n] = states[:n]
+        self.steps, self.done = self.steps + more, self.done + n
+        if n < part.stop - part.start:
+            self.failed, self.t = True, t_fail
+            return
+        self.t, self.y, self.next_chunk = float(self.t_out[part.stop - 1]), states[-1], self.next_chunk + 1
+
+    def restore(self, outputs):
+        """Continue after the outputs a checkpoint holds (they end a chunk: chunks depend only on their number)."""
+        k = len(outputs)
+        self.y_out[:k] = outputs
+        self.done, self.t, self.y = k, float(self.t_out[k - 1]), outputs[-1]
+        self.next_chunk = next(i for i, part in enumerate(self.chunks) if part.start == k)
+
+
+class _Dense(_Run):
+    """The uniform-step loop with dense output, resumed every two-hundredth of the run (not checkpointed)."""
+
+    def compile(self):
+        self.tableau = (*self.tableau, *RK8.DENSE)
+        self.loop(self.system.params, self.t, self.y, 0, 0, self.y_out, self.t_out[:1], self.h, *self.tableau, 0)
+        self.t0 = self.t
+        self.chunk = max(1, int(abs(self.t_out[-1] - self.t) / abs(self.h)) // 200)
+
+    def advance(self):
+        limit = min(self.steps + self.chunk, self.max_steps)
+        self.done, self.steps, self.t, self.y, more, ok = self.loop(
+            self.system.params, self.t0, self.y, self.steps, self.done, self.y_out, self.t_out, self.h, *self.tableau,
+            limit)
+        self.extra += more
+        self.failed = not ok or (self.steps >= self.max_steps and self.done < self.t_out.size)
+
+    def drive(self, label, checkpoint):
+        super().drive(label, None)          # outputs closer than the step: checkpoints need landing on them
+
+
+def _uninterrupted(advance):
+    """advance(); an interrupt (Ctrl-C, SIGTERM) that numba wrapped in a SystemError is an interrupt again."""
+    try:
+        advance()
+    except SystemError as exc:           # the handler ran in a Python callback of the compiled call
+        if isinstance(exc.__cause__, KeyboardInterrupt):
+            raise KeyboardInterrupt from None
+        raise

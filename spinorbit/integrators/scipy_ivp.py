@@ -9,7 +9,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from ..errors import IntegrationError
-from .base import Integrator, Solution, check_finite, normalise_quaternions
+from .base import Integrator, Solution, check_finite, normalised
 
 
 class ScipyIVP(Integrator):
@@ -42,8 +42,8 @@ class ScipyIVP(Integrator):
                         max_step=self.settings["max_step"])
         wall = time.perf_counter() - start
         y = sol.y.T
-        partial = Solution(sol.t, normalise_quaternions(y) if len(y) else y, self.name, nfev[0],
-                           None, wall, dict(self.settings))     # solve_ivp does not report its steps
+        partial = Solution(sol.t, normalised(system, y), self.name, nfev[0], None, wall, dict(self.settings),
+                           system.layout)               # solve_ivp does not report its steps
         if sol.status != 0:
             t_fail, y_fail, nan = last_finite
             advice = ("The right-hand side became non-finite just after this time: check the torque model "

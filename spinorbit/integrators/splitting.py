@@ -194,7 +194,7 @@ class Strang(Integrator):
     gammas = np.array([1.0])
 
     def supports(self, system):
-        return system.torque is not None and system.y0.size == 7
+        return system.torque is not None and system.layout.size == 7
 
     def solve(self, system, t_out):
         t_out = self._check_times(system, t_out)
@@ -225,7 +225,8 @@ class Strang(Integrator):
                 advance_to(t)
         t_fail = t
         wall = time.perf_counter() - start
-        solution = Solution(t_out[:n_done], y[:n_done], self.name, nfev, steps, wall, dict(self.settings))
+        solution = Solution(t_out[:n_done], y[:n_done], self.name, nfev, steps, wall, dict(self.settings),
+                            system.layout)
         if n_done < t_out.size:
             reason = "exceeded max_steps" if steps > self.settings["max_steps"] else "state became non-finite"
             err = IntegrationError(f"{self.name}: {reason}", t_fail, y[n_done - 1] if n_done else system.y0,

@@ -113,3 +113,30 @@ def _elements(r, v, mu, circular=False):
     nu = np.arctan2(np.cross(e_vec, r) @ h_hat, e_vec @ r)
     big_e = 2.0 * np.arctan(np.sqrt((1 - e) / (1 + e)) * np.tan(nu / 2))
     return a, e, incl, node, peri, big_e - e * np.sin(big_e)
+
+
+def barycentric(source, names, t_start, t_end, step_d=1.0):
+    """``names`` (bodies and barycentres, e.g. "earth_moon_barycenter") relative to the solar system's barycentre,
+    sampled every ``step_d`` days over [t_start, t_end] TDB days into a HermiteOrbits of states.
+
+    source: "de421" (the ephemeris) or "rebound" (spinorbit.orbits.nbody: an N-body run of the Sun, the planets,
+    Pluto, the Earth and the Moon from DE421's state at t_start, the barycentre from its Earth and Moon; for spans
+    or epochs no ephemeris covers).  A barycentre's GM is 0 here: it is where a pair sits, not a mass."""
+    from ..bodies.de421_header import gm_km3_d2
+    from .interpolant import HermiteOrbits, grid
+    from .kernel import open_ephemeris
+
+    if source not in ("de421", "rebound"):
+        raise InputError("source", source, "'de421' or 'rebound'")
+    if source == "rebound":
+        from .nbody import ReboundOrbits
+
+        orbits = ReboundOrbits(None, names, t_start, t_end, step_d, open_ephemeris("de421", t_start, t_start))
+        orbits.gm = np.array([0.0 if name.endswith("barycenter") else g for name, g in zip(names, orbits.gm)])
+        return orbits
+    t = grid(t_start, t_end, step_d)
+    ephemeris = open_ephemeris("de421", t[0], t[-1])
+    states = [ephemeris.relative_states(name, "solar_system_barycenter", t) for name in names]
+    gm = [0.0 if name.endswith("barycenter") else gm_km3_d2(name) for name in names]
+    return HermiteOrbits(names, gm, t[0], step_d, np.array([s[0] for s in states]),
+                         np.array([s[1] for s in states]), source="de421")

@@ -1,4 +1,5 @@
-"""JPL DE421 lunar orientation (edge module); the lunar constants are spinorbit.bodies.moon's.
+"""JPL DE421 lunar orientation as a reference (edge module); the series are read by spinorbit.bodies.de421_orientation,
+the lunar constants are spinorbit.bodies.moon's, DE421's initial states spinorbit.models.start's.
 
 Two independent routes to the DE421 mantle orientation (JPL 3-1-3 angles
 phi, theta, psi: ICRF -> lunar principal axes, M = Rz(psi) Rx(theta) Rz(phi)):
@@ -17,60 +18,26 @@ and surface coordinates"; Folkner et al. (2014), IPN PR 42-196 (the equations).
 Times: TDB days from J2000.0.
 """
 from functools import cache
-from pathlib import Path
 
 import numpy as np
-from numba import njit
-from numpy.polynomial import chebyshev
 
-from ..bodies.de421_header import header
-from ..bodies.moon import de421 as moon_constants
+from ..bodies import de421_orientation
 from ..constants import J2000_JD
 from ..errors import EphemerisRangeError
-from ..rotations import cross3, dot3, matrix_from_euler313, omega_body_from_euler313_rates
+from ..rotations import matrix_from_euler313, omega_body_from_euler313_rates
 from .base import Comparable
 
 FREE_LIBRATION_LONGITUDE_PERIOD_D = 1056.16     # DE421's free libration in longitude (Yang et al. 2017)
 
 
-def _de421_dir():
-    import de421
-
-    return Path(de421.__file__).parent
-
-
-@cache
-def _libration_series():
-    return np.load(_de421_dir() / "jpl-librations.npy")
-
-
 def libration_span():
     """(start, end) TDB days from J2000 covered by the de421 libration arrays."""
-    h = header()
-    return h["jalpha"] - J2000_JD, h["jomega"] - J2000_JD
+    return de421_orientation.span()
 
 
 def librations(t_tdb_d):
-    """DE421 mantle angles (n, 3) rad and their rates (n, 3) rad/day at TDB days ``t``.
-
-    psi is continuous (not reduced modulo 2 pi), as in the ephemeris.
-    """
-    t = np.atleast_1d(np.asarray(t_tdb_d, dtype=float))
-    series = _libration_series()
-    start, end = libration_span()
-    if t.min() < start or t.max() > end:
-        raise EphemerisRangeError("de421 librations", f"{t.min():.6g} to {t.max():.6g}", (start, end))
-    length = (end - start) / series.shape[0]                       # 8 days
-    index = np.minimum(((t - start) // length).astype(int), series.shape[0] - 1)
-    x = 2.0 * (t - start - index * length) / length - 1.0
-    coeffs = series[index]                                         # (n, 3, 10)
-    angles = np.empty((t.size, 3))
-    rates = np.empty((t.size, 3))
-    for k in range(3):
-        c = coeffs[:, k, :].T                                      # (10, n): one series per time
-        angles[:, k] = chebyshev.chebval(x, c, tensor=False)
-        rates[:, k] = chebyshev.chebval(x, chebyshev.chebder(c), tensor=False) * 2.0 / length
-    return angles, rates
+    """DE421 mantle angles (n, 3) rad and their rates (n, 3) rad/day at TDB days ``t`` (psi continuous)."""
+    return de421_orientation.angles_and_rates(t_tdb_d)
 
 
 def orientation(t_tdb_d):
@@ -152,64 +119,10 @@ def pck_matrix(t_tdb_d):
     return np.moveaxis(_pck_frame().rotation_at(times), -1, 0).reshape(t.size, 3, 3)
 
 
-def initial_state(t_tdb_d, core=False):
-    """DE421's Moon at ``t_tdb_d``: [q (body -> ICRF), w_m (body axes, rad/d)] and, with ``core``, the core's w_c."""
-    from ..rotations import quat_from_euler313
-
-    y0 = np.concatenate([quat_from_euler313(*librations([t_tdb_d])[0][0]), orientation([t_tdb_d])[1][0]])
-    return np.concatenate([y0, core_angular_velocity(t_tdb_d)]) if core else y0
-
-
-def core_angular_velocity(t_tdb_d, step_d=0.25):
-    """DE421's fluid-core angular velocity at TDB day ``t``, mantle axes, rad/day.
-
-    The header gives it at JDEPOC only (OMGCX/Y/Z).  Carried from JDEPOC to t by the
-    core's equation (Folkner et al. 2014) driven by DE421's own mantle, in inertial
-    axes: d(I_c w_c)/dt = -k_v (w_c - w_m) - (C_c - A_c) (z.w_c) (z x w_c), with
-    I_c = A_c 1 + (C_c - A_c) z z^T about the mantle pole z, A_c = C_c (1 - COBLAT);
-    k_v/C_c = KVC/IFAC (128 yr), free core precession (C_c - A_c)/C_c w ~ 200 yr.
-    Classical RK4 on a ``step_d`` grid of DE421 samples (steps of 2 step_d).
-    """
-    c = moon_constants()
-    t0 = c.epoch_tdb_d
-    m0, _ = orientation([t0])
-    wc = m0[0].T @ c.omega_core0_rad_d                           # ICRF
-    if t_tdb_d != t0:
-        n = 2 * max(1, int(np.ceil(abs(t_tdb_d - t0) / (2 * step_d)))) + 1
-        s = np.linspace(t0, t_tdb_d, n)
-        mats, omega = orientation(s)
-        w_inertial = np.einsum("nji,nj->ni", mats, omega)       # M^T w
-        wc = _carry_core(wc, s[1] - s[0], np.ascontiguousarray(mats[:, 2, :]), w_inertial,
-                         c.kv_over_c_per_d, c.core_c_over_c, c.core_flattening)
-    m_t, _ = orientation([t_tdb_d])
-    return m_t[0] @ wc
-
-
-@njit(cache=True)
-def _core_rate(L, z, wm, kv, c_c, a_c):
-    """d(I_c w_c)/dt and w_c for the core's angular momentum L about mantle pole z (inertial)."""
-    w = L / a_c - (c_c - a_c) / (a_c * c_c) * dot3(z, L) * z
-    return -kv * (w - wm) - (c_c - a_c) * dot3(z, w) * cross3(z, w), w
-
-
-@njit(cache=True)
-def _carry_core(wc, h, pole, w_mantle, kv, c_c, f_c):
-    """RK4 of the core's angular momentum L = I_c w_c (units of C) over samples h apart."""
-    a_c = c_c * (1.0 - f_c)
-    L = a_c * wc + (c_c - a_c) * dot3(pole[0], wc) * pole[0]
-    for k in range(0, pole.shape[0] - 2, 2):
-        k1 = _core_rate(L, pole[k], w_mantle[k], kv, c_c, a_c)[0]
-        k2 = _core_rate(L + h * k1, pole[k + 1], w_mantle[k + 1], kv, c_c, a_c)[0]
-        k3 = _core_rate(L + h * k2, pole[k + 1], w_mantle[k + 1], kv, c_c, a_c)[0]
-        k4 = _core_rate(L + 2 * h * k3, pole[k + 2], w_mantle[k + 2], kv, c_c, a_c)[0]
-        L = L + (2 * h / 6.0) * (k1 + 2 * k2 + 2 * k3 + k4)
-    return _core_rate(L, pole[-1], w_mantle[-1], kv, c_c, a_c)[1]
-
-
 def earth_pole(t_start, t_end, step_d=50.0):
     """The Earth's mean pole of date in ICRF (IAU 1976 precession, ERFA pmat76) sampled
-    every ``step_d`` days over [t_start, t_end] TDB days: (grid [t0, h], (m, 3)) for
-    spinorbit.moon.interpolate_pole.  DE421 turned the Earth with IAU 1976 precession
+    every ``step_d`` days over [t_start, t_end] TDB days: (grid [t0, h], (m, 3)), the pole table of the
+    Earth's J2 acting on the Moon (spinorbit.models.assemblies.moon).  DE421 turned the Earth with IAU 1976 precession
     (plus nutation, whose 9" is far below what the J2 torque on the Moon can feel)."""
     import erfa
 

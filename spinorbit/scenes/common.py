@@ -24,28 +24,15 @@ def rigid_body(scenario, key="body.moments"):
         raise ScenarioError(key, moments.tolist(), f"a rigid body ({exc})") from None
 
 
-def simulate_scenario(scenario, system, t_out):
-    """simulate() with the scenario's [integrator] table."""
+def simulate_scenario(scenario, system, t_out, part=None):
+    """simulate() with the scenario's [integrator] table: the scene's main run checkpointed (when the command
+    line gives a checkpoint), a further run ``part`` in a checkpoint of its own."""
+    checkpoint = scenario.checkpoint
+    if checkpoint is not None and part is not None:
+        checkpoint = checkpoint.part(part)
+    label = scenario.name if part is None else f"{scenario.name} ({part})"
     return simulate(system, t_out, scenario["integrator.method"], scenario.integrator_options(),
-                    scenario["integrator.estimate_error"])
-
-
-def fixed_step_run(scenario, rhs, params, y0, default_step, checkpoint, label):
-    """(states at the output times, the run's point) of the compiled RK8 at ``integrator.step`` (days;
-    ``default_step`` when unset) from (span.start, y0), checkpointed (spinorbit.checkpoint) and timed
-    without the kernels' compilation."""
-    import time
-
-    from ..checkpoint import fixed_step
-
-    step = float(scenario.integrator_options().get("step", default_step))
-    t0, t = scenario.t_start, scenario.output_times()
-    fixed_step(rhs, params, t0, y0, t[:2], step)                    # compile outside the timing
-    started = time.perf_counter()
-    states = fixed_step(rhs, params, t0, y0, t, step, checkpoint, label)
-    wall = time.perf_counter() - started
-    steps = int(np.ceil(abs(t[-1] - t0) / step - 1e-9))
-    return states, {"method": "rk8", "step_d": step, "steps": steps, "rhs_evaluations": 12 * steps, "wall_s": wall}
+                    scenario["integrator.estimate_error"], checkpoint, label)
 
 
 def result(scenario, table, summary, figures, solution):

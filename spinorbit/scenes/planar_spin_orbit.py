@@ -1,57 +1,21 @@
-"""Planar spin-orbit coupling on a Kepler ellipse (Euler ch. 16 P93-P94 with an eccentric orbit).
-
-The body's axis C stays normal to the orbit plane; theta is the angle of its
-axis A from the periapsis direction and f the true anomaly of the attracting
-mass, so (Euler ch. 16 P91, §825 with s = r(t))
-
-    theta'' = -(3/2) n^2 ((B - A)/C) (a/r)^3 sin 2(theta - f).
-
-Two realisations share the initial conditions: ``rigid_body_system`` is the
-full 3-D rigid body (dynamics.make_rigid_body_rhs, quaternion + omega) on a
-``KeplerOrbit``; ``planar_rhs`` is the one-angle model above, compiled, for
-any number of independent copies at once (state [theta_0, theta'_0, theta_1,
-...]), used where many trajectories share one orbit (Lyapunov maps: ``planar_lyapunov``, with
-analysis.lyapunov).
-Times in days, angles in rad; the orbit has periapsis on the inertial x axis
-and mean anomaly 0 at ``t0``.
+"""Planar spin-orbit coupling on a Kepler ellipse (Euler ch. 16 P93-P94 with an eccentric orbit), for the stress
+scenes: two realisations share the initial conditions, the full 3-D rigid body (``rigid_body_system``,
+spinorbit.models.assemblies.idealised, quaternion + omega) on a ``KeplerOrbit``, and the one-angle model
+(spinorbit.models.planar), used where many trajectories share one orbit (Lyapunov maps: ``planar_lyapunov``, with
+analysis.lyapunov).  Times in days, angles in rad; the orbit has periapsis on the inertial x axis and mean anomaly
+0 at ``t0``.
 """
 import math
 
 import numpy as np
-from numba import njit
 
 from ..analysis.lyapunov import benettin, compiled_flow, displaced, scipy_flow, system_flow
-from ..dynamics import point_mass_system
+from ..models.assemblies.idealised import under_point_masses
 from ..integrators import integrate
 from ..integrators.rk8 import fixed_step
-from ..orbits.analytic import KeplerOrbit, eccentric_anomaly
+from ..models.planar import anomaly_and_distance, planar_rhs
+from ..orbits.analytic import KeplerOrbit
 from ..rotations import matrix_from_quat
-
-
-@njit(cache=True)
-def anomaly_and_distance(mean_anomaly, e):
-    """(true anomaly f (rad), r/a) for mean anomaly M on an ellipse of eccentricity e."""
-    big_e = eccentric_anomaly(mean_anomaly, e)
-    f = 2.0 * math.atan2(math.sqrt(1.0 + e) * math.sin(0.5 * big_e), math.sqrt(1.0 - e) * math.cos(0.5 * big_e))
-    return f, 1.0 - e * math.cos(big_e)
-
-
-@njit(cache=True)
-def planar_rhs(t, y, p):
-    """d/dt [theta_i, theta'_i] for every copy i; p = (n rad/d, e, t0 d, (3/2)(B - A)/C)."""
-    n, e, t0, k = p[0], p[1], p[2], p[3]
-    f, r = anomaly_and_distance(n * (t - t0), e)
-    g = k * n * n / (r * r * r)
-    dy = np.empty_like(y)
-    for i in range(0, y.shape[0], 2):
-        dy[i] = y[i + 1]
-        dy[i + 1] = -g * math.sin(2.0 * (y[i] - f))
-    return dy
-
-
-def planar_params(n, e, t0, gamma):
-    """The ``p`` array of planar_rhs for mean motion n (rad/d), eccentricity e, periapsis time t0, (B - A)/C."""
-    return np.array([n, e, t0, 1.5 * gamma])
 
 
 def kepler_orbit(gm, a, e, t0):
@@ -63,7 +27,7 @@ def kepler_orbit(gm, a, e, t0):
 def rigid_body_system(moments, orbit, t0, theta0, theta_dot0):
     """Full 3-D rigid body turning about C (= inertial z) at theta_dot0 with A at angle theta0 from periapsis."""
     q0 = np.array([math.cos(theta0 / 2), 0.0, 0.0, math.sin(theta0 / 2)])
-    return point_mass_system(moments, orbit, q0, [0.0, 0.0, theta_dot0], t0, "planar spin-orbit")
+    return under_point_masses(moments, orbit, q0, [0.0, 0.0, theta_dot0], t0, "planar spin-orbit")
 
 
 def theta_from_quaternions(q):

@@ -1,0 +1,48 @@
+"""The point masses' Newtonian attraction on a pair in the state (Euler ch. 16 P90, §813; the ephemerides' monopoles).
+
+For the pair's relative orbit r (the secondary from the primary): the pair's own monopole exactly,
+-(GM_p + GM_s) r / r^3, and every other mass's pull as the difference of its pulls on the two,
+GM_j [(x_j - x_s)/|x_j - x_s|^3 - (x_j - x_p)/|x_j - x_p|^3].
+"""
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from ...rotations import dot3
+from .base import Interaction
+
+
+@njit(cache=True, nogil=True)
+def pair_acceleration(x, mu, r):
+    """r'' (km/d^2) of the pair (rows n - 2: primary, n - 1: secondary of x (n, 3) km, mu (n,) km^3/d^2)."""
+    n = x.shape[0]
+    r2 = dot3(r, r)
+    acc = -(mu[n - 2] + mu[n - 1]) / (r2 * np.sqrt(r2)) * r
+    for j in range(n - 2):
+        to_s, to_p = x[j] - x[n - 1], x[j] - x[n - 2]
+        ds, dp = dot3(to_s, to_s), dot3(to_p, to_p)
+        acc += mu[j] * (to_s / (ds * np.sqrt(ds)) - to_p / (dp * np.sqrt(dp)))
+    return acc
+
+
+@dataclass(frozen=True)
+class Newton(Interaction):
+    """Every point mass of the System (the orbit source's and the pair) attracting the pair in the state."""
+
+    phase = "orbit"
+    citation = "Newton; Euler, Theoria motus ch. 16 P90 (§813)"
+
+    def bodies(self):
+        return ()
+
+    def emit(self, code):
+        x, _, mu = code.system.motion.point_masses(code)
+        code.system.motion.add_relative_acceleration(code, f"{code.bind(pair_acceleration)}({x}, {mu}, r)")
+
+    def energy(self, code):
+        motion = code.system.motion
+        if motion.externals is not None:
+            return super().energy(code)
+        product = motion.gm_primary * motion.gm_secondary
+        return f"-{code.param('gm_product', product)} / np.sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2])"

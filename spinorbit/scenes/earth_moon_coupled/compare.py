@@ -1,0 +1,101 @@
+"""A coupled Earth-Moon run against DE421 and IAU 2006/2000A: the Moon's direction and range, the lunar pole
+and longitude, the Earth's spin axis; and the tides' secular acceleration of the Moon (a run with the Earth's
+tides minus one without).
+
+Edge module (astropy units); the scene declares, this compares.
+"""
+import numpy as np
+
+from ...constants import ARCSEC, JULIAN_CENTURY_D
+from ...rotations import vector_angle
+
+MAS = ARCSEC / 1000.0
+
+
+def orbit_errors(t, r):
+    """(direction (rad), range (km)) of the integrated geocentric Moon r (n, 3) against DE421's at TDB days t."""
+    from ...orbits.kernel import open_ephemeris
+
+    de421, _ = open_ephemeris("de421", t[0], t[-1]).relative_states("moon", "earth", t)
+    return vector_angle(r, de421), np.linalg.norm(r, axis=1) - np.linalg.norm(de421, axis=1)
+
+
+def earth_axis_error(t, axis):
+    """Angle (rad) of the Earth's spin axis (n, 3) from the IAU 2006/2000A CIP (ERFA) at TDB days t."""
+    from ...references.erfa_pole import cip_vector
+
+    return vector_angle(axis, cip_vector(t))
+
+
+def metrics(direction, distance, lunar, earth_axis):
+    """The summary's comparison: max and rms of each error, in arcsec, km and mas."""
+    out = {"moon_direction_error_max_arcsec": float(direction.max() / ARCSEC),
+           "moon_direction_error_rms_arcsec": float(np.sqrt(np.mean(direction ** 2)) / ARCSEC),
+           "moon_range_error_max_km": float(np.abs(distance).max()),
+           "moon_range_error_rms_km": float(np.sqrt(np.mean(distance ** 2)))}
+    out.update(lunar)
+    out["earth_axis_vs_cip_max_mas"] = float(earth_axis.max() / MAS)
+    out["earth_axis_vs_cip_rms_mas"] = float(np.sqrt(np.mean(earth_axis ** 2)) / MAS)
+    return out
+
+
+def tidal_acceleration(t, r_on, r_off, v_off):
+    """The Moon's secular acceleration from the Earth's tides: the geocentric Moon r (n, 3) of a run with them and
+    r, v of one without, at TDB days t.
+
+    n_dot: the longitude difference dl (in the orbit plane) fitted by c0 + c1 T + n_dot T^2 / 2, T in
+    centuries from the start.  Recession: the distance difference taken at the same phase of the Moon (the
+    run without tides dl/w later, w its angular rate: dr - dl r'/w), which removes the monthly terms the
+    phase difference shifts (1 km by the end of a century, against the 4 m sought), fitted by d0 + a_dot T.
+    {n_dot "/cy^2, a_dot mm/yr, both fits' rms residuals, the span}."""
+    distance_off = np.linalg.norm(r_off, axis=1)
+    plane = np.cross(r_off, v_off)
+    rate = np.linalg.norm(plane, axis=1) / distance_off ** 2
+    plane /= np.linalg.norm(plane, axis=1)[:, None]
+    longitude = np.arctan2(np.sum(np.cross(r_off, r_on) * plane, axis=1), np.sum(r_off * r_on, axis=1))
+    radial_rate = np.sum(r_off * v_off, axis=1) / distance_off
+    distance = np.linalg.norm(r_on, axis=1) - distance_off - longitude / rate * radial_rate
+    big_t = (t - t[0]) / JULIAN_CENTURY_D
+    lon_fit = np.polynomial.polynomial.polyfit(big_t, longitude / ARCSEC, 2)
+    r_fit = np.polynomial.polynomial.polyfit(big_t, distance, 1)
+    residual = lambda fit, y: float(np.sqrt(np.mean((np.polynomial.polynomial.polyval(big_t, fit) - y) ** 2)))
+    return {"n_dot_arcsec_per_cy2": float(2.0 * lon_fit[2]), "recession_mm_per_yr": float(r_fit[1] * 1e4),
+            "longitude_fit_rms_arcsec": residual(lon_fit, longitude / ARCSEC),
+            "distance_fit_rms_km": residual(r_fit, distance), "span_yr": float(big_t[-1] * 100.0)}
+
+
+def lunar_errors(t, q):
+    """(ICRF-to-body matrices, DE421's, pole and longitude differences (rad), their metrics) of the Moon's
+    attitudes q (n, 4)."""
+    from ...analysis.librations import icrf_to_body, pole_and_longitude_difference, residual_metrics
+    from ...references.moon_de421 import Orientation
+
+    mats = icrf_to_body(q)
+    de421 = Orientation()(t)
+    pole, longitude = pole_and_longitude_difference(mats, de421["icrf_to_body"])
+    return mats, de421, pole, longitude, residual_metrics(mats, de421["icrf_to_body"])
+
+
+def table(t, r, mats, errors, earth_axis):
+    """The run's table: the geocentric Moon (km, ICRF) and its errors, the JPL angles (rad) and the lunar pole
+    and longitude errors, the Earth's axis (ICRF) and its angle from the CIP.  errors: {name: array} in rad/km."""
+    import astropy.units as u
+    from astropy.table import QTable
+
+    from ...rotations import euler313_from_matrix
+    from ...schema import tdb_days_to_time
+
+    out = QTable()
+    out["time"] = tdb_days_to_time(t)
+    for k, axis in enumerate("xyz"):
+        out[f"moon_geocentric_{axis}"] = r[:, k] * u.km
+    for name, column in zip(("phi", "theta", "psi"), euler313_from_matrix(mats).T):
+        out[name] = column * u.rad
+    out["moon_direction_error"] = errors["direction"] / ARCSEC * u.arcsec
+    out["moon_range_error"] = errors["range"] * u.km
+    out["pole_error"] = errors["pole"] / ARCSEC * u.arcsec
+    out["longitude_error"] = errors["longitude"] / ARCSEC * u.arcsec
+    for k, axis in enumerate("xyz"):
+        out[f"earth_axis_{axis}"] = earth_axis[:, k]
+    out["earth_axis_minus_cip"] = errors["earth_axis"] / MAS * u.mas
+    return out

@@ -1,0 +1,61 @@
+"""First motion of a body at rest (Euler ch. 16 P92, §820-823; ch. 15 §806) against the integrator.
+
+A body at rest with a fixed centre of forces F (direction given in body axes)
+begins to turn about the axis (cos alpha, cos beta, cos gamma) ~ (P/A, Q/B, R/C)
+with d gamma'/dt = |(P/A, Q/B, R/C)|.  The integrator's omega(t)/t at the
+first output step gives the same axis and rate to O(t).
+"""
+import math
+
+import numpy as np
+
+from ...constants import ARCSEC
+from ...models.assemblies.idealised import under_point_masses
+from ...schema import DISTANCE, GM, Key
+from ...verdict import Check, Verdict
+from .. import common
+
+SCHEMA = {
+    "body.moments": Key(unit="", size=3, help="principal moments A <= B <= C, any unit"),
+    "orbit.gm": Key(**GM, help="GM of the centre of forces"),
+    "orbit.radius": Key(**DISTANCE, help="distance s of F"),
+    "force.direction": Key(unit="", size=3, direction=True, help="direction of F in body principal axes"),
+}
+
+VERDICT = Verdict("Euler's first motion (§821-823)", (
+    Check("axis", "axis_error_arcsec", 1e-3, "″", "omega(t)/t turns by O(t): ~1e-4 of the 1e-4 d first step"),
+    Check("rate relative", "rate_rel_error", 1e-9, "", "omega(t)/t = d gamma'/dt + O(t^2) for a body at rest"),
+))
+
+
+def run(scenario):
+    from ...orbits.analytic import CircularOrbits
+    from ...theory import start_from_rest
+
+    body = common.rigid_body(scenario)
+    gm, s = scenario["orbit.gm"], scenario["orbit.radius"]
+    u = scenario["force.direction"] / np.linalg.norm(scenario["force.direction"])
+    # F fixed (rate 0) at u: a circle point (cos a, sin a cos i, sin a sin i).
+    orbit = CircularOrbits(("F",), [gm], [s], [0.0], phase=[math.acos(u[0])],
+                           inclination=[math.atan2(u[2], u[1])])
+    system = under_point_masses(body.moments, orbit, [1.0, 0, 0, 0], np.zeros(3), scenario.t_start, "body at rest")
+    t = scenario.output_times()
+    solution, point = common.simulate_scenario(scenario, system, t)
+
+    axis, cos_of, rate = start_from_rest(body.moments, u, gm, s)
+    dt1 = solution.t[1] - solution.t[0]
+    w1 = solution.omega[1]
+    axis_num = w1 / np.linalg.norm(w1)
+    comparison = {
+        "axis_cos_alpha": float(axis[0]), "axis_cos_beta": float(axis[1]), "axis_cos_gamma": float(axis[2]),
+        "cos_OF": cos_of,
+        "rate_euler_rad_per_d2": rate,
+        "rate_integrated_rad_per_d2": float(np.linalg.norm(w1) / dt1),
+        "rate_rel_error": float(abs(np.linalg.norm(w1) / dt1 / rate - 1)),
+        # atan2 of |a x b| and a.b: acos(a.b) floors at sqrt(2 eps) = 0.003" near zero
+        "axis_error_arcsec": float(math.atan2(np.linalg.norm(np.cross(axis_num, axis)), axis_num @ axis) / ARCSEC),
+        "first_step_d": float(dt1),
+    }
+    table = common.attitude_table(solution)
+    figures = {"omega": common.plot_omega(solution)}
+    return common.result(scenario, table, {"comparison": comparison, "run": point}, figures, solution)

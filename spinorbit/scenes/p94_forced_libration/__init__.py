@@ -1,0 +1,70 @@
+"""Libration forced by an uneven orbit (Euler ch. 16 P94, §833-836) against the integrated body.
+
+F moves in the body's equatorial plane with XF = delta t + alpha sin At and
+1/s^3 = (1 + beta cos At)/f^3 (orbits.analytic.UnevenCircle).  The body starts
+with A towards F and the spin §838 prescribes, so no free libration is excited;
+Euler's zeta = A^2 alpha/(A^2 - 2n) sin At (+ the §835 sin 2At term) is compared
+with the full 3-D rigid body.  The neglected terms are O(alpha beta^2, n zeta^3).
+"""
+import numpy as np
+
+from ...constants import ARCSEC
+from ...errors import ScenarioError
+from ...schema import ANGLE, DISTANCE, GM, RATE, Key
+from ...verdict import Check, Verdict
+from .. import common
+from ..p93_planar_libration import planar_system, zeta_from_solution
+
+SCHEMA = {
+    "body.moments": Key(unit="", size=3, help="principal moments A < B <= C, any unit"),
+    "orbit.gm": Key(**GM, help="GM of the centre of forces"),
+    "orbit.f": Key(**DISTANCE, help="mean distance f"),
+    "orbit.rate": Key(**RATE, help="mean angular speed delta of F"),
+    "orbit.alpha": Key(**ANGLE, help="amplitude of the inequality of XF"),
+    "orbit.beta": Key(unit="", min=-0.5, max=0.5, help="amplitude of the inequality of 1/s^3"),
+    "orbit.frequency": Key(**RATE, help="Euler's A, the frequency of the inequality"),
+}
+
+VERDICT = Verdict("Euler's forced libration to second order (§835)", (
+    Check("zeta relative", "zeta_error_second_order_rel", 3e-4, "",
+          "the neglected terms O(alpha beta^2, n zeta^3) relative to the amplitude"),
+))
+
+
+def run(scenario):
+    from ...orbits.analytic import UnevenCircle
+    from ...theory import forced_libration, forced_libration_initial_rate, libration_n
+
+    body = common.rigid_body(scenario)
+    gm, f, delta = scenario["orbit.gm"], scenario["orbit.f"], scenario["orbit.rate"]
+    alpha, beta, freq = scenario["orbit.alpha"], scenario["orbit.beta"], scenario["orbit.frequency"]
+    t0 = scenario.t_start
+    n = libration_n(body.moments, gm, f)
+    orbit = UnevenCircle(("F",), [gm], [f], [delta], [alpha], [beta], [freq])
+    if t0 != 0.0:
+        raise ScenarioError("span.start", scenario["span.start"],
+                            "'2000-01-01T12:00:00' (J2000): Euler's inequality sin At is timed from t = 0")
+    zeta_dot0 = forced_libration_initial_rate(n, freq, alpha, beta)
+    system = planar_system(body.moments, orbit, t0, 0.0, zeta_dot0 - freq * alpha, delta)
+    t = scenario.output_times()
+    solution, point = common.simulate_scenario(scenario, system, t)
+
+    dt = solution.t - t0
+    zeta_num = zeta_from_solution(solution, delta * dt + alpha * np.sin(freq * dt))
+    zeta_first = forced_libration(dt, n, freq, alpha)
+    zeta_second = forced_libration(dt, n, freq, alpha, beta)
+    amplitude = freq**2 * alpha / (freq**2 - 2 * n)
+    comparison = {
+        "n_rad2_per_d2": n,
+        "amplitude_euler_arcsec": amplitude / ARCSEC,
+        "amplitude_measured_arcsec": float(np.abs(zeta_num).max() / ARCSEC),
+        "zeta_error_first_order_max_arcsec": float(np.abs(zeta_num - zeta_first).max() / ARCSEC),
+        "zeta_error_second_order_max_arcsec": float(np.abs(zeta_num - zeta_second).max() / ARCSEC),
+        "zeta_error_second_order_rel": float(np.abs(zeta_num - zeta_second).max() / abs(amplitude)),
+    }
+    table = common.attitude_table(solution)
+    table["zeta"] = zeta_num * common.u().rad
+    table["zeta_euler"] = zeta_second * common.u().rad
+    figures = {"zeta": common.plot_series(dt, np.array([zeta_num, zeta_second]) / ARCSEC, "days from start",
+                                          "zeta = AF [arcsec]", ["integrated", "Euler §835"])}
+    return common.result(scenario, table, {"comparison": comparison, "run": point}, figures, solution)

@@ -1,0 +1,148 @@
+"""Precession and nutation of a symmetric spinner (Euler ch. 16 P96, §844-849) against integration.
+
+A body with two equal moments cc < aa (oblate; aa about its figure axis, our
+z) spins at eps about an axis near its figure axis, at the mean angle n from
+the pole Z of the orbit of F (a uniform circle at rate delta, the x-y plane).
+Euler's theory: the figure axis A regresses about Z at N cos n (§846), with
+2 phi inequalities in ZA and XZA (§847, phi = FZA), and at eps = 2 delta the
+formulas fail (§849): there ``SymmetricPrecession.coefficients`` raises
+ResonanceError; the scene reports it and compares the secular growth of the
+2 phi term in ZA with §849's singular solution.
+
+Both Euler's text (eps in the pole equations) and the version with the pole's
+free rotation in the body (eps aa/cc, which §841 drops) are compared.
+"""
+import math
+
+import numpy as np
+
+from ...constants import ARCSEC
+from ...models.assemblies.idealised import under_point_masses
+from ...errors import ResonanceError, ScenarioError
+from ...rotations import matrix_from_quat
+from ...schema import ANGLE, DISTANCE, GM, RATE, SPIN, Key
+from ...verdict import Check, Verdict
+from .. import common
+
+SCHEMA = {
+    "body.moments": Key(unit="", size=3, help="principal moments cc = cc < aa (symmetric, oblate)"),
+    "body.spin": Key(**SPIN, help="spin rate eps about the figure axis"),
+    "body.obliquity": Key(**ANGLE, help="initial angle n between the figure axis A and the orbit pole Z"),
+    "orbit.gm": Key(**GM, help="GM of the centre of forces"),
+    "orbit.radius": Key(**DISTANCE, help="distance s of F"),
+    "orbit.rate": Key(**RATE, help="angular speed delta of F"),
+}
+
+_SECOND_ORDER = "Euler's theory is first order in N/delta and drops eps aa/cc - eps; 2e-3 covers the remainder"
+
+
+def verdict(scenario, comparison):
+    """Away from resonance: rate and 2 phi terms vs the closed form; where theory.SymmetricPrecession
+    finds eps aa/cc = 2 delta (``resonance_detected``): §849's growth."""
+    if comparison.get("resonance_detected"):
+        return Verdict("Euler's singular solution (§849)", (
+            Check("2φ growth relative", "za_2phi_growth_rel_error", 0.01, "",
+                  "§849 is first order in the detuning and in N/delta"),))
+    return Verdict("Euler's P96 closed forms (§846-847)", (
+        Check("precession rate relative", "precession_rate_gyroscopic_rel_error", 2e-3, "", _SECOND_ORDER),
+        Check("ZA 2φ relative", "za_2phi_half_range_measured_arcsec", 5e-3, "", _SECOND_ORDER,
+              versus="za_2phi_half_range_gyroscopic_arcsec", relative=True),
+        Check("XZA 2φ relative", "xza_2phi_amplitude_measured_arcsec", 5e-3, "", _SECOND_ORDER,
+              versus="xza_2phi_amplitude_gyroscopic_arcsec", relative=True)))
+
+
+def figure_axis(solution):
+    """Unit vectors (n, 3) of the body's z axis in inertial axes."""
+    return np.array([matrix_from_quat(q)[:, 2] for q in solution.quaternion])
+
+
+def figure_axis_angles(solution):
+    """ZA = p and unwrapped XZA = lambda (rad) of the body's z axis."""
+    axis = figure_axis(solution)
+    return np.arccos(np.clip(axis[:, 2], -1, 1)), np.unwrap(np.arctan2(axis[:, 1], axis[:, 0]))
+
+
+def fit_angles(solution, t0, delta, eps_f, resonant=False):
+    """(dt, ZA, XZA, XZA's and ZA's least-squares coefficients), angles in rad, dt in days from t0, phi =
+    XZA - delta dt: XZA on [1, dt, sin 2phi, cos 2phi, *more], ZA on [1, cos 2phi, sin 2phi, *more], more =
+    the free nutation (cos eps_f dt, sin eps_f dt) or, ``resonant``, §849's growth (dt cos 2phi, dt sin 2phi)."""
+    dt = solution.t - t0
+    p, lam = figure_axis_angles(solution)
+    phi = lam - delta * dt
+    c2, s2, one = np.cos(2 * phi), np.sin(2 * phi), np.ones_like(dt)
+    more = [dt * c2, dt * s2] if resonant else [np.cos(eps_f * dt), np.sin(eps_f * dt)]
+    fit = [np.linalg.lstsq(np.column_stack(cols), y, rcond=None)[0]
+           for y, cols in ((lam, [one, dt, s2, c2, *more]), (p, [one, c2, s2, *more]))]
+    return dt, p, lam, *fit
+
+
+def run(scenario):
+    from ...orbits.analytic import CircularOrbits
+    from ...theory import SymmetricPrecession, p96_initial_state, precession_constant
+
+    body = common.rigid_body(scenario)
+    cc, aa = body.moments[0], body.moments[2]
+    if not (abs(body.moments[1] - cc) <= 1e-12 * aa and aa > cc):
+        raise ScenarioError("body.moments", body.moments.tolist(), "a symmetric oblate body [cc, cc, aa] with aa > cc")
+    eps, n = scenario["body.spin"], scenario["body.obliquity"]
+    gm, s, delta = scenario["orbit.gm"], scenario["orbit.radius"], scenario["orbit.rate"]
+    t0 = scenario.t_start
+    big_n = precession_constant(gm, s, eps, aa, cc)
+    euler = SymmetricPrecession(eps, delta, big_n, n)
+    true = SymmetricPrecession(eps, delta, big_n, n, ratio=aa / cc)
+    comparison = {"N_rad_per_d": big_n, "eps_over_delta": eps / delta}
+    try:
+        e, f, _ = true.coefficients()
+        x0, resonance = e + f, None
+    except ResonanceError as exc:
+        x0, resonance = 0.0, exc
+    q0, omega0 = p96_initial_state(n, eps, x0, 0.0)
+    orbit = CircularOrbits(("F",), [gm], [s], [delta], phase=[-delta * t0])
+    system = under_point_masses(body.moments, orbit, q0, omega0, t0, "symmetric spinner")
+    t = scenario.output_times()
+    solution, point = common.simulate_scenario(scenario, system, t)
+
+    dt, p, lam, lam_fit, p_fit = fit_angles(solution, t0, delta, true.eps_f, resonant=resonance is not None)
+    if resonance is None:
+        comparison.update({"resonance_detected": False,
+                           "precession_rate_measured_arcsec_per_d": float(-lam_fit[1] / ARCSEC),
+                           "za_2phi_half_range_measured_arcsec": float(abs(p_fit[1]) / ARCSEC),
+                           "xza_2phi_amplitude_measured_arcsec": float(abs(lam_fit[2]) / ARCSEC),
+                           "diurnal_nutation_measured_arcsec": float(math.hypot(p_fit[3], p_fit[4]) / ARCSEC)})
+        for name, model in (("euler", euler), ("gyroscopic", true)):
+            comparison.update({
+                f"precession_rate_{name}_arcsec_per_d": model.precession_rate / ARCSEC,
+                f"precession_rate_{name}_rel_error": float(model.precession_rate / -lam_fit[1] - 1),
+                f"za_2phi_half_range_{name}_arcsec": model.inequalities()["za_half_range"] / ARCSEC,
+                f"xza_2phi_amplitude_{name}_arcsec": model.inequalities()["xza_amplitude"] / ARCSEC})
+    else:
+        # §849: ZA's 2 phi term grows like |a| delta t; fit (c + g t) cos 2phi + (c' + g' t) sin 2phi.
+        growth, secular = math.hypot(p_fit[3], p_fit[4]), euler.secular()
+        comparison.update({
+            "resonance_detected": True, "resonance_message": str(resonance),
+            "za_2phi_growth_measured_arcsec_per_d": growth / ARCSEC,
+            "za_2phi_growth_euler_849_arcsec_per_d": secular["growth_rate"] / ARCSEC,
+            "za_2phi_growth_rel_error": growth / secular["growth_rate"] - 1,
+            "detuning_eps_aa_over_cc_minus_2delta_rad_per_d": true.eps_f - 2 * delta,
+        })
+    not_measured = _unsupported(comparison, dt[-1], delta)
+    table = common.attitude_table(solution)
+    table["ZA"] = p * common.u().rad
+    table["XZA"] = lam * common.u().rad
+    figures = {"ZA": common.plot_series(dt, np.degrees(p), "days from start", "ZA [deg]"),
+               "XZA": common.plot_series(dt, np.degrees(lam), "days from start", "XZA [deg]")}
+    summary = {"comparison": comparison, "run": point, **({"not_measured": not_measured} if not_measured else {})}
+    return common.result(scenario, table, summary, figures, solution)
+
+
+def _unsupported(comparison, span_d, delta):
+    """Blank the fitted values (None, with the reason) when the span is shorter than one orbit of F:
+    the fit cannot then tell the precession from the 2 phi inequality."""
+    orbit_d = 2 * math.pi / abs(delta) if delta else math.inf
+    if span_d >= orbit_d:
+        return {}
+    reason = (f"not measured: the {span_d:.6g} d span is shorter than one orbit of F ({orbit_d:.6g} d), "
+              "so the fit cannot separate the precession from the 2 phi inequality; lengthen span.end")
+    fitted = [key for key in comparison if "measured" in key or key.endswith("rel_error")]
+    comparison.update(dict.fromkeys(fitted))
+    return {f"comparison.{key}": reason for key in fitted}

@@ -1,0 +1,126 @@
+"""Stress: Mercury in the 3:2 spin-orbit resonance, the 88-day forced libration in longitude.
+
+The full 3-D rigid body on a fixed Kepler ellipse (e = 0.2056) of the Sun
+(Euler ch. 16 P91 torque, §825; P94's forced libration with an eccentric orbit)
+starts in the 3:2 state, theta = (3/2) M + gamma with gamma on its linear
+forced solution.  gamma = theta - (3/2) M obeys, to first order in gamma,
+
+    gamma'' + w0^2 gamma = -(3/2) n^2 ((B - A)/C) sum_k S_k sin kM,  w0^2 = 3 n^2 ((B - A)/C) H,
+
+so the 88-day (k = 1) term is (3/2) ((B - A)/C) S_1/(1 - w0^2/n^2) sin M.
+Margot et al. (2007) (after Peale 1972) write (3/2) ((B - A)/C) (1 - 11 e^2 +
+959 e^4/48): S_1 truncated at e^4 and w0 << n.  The scene fits sin/cos kM
+(k <= 6), the free libration at w0 and a constant to the integrated gamma and
+compares the sin M amplitude with both.  The linear start leaves a free
+libration of ~0.2" (w0 << n turns the O(gamma^2) terms it omits in gamma'(0)
+into an amplitude ~ delta gamma'/w0); it is fitted separately.
+
+The radar amplitude is NOT an independent check: Margot's 35.8 +- 2" is the observation the scenario's
+(B - A)/C (their mantle (B - A)/C_m = 2.03e-4) was inferred from, so agreeing with it is circular.  The
+scene reports it, and its verdict says so; it passes or fails on the integration against the theory.
+"""
+import math
+
+import numpy as np
+
+from ...constants import ARCSEC
+from ...schema import DISTANCE, GM, Key
+from ...verdict import Check, Verdict
+from .. import common
+from ..planar_spin_orbit import forcing_coefficients, kepler_orbit, rigid_body_system, theta_from_quaternions
+
+MARGOT_2007_ARCSEC = (35.8, 2.0)
+RADAR_NOT_INDEPENDENT = ("Margot et al. (2007)'s 35.8\" radar amplitude is not compared: the (B - A)/C used here "
+                         "was inferred from it, so agreement would be circular")
+HARMONICS = 6          # fitted harmonics of M; the initial rate sums the linear forced solution to k = 24
+
+
+def verdict(scenario, comparison):
+    """The 88-d libration against linear theory and Margot et al. (2007)'s series."""
+    return Verdict("linear forced libration; Margot et al. (2007)", (
+        Check("88-d vs linear", "libration_88d_rel_error_vs_linear", scenario["stress.linear_rel_tol"], "",
+              "linear in the libration (35.8\" = 1.7e-4 rad): the nonlinear remainder is far below 1e-3"),
+        Check("88-d vs series", "libration_88d_rel_error_vs_series", scenario["stress.series_rel_tol"], "",
+              "the e^6 remainder of (1 - 11e^2 + 959e^4/48) at e = 0.2056 (~1e-3)")),
+        RADAR_NOT_INDEPENDENT)
+
+SCHEMA = {
+    "body.moments": Key(unit="", size=3, help="principal moments A < B < C; (B - A)/C sets the libration"),
+    "orbit.gm": Key(**GM, help="GM of the Sun"),
+    "orbit.a": Key(**DISTANCE, help="semi-major axis"),
+    "orbit.e": Key(unit="", min=0.0, max=0.99, help="eccentricity"),
+    "stress.linear_rel_tol": Key(unit="", default=1e-3, help="pass: |measured/linear theory - 1|"),
+    "stress.series_rel_tol": Key(unit="", default=1e-2, help="pass: |measured/Margot series - 1|"),
+}
+
+
+def libration_theory(gamma, e):
+    """{amplitude_linear, amplitude_series, w0_over_n, coefficients g_k} of the forced gamma (rad)."""
+    s, h = forcing_coefficients(e, 24)
+    w0_over_n2 = 3 * gamma * h
+    k = np.arange(1, s.size + 1)
+    g = 1.5 * gamma * s / (k**2 - w0_over_n2)
+    return {"g": g, "w0_over_n": math.sqrt(w0_over_n2), "amplitude_linear": float(g[0]),
+            "amplitude_series": 1.5 * gamma * (1 - 11 * e**2 + 959 * e**4 / 48), "S1": float(s[0]), "H": h}
+
+
+def design(t, n, w0):
+    """Columns [1, (sin kM, cos kM) k = 1..HARMONICS, sin w0 t, cos w0 t] with M = n t."""
+    m = n * t
+    columns = [np.ones_like(t)]
+    for k in range(1, HARMONICS + 1):
+        columns += [np.sin(k * m), np.cos(k * m)]
+    return np.column_stack(columns + [np.sin(w0 * t), np.cos(w0 * t)])
+
+
+def run(scenario):
+    body = common.rigid_body(scenario)
+    a_, b_, c_ = body.moments
+    gamma = (b_ - a_) / c_
+    gm, a, e = scenario["orbit.gm"], scenario["orbit.a"], scenario["orbit.e"]
+    n = math.sqrt(gm / a**3)
+    t0 = scenario.t_start
+    theory = libration_theory(gamma, e)
+    k = np.arange(1, theory["g"].size + 1)
+    gamma_dot0 = n * float(np.sum(k * theory["g"]))         # start on the forced solution (gamma(0) = 0 at periapsis)
+    system = rigid_body_system(body.moments, kepler_orbit(gm, a, e, t0), t0, 0.0, 1.5 * n + gamma_dot0)
+    t = scenario.output_times()
+    solution, point = common.simulate_scenario(scenario, system, t)
+
+    dt = solution.t - t0
+    lib = theta_from_quaternions(solution.quaternion) - 1.5 * n * dt
+    columns = design(dt, n, theory["w0_over_n"] * n)
+    coef = np.linalg.lstsq(columns, lib, rcond=None)[0]
+    measured = math.copysign(math.hypot(coef[1], coef[2]), coef[1])
+    rel_linear = measured / theory["amplitude_linear"] - 1
+    rel_series = measured / theory["amplitude_series"] - 1
+    fit_k = np.hypot(coef[1:2 * HARMONICS + 1:2], coef[2:2 * HARMONICS + 2:2])
+    comparison = {
+        "checks": "88-d (sin M) term of theta - 3/2 M fitted to the 3-D rigid body started in 3:2, vs the linear "
+                  "forced solution (quadrature S_1, w0 correction) within stress.linear_rel_tol and vs "
+                  "Margot et al. 2007's (3/2)(B-A)/C (1 - 11e^2 + 959e^4/48) within stress.series_rel_tol",
+        "b_minus_a_over_c": gamma,
+        "libration_88d_measured_arcsec": measured / ARCSEC,
+        "libration_88d_linear_theory_arcsec": theory["amplitude_linear"] / ARCSEC,
+        "libration_88d_margot_series_arcsec": theory["amplitude_series"] / ARCSEC,
+        "libration_88d_rel_error_vs_linear": rel_linear,
+        "libration_88d_rel_error_vs_series": rel_series,
+        "libration_88d_cos_term_arcsec": coef[2] / ARCSEC,
+        "libration_44d_measured_arcsec": float(fit_k[1] / ARCSEC),
+        "libration_44d_linear_theory_arcsec": float(abs(theory["g"][1]) / ARCSEC),
+        "free_libration_fitted_arcsec": float(math.hypot(coef[-2], coef[-1]) / ARCSEC),
+        "free_libration_period_linear_yr": 2 * math.pi / (theory["w0_over_n"] * n) / 365.25,
+        "S1_quadrature": theory["S1"], "S1_series_e4": 1 - 11 * e**2 + 959 * e**4 / 48, "H_quadrature": theory["H"],
+        "margot_2007_radar_arcsec": MARGOT_2007_ARCSEC[0],
+        "margot_2007_radar_sigma_arcsec": MARGOT_2007_ARCSEC[1],
+        "margot_2007_radar_independent": False,
+        "fit_residual_rms_arcsec": float(np.std(lib - columns @ coef) / ARCSEC),
+        "passed": bool(abs(rel_linear) < scenario["stress.linear_rel_tol"]
+                       and abs(rel_series) < scenario["stress.series_rel_tol"]),
+    }
+    table = common.attitude_table(solution)
+    table["libration"] = lib * common.u().rad
+    figures = {"libration": common.plot_series(dt[dt < 440], lib[dt < 440] / ARCSEC, "days from periapsis",
+                                               "theta - 3/2 M [arcsec]")}
+    return common.result(scenario, table, {"comparison": comparison, "run": point}, figures, solution)
+

@@ -1,0 +1,113 @@
+"""Stress: planar libration a hair off Euler's separatrix (ch. 16 P93, §826, C = n (1 +- 1e-9)).
+
+Starting with the axis A on the line to F (zeta = 0) and zeta'^2 = C + n, the
+body either just fails to reach zeta = 90 deg (C < n: bounded, it stops at
+arcsin k, k^2 = (1 + C/n)/2, after K(k^2)/sqrt(2n)) or just passes it (C > n:
+circulation, 90 deg after K(m)/sqrt(C + n), m = 2n/(C + n)); both times are
+~ ln(1/|C/n - 1|) long and their derivative with respect to C is 1/(C - n):
+an integrator must hold Euler's energy constant to far better than 1e-9 n.
+The measured time (zeta' = 0, or zeta = 90 deg) is compared with the closed
+form of theory.PlanarLibration.  Passes when every method gets the side of
+the separatrix right and the time within ``stress.time_rel_tol``.
+"""
+import math
+
+import numpy as np
+
+from ...analysis.ladder import settings, work_precision
+from ...errors import ScenarioError
+from ...integrators import METHODS
+from ...schema import DISTANCE, GM, RATE, Key
+from ...verdict import Check, Verdict
+from .. import common
+from ..p93_planar_libration import crossing_times, planar_system, zeta_from_solution
+
+
+
+def verdict(scenario, comparison):
+    """Side of the separatrix and time to 90 deg against §826, every method and offset."""
+    return Verdict("§826 closed form", (
+        Check("time to 90°", "time_rel_error_max", scenario["stress.time_rel_tol"], "",
+              "stress.time_rel_tol: the closed-form time is exact; the margin covers the integrators' error, "
+              "amplified near the separatrix (up to 4e-6 measured, benchmarks/RESULTS.md)"),
+        Check("side and time", "passed", source="each run on the closed form's side of the separatrix")))
+
+SCHEMA = {
+    "body.moments": Key(unit="", size=3, help="principal moments A < B <= C"),
+    "orbit.gm": Key(**GM),
+    "orbit.radius": Key(**DISTANCE),
+    "orbit.rate": Key(**RATE),
+    "stress.offsets": Key(type=list, default=[-1e-9, 1e-9], help="C/n - 1 for each run"),
+    "stress.methods": Key(type=list, default=["rk8", "suzuki4", "dop853"]),
+    "stress.time_rel_tol": Key(unit="", default=1e-4, help="pass threshold on the time to 90 deg"),
+}
+
+
+def _setup(scenario, offset):
+    from ...orbits.analytic import CircularOrbits
+    from ...theory import PlanarLibration, libration_n
+
+    moments = scenario["body.moments"]
+    gm, s, delta = scenario["orbit.gm"], scenario["orbit.radius"], scenario["orbit.rate"]
+    n = libration_n(moments, gm, s)
+    zeta_dot0 = math.sqrt(n * (2.0 + offset))
+    t0 = scenario.t_start
+    orbit = CircularOrbits(("F",), [gm], [s], [delta], phase=[-delta * t0])
+    theory = PlanarLibration(n, 0.0, zeta_dot0)
+    return planar_system(moments, orbit, t0, 0.0, zeta_dot0, delta), theory, delta
+
+
+def time_to_90(theory):
+    """Closed-form time from zeta = 0 to the top: K/sqrt(2n) (bounded) or K(m)/sqrt(C + n) (circulation), §826."""
+    return theory.period / 4 if theory.case == "bounded" else theory.period / 2
+
+
+def measure(solution, t0, delta):
+    """(case, time): 'bounded' and the first zeta' = 0, or 'circulation' and the first zeta = 90 deg."""
+    dt = solution.t - t0
+    zeta = zeta_from_solution(solution, delta * dt)
+    up = crossing_times(dt, zeta, math.pi / 2)
+    zeta_dot = delta - solution.omega[:, 2]
+    stop = crossing_times(dt, -zeta_dot, 0.0)
+    if up.size and (not stop.size or up[0] < stop[0]):
+        return "circulation", float(up[0])
+    return ("bounded", float(stop[0])) if stop.size else ("none", math.nan)
+
+
+def build(scenario):
+    """For ``spinorbit bench``: the run just below the separatrix, error = attitude vs the closed form, rad."""
+    system, theory, delta = _setup(scenario, scenario["stress.offsets"][0])
+    t = scenario.output_times()
+    zeta_exact = theory.zeta(t - scenario.t_start)
+
+    def error(solution):
+        return float(np.abs(zeta_from_solution(solution, delta * (solution.t - scenario.t_start)) - zeta_exact).max())
+
+    return system, t, error
+
+
+def run(scenario):
+    for method in scenario["stress.methods"]:
+        if not isinstance(method, str) or method not in METHODS:
+            raise ScenarioError("stress.methods", method, f"method names, of {sorted(METHODS)}")
+    t = scenario.output_times()
+    rows, passed = {}, True
+    for offset in scenario["stress.offsets"]:
+        system, theory, delta = _setup(scenario, float(offset))
+        expected = time_to_90(theory)
+
+        def measured(solution):
+            case, took = measure(solution, scenario.t_start, delta)
+            return {"case_closed_form": theory.case, "case_measured": case, "time_to_90deg_closed_form_d": expected,
+                    "time_to_90deg_measured_d": took, "time_rel_error": took / expected - 1}
+
+        for row in work_precision(system, t, settings(scenario["stress.methods"], step=0.01, rtol=1e-13, atol=1e-15),
+                                  measured):
+            passed &= row.get("case_measured") == theory.case and abs(row["time_rel_error"]) < scenario["stress.time_rel_tol"]
+            rows[f"{offset:+g}/{row['method']}"] = row
+    comparison = {"checks": "side of the P93 separatrix and time to approach 90 deg vs §826 closed form, "
+                            f"C = n(1 +- 1e-9); passes within {scenario['stress.time_rel_tol']:g} relative",
+                  "time_rel_error_max": max(abs(r.get("time_rel_error", math.inf)) for r in rows.values()),
+                  "passed": bool(passed)}
+    return common.result(scenario, None, {"comparison": comparison, "details": rows,
+                                          "run": {"method": ",".join(scenario["stress.methods"])}}, {}, None)
