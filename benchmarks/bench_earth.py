@@ -18,10 +18,12 @@ from pathlib import Path
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from spinorbit import earth
 from spinorbit.bench import fastest_at
+from spinorbit.bodies.earth import ERA_RATE_RAD_D
 from spinorbit.constants import MAS
 from spinorbit.integrators import integrate
+from spinorbit.models.assemblies.earth import rigid_earth
+from spinorbit.models.start import on_pole
 from spinorbit.orbits.sources import sample_orbits
 from spinorbit.references import erfa_pole
 
@@ -33,27 +35,25 @@ SPLITTINGS = {"strang": [0.5, 0.25, 0.125, 0.0625, 0.03125], "yoshida4": [0.5, 0
 LEVELS_MAS = (200.0, 2.0, 0.02, 2e-4)          # ~1e-6, 1e-8, 1e-10, 1e-12 rad
 
 
-def setup(span):
+def setup(model, span):
+    """The rigid Earth System (``model``), started on the IAU pole at T0, and its orbits."""
     orbits = sample_orbits("de421", "earth", ("moon", "sun"), T0 - 1, T0 + span + 1, 0.25, measure=False)
-    params = earth.earth_params(earth.earth_moments(), orbits.gm, orbits.data,
-                                earth.extra_parameters(erfa_pole.ecliptic_pole_j2000(), True, True))
+    system = rigid_earth(orbits, model, ecliptic_pole=erfa_pole.ecliptic_pole_j2000(), t0=T0)
     z0 = erfa_pole.cip_vector(T0)
-    return orbits, params, z0, erfa_pole.terrestrial_x_axis(T0)
+    system.y0 = system.layout.pack(on_pole(system, "earth", T0, z0, ERA_RATE_RAD_D, erfa_pole.terrestrial_x_axis(T0)))
+    return system, orbits
 
 
-def axes(model, system, orbits, params, t, y):
-    return earth.figure_axes_from_full(y) if model == "full" else system.meta["figure_axes"](t, y, params)
-
-
-def numpy_rhs(model, orbits, params):
+def numpy_rhs(model, system, orbits):
     """The same right-hand sides in plain NumPy (positions from the interpolant, one call per evaluation)."""
-    moments, gm, _, extra = params
-    c_minus_a = moments[2] - moments[0]
+    figure, gm = system.bodies["earth"].figure, np.asarray(orbits.gm)
+    moments, k = figure.moments, figure.anisotropy_rate_per_d
+    c_minus_a, frame_rate = moments[2] - moments[0], system.interactions[-1].rate_rad_d
 
     def tensor(t):
         r = orbits.positions(np.array([t]))[0]
         s = np.linalg.norm(r, axis=1)
-        return np.einsum("i,ij,ik->jk", 3 * gm / s**5, r, r) * (1 + extra[3] * t)
+        return np.einsum("i,ij,ik->jk", 3 * gm / s**5, r, r) * (1 + k * t)
 
     def quat_matrix(q):
         w, x, y, z = q
@@ -67,19 +67,13 @@ def numpy_rhs(model, orbits, params):
         return 0.5 * np.array([-a * x - b * y - c * z, a * w + b * z - c * y, b * w + c * x - a * z, c * w + a * y - b * x])
 
     if model == "gyroscopic":
-        h = 1.0 / 64.0
-
-        def rhs(t, y):
-            ell, lc = quat_matrix(y[:4])[:, 2], y[6]
-            lam = lc / moments[0]
-            t_0, t_dot = tensor(t), (tensor(t + h) - tensor(t - h)) / (2 * h)
-            n0 = c_minus_a * np.cross(t_0 @ ell, ell)
-            n_dot = c_minus_a * np.cross(t_dot @ ell, ell)
-            z = ell - np.cross(ell, n0 / lc) / lam - n_dot / lc / lam**2
+        def rhs(t, spin):
+            norm = np.linalg.norm(spin)
+            ell, lam = spin / norm, norm / moments[0]
+            t_0 = tensor(t)
+            z = ell - np.cross(ell, c_minus_a * np.cross(t_0 @ ell, ell) / (norm * lam))    # Oppolzer, first order
             z /= np.linalg.norm(z)
-            torque = c_minus_a * np.cross(t_0 @ z, z)
-            ell_dot = (torque - (torque @ ell) * ell) / lc + np.cross(extra[:3], ell)
-            return np.concatenate([quat_rate(y[:4], np.cross(ell, ell_dot)), np.zeros(3)])
+            return c_minus_a * np.cross(t_0 @ z, z) + np.cross(frame_rate, spin)
     else:
         def rhs(t, y):
             rot = quat_matrix(y[:4])
@@ -87,7 +81,7 @@ def numpy_rhs(model, orbits, params):
             torque_inertial = c_minus_a * np.cross(tensor(t) @ rot[:, 2], rot[:, 2])   # axisymmetric
             torque = rot.T @ torque_inertial
             omega_dot = (torque - np.cross(omega, moments * omega)) / moments
-            return np.concatenate([quat_rate(y[:4], rot @ omega + extra[:3]), omega_dot])
+            return np.concatenate([quat_rate(y[:4], rot @ omega + frame_rate), omega_dot])
     return rhs
 
 
@@ -96,31 +90,28 @@ def main():
     for model, steps, tolerances in (("gyroscopic", [16.0, 8.0, 4.0, 2.0, 1.0], [1e-7, 1e-8, 1e-10, 1e-12]),
                                      ("full", [0.4, 0.2, 0.1, 0.05], [1e-9, 1e-11, 1e-13])):
         span = SPANS[model]
-        orbits, params, z0, x0 = setup(span)
-        system = (earth.gyroscopic_system(orbits.kernel, params, T0, z0) if model == "gyroscopic"
-                  else earth.full_system(orbits.kernel, params, T0, z0, x0))
+        system, orbits = setup(model, span)
         t = T0 + np.arange(0.0, span + 1e-9, 8.0)
-        reference = axes(model, system, orbits, params, t, integrate(system, t, "rk8", step=steps[-1] / 4).y)
+        reference = system.figure_axes("earth", t, integrate(system, t, "rk8", step=steps[-1] / 4).y)
         scale = 36525.0 / span
         runs = [("rk8", "rk8 (numba)", step) for step in steps]
         if model == "full":
             runs += [(name, f"{name} (numba)", step) for name, hs in SPLITTINGS.items() for step in hs]
         for method, label, step in runs:
             sol = integrate(system, t, method, step=step)
-            err = np.linalg.norm(axes(model, system, orbits, params, t, sol.y) - reference, axis=1).max() / MAS
+            err = np.linalg.norm(system.figure_axes("earth", t, sol.y) - reference, axis=1).max() / MAS
             rows.append({"model": model, "method": label, "setting": f"step {step} d",
                          "wall_s_per_century": sol.wall_s * scale, "error_mas": err})
             print(rows[-1])
         # scipy DOP853 + NumPy rhs over a tenth of the span (it is slow), error on that part.
         short = t[t <= T0 + span / 10]
-        rhs = numpy_rhs(model, orbits, params)
+        rhs = numpy_rhs(model, system, orbits)
         for rtol in tolerances:
             start = time.perf_counter()
             sol = solve_ivp(rhs, (T0, short[-1]), system.y0, method="DOP853", t_eval=short, rtol=rtol, atol=rtol * 1e-3)
             wall = time.perf_counter() - start
-            y = sol.y.T
-            y[:, :4] /= np.linalg.norm(y[:, :4], axis=1, keepdims=True)
-            err = np.linalg.norm(axes(model, system, orbits, params, short, y) - reference[:len(short)], axis=1).max() / MAS
+            y = system.layout.normalise(sol.y.T)
+            err = np.linalg.norm(system.figure_axes("earth", short, y) - reference[:len(short)], axis=1).max() / MAS
             rows.append({"model": model, "method": "scipy DOP853 + NumPy rhs", "setting": f"rtol {rtol:g}",
                          "wall_s_per_century": wall * scale * 10, "error_mas": err})
             print(rows[-1])

@@ -1,6 +1,7 @@
-"""The cost of one evaluation of the coupled Earth-Moon right-hand side (spinorbit.earth_moon.rhs), in a
-compiled loop as the integrator calls it, at DE421's state of 1950-01-01 (the coupled scene's start) with
-every switch on; times spread over the following 30 days.  Compilation is done before timing.
+"""The cost of one evaluation of the coupled Earth-Moon right-hand side (the System of
+spinorbit.models.assemblies.earth_moon, generated), in a compiled loop as the integrator calls it, at DE421's
+state of 1950-01-01 (the coupled scene's start) with every switch on; times spread over the following 30 days.
+Compilation is done before timing.
 
     python benchmarks/bench_earth_moon_rhs.py [--calls 200000] [--repeat 7]
 
@@ -12,9 +13,10 @@ import time
 
 from numba import njit
 
-from spinorbit import earth_moon
 from spinorbit.bodies import earth
-from spinorbit.earth_moon_vs_de421 import start_state
+from spinorbit.models.assemblies.earth_moon import EXTERNAL, solar_system
+from spinorbit.models.start import earth_moon_de421
+from spinorbit.orbits.sources import barycentric
 from spinorbit.references.erfa_pole import cip_vector
 
 T0 = -18262.5           # 1950-01-01 TDB, days from J2000
@@ -33,15 +35,15 @@ def main():
     parser.add_argument("--calls", type=int, default=200_000)
     parser.add_argument("--repeat", type=int, default=7)
     args = parser.parse_args()
-    p = earth_moon.parameters(earth_moon.sample_external(T0 - 1.0, T0 + 31.0).data)
-    y = start_state(T0, cip_vector(T0), earth.ERA_RATE_RAD_D, p)
-    _loop(earth_moon.rhs, p, y, T0, 1)
+    system = solar_system(barycentric("de421", EXTERNAL, T0 - 1.0, T0 + 31.0), t0=T0)
+    y, p = system.layout.pack(earth_moon_de421(system, T0, cip_vector(T0), earth.ERA_RATE_RAD_D)), system.params
+    _loop(system.rhs, p, y, T0, 1)
     times = []
     for _ in range(args.repeat):
         start = time.perf_counter()
-        _loop(earth_moon.rhs, p, y, T0, args.calls)
+        _loop(system.rhs, p, y, T0, args.calls)
         times.append((time.perf_counter() - start) / args.calls * 1e6)
-    print(f"earth_moon.rhs: {min(times):.2f} us per evaluation (min of {args.repeat} x {args.calls}; "
+    print(f"earth-moon rhs: {min(times):.2f} us per evaluation (min of {args.repeat} x {args.calls}; "
           f"median {statistics.median(times):.2f})")
 
 

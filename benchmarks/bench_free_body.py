@@ -18,7 +18,7 @@ import models  # noqa: E402
 
 from spinorbit.analysis.ladder import work_precision  # noqa: E402
 from spinorbit.bench import fastest_at  # noqa: E402
-from spinorbit.dynamics import torque_free_system  # noqa: E402
+from spinorbit.models.assemblies.idealised import free_body  # noqa: E402
 from spinorbit.rotations import quat_angle  # noqa: E402
 from spinorbit.theory import FreeRigidBody  # noqa: E402
 
@@ -32,7 +32,7 @@ LEVELS = (1e-6, 1e-8, 1e-10, 1e-12)
 def main():
     q_exact = FreeRigidBody(MOMENTS, OMEGA0, Q0).attitude(T_OUT)
     error = lambda q: float(quat_angle(q / np.linalg.norm(q, axis=1, keepdims=True), q_exact).max())
-    system = torque_free_system(MOMENTS, Q0, OMEGA0)
+    system = free_body(MOMENTS, Q0, OMEGA0)
     y0 = system.y0
     ladder = [(method, {"step": h}) for method, steps in [("rk8", [0.5 / 2**k for k in range(6)]),
                                                           ("suzuki4", [0.1 / 2**k for k in range(8)]),

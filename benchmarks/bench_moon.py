@@ -54,8 +54,8 @@ def attitudes(solution):
 
 
 def error_arcsec(m_a, m_b):
-    from spinorbit.constants import ARCSEC
     from spinorbit.analysis.librations import pole_and_longitude_difference
+    from spinorbit.constants import ARCSEC
 
     pole, lon = pole_and_longitude_difference(m_a, m_b)
     return float(max(np.abs(pole).max(), np.abs(lon).max()) / ARCSEC)

@@ -8,7 +8,6 @@ The suite checks 1 and 10 years (tests/test_nbody.py); the longer spans are meas
 from spinorbit.constants import ARCSEC
 from spinorbit.orbits.nbody import moon_drift
 
-
 if __name__ == "__main__":
     print("| span | direction max | distance max |\n|---|---|---|")
     for years in (1, 10, 50, 100):

@@ -15,12 +15,12 @@ Y0[:4] /= np.linalg.norm(Y0[:4])
 
 
 def numba_system(gm=GM, moments=MOMENTS, y0=Y0):
-    """spinorbit's SpinSystem for the model (compiled rhs and torque)."""
-    from spinorbit.dynamics import point_mass_system
+    """spinorbit's System for the model (compiled rhs and torque)."""
+    from spinorbit.models.assemblies.idealised import under_point_masses
     from spinorbit.orbits.analytic import CircularOrbits
 
     orbit = CircularOrbits(("m",), gm=[gm], radius=[RADIUS], rate=[RATE], inclination=[INCL])
-    return point_mass_system(moments, orbit, y0[:4], y0[4:7])
+    return under_point_masses(moments, orbit, y0[:4], y0[4:7])
 
 
 def numpy_rhs(t, y, moments=MOMENTS, gm=GM):

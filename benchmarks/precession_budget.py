@@ -27,13 +27,13 @@ from scipy.integrate import cumulative_trapezoid
 
 from spinorbit import nonrigid
 from spinorbit.analysis.harmonics import fit_harmonics
+from spinorbit.bodies.earth import H_D
 from spinorbit.constants import ARCSEC, JULIAN_CENTURY_D
-from spinorbit.earth import H_D
-from spinorbit.earth_vs_iau import torque_rates
 from spinorbit.orbits.kernel import open_ephemeris
 from spinorbit.orbits.sources import gm_of
 from spinorbit.references import arguments, erfa_pole
 from spinorbit.results import run_scenario
+from spinorbit.scenes.earth_precession_nutation.compare import torque_rates
 
 SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"
 EPS0 = 84381.406 * ARCSEC

@@ -24,14 +24,14 @@ about 1 min).  Prints, in mas:
   torque's) and A0 (-cot eps) eps' / Om' (the kinematic 1/sin eps).
 """
 import numpy as np
-
 from precession_budget import EPS0, integrated, laplace_tilt, lunar_orbit_pole, lunisolar, mean_pole, turned
 
-from spinorbit import earth_vs_iau, nonrigid
+from spinorbit import nonrigid
 from spinorbit.analysis.spans import resolvable
 from spinorbit.constants import ARCSEC, JULIAN_CENTURY_D, MAS
 from spinorbit.references import arguments, erfa_pole
 from spinorbit.results import run_scenario
+from spinorbit.scenes.earth_precession_nutation import compare as earth_vs_iau
 
 SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"
 KSV_1996_OUT_MAS = (3.608, 1.543)      # KSV_1996_3, term (0 0 0 0 1): out-of-phase dpsi (cos), deps (sin)

@@ -42,8 +42,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .analysis.spans import resolvable
-from .constants import ARCSEC, JULIAN_CENTURY_D
 from .bodies.earth import ERA_RATE_RAD_D, H_D
+from .constants import ARCSEC, JULIAN_CENTURY_D
 
 
 @dataclass(frozen=True)

@@ -153,21 +153,23 @@ def libration_zoom(years, model, reference):
 def moon_libration(t, table, rows, labelled, zoom, zoom_reference):
     """The Moon scene's figures: residuals and physical libration from ``table`` (arcsec columns), the
     spectrum of tau with the fitted ``rows``, and the librations ``zoom_reference`` (rad) of DE421 over
-    the times ``zoom`` (a mask) beside the model's."""
+    the times ``zoom`` (a mask) beside the model's; without DE421's data (``zoom`` None) no residuals."""
     from .constants import ARCSEC
 
     years = 2000.0 + np.asarray(t) / 365.25
     column = lambda *names: np.array([table[name].value for name in names])
+    figures = {"physical_libration": titled(plot_series(
+                   years, column("libration_longitude", "libration_latitude"), "year (TDB)",
+                   "physical libration [arcsec]", ["longitude τ", "latitude ρ"]), "physical libration"),
+               "libration_spectrum": titled(libration_spectrum(t, table["libration_longitude"].value, rows, labelled),
+                                            "libration in longitude τ, amplitude spectrum")}
+    if zoom is None:
+        return figures
     model = {k: table[name].value[zoom] for k, name in (("tau", "libration_longitude"), ("rho", "libration_latitude"))}
     reference = {k: zoom_reference[k] / ARCSEC for k in ("tau", "rho")}
     return {"residuals_vs_de421": titled(plot_series(
                 years, column("pole_error", "longitude_error"), "year (TDB)", "model - DE421 [arcsec]",
-                ["pole", "longitude"]), "pole and longitude, model minus DE421"),
-            "physical_libration": titled(plot_series(
-                years, column("libration_longitude", "libration_latitude"), "year (TDB)",
-                "physical libration [arcsec]", ["longitude τ", "latitude ρ"]), "physical libration"),
-            "libration_spectrum": titled(libration_spectrum(t, table["libration_longitude"].value, rows, labelled),
-                                         "libration in longitude τ, amplitude spectrum"),
+                ["pole", "longitude"]), "pole and longitude, model minus DE421"), **figures,
             "libration_zoom_vs_de421": titled(libration_zoom(years[zoom], model, reference),
                                               "the last two years, model and DE421")}
 

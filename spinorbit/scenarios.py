@@ -29,8 +29,16 @@ from pathlib import Path
 import numpy as np
 
 from .errors import InputError, ScenarioError
-from .schema import (INTEGRATOR_OPTIONS, MAX_TEXT, REQUIRED, Key, checked_float, dotted_items, finite_float,
-                     parse_tdb_days)
+from .schema import (
+    INTEGRATOR_OPTIONS,
+    MAX_TEXT,
+    REQUIRED,
+    Key,
+    checked_float,
+    dotted_items,
+    finite_float,
+    parse_tdb_days,
+)
 
 MAX_DEPTH = 8                  # nesting of tables and arrays in a scenario
 # What a step over the span may ask for: count limit and bytes per item (estimate).
@@ -68,7 +76,7 @@ class Scenario:
         self.path = Path(path) if path else None
         self.name = self.path.stem if self.path else "scenario"
         self.checkpoint = None          # a checkpoint.Checkpoint when the command line runs it (--resume)
-        from .scenes import scene_module            # the scene registry (lazy imports)
+        from .scenes import scene_module  # the scene registry (lazy imports)
 
         check_depth(data, str(self.path) if self.path else "scenario")
         kind = _lookup(data, "scene.kind", Key(type=str))

@@ -83,7 +83,12 @@ def differences(layout, states, other, scale):
 
 
 def simulate(system, t_out, method="dop853", options=None, estimate_error=True, checkpoint=None, label=None):
-    """Integrate; return (solution, {method, wall_s, rhs_evaluations, steps, integration_error_*, ...}).
+    """Integrate; return (solution, {method, wall_s, rhs_evaluations, steps, integration_error_*, ...}), the
+    solution's rows in the order of ``t_out``.
+
+    Outputs may lie on both sides of ``system.t0``, or run toward it (a span that a start outside it reaches):
+    each side is integrated away from t0 in its own run (spinorbit.integrators' contract) and the rows put back
+    in order; only a run in one direction is checkpointed.
 
     ``checkpoint`` (spinorbit.checkpoint.Checkpoint or None) is offered the outputs as the run goes, by a method
     that can resume (rk8 landing on its outputs; the others run without one); ``label`` names the progress bar
@@ -91,6 +96,11 @@ def simulate(system, t_out, method="dop853", options=None, estimate_error=True, 
     error-estimate run goes on in a second thread meanwhile (the kernels release the GIL), so on two cores it
     adds little to the wall time; ``wall_s`` is the main run's own.
     """
+    t_out = np.asarray(t_out, dtype=float)
+    sides = away_from(system.t0, t_out)
+    if len(sides) > 1 or not np.array_equal(sides[0], np.arange(t_out.size)):
+        runs = [simulate(system, t_out[rows], method, options, estimate_error, None, label) for rows in sides]
+        return _merged(t_out, sides, runs)
     method_cls = get_method(method)
     options = options or {}
     integrator = method_cls(**options)
@@ -110,3 +120,29 @@ def simulate(system, t_out, method="dop853", options=None, estimate_error=True, 
         point.update(differences(system.layout, solution.y[covered], other.y, scale),
                      integration_error_method=how)
     return solution, point
+
+
+def away_from(t0, t_out):
+    """Index arrays of ``t_out`` in the order of runs away from t0: the outputs at or after t0 ascending, then
+    those before it descending (one array when every output lies on one side in that order)."""
+    order = np.argsort(t_out, kind="stable")
+    after, before = order[t_out[order] >= t0], order[t_out[order] < t0][::-1]
+    return [rows for rows in (after, before) if rows.size] or [np.arange(t_out.size)]
+
+
+def _merged(t_out, sides, runs):
+    """One (solution, point) from the runs of each side, rows back in the order of t_out."""
+    from dataclasses import replace
+
+    y = np.empty((t_out.size, runs[0][0].y.shape[1]))
+    for rows, (solution, _) in zip(sides, runs):
+        y[rows] = solution.y
+    first, point = runs[0]
+    merged = replace(first, t=t_out.copy(), y=y, nfev=sum(s.nfev for s, _ in runs),
+                     nsteps=None if any(s.nsteps is None for s, _ in runs) else sum(s.nsteps for s, _ in runs),
+                     wall_s=sum(s.wall_s for s, _ in runs))
+    point = {**point, "wall_s": merged.wall_s, "rhs_evaluations": merged.nfev, "steps": merged.nsteps}
+    for key in point:
+        if key.startswith("integration_error_") and isinstance(point[key], float):
+            point[key] = max(p.get(key, 0.0) for _, p in runs)
+    return merged, point

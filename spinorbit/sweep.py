@@ -36,9 +36,9 @@ def members(grid):
 
 def run_member(scenario_path, overrides, out_dir):
     """Run one member and write its run directory; return a flat record (never raises)."""
+    from .errors import SpinorbitError
     from .reports import write_run
     from .results import run_scenario
-    from .errors import SpinorbitError
     from .rundir import RunDirectory
 
     record = {"overrides": overrides, "out": str(out_dir)}

@@ -11,8 +11,13 @@ import numpy as np
 from scipy.special import ellipj, ellipk, ellipkinc, elliprf, elliprj
 
 from .errors import PhysicsError, ResonanceError
-from .rotations import (matrix_from_euler313, matrix_from_quat, quat_from_matrix, quat_from_rotation_vector,
-                        quat_multiply)
+from .rotations import (
+    matrix_from_euler313,
+    matrix_from_quat,
+    quat_from_matrix,
+    quat_from_rotation_vector,
+    quat_multiply,
+)
 
 _REL = 1e-13
 

@@ -17,6 +17,7 @@ import time
 import numpy as np
 
 from ..errors import InputError, IntegrationError
+from ..layout import Layout
 from ..linker import link, template
 from ..progress import progress
 from ..rotations import put
@@ -147,8 +148,6 @@ def fixed_step(rhs, params, t0, y0, t_out, step, max_steps=10**9):
     """States (len(t_out), dim) of y' = rhs(t, y, params) from (t0, y0), any state (no quaternion renormalised):
     the RK8 with steps <= ``step`` landing on every output; IntegrationError if the state becomes non-finite or
     max_steps runs out."""
-    from ..models.layout import Layout
-
     y0 = np.ascontiguousarray(y0, dtype=float)
     ode = _Bare(rhs, params, float(t0), y0, Layout([("y", y0.size, "vector", "")]))
     integrator = RK8(step=step, max_steps=max_steps)
@@ -253,10 +252,8 @@ class _Run:
                 raise
 
     def fingerprint(self, checkpoint):
-        from ..checkpoint import run_fingerprint
-
         s = self.system
-        return run_fingerprint(s.rhs, s.params, s.t0, s.y0, self.t_out, abs(self.h), checkpoint)
+        return checkpoint.fingerprint(s.rhs, s.params, s.t0, s.y0, self.t_out, abs(self.h))
 
 
 class _Landing(_Run):

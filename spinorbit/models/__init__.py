@@ -4,7 +4,7 @@ From that data a System derives its state layout, its parameter record and its c
 (spinorbit.models.system); the assemblies (spinorbit.models.assemblies) write every model the scenes use.
 """
 from .figure import Body, Field, Figure
-from .layout import Layout
+from ..layout import Layout
 from .motion import Centred, Pair
 from .rotators import Distortion, Gyroscopic, MantleCore, Rigid
 from .system import System

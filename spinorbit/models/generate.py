@@ -8,7 +8,7 @@ pieces write on; :func:`source` is what comes of it.
 """
 import numpy as np
 
-from ..rotations import matvec3, mat_t_vec3
+from ..rotations import mat_t_vec3, matvec3
 
 
 class Code:

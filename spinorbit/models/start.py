@@ -20,8 +20,8 @@ from ..bodies import de421_orientation
 from ..bodies.moon import de421
 from ..rotations import cross3, dot3, quat_from_matrix
 from .gyroscopic import figure_axis_second_order, tidal_tensor
-from .layout import Layout
-from .system import Ode
+from ..layout import Layout
+from .ode import Ode
 
 CORE_STEP_D = 0.25          # half the RK4 step carrying DE421's core
 

@@ -1,6 +1,6 @@
 """A System: a model written as data -- bodies, how they move, what acts between them -- and what follows.
 
-From the data the System derives its state layout (named slices, :mod:`~spinorbit.models.layout`), one
+From the data the System derives its state layout (named slices, :mod:`~spinorbit.layout`), one
 parameter record (``parameters``: name -> value, passed to the compiled functions as the tuple ``params``) and
 its compiled functions, generated and cached on disk (:mod:`~spinorbit.models.generate`,
 :mod:`spinorbit.linker`): ``rhs(t, y, params)`` always; ``torque(t, y, params)`` for a lone rigid body (what
@@ -13,35 +13,13 @@ splitting integrators kick with); ``energy`` and ``angular_momentum`` for a clos
 """
 import copy
 import functools
-import dataclasses
-from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..linker import link_source
 from .generate import angular_momentum_source, as_array, energy_source, rhs_source, torque_source
-from .layout import Layout
+from ..layout import Layout
 from .rotators import Gyroscopic, Rigid
-
-
-@dataclass
-class Ode:
-    """What an integrator integrates: y' = rhs(t, y, params) from (t0, y0), the state laid out by ``layout``.
-
-    A System is one (every model); a bare Ode serves an equation that is not a model of bodies (DE421's core
-    carried under its prescribed mantle)."""
-
-    rhs: object
-    params: tuple
-    t0: float
-    y0: np.ndarray
-    layout: Layout
-    name: str = "ode"
-    meta: dict = field(default_factory=dict)
-    torque: object = None
-
-    def with_start(self, t0, y0):
-        return dataclasses.replace(self, t0=float(t0), y0=self.layout.normalise_state(y0))
 
 
 class System:

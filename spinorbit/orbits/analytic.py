@@ -12,7 +12,6 @@ from numba import njit
 from ..errors import InputError
 
 
-
 def _per_body(n, *values):
     """Each value as a float array of one entry per body (None -> zeros)."""
     return [np.zeros(n) if v is None else np.asarray(v, dtype=float).reshape(n) for v in values]

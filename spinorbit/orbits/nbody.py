@@ -8,12 +8,12 @@ given as GM (km^3/day^2), DE421 values.
 """
 import numpy as np
 
+from ..bodies.de421_header import gm_km3_d2, header
 from ..constants import DAY_S, JULIAN_YEAR_D
 from ..errors import InputError
 from ..progress import progress
 from ..rotations import vector_angle
 from .interpolant import HermiteOrbits, grid
-from ..bodies.de421_header import gm_km3_d2, header
 from .kernel import DE421Arrays, JPLKernel
 
 BODIES = ("sun", "mercury", "venus", "earth", "moon", "mars", "jupiter", "saturn", "uranus", "neptune",

@@ -10,9 +10,9 @@ import math
 import numpy as np
 
 from ..analysis.lyapunov import benettin, compiled_flow, displaced, scipy_flow, system_flow
-from ..models.assemblies.idealised import under_point_masses
 from ..integrators import integrate
 from ..integrators.rk8 import fixed_step
+from ..models.assemblies.idealised import under_point_masses
 from ..models.planar import anomaly_and_distance, planar_rhs
 from ..orbits.analytic import KeplerOrbit
 from ..rotations import matrix_from_quat

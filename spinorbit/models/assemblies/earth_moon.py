@@ -41,7 +41,7 @@ SWITCHES = {"relativity": "the EIH (1PN) point-mass correction on the orbit",
             "moon_distortion": "the Moon's tidal and rotational distortion (DE421's K2M, TAUM)",
             "geodesic": "the geodesic precession of the Earth's axis",
             "planets": "Mercury to Pluto as point masses on the orbit",
-            "planets_on_moon_figure": "the planets' torques on the Moon's figure (degrees 2-4)",
+            "planets_on_moon_figure": "the planets' torques on the Moon's degree-2 figure",
             "sun_on_earth_j3_j4": "the Sun's torque on the Earth's J3 and J4"}
 FIGURES = {"moon_figure": "the Moon's degree 2 and the Earth as a point mass",
            "moon_harmonics": "the Moon's degrees 3-4 (DE421) and the Earth as a point mass",
@@ -100,8 +100,8 @@ def solar(switches, planets):
     if unknown:
         raise InputError("switches", unknown, f"names from {list(SWITCHES)}")
     out = [PointMass("moon", ("sun",)), Harmonics("moon", ("sun",)), PointMass("earth", ("sun",))]
-    if "planets_on_moon_figure" in switches and planets:
-        out += [PointMass("moon", planets), Harmonics("moon", planets)]
+    if "planets_on_moon_figure" in switches and planets:      # their pull on degrees 3-4: < 1e-10 of the Earth's
+        out.append(PointMass("moon", planets))
     if "sun_on_earth_j3_j4" in switches:
         out.append(Harmonics("earth", ("sun",)))
     if "earth_tides" in switches:

@@ -4,7 +4,6 @@ The body sits at the origin with its principal moments in any unit (only their r
 move on an orbit source relative to it (analytic circles and ellipses for Euler's problems, an ephemeris for
 the stress cases).  These are the Systems of the free-body, P92-P96 and stress scenes.
 """
-import numpy as np
 
 from ..figure import Body, Figure
 from ..interactions import PointMass

@@ -12,9 +12,8 @@ the trace of I drops out).  The force on the attractor and the torque on its own
 from E by differentiation (closed forms in :func:`energy_gradients`): F = -grad_r E,
 N_attractor = -p x grad_p E; action equals reaction (rot N + r x F + N_attractor = 0).
 """
-from dataclasses import dataclass
-
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from numba import njit

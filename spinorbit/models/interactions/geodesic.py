@@ -7,9 +7,8 @@ System's own state; :class:`GeodesicRate` as the IERS constant rate about a fixe
 term (size h/r^3 over the orbit, (1 + e cos f)^3 ~ 1 + 3 e cos l'), which integrates to the geodesic
 nutation, 3 e Omega / n' = 0.153 mas in psi (Fukushima 1991).
 """
-from dataclasses import dataclass
-
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from numba import njit

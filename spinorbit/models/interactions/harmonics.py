@@ -9,9 +9,8 @@ W = (1/r) sum_n (R/r)^n P_nm (C cos + S sin), G-scaled by the body's GM R^2 (its
 the Cartesian V_nm/W_nm recursion of Montenbruck & Gill 2000, §3.2.4-3.2.5, free of polar singularities).
 Degree 2 is the point-mass term's (the figure's inertia).
 """
-from dataclasses import dataclass
-
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from numba import njit

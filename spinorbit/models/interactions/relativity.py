@@ -15,9 +15,8 @@ eq. 4-26, after Newhall, Standish & Williams 1983 (A&A 125, 150), with beta = ga
 The accelerations a_j inside the 1/c^2 terms are the Newtonian ones (the error is O(c^-4)).  The
 coordinates are harmonic (barycentric, TDB); the frame is the inertial frame of ``pos``.  Units: km, day.
 """
-from dataclasses import dataclass
-
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from numba import njit

@@ -41,9 +41,8 @@ barycentre that DE421's eq. 32 leaves out).
 
 Units: km, d, GM in km^3/d^2, angular rates rad/d, torques G-scaled (km^5/d^4); frame ICRF.
 """
-from dataclasses import dataclass
-
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from numba import njit

@@ -15,11 +15,10 @@ walks as sqrt(steps), so scaling a shorter run up linearly overstates it).  Pass
 import numpy as np
 
 from ...constants import JULIAN_CENTURY_D
+from ...models.assemblies.earth_moon import FIGURES
 from ...schema import Key
 from ...verdict import Check, Verdict
 from .. import common
-
-from ...models.assemblies.earth_moon import FIGURES
 
 SCHEMA = {
     **{f"model.{name}": Key(type=bool, default=True, help=text) for name, text in FIGURES.items()},

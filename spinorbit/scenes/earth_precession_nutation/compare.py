@@ -3,13 +3,12 @@ layer applied and tabled, the full model's own checks, and the output table.
 
 Edge module (astropy, ERFA through references.erfa_pole); the Earth scene declares, this compares.
 """
-import math
 
 import numpy as np
 
 from ... import nonrigid
-from ...bodies import earth
 from ...analysis.precession import compare_with_iau, fit_pole, free_nutation_amplitude, term_table
+from ...bodies import earth
 from ...constants import ARCSEC, JULIAN_CENTURY_D, MAS
 from ...references import arguments, erfa_pole
 
@@ -93,11 +92,10 @@ def nonrigid_summary(t, z_rigid, z, iau):
 
 def table(t, z, dx, dy, nutation):
     """The CIP X, Y and their residuals (mas); on DE421 the model's mean pole and nutation about it."""
+    import astropy.units as u
     from astropy.table import QTable
 
     from ...schema import tdb_days_to_time
-
-    import astropy.units as u
 
     columns = {"time": tdb_days_to_time(t), "cip_x": (z[:, 0] * u.rad).to(u.arcsec),
                "cip_y": (z[:, 1] * u.rad).to(u.arcsec), "cip_x_minus_erfa": dx * u.mas, "cip_y_minus_erfa": dy * u.mas}

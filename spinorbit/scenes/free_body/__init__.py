@@ -8,10 +8,10 @@ Hairer-Lubich-Wanner test case (moments 2/3, 1, 2) can be run as published.
 """
 import numpy as np
 
-from ...constants import ARCSEC
 from ...analysis.invariants import invariant_drift
-from ...models.assemblies.idealised import free_body
+from ...constants import ARCSEC
 from ...errors import PhysicsError, ScenarioError
+from ...models.assemblies.idealised import free_body
 from ...rotations import quat_angle, quat_from_euler313
 from ...schema import ANGLE, SPIN, Key
 from ...verdict import Check, Verdict

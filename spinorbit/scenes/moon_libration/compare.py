@@ -19,8 +19,31 @@ SOURCE_NOTES = {"rebound": (
     "pole 0.0034\" over 1969-2019)")}
 
 
-def table(solution, mats, de421, lib):
-    """The attitude, the JPL angles and their residuals against DE421, the librations and the sub-Earth point."""
+def against_de421(t, mats):
+    """(DE421's orientation on the outputs its series covers (a Comparable, or None), the covered rows (mask),
+    the comparison's metrics, {metric: why not measured}): outside DE421's span nothing is compared."""
+    from ...analysis.librations import residual_metrics
+    from ...bodies.de421_orientation import span
+    from ...references.moon_de421 import Orientation
+    from ...schema import tdb_days_to_time
+
+    first, last = span()
+    covered = (t >= first) & (t <= last)
+    if not covered.any():
+        dates = " to ".join(tdb_days_to_time([first, last]).tdb.iso)
+        why = f"DE421's lunar orientation covers {dates} TDB: this span lies outside it"
+        return None, covered, {}, {f"comparison.{k}": why for k in METRICS}
+    de421 = Orientation()(t[covered])
+    return de421, covered, residual_metrics(mats[covered], de421["icrf_to_body"]), {}
+
+
+METRICS = ("pole_error_max_arcsec", "pole_error_rms_arcsec", "longitude_error_max_arcsec",
+           "longitude_error_rms_arcsec")
+
+
+def table(solution, mats, de421, covered, lib):
+    """The attitude, the JPL angles and their residuals against DE421 (NaN where it has no data), the physical
+    librations and the sub-Earth point."""
     import astropy.units as u
 
     from ...analysis.librations import pole_and_longitude_difference
@@ -29,12 +52,15 @@ def table(solution, mats, de421, lib):
 
     table, angles = attitude_table(solution), euler313_from_matrix(mats)
     arcsec = lambda x: x / ARCSEC * u.arcsec
-    minus_de421 = (angles - de421["angles_rad"] + np.pi) % (2 * np.pi) - np.pi
+    residuals = np.full((len(angles), 5), np.nan)             # pole, longitude, phi, theta, psi
+    if de421 is not None:
+        residuals[covered, :2] = np.transpose(pole_and_longitude_difference(mats[covered], de421["icrf_to_body"]))
+        residuals[covered, 2:] = (angles[covered] - de421["angles_rad"] + np.pi) % (2 * np.pi) - np.pi
     for i, name in enumerate(("phi", "theta", "psi")):
         table[name] = angles[:, i] * u.rad
-    table["pole_error"], table["longitude_error"] = map(arcsec, pole_and_longitude_difference(mats, de421["icrf_to_body"]))
+    table["pole_error"], table["longitude_error"] = arcsec(residuals[:, 0]), arcsec(residuals[:, 1])
     for i, name in enumerate(("phi", "theta", "psi")):
-        table[f"{name}_minus_de421"] = arcsec(minus_de421[:, i])
+        table[f"{name}_minus_de421"] = arcsec(residuals[:, 2 + i])
     for name, key in (("longitude", "tau"), ("latitude", "rho"), ("node", "sigma")):
         table[f"libration_{name}"] = arcsec(lib[key])
     table["sub_earth_longitude"] = np.degrees(lib["sub_earth_lon"]) * u.deg

@@ -13,8 +13,8 @@ import math
 
 import numpy as np
 
-from ...models.assemblies.idealised import under_point_masses
 from ...errors import ScenarioError
+from ...models.assemblies.idealised import under_point_masses
 from ...schema import ANGLE, DISTANCE, GM, SPIN, Key
 from ...verdict import Check, Verdict
 from .. import common

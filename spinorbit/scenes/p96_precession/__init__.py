@@ -17,8 +17,8 @@ import math
 import numpy as np
 
 from ...constants import ARCSEC
-from ...models.assemblies.idealised import under_point_masses
 from ...errors import ResonanceError, ScenarioError
+from ...models.assemblies.idealised import under_point_masses
 from ...rotations import matrix_from_quat
 from ...schema import ANGLE, DISTANCE, GM, RATE, SPIN, Key
 from ...verdict import Check, Verdict

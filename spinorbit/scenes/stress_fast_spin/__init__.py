@@ -21,9 +21,9 @@ import math
 import numpy as np
 
 from ...analysis.ladder import cheapest, work_precision
-from ...models.assemblies.idealised import under_point_masses
 from ...errors import ScenarioError
 from ...integrators import METHODS, get_method, integrate
+from ...models.assemblies.idealised import under_point_masses
 from ...rotations import quat_angle
 from ...schema import ANGLE, SPIN, Key
 from ...verdict import Check, Verdict

@@ -12,11 +12,11 @@ import math
 
 import numpy as np
 
-from ...analysis.ladder import settings, work_precision
 from ...analysis.invariants import invariant_drift, kinetic_energy
-from ...models.assemblies.idealised import free_body, under_point_masses
+from ...analysis.ladder import settings, work_precision
 from ...errors import ScenarioError
 from ...integrators import METHODS
+from ...models.assemblies.idealised import free_body, under_point_masses
 from ...rotations import quat_angle, quat_from_rotation_vector
 from ...schema import Key
 from ...theory import FreeRigidBody, axisymmetric_attitude

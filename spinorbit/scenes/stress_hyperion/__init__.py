@@ -23,10 +23,10 @@ import math
 import numpy as np
 
 from ...analysis.lyapunov import ensemble_mean
+from ...models.planar import planar_params
 from ...schema import DISTANCE, GM, Key
 from ...verdict import Check, Verdict
 from .. import common
-from ...models.planar import planar_params
 from ..planar_spin_orbit import kepler_orbit, planar_lyapunov, planar_vs_rigid_body, rigid_body_lyapunov
 
 

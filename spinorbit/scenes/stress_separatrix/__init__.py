@@ -23,7 +23,6 @@ from .. import common
 from ..p93_planar_libration import crossing_times, planar_system, zeta_from_solution
 
 
-
 def verdict(scenario, comparison):
     """Side of the separatrix and time to 90 deg against §826, every method and offset."""
     return Verdict("§826 closed form", (
