@@ -76,6 +76,7 @@ class Scenario:
         self.path = Path(path) if path else None
         self.name = self.path.stem if self.path else "scenario"
         self.checkpoint = None          # a checkpoint.Checkpoint when the command line runs it (--resume)
+        self.extra_times = None         # TDB days the Python API asks for, besides the span's grid
         from .scenes import scene_module  # the scene registry (lazy imports)
 
         check_depth(data, str(self.path) if self.path else "scenario")
@@ -111,11 +112,15 @@ class Scenario:
 
     def output_times(self):
         """Output times in TDB days from J2000: start to end at span.step (end included), descending
-        when the span runs backward (end before start)."""
+        when the span runs backward (end before start); with the API's ``extra_times`` among them."""
         step = self["span.step"] * (1.0 if self.t_end > self.t_start else -1.0)
         n = int(np.floor((self.t_end - self.t_start) / step + 1e-9))
         times = self.t_start + step * np.arange(n + 1)
-        return times if np.isclose(times[-1], self.t_end, rtol=0, atol=1e-9 * abs(step)) else np.append(times, self.t_end)
+        if not np.isclose(times[-1], self.t_end, rtol=0, atol=1e-9 * abs(step)):
+            times = np.append(times, self.t_end)
+        if self.extra_times is not None:
+            times = np.union1d(times, self.extra_times)[::1 if step > 0 else -1]
+        return times
 
     @property
     def bounds(self):
@@ -333,10 +338,14 @@ def apply_override(data, assignment):
 
 
 def load_scenario(path, overrides=()):
-    """Read and validate a scenario file; ``overrides`` are ``key=value`` strings."""
-    path = Path(path)
+    """Read and validate a scenario file (a path, or a built-in scene's name: spinorbit.catalogue); ``overrides``
+    are ``key=value`` strings."""
+    from .catalogue import resolve
+
+    path = resolve(path)
     if not path.is_file() or not _is_utf8(str(path)):
-        raise ScenarioError("scenario", str(path), "an existing .toml file with a UTF-8 name (see `spinorbit list`)")
+        raise ScenarioError("scenario", str(path), "an existing .toml file with a UTF-8 name, or the name of a "
+                                                   "built-in scene (see `spinorbit list`)")
     raw = path.read_bytes()
     try:
         text = raw.decode("utf-8")
