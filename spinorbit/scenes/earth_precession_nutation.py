@@ -1,12 +1,13 @@
 """The Earth's precession and nutation (Euler ch. 16 P91/P96) against IAU 2006/2000A (ERFA).
 
-A rigid oblate Earth (spinorbit.earth, H_d from IAU 2006) under the Moon's and Sun's torques (DE421, or Euler's
-circles), started on the IAU pole with forced initial conditions; the CIP X, Y, the fitted precession rate and
-nutation terms, Euler's P96 rate N cos n (§846) beside them (spinorbit.earth_vs_iau compares).  The rigid-minus-
-IAU nutation is the non-rigid response, not an error; ``earth.nonrigid`` applies it (spinorbit.nonrigid).
+A rigid oblate Earth (spinorbit.earth, H_d from IAU 2006) under the Moon's and Sun's torques (DE421, or
+Euler's circles), started on the IAU pole with forced initial conditions: the CIP X, Y, the fitted precession
+rate and nutation, Euler's P96 rate N cos n (§846) beside them (earth_vs_iau). The rigid-minus-IAU nutation is
+the non-rigid response, not an error: ``earth.nonrigid`` applies it (earth_nonrigid; REN-2000, VLBI beside).
 """
 from .. import earth
 from ..analysis.precession import RATE_MIN_SPAN_D
+from ..analysis.transfer.models import MODELS
 from ..errors import ScenarioError
 from ..references import euler_p96
 from ..schema import SAMPLE_STEP, Key
@@ -23,8 +24,9 @@ SCHEMA = {
     "earth.geodesic_precession": Key(type=bool, default=True),
     "earth.j2_rate": Key(type=bool, default=True),
     "earth.j4": Key(type=bool, default=False, help="torques on the Earth's J4 (EGM2008; gyroscopic model)"),
-    "earth.geodesic_nutation": Key(type=bool, default=False, help="the geodesic precession's annual term (gyroscopic)"),
-    "earth.nonrigid": Key(type=bool, default=False, help="the rigid nutation times spinorbit.nonrigid's response"),
+    "earth.geodesic_nutation": Key(type=bool, default=False, help="the geodesic precession's annual term"),
+    "earth.nonrigid": Key(type=bool, default=False, help="the rigid nutation times earth.transfer_function"),
+    "earth.transfer_function": Key(type=str, default="mhb2000", choices=tuple(MODELS)),
     "orbit.source": Key(type=str, default="de421", choices=("de421", "circular")),
     "orbit.planets": Key(type=bool, default=False, help="add the direct torques of the planets (Mercury to Saturn)"),
     "orbit.sample_step": Key(**SAMPLE_STEP, default=0.25),
@@ -33,11 +35,10 @@ SCHEMA = {
     "comparison.free_nutation_span": Key(unit="d", default=610.0, positive=True, max=1e6, help="for the Euler period"),
 }
 
-_RIGID_VS_IAU = ("IAU 2000A is a non-rigid Earth (MHB2000): its 18.6-yr nutation differs from a rigid "
-                 "Earth's by 74 mas in dpsi (REN-2000 rigid -17.2806\" vs IAU 2000A -17.2064\"), 23 mas in deps; "
-                 "project targets X <= 40, Y <= 25 mas rms")
-_NONRIGID_VS_IAU = ("IAU 2000A is MHB2000's transfer function on a rigid-Earth series, its residuals against VLBI "
-                    "~0.2 mas; a non-rigid layer from published parameters should come within 1 mas rms")
+_RIGID_VS_IAU = ("IAU 2000A is a non-rigid Earth (MHB2000): its 18.6-yr nutation differs from a rigid one's "
+                 "(REN-2000 -17.2805\") by 74 mas in dpsi, 23 in deps; targets X <= 40, Y <= 25 mas rms")
+_NONRIGID_VS_IAU = ("IAU 2000A is MHB2000's transfer function on a rigid-Earth series, its residuals against "
+                    "VLBI ~0.2 mas; a non-rigid layer from published parameters should come within 1 mas rms")
 _RATE = ("H_d is IAU 2006's, so the rate matches IAU 2006 to the torques left out (planets +0.031\"/cy, J4 +0.0026, "
          "MHB2000's nonlinear -0.021) and to the first-order scale factor H_d came with (-0.004), RESULTS.md")
 
@@ -72,7 +73,7 @@ PLANETS = ("mercury", "venus", "mars", "jupiter", "saturn")  # direct torques; U
 
 
 def run(scenario):
-    from .. import earth_vs_iau as vs, plots
+    from .. import earth_nonrigid as nr, earth_vs_iau as vs, plots
     from ..references import erfa_pole
 
     t = scenario.output_times()
@@ -80,9 +81,9 @@ def run(scenario):
     solution, point = common.simulate_scenario(scenario, system, t)
     full = scenario["earth.model"] == "full"
     z = earth.figure_axes_from_full(solution.y) if full else system.meta["figure_axes"](t, solution.y, params)
-    z_rigid, iau = z, erfa_pole.IauPole()(t)
-    if scenario["earth.nonrigid"]:
-        z = vs.nonrigid_pole(t, z)
+    z_rigid, iau, nonrigid = z, erfa_pole.IauPole()(t), scenario["earth.nonrigid"] and nr.settings(scenario)
+    if nonrigid:
+        z = nr.nonrigid_pole(t, z, **nonrigid)
     dx, dy, comparison = vs.residuals(z, iau)
     not_measured, nutation = {}, {}
     if plane_tilt is None:                           # on DE421: IAU 2000A's nutation applies
@@ -97,10 +98,9 @@ def run(scenario):
     if full:
         comparison.update(vs.full_checks(scenario, orbits, params, scenario.t_start, z0, x0, t, z))
         figures["full_minus_gyroscopic"] = plots.full_minus_gyroscopic(t, comparison.pop("_full_minus_gyro_mas"))
+    model = vs.model_summary(params[0], orbits, geodesic, scenario["earth.j2_rate"], scenario["earth.j4"])
     summary = {"not_measured": not_measured, "comparison": comparison, "run": point, "reference": iau.provenance,
-               "model": vs.model_summary(params[0], orbits, geodesic, scenario["earth.j2_rate"], scenario["earth.j4"])}
-    if scenario["earth.nonrigid"]:
-        summary["nonrigid"] = vs.nonrigid_summary(t, z_rigid, z, iau)
+               "model": model, **(nr.summaries(t, z_rigid, z, iau, dx, dy, **nonrigid) if nonrigid else {})}
     return common.result(scenario, table, summary, figures, solution)
 
 
