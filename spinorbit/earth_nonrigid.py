@@ -21,14 +21,15 @@ TABLE_TERMS = {"18.6 yr": (0, 0, 0, 0, 1), "9.3 yr": (0, 0, 0, 0, 2), "1 yr": (0
 
 
 def settings(scenario):
-    """The non-rigid layer's settings from an Earth scene: transfer function, the run's H_d, geodesic nutation."""
+    """The non-rigid layer's settings from an Earth scene: transfer function, run's H_d, geodesic nutation."""
     return {"model": scenario["earth.transfer_function"], "h_d": scenario["earth.dynamical_ellipticity"],
             "geodesic": scenario["earth.geodesic_nutation"] and scenario["earth.geodesic_precession"]}
 
 
 def geodesic_nutation(t_tdb_d):
-    """The model's geodesic nutation in longitude (rad) at TDB days: the annual term of its geodesic precession
-    (earth.geodesic_rate: Omega_gp (1 + 3 e cos l')) integrated, -(3 e Omega_gp / n') sin l' (Fukushima 1991)."""
+    """The model's geodesic nutation in longitude (rad) at TDB days: the annual term of its geodesic
+    precession (earth.geodesic_rate: Omega_gp (1 + 3 e cos l')) integrated, -(3 e Omega_gp / n') sin l'
+    (Fukushima 1991)."""
     rate = earth.GEODESIC_PRECESSION_ARCSEC_CY * ARCSEC / JULIAN_CENTURY_D
     l0, n = earth.SUN_MEAN_ANOMALY_RAD
     return -3.0 * earth.EARTH_ORBIT_ECCENTRICITY * rate / n * np.sin(l0 + n * np.asarray(t_tdb_d))
@@ -40,14 +41,15 @@ def nonrigid_pole(t, z, model, h_d, geodesic):
     nutation (``geodesic``) kept as it is, plus MHB2000's nonlinear precession accumulated from the start."""
     (dpsi, deps), sin_eps = erfa_pole.about_mean_pole(t, z), np.sin(erfa_pole.mean_angles(t)[3])
     kinematic = (geodesic_nutation(t) * sin_eps if geodesic else 0.0, 0.0)
-    x, y = nonrigid.nonrigid_nutation(t, dpsi * sin_eps, deps, *arguments.phases(t, nonrigid.LUNISOLAR_ARGUMENTS),
-                                      MODELS[model], h_d, kinematic)
+    phases, rates = arguments.phases(t, nonrigid.LUNISOLAR_ARGUMENTS)
+    x, y = nonrigid.nonrigid_nutation(t, dpsi * sin_eps, deps, phases, rates, MODELS[model], h_d, kinematic)
     return erfa_pole.from_mean_pole(t, x / sin_eps + nonrigid.nonlinear_precession(t - t[0]), y)
 
 
 def ren2000_scaled(t, h_d, geodesic):
     """REN-2000's (dpsi, deps), rad, on its tabulated constituents, times h_d / H_REN (a rigid Earth's
-    first-order nutation goes as H), plus the model's geodesic nutation if ``geodesic`` (REN-2000 has none)."""
+    first-order nutation goes as H), plus the model's geodesic nutation if ``geodesic`` (REN-2000 has
+    none)."""
     dpsi, deps = ren2000.nutation(t)
     return dpsi * h_d / ren2000.H + (geodesic_nutation(t) if geodesic else 0.0), deps * h_d / ren2000.H
 
@@ -74,10 +76,11 @@ def nonrigid_summary(t, z_rigid, z, iau, model, h_d, geodesic):
 
 def summaries(t, z_rigid, z, iau, dx_mas, dy_mas, model, h_d, geodesic):
     """The summary's "nonrigid" (nonrigid_summary) and "vlbi" (earth_vs_vlbi.vlbi_summary of the residuals
-    ``dx_mas``, ``dy_mas`` against IAU 2006/2000A; the reason when the run shares no time with the offsets)."""
-    vlbi = earth_vs_vlbi.vlbi_summary(t, dx_mas, dy_mas)
-    return {"nonrigid": nonrigid_summary(t, z_rigid, z, iau, model, h_d, geodesic),
-            "vlbi": vlbi or {"not_measured": "the run shares no time with VLBI's offsets (IERS C04, 1984-01-01 on)"}}
+    ``dx_mas``, ``dy_mas`` against IAU 2006/2000A; the reason when the run shares no time with the
+    offsets)."""
+    vlbi = earth_vs_vlbi.vlbi_summary(t, dx_mas, dy_mas) or {
+        "not_measured": "the run shares no time with VLBI's offsets (IERS C04, from 1984)"}
+    return {"nonrigid": nonrigid_summary(t, z_rigid, z, iau, model, h_d, geodesic), "vlbi": vlbi}
 
 
 def rms(x):

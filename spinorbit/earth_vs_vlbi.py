@@ -14,7 +14,8 @@ from .references import fcn_lambert, vlbi_pole
 
 
 def vlbi_summary(t, dx_mas, dy_mas):
-    """{span: {rms and counts}} of model - observed and IAU - observed (mas) in X and Y over the span the run and
+    """{span: {rms and counts}} of model - observed and IAU - observed (mas) in X and Y over the span the run
+    and
     the C04 table share, and over the FCN model's span with and without the FCN; None if they share none.
     ``dx_mas``, ``dy_mas``: the run's model - IAU 2006/2000A at its times ``t`` (TDB days)."""
     observed = vlbi_pole.offsets()
@@ -31,7 +32,8 @@ def vlbi_summary(t, dx_mas, dy_mas):
         model = (dx_mas[inside][fcn_span], dy_mas[inside][fcn_span])
         rows["fcn_span_with_fcn"] = _rms_pair(tf, *model, dx_obs[fcn_span], dy_obs[fcn_span])
         rows["fcn_span_fcn_removed"] = _rms_pair(tf, *model, dx_obs[fcn_span] - fx, dy_obs[fcn_span] - fy)
-        rows["fcn_size_mas"] = {"x_rms": _rms(fx), "y_rms": _rms(fy), "max": float(np.abs(fx + 1j * fy).max())}
+        rows["fcn_size_mas"] = {"x_rms": _rms(fx), "y_rms": _rms(fy),
+                                "max": float(np.abs(fx + 1j * fy).max())}
     return {"comparison": rows, "reference": vlbi_pole.provenance(), "fcn_model": fcn_lambert.provenance()}
 
 

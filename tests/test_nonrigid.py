@@ -1,6 +1,6 @@
-"""The non-rigid Earth (spinorbit.analysis.transfer, analysis.nonrigid, earth_nonrigid): MHB2000's own transfer
-function (the default) against its table and its rigid limit, the IERS 1996 factors and the two-layer Earth
-against each other, closed forms and MHB2000, and the scene over a decade.
+"""The non-rigid Earth (spinorbit.analysis.transfer, analysis.nonrigid, earth_nonrigid): MHB2000's own
+transfer function (the default) against its table and its rigid limit, the IERS 1996 factors and the
+two-layer Earth against each other, closed forms and MHB2000, and the scene over a decade.
 
 The scene tests run 2000-2010 (benchmarks/results_earth_nonrigid.md gives the century).
 """
@@ -11,15 +11,22 @@ import pytest
 
 from spinorbit.analysis import nonrigid
 from spinorbit.analysis.transfer import forms, mhb2000_table
-from spinorbit.analysis.transfer.models import (IERS1996, MHB2000, MHB2000_MODES, PUBLISHED_FCN_CPSD, RIGID,
-                                                TWO_LAYER)
+from spinorbit.analysis.transfer.models import (
+    IERS1996,
+    MHB2000,
+    MHB2000_MODES,
+    PUBLISHED_FCN_CPSD,
+    RIGID,
+    TWO_LAYER,
+)
 from spinorbit.bodies.earth import H_D
 from spinorbit.errors import ScenarioError
 from spinorbit.results import run_scenario
 from tests.units import mas
 
 SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"
-DECADE = ["span.start=2000-01-01T12:00:00", "span.end=10 yr", "integrator.estimate_error=false", "output.plots=false"]
+DECADE = ["span.start=2000-01-01T12:00:00", "span.end=10 yr", "integrator.estimate_error=false",
+          "output.plots=false"]
 # terrestrial frequencies (cpsd) of circular nutations from 18.6 yr retrograde to 13.66 d prograde
 SIGMAS = -1.0 + np.array([-1 / 6798.4, -1 / 365.26, 1 / 182.62, 1 / 13.66]) / 1.0027379
 # the resonance form with R = 1 and no resonances: the rigid Earth
@@ -37,17 +44,17 @@ def test_mhb2000_takes_its_tabulated_values_at_the_tabulated_frequencies():
 
 
 def test_resonance_form_reproduces_the_table():
-    """The resonance form with MHB2000's free modes at their published frequencies, fitted to the 90 tabulated
-    values, reproduces each within 0.005 mas on its term (|T_form - T| x REN-2000's amplitude; measured 0.0014,
-    the files' rounding being 0.05 prad = 1e-5 mas): one smooth function holds the table to well under the
-    0.05 mas the main terms are aimed at."""
+    """The resonance form with MHB2000's free modes at their published frequencies, fitted to the 90
+    tabulated values, reproduces each within 0.005 mas on its term (|T_form - T| x REN-2000's amplitude;
+    measured 0.0014, the files' rounding being 0.05 prad = 1e-5 mas): one smooth function holds the table to
+    well under the 0.05 mas the main terms are aimed at."""
     error = np.abs(MHB2000.between.transfer(TABLE_SIGMA) - TABLE_T) * TABLE_REN_RAD
     assert error.max() < 0.005 * mas
 
 
 def test_resonance_form_predicts_a_value_left_out():
-    """Between the tabulated frequencies: the form fitted without a row predicts it within 0.05 mas on its term
-    (measured at most 0.027 mas, the 18.6-yr prograde term's 8", i.e. 3.4e-6 in T)."""
+    """Between the tabulated frequencies: the form fitted without a row predicts it within 0.05 mas on its
+    term (measured at most 0.027 mas, the 18.6-yr prograde term's 8", i.e. 3.4e-6 in T)."""
     for k in range(len(TABLE_SIGMA)):
         rest = np.arange(len(TABLE_SIGMA)) != k
         form = forms.fit_resonance(TABLE_SIGMA[rest], TABLE_T[rest], TABLE_REN_RAD[rest], MHB2000_MODES)
@@ -55,8 +62,8 @@ def test_resonance_form_predicts_a_value_left_out():
 
 
 def test_mhb2000s_fcn_resonance_strength_is_herrings_iers_1996_estimate():
-    """The FCN strength fitted to MHB2000's table against T. Herring's, estimated from the VLBI of the 1990s for
-    the IERS 1996 series: two estimates, six years apart, agree within 3 % (measured 1.1 %)."""
+    """The FCN strength fitted to MHB2000's table against T. Herring's, estimated from the VLBI of the 1990s
+    for the IERS 1996 series: two estimates, six years apart, agree within 3 % (measured 1.1 %)."""
     fitted = {m.name: m.strength for m in MHB2000.between.modes}["FCN"]
     herring = {m.name: m.strength for m in IERS1996.modes}["FCN"]
     assert abs(fitted / herring - 1) < 0.03
@@ -73,7 +80,7 @@ def test_mhb2000_rigid_limit_at_precession_is_the_ratio_of_ellipticities():
 
 
 @pytest.mark.parametrize("model, bound_d", [
-    # Herring's IERS 1996 factors: -430.06 d from the VLBI of the 1990s, MHB2000's -430.21 d from 20 yr: 0.3 d.
+    # Herring's IERS 1996 factors: -430.06 d from the VLBI of the 1990s, MHB2000's -430.21 d from 20 yr.
     (IERS1996, 0.3),
     # Two-layer roots, measured -431.27 d: it leaves out the inner core, anelasticity and the oceans, which
     # MHB2000 includes; bound 2 d (0.5 %).
@@ -120,7 +127,8 @@ def test_fluid_core_moment_is_prems_outer_core():
     """A_f/A from PREM's outer-core density (Dziewonski & Anderson 1981, Table 1), integrated here in closed
     form, over A = C (1 - H_d) with C/(M a^2) = 0.3307, GM = 398600.4418 km^3/s^2, a = 6378.1366 km."""
     radius, g = 6371.0e3, 6.67430e-11
-    density = np.polynomial.Polynomial([12.5815e3, -1.2638e3 / radius, -3.6426e3 / radius**2, -5.5281e3 / radius**3])
+    density = np.polynomial.Polynomial([12.5815e3, -1.2638e3 / radius, -3.6426e3 / radius**2,
+                                        -5.5281e3 / radius**3])
     moment = (density * np.polynomial.Polynomial([0, 0, 0, 0, 1])).integ()      # kg m^2 per 8 pi / 3
     a_f = 8 * np.pi / 3 * (moment(3480.0e3) - moment(1221.5e3))
     a_earth = 0.3307 * 398600.4418e9 / g * 6378136.6**2 * (1 - H_D)
@@ -157,8 +165,8 @@ def test_rigid_mantle_with_fluid_core_matches_its_closed_form():
     assert np.abs(p.transfer(s) - closed).max() < 1e-12
 
 
-RIGID_TABLE = forms.Tabulated(TABLE_SIGMA, np.ones(len(TABLE_SIGMA), complex), np.zeros(len(TABLE_SIGMA), complex),
-                              RIGID_RESONANCES, H_D)
+RIGID_TABLE = forms.Tabulated(TABLE_SIGMA, np.ones(len(TABLE_SIGMA), complex),
+                              np.zeros(len(TABLE_SIGMA), complex), RIGID_RESONANCES, H_D)
 
 
 @pytest.mark.parametrize("rigid", [RIGID, RIGID_RESONANCES, RIGID_TABLE])
@@ -223,14 +231,15 @@ GYROSCOPIC_THIRD_ORDER_MAS = {("13.66 d", "dpsi_in"): 0.15}
 
 
 @pytest.mark.parametrize("term, part", [
-    ("1 yr", "deps_in"), ("0.5 yr", "dpsi_in"), ("0.5 yr", "deps_in"), ("0.5 yr", "dpsi_out"), ("0.5 yr", "deps_out"),
-    ("27.55 d", "dpsi_in"), ("13.66 d", "dpsi_in"), ("13.66 d", "deps_in"), ("13.66 d", "dpsi_out")])
+    ("1 yr", "deps_in"), ("0.5 yr", "dpsi_in"), ("0.5 yr", "deps_in"), ("0.5 yr", "dpsi_out"),
+    ("0.5 yr", "deps_out"), ("27.55 d", "dpsi_in"), ("13.66 d", "dpsi_in"), ("13.66 d", "deps_in"),
+    ("13.66 d", "dpsi_out")])
 def test_main_terms_against_iau_2000a(decade, term, part):
     """Within 0.1 mas of IAU 2000A (the issue's target) with MHB2000's transfer function; rigid minus IAU:
     1 yr -8 mas in deps (the FCN resonance), 0.5 yr +40 / -20 (out of phase +1.3 / +0.5), 27.55 d -3.4,
-    13.66 d +6.2 / -3.0 (out of phase -0.3).  The 1-yr dpsi (rigid -22 mas) is not asserted here: a decade's fit
-    gives it -0.16 mas, the century's -0.05 (the fitted 1-yr term holds the unresolved 365.22-d one and, over a
-    decade, part of the 346.6-d and 386-d ones)."""
+    13.66 d +6.2 / -3.0 (out of phase -0.3).  The 1-yr dpsi (rigid -22 mas) is not asserted here: a decade's
+    fit gives it -0.16 mas, the century's -0.05 (the fitted 1-yr term holds the unresolved 365.22-d one and,
+    over a decade, part of the 346.6-d and 386-d ones)."""
     values = decade[0]["nonrigid"]["terms_mas"][term][part]
     bound = GYROSCOPIC_THIRD_ORDER_MAS.get((term, part), 0.1)
     assert abs(values["nonrigid"] - values["iau2000a"]) * mas < bound * mas
@@ -238,20 +247,21 @@ def test_main_terms_against_iau_2000a(decade, term, part):
 
 
 @pytest.mark.parametrize("term, part", [
-    ("1 yr", "dpsi_in"), ("1 yr", "deps_in"), ("0.5 yr", "dpsi_in"), ("0.5 yr", "deps_in"), ("0.5 yr", "dpsi_out"),
-    ("27.55 d", "dpsi_in"), ("27.55 d", "deps_in"), ("13.66 d", "dpsi_in"), ("13.66 d", "deps_in")])
+    ("1 yr", "dpsi_in"), ("1 yr", "deps_in"), ("0.5 yr", "dpsi_in"), ("0.5 yr", "deps_in"),
+    ("0.5 yr", "dpsi_out"), ("27.55 d", "dpsi_in"), ("27.55 d", "deps_in"), ("13.66 d", "dpsi_in"),
+    ("13.66 d", "deps_in")])
 def test_rigid_run_is_ren2000(decade, term, part):
-    """The rigid run against REN-2000 (scaled to the run's H_d, plus the model's geodesic nutation, which REN-2000
-    has not) within 0.05 mas, the gyroscopic model's third order aside (above)."""
+    """The rigid run against REN-2000 (scaled to the run's H_d, plus the model's geodesic nutation, which
+    REN-2000 has not) within 0.05 mas, the gyroscopic model's third order aside (above)."""
     values = decade[0]["nonrigid"]["terms_mas"][term][part]
     bound = GYROSCOPIC_THIRD_ORDER_MAS.get((term, part), 0.05)
     assert abs(values["rigid"] - values["ren2000"]) * mas < bound * mas
 
 
 def test_iau_2000a_against_vlbi_over_the_decade(decade):
-    """The observed pole offsets read as IAU 2006/2000A + (dX, dY): IAU 2000A's residual against VLBI is about
-    0.2 mas rms (MHB 2002's fit), the free core nutation's 0.1-0.3 mas among it: taking out Lambert's FCN model
-    lowers it.  Measured 2000-2010: 0.18 / 0.22 mas, 0.14 / 0.18 without the FCN."""
+    """The observed pole offsets read as IAU 2006/2000A + (dX, dY): IAU 2000A's residual against VLBI is
+    about 0.2 mas rms (MHB 2002's fit), the free core nutation's 0.1-0.3 mas among it: taking out Lambert's
+    FCN model lowers it.  Measured 2000-2010: 0.18 / 0.22 mas, 0.14 / 0.18 without the FCN."""
     vlbi = decade[0]["vlbi"]["comparison"]
     for axis in "xy":
         assert 0.05 < vlbi["c04"][f"iau_minus_observed_{axis}_rms_mas"] < 0.4

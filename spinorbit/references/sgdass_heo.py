@@ -96,15 +96,17 @@ def constituent(series, multipliers, direction):
 
 
 def long_period_table(series, min_amplitude_rad, min_period_d=2.0):
-    """references.ren2000.ROWS: the constituents of ``series`` with periods in space over ``min_period_d`` (the
-    CIP's nutation) and amplitudes from ``min_amplitude_rad``, in the files' units and order: PHAS, FREQ,
-    ACCL, PMC, PMS (prad), PMC_RATE, PMS_RATE (1e-24 rad/s), rounded as the files write them."""
-    keep = (np.abs(series.rate) * DAY_S < 2 * np.pi / min_period_d) & (np.abs(series.amplitude) >= min_amplitude_rad)
+    """references.ren2000.ROWS: the constituents of ``series`` with periods in space over ``min_period_d``
+    (the CIP's nutation) and amplitudes from ``min_amplitude_rad``, in the files' units and order: PHAS,
+    FREQ, ACCL, PMC, PMS (prad), PMC_RATE, PMS_RATE (1e-24 rad/s), rounded as the files write them."""
+    long_period = np.abs(series.rate) * DAY_S < 2 * np.pi / min_period_d
+    keep = long_period & (np.abs(series.amplitude) >= min_amplitude_rad)
     rows = []
     for k in np.flatnonzero(keep):
         a, r = series.amplitude[k] / PRAD, series.amplitude_rate[k] / RATE_UNIT
+        amplitudes = (round(float(v), 1) for v in (a.imag, a.real, r.imag, r.real))
         rows.append((round(float(series.phase[k]), 10), float(f"{series.rate[k] - OM_NM - OM_PRC:.12e}"),
-                     float(f"{series.accel[k]:.4e}"), *(round(float(v), 1) for v in (a.imag, a.real, r.imag, r.real))))
+                     float(f"{series.accel[k]:.4e}"), *amplitudes))
     return rows
 
 
@@ -115,22 +117,23 @@ def transfer_table(directory, multipliers):
     REN-2000's amplitude (prad)."""
     from ..bodies.earth import ERA_RATE_RAD_D
 
-    series = {key: read(Path(directory) / FILES[key]) for key in ("ren2000", "mhb2000_transf", "mhb2000_addon")}
+    series = [read(Path(directory) / FILES[key]) for key in ("ren2000", "mhb2000_transf", "mhb2000_addon")]
     rows = []
     for m in multipliers:
         for direction in (1, -1):
-            ren, transf, addon = (constituent(s, m, direction)[0] for s in series.values())
+            ren, transf, addon = (constituent(s, m, direction)[0] for s in series)
             if ren == 0:
                 continue
             t = transf / ren
-            extra = (addon - transf) / PRAD if addon != 0 else 0j   # the add-on file: periods in space > 3.3 d
+            extra = (addon - transf) / PRAD if addon != 0 else 0j   # the add-on file: periods over 3.3 d
             nu = direction * arguments.phases(np.array([0.0]), [m])[1][0] / ERA_RATE_RAD_D
             rows.append((tuple(int(v) for v in m), direction, float(f"{nu:.12e}"), round(t.real, 12),
-                         round(t.imag, 12), round(extra.real, 1), round(extra.imag, 1), round(abs(ren) / PRAD, 1)))
+                         round(t.imag, 12), round(extra.real, 1), round(extra.imag, 1),
+                         round(abs(ren) / PRAD, 1)))
     return rows
 
 
-REN2000_MIN_AMPLITUDE_RAD = 1e-6 * ARCSEC     # 1 uas: the main terms' fitted parts move by < 0.005 mas below it
+REN2000_MIN_AMPLITUDE_RAD = 1e-6 * ARCSEC     # 1 uas: the main terms' fitted parts move < 0.005 mas below it
 
 
 def main(directory):

@@ -45,7 +45,8 @@ def provenance():
     import astropy_iers_data
 
     return {"name": "VLBI celestial pole offsets dX, dY from IAU 2006/2000A (IERS EOP 20 C04)",
-            "data": f"astropy-iers-data {astropy_iers_data.__version__} ({Path(astropy_iers_data.IERS_B_FILE).name})",
-            "citation": "IERS Earth Orientation Centre, EOP 20 C04 (consistent with ITRF 2020); IERS Conventions "
-                        "(2010), TN36 §5.5.4",
+            "data": f"astropy-iers-data {astropy_iers_data.__version__} "
+                    f"({Path(astropy_iers_data.IERS_B_FILE).name})",
+            "citation": "IERS Earth Orientation Centre, EOP 20 C04 (consistent with ITRF 2020); IERS "
+                        "Conventions (2010), TN36 §5.5.4",
             "span": "from 1984-01-01 (the first VLBI value) to the table's last row"}

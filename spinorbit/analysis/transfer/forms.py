@@ -1,4 +1,4 @@
-"""The forms a transfer function takes: resonance expansion, two-layer Earth, table with a resonance form between.
+"""The forms of a transfer function: resonance expansion, two-layer Earth, table with a form between.
 
 Every form offers ``transfer(sigma)`` (complex, shape of sigma), ``additive(sigma)`` (terms the model adds
 outside the transfer function, complex amplitudes in rad of exp(+i nu Omega t) in the plane (dpsi sin eps,
@@ -46,7 +46,7 @@ class ResonanceExpansion:
     rigid_h: float = None
 
     def transfer(self, sigma):
-        """Non-rigid / rigid nutation amplitude at terrestrial frequencies sigma (cpsd), complex, shape of sigma."""
+        """Non-rigid / rigid amplitude at terrestrial frequencies sigma (cpsd), complex, shape of sigma."""
         s = np.asarray(sigma, dtype=complex)
         return self.r + self.r_prime * (1 + s) + sum(m.strength / (s - m.frequency) for m in self.modes)
 
@@ -66,9 +66,9 @@ def fit_resonance(sigma, values, weights, modes, rigid_h=None):
     w = np.asarray(weights, dtype=float)[:, None]
     design = np.column_stack([np.ones_like(s), 1 + s] + [1 / (s - pole) for pole in modes.values()])
     coef = np.linalg.lstsq(design * w, np.asarray(values) * w[:, 0], rcond=None)[0]
-    return ResonanceExpansion(complex(coef[0]), complex(coef[1]),
-                              tuple(Mode(name, pole, complex(a)) for (name, pole), a in zip(modes.items(), coef[2:])),
-                              rigid_h)
+    strengths = coef[2:]
+    return ResonanceExpansion(complex(coef[0]), complex(coef[1]), tuple(
+        Mode(name, pole, complex(a)) for (name, pole), a in zip(modes.items(), strengths)), rigid_h)
 
 
 @dataclass(frozen=True, eq=False)
@@ -128,7 +128,7 @@ class EarthParameters:
     rigid_h = None        # T relative to a rigid Earth of the same e
 
     def transfer(self, sigma):
-        """Non-rigid / rigid nutation amplitude at terrestrial frequencies sigma (cpsd), complex, shape of sigma."""
+        """Non-rigid / rigid amplitude at terrestrial frequencies sigma (cpsd), complex, shape of sigma."""
         m, rhs = self._matrices(sigma)
         if self.a_f == 0.0:                    # no core: the mantle equation alone
             wobble = rhs[..., 0] / m[..., 0, 0]

@@ -17,8 +17,9 @@ sigma = nu - 1), Re T, Im T, the add-on term (complex amplitude of
 exp(direction i arg), prad: real, imaginary), REN-2000's amplitude (prad; T carries its rounding, 0.05 prad,
 over it).
 """
-# REN-2000's dynamical ellipticity (C - A)/C: Souchay & Kinoshita (1996)'s, which goes with their general precession
-# 5028.7700"/cy (Bourda & Capitaine 2004, A&A 428, 691, Table 1), the one REN-2000 adopts (Souchay et al. 1999).
+# REN-2000's dynamical ellipticity (C - A)/C: Souchay & Kinoshita (1996)'s, which goes with their general
+# precession 5028.7700"/cy (Bourda & Capitaine 2004, A&A 428, 691, Table 1), the one REN-2000 adopts (Souchay
+# et al. 1999).
 RIGID_H = 3.2737548e-3
 
 ROWS = (

@@ -35,7 +35,7 @@ PRAD = 1e-12
 
 
 def mhb2000_transfer(rows=mhb2000_table.ROWS, rigid_h=mhb2000_table.RIGID_H):
-    """The Tabulated transfer function of ``rows`` (mhb2000_table's layout), the resonance form fitted between."""
+    """The Tabulated transfer function of ``rows`` (mhb2000_table's layout), resonance form fitted between."""
     table = np.array([row[2:] for row in rows])
     sigma, values, weights = table[:, 0] - 1.0, table[:, 1] + 1j * table[:, 2], table[:, 5]
     between = fit_resonance(sigma, values, weights, MHB2000_MODES, rigid_h)
@@ -70,7 +70,7 @@ RIGID = EarthParameters(e=H_D / (1.0 - H_D), e_f=0.0, a_f=0.0, kappa=0.0, xi=0.0
 # Buffett, Herring & Shapiro 1991, JGR 96, 8219):
 #     RFCN      -.00011489752  .00000214130   -1.00231888314  -.00002920327
 #     CW        -.00057992000  .00000000000     .00253170000   .00000000000
-#     R and R'  1.04901828112 -.00150732471    -.25517427386   .03965769073   (R; then R' in the frequency slot)
+#     R and R'  1.04901828112 -.00150732471    -.25517427386   .03965769073   (R; R' in the frequency slot)
 # The routine writes its complex numbers with the opposite sign of i to this package's exp(i sigma Omega t):
 # its FCN grows (Im s < 0).  Every value is therefore taken conjugated, which makes the FCN decay, as the
 # two-layer model's FCN does (Im K_CMB < 0); the out-of-phase terms it then gives have IAU 2000A's signs.
