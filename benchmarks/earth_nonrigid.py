@@ -24,8 +24,8 @@ from spinorbit.analysis.transfer import forms, mhb2000_table
 from spinorbit.analysis.transfer.models import IERS1996, MHB2000, MHB2000_MODES
 from spinorbit.bodies.earth import H_D
 from spinorbit.constants import JULIAN_CENTURY_D, MAS
-from spinorbit.earth_nonrigid import TABLE_TERMS, ren2000_scaled
-from spinorbit.references import arguments, erfa_pole
+from spinorbit.earth_nonrigid import TABLE_TERMS, nonrigid_pole, ren2000_scaled
+from spinorbit.references import arguments, erfa_pole, vlbi_pole
 from spinorbit.results import run_scenario
 
 SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"
@@ -99,15 +99,21 @@ def print_cip(runs, rigid_summary, t, iau):
     print(f"| (rigid, layer off) | {c['x_rms_mas']:.2f} | {c['y_rms_mas']:.2f} | | | |")
 
 
-def print_terms(runs):
-    print("\n| term | part | rigid | IAU 2000A | " + " | ".join(f"{m} - IAU" for m in MODELS) + " |")
-    print("|---|---|---|---|" + "---|" * len(MODELS))
+def print_terms(runs, t, z_rigid, iau):
+    """The parts of each transfer function's pole minus IAU 2000A, and MHB2000's on the rigid pole with the
+    gyroscopic model's third-order term added (third_order)."""
+    z_third = erfa_pole.from_mean_pole(t, *third_order(t, z_rigid))
+    third = parts(t, {"third": erfa_pole.about_mean_pole(t, nonrigid_pole(t, z_third, "mhb2000", H_D, True)),
+                      "iau": (iau["dpsi_rad"], iau["deps_rad"])})
+    print("\n| term | part | rigid | IAU 2000A | " + " | ".join(f"{m} - IAU" for m in MODELS)
+          + " | mhb2000 + third order - IAU |\n|---|---|---|---|" + "---|" * (len(MODELS) + 1))
     tables = {model: summary["nonrigid"]["terms_mas"] for model, (summary, _, _) in runs.items()}
     for term in TABLE_TERMS:
         for part in PARTS:
-            v = tables["mhb2000"][term][part]
+            v, w = tables["mhb2000"][term][part], third[term][part]
             diffs = " | ".join(f"{tables[m][term][part]['nonrigid'] - v['iau2000a']:+.3f}" for m in MODELS)
-            print(f"| {term} | {part} | {v['rigid']:.3f} | {v['iau2000a']:.3f} | {diffs} |")
+            print(f"| {term} | {part} | {v['rigid']:.3f} | {v['iau2000a']:.3f} | {diffs} | "
+                  f"{w['third'] - w['iau']:+.3f} |")
 
 
 def print_ren2000(t, z_rigid):
@@ -122,8 +128,9 @@ def print_ren2000(t, z_rigid):
                   f"{v['third'] - v['ren']:+.3f} |")
     main = ren["18.6 yr"]["dpsi_in"]
     ratio = main["rigid"] / (main["ren"] * mhb2000_table.RIGID_H / H_D)
-    print(f"\n18.6-yr dpsi in phase: rigid / REN-2000 - 1 = {ratio - 1:.3e} (H_d / H_REN-2000 - 1 = "
-          f"{H_D / mhb2000_table.RIGID_H - 1:.3e})")
+    print(f"\n18.6-yr dpsi in phase: rigid / REN-2000 - 1 = {ratio - 1:.4e}, H_d / H_REN-2000 - 1 = "
+          f"{H_D / mhb2000_table.RIGID_H - 1:.4e}: rigid / (REN-2000 x H_d / H_REN) - 1 = "
+          f"{main['rigid'] / main['ren'] - 1:+.1e}")
     print("full - gyroscopic, 2000-2010 (dpsi in, deps in, mas): " + "; ".join(
         f"{name} {a:+.4f} {b:+.4f}" for name, (a, b) in full_minus_gyroscopic().items()))
 
@@ -140,6 +147,10 @@ def print_vlbi(summary):
     size = vlbi["fcn_size_mas"]
     print(f"FCN (Lambert) over 1984-2013: X / Y rms {size['x_rms']:.3f} / {size['y_rms']:.3f} mas, at most "
           f"{size['max']:.3f} mas")
+    observed = vlbi_pole.offsets()
+    big_t = observed.t_tdb_d / JULIAN_CENTURY_D
+    dx, dy = (np.polyfit(big_t, v / MAS, 1)[0] for v in (observed.dx, observed.dy))
+    print(f"VLBI - IAU 2006/2000A over the C04 span, lines fitted: dX {dx:+.2f}, dY {dy:+.2f} mas/cy")
 
 
 def print_form():
@@ -149,6 +160,11 @@ def print_form():
     left_out = [abs(forms.fit_resonance(np.delete(sigma, k), np.delete(values, k), np.delete(ren_rad, k),
                                         MHB2000_MODES).transfer(sigma[k]) - values[k]) * ren_rad[k] / MAS
                 for k in range(len(sigma))]
+    fewer = {}
+    for left in ("FICN", "CW"):
+        modes = {name: s for name, s in MHB2000_MODES.items() if name != left}
+        form = forms.fit_resonance(sigma, values, ren_rad, modes)
+        fewer[left] = (np.abs(form.transfer(sigma) - values) * ren_rad / MAS).max()
     fitted = {m.name: m.strength for m in MHB2000.between.modes}["FCN"]
     herring = {m.name: m.strength for m in IERS1996.modes}["FCN"]
     print(f"\nResonance form (R, R', CW, FCN, FICN at MHB2000's frequencies) on the {len(sigma)} tabulated "
@@ -157,14 +173,16 @@ def print_form():
           "mas; "
           f"T(-1) - 1 = {MHB2000.between.transfer(-1.0).real - 1:.2e} (H_MHB2000 / H_REN-2000 - 1 = "
           f"{H_MHB2000 / mhb2000_table.RIGID_H - 1:.2e}); A_FCN {fitted:.4e}, IERS 1996's "
-          f"{herring:.4e}")
+          f"{herring:.4e}; without the FICN at most {fewer['FICN']:.4f} mas, without the CW "
+          f"{fewer['CW']:.4f}")
 
 
 def main():
     runs = {model: century(model) for model in MODELS}
     rigid_summary, t, z_rigid = century(None)
-    print_cip(runs, rigid_summary, t, erfa_pole.IauPole()(t))
-    print_terms(runs)
+    iau = erfa_pole.IauPole()(t)
+    print_cip(runs, rigid_summary, t, iau)
+    print_terms(runs, t, z_rigid, iau)
     print_ren2000(t, z_rigid)
     print_vlbi(runs["mhb2000"][0])
     print_form()
