@@ -216,7 +216,7 @@ def test_layer_off_gives_the_rigid_figures_exactly(decade):
 
 
 def test_cip_against_iau_2006_2000a_over_a_decade(decade):
-    on, off = decade
+    on, _ = decade
     c = on["comparison"]
     # Rigid 24.9 / 21.8 mas rms; non-rigid (MHB2000) measured 1.11 / 0.13 mas.  A decade does not separate the
     # 18.6-yr term from the quadratic, and what the quadratic takes is not scaled by T (T - 1 = -0.3 % of 6.9"
