@@ -25,7 +25,7 @@ import sys
 import numpy as np
 from scipy.integrate import cumulative_trapezoid
 
-from spinorbit import nonrigid
+from spinorbit.analysis import nonrigid
 from spinorbit.analysis.harmonics import fit_harmonics
 from spinorbit.bodies.earth import H_D
 from spinorbit.constants import ARCSEC, JULIAN_CENTURY_D

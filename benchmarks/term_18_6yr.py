@@ -7,7 +7,8 @@ about 1 min).  Prints, in mas:
   fitted as the scene fits them (quadratic + the resolved luni-solar arguments), then with a cubic and
   with Poisson terms T sin Om, T cos Om added: if the secular line or IAU 2000A's time-dependent
   amplitude leaked into the out-of-phase part, non-rigid - IAU would move with the design;
-* the layer (``nonrigid.IERS1996``) applied to a pure in-phase rigid 18.6-yr term, against the out-of-phase
+* the layer with the IERS 1996 factors (``analysis.transfer.models.IERS1996``) applied to a pure in-phase
+  rigid 18.6-yr term, against the out-of-phase
   coefficients T. Herring's KSV_1996_3 series prints for that term (IERS Conventions 1996: the rigid
   KSRE95 series times the same resonance factors): what is left is the rigid series' own out-of-phase
   part (Williams 1994; Souchay & Kinoshita 1996);
@@ -26,12 +27,15 @@ about 1 min).  Prints, in mas:
 import numpy as np
 from precession_budget import EPS0, integrated, laplace_tilt, lunar_orbit_pole, lunisolar, mean_pole, turned
 
-from spinorbit import nonrigid
+from spinorbit.analysis import nonrigid
 from spinorbit.analysis.spans import resolvable
+from spinorbit.analysis.transfer.models import IERS1996
+from spinorbit.bodies.earth import H_D
 from spinorbit.constants import ARCSEC, JULIAN_CENTURY_D, MAS
 from spinorbit.references import arguments, erfa_pole
 from spinorbit.results import run_scenario
 from spinorbit.scenes.earth_precession_nutation import compare as earth_vs_iau
+from spinorbit.scenes.earth_precession_nutation import nonrigid as earth_nonrigid
 
 SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"
 KSV_1996_OUT_MAS = (3.608, 1.543)      # KSV_1996_3, term (0 0 0 0 1): out-of-phase dpsi (cos), deps (sin)
@@ -106,7 +110,8 @@ def main():
     phases, rates = arguments.phases(t, nonrigid.LUNISOLAR_ARGUMENTS)
     phases = phases[resolvable(rates, t[-1] - t[0])]
     series = {"rigid": erfa_pole.about_mean_pole(t, rigid),
-              "non-rigid": erfa_pole.about_mean_pole(t, earth_vs_iau.nonrigid_pole(t, rigid)),
+              "non-rigid": erfa_pole.about_mean_pole(
+                  t, earth_nonrigid.nonrigid_pole(t, rigid, "iers1996", H_D, True)),
               "IAU 2000A": (iau["dpsi_rad"], iau["deps_rad"])}
     print("| design | series | dpsi in (sin) | dpsi out (cos) | deps in (cos) | deps out (sin) |\n|---|---|---|---|---|---|")
     for degree, poisson in ((2, False), (3, False), (2, True)):
@@ -123,7 +128,8 @@ def main():
     grid = np.arange(-50 * 365.25, 50 * 365.25, 2.0)
     ph, rt = arguments.phases(grid, nonrigid.LUNISOLAR_ARGUMENTS)
     a_psi, _, b_eps, _ = parts["rigid"]
-    xn, yn = nonrigid.nonrigid_nutation(grid, a_psi * MAS * sin_eps * np.sin(ph[0]), b_eps * MAS * np.cos(ph[0]), ph, rt)
+    xn, yn = nonrigid.nonrigid_nutation(grid, a_psi * MAS * sin_eps * np.sin(ph[0]), b_eps * MAS * np.cos(ph[0]),
+                                        ph, rt, IERS1996, H_D)
     design = np.column_stack([np.sin(ph[0]), np.cos(ph[0]), np.ones_like(grid)])
     out_psi = np.linalg.lstsq(design, xn / sin_eps / MAS, rcond=None)[0][1]
     out_eps = np.linalg.lstsq(design, yn / MAS, rcond=None)[0][0]

@@ -182,7 +182,7 @@ def test_first_order_lunisolar_rate_of_de421_is_p03s():
     3 mas/cy with its polynomial's degree."""
     from scipy.integrate import cumulative_trapezoid
 
-    from spinorbit import nonrigid
+    from spinorbit.analysis import nonrigid
     from spinorbit.analysis.harmonics import fit_harmonics
     from spinorbit.earth_vs_iau import torque_rates
     from spinorbit.orbits.kernel import open_ephemeris

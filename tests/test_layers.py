@@ -10,7 +10,7 @@ PACKAGE = Path(__file__).parents[1] / "spinorbit"
 LAYERS = {
     "constants": 0, "errors": 0, "rotations": 0, "linker": 0, "progress": 0,
     "bodies": 1, "orbits": 1,
-    "dynamics": 2, "integrators": 2, "theory": 2, "moon": 2, "earth": 2, "nonrigid": 2, "terms": 2, "coupled": 2, "relativity": 2, "earth_moon": 2,
+    "dynamics": 2, "integrators": 2, "theory": 2, "moon": 2, "earth": 2, "terms": 2, "coupled": 2, "relativity": 2, "earth_moon": 2,
     "simulate": 3, "analysis": 2,
 }
 EDGE = 9          # scenarios, scenes, references, results, reports, cli, bench, sweep, __init__

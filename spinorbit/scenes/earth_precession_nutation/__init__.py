@@ -3,11 +3,13 @@
 A rigid oblate Earth (spinorbit.models.assemblies.earth, H_d from IAU 2006) under the Moon's and Sun's torques
 (DE421, or Euler's circles), started on the IAU pole with forced initial conditions (start.py); the CIP X, Y,
 the fitted precession rate and nutation terms, Euler's P96 rate N cos n (§846) beside them (compare.py).  The
-rigid-minus-IAU nutation is the non-rigid response, not an error; ``earth.nonrigid`` applies it.
+rigid-minus-IAU nutation is the non-rigid response, not an error: ``earth.nonrigid`` applies it (nonrigid.py;
+REN-2000 and VLBI's observed pole beside).
 """
 import numpy as np
 
 from ...analysis.precession import RATE_MIN_SPAN_D
+from ...analysis.transfer.models import MODELS
 from ...bodies import earth
 from ...references import euler_p96
 from ...schema import SAMPLE_STEP, Key
@@ -24,8 +26,9 @@ SCHEMA = {
     "earth.geodesic_precession": Key(type=bool, default=True),
     "earth.j2_rate": Key(type=bool, default=True),
     "earth.j4": Key(type=bool, default=False, help="torques on the Earth's J4 (EGM2008; gyroscopic model)"),
-    "earth.geodesic_nutation": Key(type=bool, default=False, help="the geodesic precession's annual term (gyroscopic)"),
-    "earth.nonrigid": Key(type=bool, default=False, help="the rigid nutation times a published transfer function"),
+    "earth.geodesic_nutation": Key(type=bool, default=False, help="the geodesic precession's annual term"),
+    "earth.nonrigid": Key(type=bool, default=False, help="the rigid nutation times earth.transfer_function"),
+    "earth.transfer_function": Key(type=str, default="mhb2000", choices=tuple(MODELS)),
     "orbit.source": Key(type=str, default="de421", choices=("de421", "circular")),
     "orbit.planets": Key(type=bool, default=False, help="add the direct torques of the planets (Mercury to Saturn)"),
     "orbit.sample_step": Key(**SAMPLE_STEP, default=0.25),
@@ -34,11 +37,9 @@ SCHEMA = {
     "comparison.free_nutation_span": Key(unit="d", default=610.0, positive=True, max=1e6, help="for the Euler period"),
 }
 
-_RIGID_VS_IAU = ("IAU 2000A is a non-rigid Earth (MHB2000): its 18.6-yr nutation differs from a rigid "
-                 "Earth's by 74 mas in dpsi (REN-2000 rigid -17.2806\" vs IAU 2000A -17.2064\"), 23 mas in deps; "
-                 "project targets X <= 40, Y <= 25 mas rms")
-_NONRIGID_VS_IAU = ("IAU 2000A is MHB2000's transfer function on a rigid-Earth series, its residuals against VLBI "
-                    "~0.2 mas; a non-rigid layer from published parameters should come within 1 mas rms")
+_RIGID_VS_IAU = ("IAU 2000A is a non-rigid Earth (MHB2000): its 18.6-yr nutation differs from a rigid one's "
+                 "(REN-2000 -17.2805\") by 74 mas in dpsi, 23 in deps; targets X <= 40, Y <= 25 mas rms")
+_NONRIGID_VS_IAU = "IAU 2000A is REN-2000 times MHB2000's transfer function, the layer's default: 1 mas rms"
 _RATE = ("H_d is IAU 2006's, so the rate matches IAU 2006 to the torques left out (planets +0.031\"/cy, J4 +0.0026, "
          "MHB2000's nonlinear -0.021) and to the first-order scale factor H_d came with (-0.004), RESULTS.md")
 
@@ -73,15 +74,15 @@ def run(scenario):
     from ... import plots
     from ...references import erfa_pole
     from . import compare as vs
+    from . import nonrigid as nr
     from .start import build
 
     t = scenario.output_times()
     system, orbits, (z0, pole_ecl, plane_tilt) = build(scenario, t)
     solution, point = common.simulate_scenario(scenario, system, t)
     z = z_rigid = system.figure_axes("earth", t, solution.y)
-    iau = erfa_pole.IauPole()(t)
-    if scenario["earth.nonrigid"]:
-        z = vs.nonrigid_pole(t, z)
+    iau, nonrigid = erfa_pole.IauPole()(t), scenario["earth.nonrigid"] and nr.settings(scenario)
+    z = nr.nonrigid_pole(t, z, **nonrigid) if nonrigid else z
     dx, dy, comparison = vs.residuals(z, iau)
     not_measured, nutation = {}, {}
     if plane_tilt is None:                           # on DE421: IAU 2000A's nutation applies
@@ -97,10 +98,9 @@ def run(scenario):
     if scenario["earth.model"] == "full":
         comparison.update(full_checks(scenario, system, z0, t, z))
         figures["full_minus_gyroscopic"] = plots.full_minus_gyroscopic(t, comparison.pop("_full_minus_gyro_mas"))
+    model = vs.model_summary(moments, orbits, geodesic, scenario["earth.j2_rate"], scenario["earth.j4"])
     summary = {"not_measured": not_measured, "comparison": comparison, "run": point, "reference": iau.provenance,
-               "model": vs.model_summary(moments, orbits, geodesic, scenario["earth.j2_rate"], scenario["earth.j4"])}
-    if scenario["earth.nonrigid"]:
-        summary["nonrigid"] = vs.nonrigid_summary(t, z_rigid, z, iau)
+               "model": model, **(nr.summaries(t, z_rigid, z, iau, dx, dy, **nonrigid) if nonrigid else {})}
     return common.result(scenario, table, summary, figures, solution)
 
 

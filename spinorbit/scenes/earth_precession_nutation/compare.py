@@ -1,21 +1,15 @@
-"""An Earth run against IAU 2006/2000A (ERFA): the residuals, the fitted precession and nutation, the non-rigid
-layer applied and tabled, the full model's own checks, and the output table.
+"""An Earth run against IAU 2006/2000A (ERFA): the residuals, the fitted precession and nutation, the full model's
+own checks, and the output table (the non-rigid layer and its references: nonrigid.py).
 
 Edge module (astropy, ERFA through references.erfa_pole); the Earth scene declares, this compares.
 """
 
 import numpy as np
 
-from ... import nonrigid
-from ...analysis.precession import compare_with_iau, fit_pole, free_nutation_amplitude, term_table
+from ...analysis.precession import compare_with_iau, free_nutation_amplitude
 from ...bodies import earth
 from ...constants import ARCSEC, JULIAN_CENTURY_D, MAS
 from ...references import arguments, erfa_pole
-
-# Nutation terms of the non-rigid table: name -> multipliers of (l, l', F, D, Om).
-NONRIGID_TABLE_TERMS = {"18.6 yr": (0, 0, 0, 0, 1), "9.3 yr": (0, 0, 0, 0, 2), "1 yr": (0, 1, 0, 0, 0),
-                        "0.5 yr": (0, 0, 2, -2, 2), "27.55 d": (1, 0, 0, 0, 0), "13.66 d": (0, 0, 2, 0, 2)}
-
 
 def model_summary(moments, orbits, geodesic_arcsec_cy, j2_rate, j4):
     """The model's settings as the summary reports them."""
@@ -61,33 +55,6 @@ def torque_rates(t, poles, positions, gm, h_d=earth.H_D):
         zdot += h_d * np.cross(tz, poles) / earth.ERA_RATE_RAD_D
     plus, minus = erfa_pole.pole_angles(t, poles + zdot), erfa_pole.pole_angles(t, poles - zdot)
     return tuple((p - m) / 2.0 * JULIAN_CENTURY_D / ARCSEC for p, m in zip(plus, minus))
-
-
-def nonrigid_pole(t, z):
-    """Figure axes (n, 3) of the non-rigid Earth: the rigid nutation (x, y) = (dpsi sin eps_A, deps) about
-    the IAU 2006 mean pole, times the transfer function term by term, plus MHB2000's nonlinear precession
-    accumulated from the start (spinorbit.nonrigid)."""
-    (dpsi, deps), sin_eps = erfa_pole.about_mean_pole(t, z), np.sin(erfa_pole.mean_angles(t)[3])
-    x, y = nonrigid.nonrigid_nutation(t, dpsi * sin_eps, deps, *arguments.phases(t, nonrigid.LUNISOLAR_ARGUMENTS))
-    return erfa_pole.from_mean_pole(t, x / sin_eps + nonrigid.nonlinear_precession(t - t[0]), y)
-
-
-def nonrigid_summary(t, z_rigid, z, iau):
-    """The rigid and non-rigid main terms beside IAU 2000A (mas), fitted alike on the nonrigid.LUNISOLAR_ARGUMENTS
-    the run resolves (a term unresolved from a listed one is in it), the rigid residuals, the model's free modes."""
-    terms = arguments.named(t, {str(m): m for m in nonrigid.LUNISOLAR_ARGUMENTS})
-    series = {"rigid": erfa_pole.about_mean_pole(t, z_rigid), "nonrigid": erfa_pole.about_mean_pole(t, z),
-              "iau2000a": (iau["dpsi_rad"], iau["deps_rad"])}
-    cw, fcn = nonrigid.normal_modes()
-    return {"rigid_x_rms_mas": rms((z_rigid[:, 0] - iau["cip_x_rad"]) / MAS),
-            "rigid_y_rms_mas": rms((z_rigid[:, 1] - iau["cip_y_rad"]) / MAS),
-            "terms_mas": term_table({name: fit_pole(t, *v, terms) for name, v in series.items()},
-                                    {name: str(m) for name, m in NONRIGID_TABLE_TERMS.items()}),
-            "nonlinear_precession_arcsec_cy": nonrigid.NONLINEAR_PRECESSION_ARCSEC_CY,
-            "fcn_period_model_d": nonrigid.celestial_period_days(fcn),
-            "fcn_period_mhb2000_d": nonrigid.celestial_period_days(nonrigid.PUBLISHED_FCN_CPSD),
-            "chandler_period_model_d": nonrigid.wobble_period_days(cw),
-            "chandler_period_mhb2000_d": nonrigid.wobble_period_days(nonrigid.PUBLISHED_CHANDLER_CPSD)}
 
 
 def table(t, z, dx, dy, nutation):
