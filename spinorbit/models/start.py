@@ -19,7 +19,7 @@ from numba import njit
 from ..bodies import de421_orientation
 from ..bodies.moon import de421
 from ..rotations import cross3, dot3, quat_from_matrix
-from .gyroscopic import figure_axis_second_order, tidal_tensor
+from .gyroscopic import figure_axis_third_order, tidal_tensor
 from ..layout import Layout
 from .ode import Ode
 
@@ -92,7 +92,7 @@ def frame(z, x_hint):
 
 def oppolzer_axes(system, name, t, spins, states=None, step_d=1.0 / 64.0):
     """Figure axes (n, 3, inertial) of body ``name`` on its forced motion from its spin angular momenta (n, 3):
-    to second order in the Oppolzer terms of the point masses acting on its figure (their tidal tensor's rate
+    to third order in the Oppolzer terms of the point masses acting on its figure (their tidal tensor's rates
     by central differences over ``step_d``; bodies in the state carried by their velocity)."""
     from .rotators import oppolzer_attractors
 
@@ -104,7 +104,8 @@ def oppolzer_axes(system, name, t, spins, states=None, step_d=1.0 / 64.0):
                 system.motion.positions(t + dt, states, name, attractors, dt)] for dt in (0.0, step_d, -step_d)]
     scale = 1.0 + figure.anisotropy_rate_per_d * t
     a, c_minus_a = 0.5 * (figure.moments[0] + figure.moments[1]), figure.c_minus_a
-    return np.array([figure_axis_second_order(np.ascontiguousarray(s), t0, (tp - tm) / (2 * step_d), a, c_minus_a * k)
+    return np.array([figure_axis_third_order(np.ascontiguousarray(s), t0, (tp - tm) / (2 * step_d),
+                                             (tp - 2 * t0 + tm) / step_d ** 2, a, c_minus_a * k)
                      for s, t0, tp, tm, k in zip(spins, *tensors, scale)])
 
 

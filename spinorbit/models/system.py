@@ -102,7 +102,7 @@ class System:
                 np.array([momentum(ti, y, p_l) for ti, y in zip(t, states)]))
 
     def figure_axes(self, name, t, states):
-        """Figure axes (n, 3, inertial) of body ``name`` at TDB days t: a Gyroscopic body's from its spin to second
+        """Figure axes (n, 3, inertial) of body ``name`` at TDB days t: a Gyroscopic body's from its spin to third
         order in the Oppolzer terms (spinorbit.models.start.oppolzer_axes), an attitude's third column otherwise."""
         from ..rotations import matrix_from_quat
         from .start import oppolzer_axes
