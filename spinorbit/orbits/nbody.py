@@ -42,7 +42,9 @@ def weights(name, gm):
 
 
 class ReboundOrbits(HermiteOrbits):
-    """``bodies`` relative to ``center``, integrated by REBOUND from ``t_start`` to ``t_end`` (TDB d).
+    """``bodies`` relative to ``center``, integrated by REBOUND from ``t_start`` to ``t_end`` (TDB d), started
+    from ``kernel``'s states at ``epoch`` (default t_start; a span the kernel does not cover is reached by
+    integrating out from an epoch it does).
 
     bodies, center: names in :data:`BODIES` or :data:`EMB`; center None: barycentric, in the
     simulation's frame, the kernel's barycentric one at t_start kept inertial (DE421's barycentre
@@ -55,7 +57,7 @@ class ReboundOrbits(HermiteOrbits):
     """
 
     def __init__(self, center, bodies, t_start, t_end, step=0.25, kernel=None, gr=True,
-                 earth_j2=True, epsilon=1e-9):
+                 earth_j2=True, epsilon=1e-9, epoch=None):
         import rebound
         import reboundx
 
@@ -64,13 +66,14 @@ class ReboundOrbits(HermiteOrbits):
         if unknown:
             raise InputError("bodies", unknown, f"bodies of the REBOUND run: {sorted(gm)}")
         kernel = JPLKernel() if kernel is None else kernel
-        kernel.check_span(t_start, t_start)
+        epoch = t_start if epoch is None else float(epoch)
+        kernel.check_span(epoch, epoch)
         sim = rebound.Simulation()
         sim.G = 1.0
         sim.integrator = "ias15"
         sim.integrator.epsilon = epsilon
         for name in BODIES:
-            p, v = kernel.relative_states(name, "solar_system_barycenter", [t_start])
+            p, v = kernel.relative_states(name, "solar_system_barycenter", [epoch])
             sim.add(m=gm[name], x=p[0, 0], y=p[0, 1], z=p[0, 2], vx=v[0, 0], vy=v[0, 1], vz=v[0, 2],
                     name=name)
         extras = reboundx.Extras(sim)
@@ -87,6 +90,7 @@ class ReboundOrbits(HermiteOrbits):
         self.simulation, self.extras = sim, extras        # keep extras alive with sim
 
         times = grid(t_start, t_end, step)
+        sim.integrate(t_start - epoch, exact_finish_time=1)            # out from the kernel's epoch, if it differs
         n = len(BODIES)
         xyz, vxyz = np.empty((n, 3)), np.empty((n, 3))
         relative = np.array([weights(b, gm) - weights(center, gm) for b in bodies])
@@ -94,7 +98,7 @@ class ReboundOrbits(HermiteOrbits):
         vel = np.empty_like(pos)
         with progress("rebound", times[0], times[-1]) as advance_to:
             for k, t in enumerate(times):
-                sim.integrate(t - t_start, exact_finish_time=1)
+                sim.integrate(t - epoch, exact_finish_time=1)
                 sim.serialize_particle_data(xyz=xyz, vxvyvz=vxyz)
                 pos[:, k] = relative @ xyz
                 vel[:, k] = relative @ vxyz

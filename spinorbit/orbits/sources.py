@@ -37,11 +37,7 @@ def sample_orbits(source, center, bodies, t_start, t_end, step=None, measure=Tru
     if source in ("circular", "kepler"):
         return two_body_orbits(source, center, bodies, t_start)
     if source == "rebound":
-        from .kernel import open_ephemeris
-        from .nbody import ReboundOrbits
-
-        start = open_ephemeris("de421", t_start, t_start)
-        orbits = ReboundOrbits(center, bodies, t_start, t_end, step, kernel=start)
+        orbits = rebound_orbits(center, bodies, t_start, t_end, step)
         reference = None
     elif isinstance(source, str):
         from .interpolant import HermiteOrbits, grid
@@ -119,24 +115,34 @@ def barycentric(source, names, t_start, t_end, step_d=1.0):
     """``names`` (bodies and barycentres, e.g. "earth_moon_barycenter") relative to the solar system's barycentre,
     sampled every ``step_d`` days over [t_start, t_end] TDB days into a HermiteOrbits of states.
 
-    source: "de421" (the ephemeris) or "rebound" (spinorbit.orbits.nbody: an N-body run of the Sun, the planets,
-    Pluto, the Earth and the Moon from DE421's state at t_start, the barycentre from its Earth and Moon; for spans
-    or epochs no ephemeris covers).  A barycentre's GM is 0 here: it is where a pair sits, not a mass."""
+    source: a JPL ephemeris ("de421", "de440", a .bsp name) or "rebound" (spinorbit.orbits.nbody: an N-body run of
+    the Sun, the planets, Pluto, the Earth and the Moon from DE421's state, the barycentre from its Earth and Moon;
+    for spans or epochs no ephemeris covers).  A barycentre's GM is 0 here: it is where a pair sits, not a mass."""
     from ..bodies.de421_header import gm_km3_d2
     from .interpolant import HermiteOrbits, grid
     from .kernel import open_ephemeris
 
-    if source not in ("de421", "rebound"):
-        raise InputError("source", source, "'de421' or 'rebound'")
+    if not isinstance(source, str) or source in ("circular", "kepler"):
+        raise InputError("source", source, "'de421', another JPL ephemeris ('de440', a .bsp name), or 'rebound'")
     if source == "rebound":
-        from .nbody import ReboundOrbits
-
-        orbits = ReboundOrbits(None, names, t_start, t_end, step_d, open_ephemeris("de421", t_start, t_start))
+        orbits = rebound_orbits(None, names, t_start, t_end, step_d)
         orbits.gm = np.array([0.0 if name.endswith("barycenter") else g for name, g in zip(names, orbits.gm)])
         return orbits
     t = grid(t_start, t_end, step_d)
-    ephemeris = open_ephemeris("de421", t[0], t[-1])
+    ephemeris = open_ephemeris(source, t[0], t[-1])
     states = [ephemeris.relative_states(name, "solar_system_barycenter", t) for name in names]
     gm = [0.0 if name.endswith("barycenter") else gm_km3_d2(name) for name in names]
     return HermiteOrbits(names, gm, t[0], step_d, np.array([s[0] for s in states]),
-                         np.array([s[1] for s in states]), source="de421")
+                         np.array([s[1] for s in states]), source=ephemeris.name)
+
+
+def rebound_orbits(center, names, t_start, t_end, step):
+    """A REBOUND run (spinorbit.orbits.nbody) sampled over [t_start, t_end], started from DE421's states at
+    t_start, or at the nearest epoch DE421 covers and integrated out from there."""
+    from .kernel import DE421Arrays, open_ephemeris
+    from .nbody import ReboundOrbits
+
+    first, last = DE421Arrays().span
+    epoch = float(np.clip(t_start, first, last))
+    return ReboundOrbits(center, names, t_start, t_end, step, kernel=open_ephemeris("de421", epoch, epoch),
+                         epoch=epoch)

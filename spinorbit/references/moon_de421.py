@@ -114,7 +114,7 @@ def pck_matrix(t_tdb_d):
     t = np.atleast_1d(np.asarray(t_tdb_d, dtype=float))
     start, end = pck_span()
     if t.min() < start or t.max() > end:
-        raise EphemerisRangeError("moon_pa_de421 PCK", f"{t.min():.6g} to {t.max():.6g}", (start, end))
+        raise EphemerisRangeError("moon_pa_de421 PCK", (t.min(), t.max()), (start, end))
     times = load.timescale().tdb_jd(J2000_JD, t)
     return np.moveaxis(_pck_frame().rotation_at(times), -1, 0).reshape(t.size, 3, 3)
 

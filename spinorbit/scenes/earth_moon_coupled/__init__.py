@@ -15,6 +15,8 @@ Boggs 2016: -25.8"/cy^2, 38.3 mm/yr, +-1) on spans of 100 yr or more.
 """
 import time
 
+import numpy as np
+
 from ...errors import ScenarioError
 from ...models.assemblies.earth_moon import EXTERNAL, PLANETS, SWITCHES
 from ...schema import Key
@@ -24,8 +26,9 @@ from .. import common
 OFF_BY_DEFAULT = ()
 SCHEMA = {
     **{f"model.{name}": Key(type=bool, default=name not in OFF_BY_DEFAULT, help=text) for name, text in SWITCHES.items()},
-    "orbit.source": Key(type=str, default="de421", choices=("de421", "rebound"),
-                        help="the Sun, planets and Earth-Moon barycentre: DE421, or a REBOUND run from its state"),
+    "orbit.source": Key(type=str, default="de421",
+                        help="the Sun, planets and Earth-Moon barycentre: 'de421', 'de440' (or a .bsp), or 'rebound' "
+                             "(a REBOUND run from DE421's state)"),
     "orbit.step": Key(unit="d", default=1.0, min=0.0625, max=4.0,
                       help="sampling step of the Sun, planets and Earth-Moon barycentre"),
     "compare.tides_off": Key(type=bool, default=False,
@@ -51,25 +54,36 @@ def verdict(scenario, comparison):
     return Verdict("DE421", tuple(checks))
 
 
+def start_epoch(scenario):
+    """span.start, or the nearest epoch of DE421's lunar series (TDB days) when it lies outside."""
+    from ...bodies.de421_orientation import span
+
+    first, last = span()
+    return float(np.clip(scenario.t_start, first + 1.0, last - 1.0))
+
+
 def external_bodies(scenario):
-    """(the Sun, planets and EMB sampled from orbit.source over the span, the sampling's wall time s)."""
+    """(the Sun, planets and EMB sampled from orbit.source over the span and the start, the sampling's wall
+    time s)."""
     from ...orbits.sources import barycentric
 
-    first, last = scenario.bounds
+    t0, (first, last) = start_epoch(scenario), scenario.bounds
     names = EXTERNAL if scenario["model.planets"] else tuple(n for n in EXTERNAL if n not in PLANETS)
     started = time.perf_counter()
-    external = barycentric(scenario["orbit.source"], names, first - 1.0, last + 1.0, scenario["orbit.step"])
+    external = barycentric(scenario["orbit.source"], names, min(first, t0) - 1.0, max(last, t0) + 1.0,
+                           scenario["orbit.step"])
     return external, time.perf_counter() - started
 
 
 def system(scenario, external, switches):
-    """The Earth-Moon System on ``external`` with ``switches``, started from DE421 at span.start."""
+    """The Earth-Moon System on ``external`` with ``switches``, started from DE421 at span.start (or at the
+    nearest epoch its lunar series covers, integrated out from there)."""
     from ...bodies import earth
     from ...models.assemblies.earth_moon import solar_system
     from ...models.start import earth_moon_de421
     from ...references.erfa_pole import cip_vector
 
-    t0 = scenario.t_start
+    t0 = start_epoch(scenario)
     built = solar_system(external, switches, t0)
     built.y0 = built.layout.pack(earth_moon_de421(built, t0, cip_vector(t0), earth.ERA_RATE_RAD_D))
     return built
@@ -84,11 +98,12 @@ def run(scenario):
     model = system(scenario, external, switches)
     solution, point = common.simulate_scenario(scenario, model, t)
     direction, distance = vs.orbit_errors(t, solution.part("moon.r"))
-    mats, de421, pole, longitude, lunar = vs.lunar_errors(t, solution.part("moon.q"))
+    mats, reference, pole, longitude, lunar = vs.lunar_errors(t, solution.part("moon.q"))
     axis = model.figure_axes("earth", t, solution.y)
     axis_error = vs.earth_axis_error(t, axis)
-    summary = {"comparison": vs.metrics(direction, distance, lunar, axis_error), "run": point,
-               "reference": de421.provenance, "model": {"switches": list(switches)},
+    comparison, not_measured = vs.metrics(t, direction, distance, lunar, axis_error)
+    summary = {"comparison": comparison, "not_measured": not_measured, "run": point, "reference": reference,
+               "model": {"switches": list(switches), "start_tdb_d": model.t0},
                "external_bodies": {"source": external.source, "step_d": external.step, "wall_s": sampled}}
     if scenario["compare.tides_off"]:
         if "earth_tides" not in switches:

@@ -12,12 +12,26 @@ from ...rotations import vector_angle
 MAS = ARCSEC / 1000.0
 
 
+def covered(t):
+    """The outputs DE421 has data at (its lunar series, 1899-12-04 to 2200-02-01 TDB; its orbits reach as far)."""
+    from ...bodies.de421_orientation import span
+
+    first, last = span()
+    return (t >= first) & (t <= last)
+
+
 def orbit_errors(t, r):
-    """(direction (rad), range (km)) of the integrated geocentric Moon r (n, 3) against DE421's at TDB days t."""
+    """(direction (rad), range (km)) of the integrated geocentric Moon r (n, 3) against DE421's at TDB days t,
+    NaN where DE421 has no data."""
     from ...orbits.kernel import open_ephemeris
 
-    de421, _ = open_ephemeris("de421", t[0], t[-1]).relative_states("moon", "earth", t)
-    return vector_angle(r, de421), np.linalg.norm(r, axis=1) - np.linalg.norm(de421, axis=1)
+    direction, distance, inside = np.full(len(t), np.nan), np.full(len(t), np.nan), covered(t)
+    if inside.any():
+        de421, _ = open_ephemeris("de421", t[inside].min(), t[inside].max()).relative_states("moon", "earth",
+                                                                                            t[inside])
+        direction[inside] = vector_angle(r[inside], de421)
+        distance[inside] = np.linalg.norm(r[inside], axis=1) - np.linalg.norm(de421, axis=1)
+    return direction, distance
 
 
 def earth_axis_error(t, axis):
@@ -27,8 +41,20 @@ def earth_axis_error(t, axis):
     return vector_angle(axis, cip_vector(t))
 
 
-def metrics(direction, distance, lunar, earth_axis):
-    """The summary's comparison: max and rms of each error, in arcsec, km and mas."""
+def metrics(t, direction, distance, lunar, earth_axis):
+    """(the summary's comparison: max and rms of each error, in arcsec, km and mas, over the outputs DE421 has
+    data at; {metric: why not measured} where it has none)."""
+    inside = covered(t)
+    if not inside.any():
+        from ...errors import tdb_dates
+
+        why = f"DE421's lunar series covers 1899-12-04 to 2200-02-01 TDB; the span is {tdb_dates((t[0], t[-1]))}"
+        names = [f"{m}_error_{s}_{u}" for m, u in (("moon_direction", "arcsec"), ("moon_range", "km"),
+                                                   ("pole", "arcsec"), ("longitude", "arcsec")) for s in ("max", "rms")]
+        return ({"earth_axis_vs_cip_max_mas": float(earth_axis.max() / MAS),
+                 "earth_axis_vs_cip_rms_mas": float(np.sqrt(np.mean(earth_axis ** 2)) / MAS)},
+                {f"comparison.{name}": why for name in names})
+    direction, distance = direction[inside], distance[inside]
     out = {"moon_direction_error_max_arcsec": float(direction.max() / ARCSEC),
            "moon_direction_error_rms_arcsec": float(np.sqrt(np.mean(direction ** 2)) / ARCSEC),
            "moon_range_error_max_km": float(np.abs(distance).max()),
@@ -36,7 +62,7 @@ def metrics(direction, distance, lunar, earth_axis):
     out.update(lunar)
     out["earth_axis_vs_cip_max_mas"] = float(earth_axis.max() / MAS)
     out["earth_axis_vs_cip_rms_mas"] = float(np.sqrt(np.mean(earth_axis ** 2)) / MAS)
-    return out
+    return out, {}
 
 
 def tidal_acceleration(t, r_on, r_off, v_off):
@@ -65,15 +91,18 @@ def tidal_acceleration(t, r_on, r_off, v_off):
 
 
 def lunar_errors(t, q):
-    """(ICRF-to-body matrices, DE421's, pole and longitude differences (rad), their metrics) of the Moon's
-    attitudes q (n, 4)."""
+    """(ICRF-to-body matrices, DE421's provenance, pole and longitude differences (rad, NaN where DE421 has no
+    data), their metrics) of the Moon's attitudes q (n, 4)."""
     from ...analysis.librations import icrf_to_body, pole_and_longitude_difference, residual_metrics
-    from ...references.moon_de421 import Orientation
+    from ...references.moon_de421 import Orientation, provenance
 
-    mats = icrf_to_body(q)
-    de421 = Orientation()(t)
-    pole, longitude = pole_and_longitude_difference(mats, de421["icrf_to_body"])
-    return mats, de421, pole, longitude, residual_metrics(mats, de421["icrf_to_body"])
+    mats, inside = icrf_to_body(q), covered(t)
+    pole, longitude, metrics_ = np.full(len(t), np.nan), np.full(len(t), np.nan), {}
+    if inside.any():
+        de421 = Orientation()(t[inside])["icrf_to_body"]
+        pole[inside], longitude[inside] = pole_and_longitude_difference(mats[inside], de421)
+        metrics_ = residual_metrics(mats[inside], de421)
+    return mats, provenance(), pole, longitude, metrics_
 
 
 def table(t, r, mats, errors, earth_axis):

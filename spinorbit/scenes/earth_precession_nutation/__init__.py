@@ -29,7 +29,7 @@ SCHEMA = {
     "earth.geodesic_nutation": Key(type=bool, default=False, help="the geodesic precession's annual term"),
     "earth.nonrigid": Key(type=bool, default=False, help="the rigid nutation times earth.transfer_function"),
     "earth.transfer_function": Key(type=str, default="mhb2000", choices=tuple(MODELS)),
-    "orbit.source": Key(type=str, default="de421", choices=("de421", "circular")),
+    "orbit.source": Key(type=str, default="de421", help="'de421', 'de440' (or a .bsp), 'rebound', or 'circular'"),
     "orbit.planets": Key(type=bool, default=False, help="add the direct torques of the planets (Mercury to Saturn)"),
     "orbit.sample_step": Key(**SAMPLE_STEP, default=0.25),
     "comparison.gyroscopic_step": Key(unit="d", default=1.0, positive=True, count="integrator steps",

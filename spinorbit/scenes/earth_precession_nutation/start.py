@@ -21,7 +21,8 @@ def orbits(scenario):
         return euler_p96.circles()
     margin = 1.0        # the figure axes reported difference the torque at t +- 1/64 d
     bodies = ("moon", "sun") + (PLANETS if scenario["orbit.planets"] else ())
-    return sample_orbits("de421", "earth", bodies, scenario.t_start - margin, scenario.t_end + margin,
+    first, last = scenario.bounds
+    return sample_orbits(scenario["orbit.source"], "earth", bodies, first - margin, last + margin,
                          scenario["orbit.sample_step"]), None
 
 
