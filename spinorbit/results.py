@@ -39,6 +39,9 @@ def run_scenario(scenario, overrides=()):
     summary["provenance"] = provenance(scenario)
     result.summary = summary
     if result.table is not None:
+        from .columns import describe
+
+        describe(result.table)
         result.table.meta.update({"scene": scenario.name, "title": summary["title"], **summary["provenance"]})
     return result
 

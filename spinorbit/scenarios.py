@@ -132,15 +132,17 @@ class Scenario:
         tables = {key.split(".")[0] for key in self.schema}
         for table, content in self.data.items():
             if table not in tables:
-                raise ScenarioError(table, "(table)", f"one of the tables {sorted(tables)}")
+                raise ScenarioError(table, "(table)", f"one of the tables {sorted(tables)}{_nearest(table, tables)}")
             if not isinstance(content, dict):
                 raise ScenarioError(table, content, "a table")
             if table in OPEN_TABLES:
+                self._check_options(content)
                 continue
             for name, _ in dotted_items(content, table + "."):
                 if name not in self.schema:
                     accepted = sorted(k for k in self.schema if k.startswith(table + "."))
-                    raise ScenarioError(name, _lookup(self.data, name, Key(type=object)), f"one of the keys {accepted}")
+                    raise ScenarioError(name, _lookup(self.data, name, Key(type=object)),
+                                        f"one of the keys {accepted}{_nearest(name, accepted)}")
         for key, spec in self.schema.items():
             if spec.default is REQUIRED and not _has(self.data, key):
                 table = key.split(".")[0]
@@ -177,6 +179,19 @@ class Scenario:
                 raise ScenarioError(key, value, f"a direction: {spec.size} numbers, not all zero, with a finite length")
             return vector
         return checked_float(key, value, spec)
+
+    def _check_options(self, content):
+        """[integrator] names: the method's options (its class says which), method and estimate_error."""
+        from .integrators import METHODS, get_method
+
+        method = content.get("method", COMMON_SCHEMA["integrator.method"].default)
+        known = set(get_method(method).options) if isinstance(method, str) and method in METHODS else \
+            set(INTEGRATOR_OPTIONS)
+        accepted = sorted(known | {"method", "estimate_error"})
+        for name in content:
+            if name not in accepted:
+                raise ScenarioError(f"integrator.{name}", content[name],
+                                    f"one of the keys {accepted} for method {method!r}{_nearest(name, accepted)}")
 
     def _integrator_options(self):
         options = {}
@@ -361,6 +376,14 @@ def load_scenario(path, overrides=()):
     for assignment in overrides:
         apply_override(data, assignment)
     return Scenario(data, path)
+
+
+def _nearest(name, names):
+    """" (did you mean 'x'?)" for the accepted name closest to a misspelt one, or ""."""
+    import difflib
+
+    close = difflib.get_close_matches(str(name), [str(n) for n in names], n=1, cutoff=0.6)
+    return f" (did you mean {close[0]!r}?)" if close else ""
 
 
 def _reason(exc):
