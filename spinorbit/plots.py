@@ -28,23 +28,35 @@ def _series(fig, x, ys, xlabel, ylabel, labels, logy):
     ax.grid(alpha=0.3)
 
 
-def plot_panels(x, panels, xlabel):
-    """Stacked panels sharing x; ``panels`` = [(ys, labels, ylabel), ...]; the second curve of a panel
-    is drawn dashed over the first (a reference overlaid)."""
-    draw = partial(_panels, x=x, panels=panels, xlabel=xlabel)
+def plot_panels(x, panels, xlabel, sharex=True):
+    """Stacked panels sharing x (NaN leaves a panel's part out: ``sharex=False`` then fits each to its own);
+    ``panels`` = [(ys, labels, ylabel), ...]; the second curve of a panel is drawn dashed over the first (a
+    reference overlaid)."""
+    draw = partial(_panels, x=x, panels=panels, xlabel=xlabel, sharex=sharex)
     draw.figsize = (8, 1.0 + 2.2 * len(panels))          # read by reports.write_plots
     return draw
 
 
-def _panels(fig, x, panels, xlabel):
-    axes = fig.subplots(len(panels), 1, sharex=True)
+def _panels(fig, x, panels, xlabel, sharex):
+    axes = fig.subplots(len(panels), 1, sharex=sharex)
     for ax, (ys, labels, ylabel) in zip(np.atleast_1d(axes), panels):
         for i, (y, label) in enumerate(zip(np.atleast_2d(ys), labels)):
-            ax.plot(*thinned(x, y), lw=1.2 if i == 0 else 0.9, ls="-" if i == 0 else "--", label=label)
+            shown = np.isfinite(y)
+            ax.plot(*thinned(np.asarray(x)[shown], y[shown]), lw=1.2 if i == 0 else 0.9, ls="-" if i == 0 else "--",
+                    label=label)
         ax.set_ylabel(ylabel)
         ax.legend(fontsize=8, loc="upper right")
         ax.grid(alpha=0.3)
     np.atleast_1d(axes)[-1].set_xlabel(xlabel)
+
+
+def monthly_means(years, ys, month_d=27.321661):
+    """(the middle years, the means (k, m)) of ``ys`` (k, n) over consecutive sidereal months of ``years``."""
+    bins = np.floor((years - years[0]) * 365.25 / month_d).astype(int)
+    counts = np.bincount(bins)
+    kept = counts > 0
+    means = np.array([np.bincount(bins, weights=y)[kept] / counts[kept] for y in np.atleast_2d(ys)])
+    return np.bincount(bins, weights=years)[kept] / counts[kept], means
 
 
 COLUMNS = 1000      # intervals across a plot's width: more than its axes' pixels (~740 at 8 in, 110 dpi)
@@ -158,9 +170,15 @@ def moon_libration(t, table, rows, labelled, zoom, zoom_reference):
 
     years = 2000.0 + np.asarray(t) / 365.25
     column = lambda *names: np.array([table[name].value for name in names])
-    figures = {"physical_libration": titled(plot_series(
-                   years, column("libration_longitude", "libration_latitude"), "year (TDB)",
-                   "physical libration [arcsec]", ["longitude τ", "latitude ρ"]), "physical libration"),
+    tau_rho = column("libration_longitude", "libration_latitude")
+    first_year = years <= years[0] + 1.0
+    mean_years, means = monthly_means(years, tau_rho)
+    figures = {"physical_libration": titled(plot_panels(np.concatenate([mean_years, years[first_year]]), [
+                   (np.concatenate([means, np.full((2, first_year.sum()), np.nan)], axis=1), ["τ", "ρ"],
+                    "monthly mean [arcsec]"),
+                   (np.concatenate([np.full((2, mean_years.size), np.nan), tau_rho[:, first_year]], axis=1),
+                    ["τ", "ρ"], "first year [arcsec]")], "year (TDB)", sharex=False),
+                   "physical libration τ, ρ"),
                "libration_spectrum": titled(libration_spectrum(t, table["libration_longitude"].value, rows, labelled),
                                             "libration in longitude τ, amplitude spectrum")}
     if zoom is None:
@@ -190,9 +208,10 @@ def _lyapunov_map(fig, theta, rate, exponent, threshold):
     ax.set_title(f"Hyperion-like, planar: chaotic (> {threshold:g}/T, cyan) vs regular")
 
 
-def earth_precession_nutation(t, dx_mas, dy_mas, nutation, iau):
+def earth_precession_nutation(t, dx_mas, dy_mas, nutation, iau, model="rigid model"):
     """The Earth scene's figures: CIP X, Y minus IAU 2006/2000A (mas) and, given the model's ``nutation``
-    (dpsi, deps about its mean pole, rad), its nutation beside IAU 2000A's (``iau``: a Comparable)."""
+    (dpsi, deps about its mean pole, rad), its nutation beside IAU 2000A's (``iau``: a Comparable); ``model``
+    labels the model's curves."""
     from .constants import ARCSEC
 
     years = 2000.0 + np.asarray(t) / 365.25
@@ -203,10 +222,10 @@ def earth_precession_nutation(t, dx_mas, dy_mas, nutation, iau):
         dpsi, deps = nutation["dpsi"] / ARCSEC, nutation["deps"] / ARCSEC
         dpsi_iau, deps_iau = iau["dpsi_rad"] / ARCSEC, iau["deps_rad"] / ARCSEC
         figures["nutation"] = titled(plot_panels(years, [
-            ([dpsi, dpsi_iau], ["rigid model", "IAU 2000A"], "Δψ [arcsec]"),
-            ([deps, deps_iau], ["rigid model", "IAU 2000A"], "Δε [arcsec]"),
+            ([dpsi, dpsi_iau], [model, "IAU 2000A"], "Δψ [arcsec]"),
+            ([deps, deps_iau], [model, "IAU 2000A"], "Δε [arcsec]"),
             ([(dpsi - dpsi_iau) * 1000, (deps - deps_iau) * 1000], ["Δψ", "Δε"], "model - IAU [mas]")],
-            "year (TDB)"), "nutation in longitude Δψ and obliquity Δε vs IAU 2000A")
+            "year (TDB)"), "nutation Δψ, Δε vs IAU 2000A")
     return figures
 
 

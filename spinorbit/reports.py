@@ -6,6 +6,7 @@ that fails half-way never leaves a truncated file, and earlier files stay.
 import io
 import json
 import math
+import textwrap
 import os
 import pickle
 import signal
@@ -161,9 +162,11 @@ def write_plots(figures, summary, out):
         fig = plt.figure(figsize=(width, height))
         draw(fig)
         title = getattr(draw, "title", name.replace("_", " "))
-        fig.suptitle(f"{summary.get('scene', '')}: {title} ({span})", fontsize=11)
+        heading = textwrap.wrap(f"{summary.get('scene', '')}: {title} ({span})", int(11 * width))
+        fig.suptitle("\n".join(heading), fontsize=11)
         # fixed margins (inches) instead of tight_layout, which measures every tick label (1.7 s of 4 figures)
-        fig.subplots_adjust(left=1.0 / width, right=1 - 0.25 / width, bottom=0.55 / height, top=1 - 0.5 / height,
+        top = 0.3 + 0.2 * len(heading)
+        fig.subplots_adjust(left=1.0 / width, right=1 - 0.25 / width, bottom=0.55 / height, top=1 - top / height,
                             hspace=0.3 * 4.5 / height)
         paths.append(_atomic(out / f"{name}.png", lambda p: fig.savefig(p, dpi=110, format="png")))
         plt.close(fig)
@@ -174,18 +177,21 @@ SKIP = ("scene", "kind", "title", "status", "error", "verdict", "provenance")
 
 
 def report_markdown(summary, plots):
+    status = ("the run finished; the verdict says whether the result meets its tolerance" if summary["status"] == "ok"
+              else "the integration stopped before the end; what it had is written, nothing is judged")
     lines = [f"# {summary.get('title') or summary['scene']}", "",
-             f"Scene `{summary['scene']}` (kind `{summary['kind']}`), status **{summary['status']}** "
-             "(the run finished; the verdict says whether the result meets its tolerance).", ""]
+             f"Scene `{summary['scene']}` (kind `{summary['kind']}`), status **{summary['status']}** ({status}).", ""]
     if "error" in summary:
         lines += [f"Error: {summary['error']}", ""]
     if "verdict" in summary:
         lines += verdict_markdown(summary["verdict"])
     lines += ["## Numbers", "", "| quantity | value |", "|---|---|"]
     tables = []
-    for key, value in dotted_items({k: v for k, v in summary.items() if k not in SKIP}):
+    for key, value in dotted_items({k: v for k, v in summary.items() if k not in SKIP}, is_table=_is_matrix):
         if isinstance(value, list) and value and all(isinstance(row, dict) for row in value):
             tables.append((key, value))
+        elif _is_matrix(value):
+            tables.append((key, _matrix_rows(value)))
         else:
             lines.append(f"| {key} | {_fmt(value)} |")
     lines.append("")
@@ -215,6 +221,18 @@ def verdict_markdown(verdict):
                          f"{c['source']} |")
         lines.append("")
     return lines
+
+
+def _is_matrix(value):
+    """A dict of dicts of dicts of numbers (e.g. terms -> parts -> series): drawn as one table."""
+    return (isinstance(value, dict) and value and all(isinstance(v, dict) and v for v in value.values())
+            and all(isinstance(w, dict) and w and all(isinstance(x, (int, float)) for x in w.values())
+                    for v in value.values() for w in v.values()))
+
+
+def _matrix_rows(value):
+    """Rows {"": "<key> <part>", **series} of a matrix (:func:`_is_matrix`)."""
+    return [{"": f"{name} {part}", **series} for name, parts in value.items() for part, series in parts.items()]
 
 
 def rows_markdown(rows):

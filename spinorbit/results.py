@@ -35,7 +35,7 @@ def run_scenario(scenario, overrides=()):
         summary.setdefault("run", {})["resumed_after_outputs"] = resumed
     comparison = summary.get("comparison", {})
     summary["verdict"] = evaluate(spec_of(scenario, comparison), comparison, abs(scenario.t_end - scenario.t_start),
-                                  scenario.name, span_label(scenario))
+                                  scenario.name, span_label(scenario), summary.get("not_measured"))
     summary["provenance"] = provenance(scenario)
     result.summary = summary
     if result.table is not None:

@@ -158,11 +158,12 @@ def checked_float(key, value, spec):
 
 
 
-def dotted_items(table, prefix=""):
-    """(dotted key, value) of every leaf of a nested dict (a TOML table, a summary): {"a": {"b": 1}} -> ("a.b", 1)."""
+def dotted_items(table, prefix="", is_table=None):
+    """(dotted key, value) of every leaf of a nested dict (a TOML table, a summary): {"a": {"b": 1}} -> ("a.b", 1);
+    a dict for which ``is_table(dict)`` is true is a leaf."""
     for name, value in table.items():
         key = f"{prefix}{name}"
-        if isinstance(value, dict):
-            yield from dotted_items(value, key + ".")
+        if isinstance(value, dict) and not (is_table and is_table(value)):
+            yield from dotted_items(value, key + ".", is_table)
         else:
             yield key, value

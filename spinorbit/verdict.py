@@ -51,9 +51,10 @@ def spec_of(scenario, comparison=None):
     return choose(scenario, comparison or {}) if choose is not None else getattr(scenario.module, "VERDICT", None)
 
 
-def evaluate(spec, comparison, span_d, name="", span_label=""):
-    """``summary["verdict"]`` of a run from its spec, comparison dict and span (days)."""
-    checks = [] if spec is None else [_check(c, comparison or {}, span_d) for c in spec.checks]
+def evaluate(spec, comparison, span_d, name="", span_label="", not_measured=None):
+    """``summary["verdict"]`` of a run from its spec, comparison dict and span (days); ``not_measured``: the
+    summary's reasons for the metrics it could not measure ("comparison.<metric>": why)."""
+    checks = [] if spec is None else [_check(c, comparison or {}, span_d, not_measured or {}) for c in spec.checks]
     results = {c["result"] for c in checks}
     result = FAIL if FAIL in results else PASS if PASS in results else NOT_COMPARED
     verdict = {"result": result, "reference": None if spec is None else spec.reference, "checks": checks}
@@ -63,7 +64,7 @@ def evaluate(spec, comparison, span_d, name="", span_label=""):
     return verdict
 
 
-def _check(check, comparison, span_d):
+def _check(check, comparison, span_d, not_measured):
     out = {"label": check.label, "metric": check.metric, "tolerance": check.tolerance, "unit": check.unit,
            "source": check.source}
     if check.expected is not None:
@@ -79,7 +80,8 @@ def _check(check, comparison, span_d):
     figure = _figure(check, value, comparison.get(check.versus) if check.versus else None)
     if figure is None:
         missing = check.metric if not _finite(value) else check.versus
-        return {**out, "figure": None, "result": NOT_COMPARED, "reason": f"{missing} missing or not finite"}
+        reason = not_measured.get(f"comparison.{missing}", f"{missing} missing or not finite")
+        return {**out, "figure": None, "result": NOT_COMPARED, "reason": reason}
     return {**out, "figure": figure, "result": PASS if abs(figure) <= check.tolerance else FAIL}
 
 

@@ -94,7 +94,8 @@ def run(scenario):
                                               plane_tilt is not None, geodesic)
     comparison.update(p96)
     not_measured.update(p96_not_measured)
-    table, figures = vs.table(t, z, dx, dy, nutation), plots.earth_precession_nutation(t, dx, dy, nutation, iau)
+    table, figures = vs.table(t, z, dx, dy, nutation), plots.earth_precession_nutation(
+        t, dx, dy, nutation, iau, "non-rigid model" if nonrigid else "rigid model")
     if scenario["earth.model"] == "full":
         comparison.update(full_checks(scenario, system, z0, t, z))
         figures["full_minus_gyroscopic"] = plots.full_minus_gyroscopic(t, comparison.pop("_full_minus_gyro_mas"))

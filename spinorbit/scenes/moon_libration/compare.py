@@ -25,13 +25,12 @@ def against_de421(t, mats):
     from ...analysis.librations import residual_metrics
     from ...bodies.de421_orientation import span
     from ...references.moon_de421 import Orientation
-    from ...schema import tdb_days_to_time
+    from ...errors import tdb_dates
 
     first, last = span()
     covered = (t >= first) & (t <= last)
     if not covered.any():
-        dates = " to ".join(tdb_days_to_time([first, last]).tdb.iso)
-        why = f"DE421's lunar orientation covers {dates} TDB: this span lies outside it"
+        why = f"DE421's lunar orientation covers {tdb_dates((first, last))} TDB; this span lies outside it"
         return None, covered, {}, {f"comparison.{k}": why for k in METRICS}
     de421 = Orientation()(t[covered])
     return de421, covered, residual_metrics(mats[covered], de421["icrf_to_body"]), {}
