@@ -76,6 +76,10 @@ def run(scenario):
     de421, covered, comparison, not_measured = vs.against_de421(t, mats)
     lib = eckhardt.physical_librations(t, mats, orbits.positions(t)[:, 0])
     terms, refused = eckhardt.fit_longitude_terms(t, lib["tau"] / ARCSEC, FREE_LIBRATION_LONGITUDE_PERIOD_D)
+    if de421 is not None:                     # DE421's own librations fitted alike: where Eckhardt's series differs
+        vs.beside_de421(terms, eckhardt.fit_longitude_terms(t[covered], eckhardt.physical_librations(
+            t[covered], de421["icrf_to_body"], orbits.positions(t[covered])[:, 0])["tau"] / ARCSEC,
+            FREE_LIBRATION_LONGITUDE_PERIOD_D)[0])
     summary = {"not_measured": {**not_measured, **{f"longitude_terms.{k}": why for k, why in refused.items()}},
                "comparison": comparison, "run": point, "reference": de421.provenance if de421 else None,
                "model": {"level": level, "name": LEVELS[level].name, "start_tdb_d": system.t0,

@@ -78,6 +78,17 @@ def error_vs_runtime(system, t_out, de421_mats):
     return work_precision(system, t_out, LADDER, lambda sol: {k: f(sol) / ARCSEC for k, f in errors.items()})
 
 
+def beside_de421(terms, de421_terms):
+    """Put DE421's own fitted coefficient (``de421_arcsec``) beside each term's fit: where the model and DE421
+    agree and Eckhardt's published series (1981, fitted to older data) differs, the difference is Eckhardt's."""
+    for part in ("main", "other"):
+        for row, other in zip(terms[part], de421_terms[part]):
+            row["de421_arcsec"] = other["fitted_arcsec"]
+    terms["note"] = ("fitted_arcsec: the model's tau fitted on Eckhardt's arguments; de421_arcsec: DE421's own tau "
+                     "fitted alike; where the two agree and published_arcsec (Eckhardt 1981, Meeus ch. 53) differs, "
+                     "e.g. the 18.6-yr term's 0.8\", the difference is the older series', not the integration's")
+
+
 def orbit_summary(source, step_d, orbits):
     """The orbit source as the summary reports it (the interpolant's measured error where it has one)."""
     error = getattr(orbits, "max_error_km", None)
