@@ -50,6 +50,8 @@ SCHEMA = {
     "model.level": Key(type=int, default=3, min=1, max=4, help="1..4: spinorbit.models.assemblies.moon.LEVELS"),
     "model.tides": Key(type=bool, default=True, help="tidal/rotational distortion at levels 3-4"),
     "model.terms": Key(type=list, default=[], help="terms added to the level's, e.g. [\"sun_j2\"]"),
+    "model.start": Key(type=str, default="", help="ISO TDB epoch of DE421's state the Moon starts from (default: "
+                                                   "span.start; clamped into DE421's lunar series)"),
     "orbit.source": Key(type=str, default="de421", help="'de421', a .bsp name, or 'rebound'"),
     "orbit.step": Key(**SAMPLE_STEP, default=0.5, help="orbit sampling step (0.5 d: 5.5e-4 km off DE421, RESULTS.md)"),
     "compare.source": Key(type=str, default="", help="also run driven by this source and report the difference"),

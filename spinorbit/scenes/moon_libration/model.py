@@ -10,11 +10,14 @@ MARGIN_D = 1.0          # orbit samples beyond the outputs: the tide looks back 
 
 
 def start_epoch(scenario):
-    """span.start, or the nearest epoch of DE421's lunar series (TDB days) when it lies outside."""
+    """model.start (default span.start), or the nearest epoch of DE421's lunar series (TDB days) when it lies
+    outside."""
     from ...bodies.de421_orientation import span
+    from ...schema import parse_tdb_days
 
     first, last = span()
-    return float(np.clip(scenario.t_start, first + MARGIN_D, last - MARGIN_D))
+    wanted = parse_tdb_days("model.start", scenario["model.start"]) if scenario["model.start"] else scenario.t_start
+    return float(np.clip(wanted, first + MARGIN_D, last - MARGIN_D))
 
 
 def build_system(scenario, source):
