@@ -7,9 +7,9 @@ Euler's closed form, and the libration scene against DE421 on spans that fit in 
 import numpy as np
 import pytest
 
-from spinorbit.errors import EphemerisRangeError
 from spinorbit.analysis.librations import pole_and_longitude_difference
 from spinorbit.bodies.moon import de421
+from spinorbit.errors import EphemerisRangeError
 from spinorbit.references import moon_de421 as ref
 from spinorbit.rotations import omega_body_from_euler313_rates
 from tests.units import arcsec, mas
@@ -53,23 +53,39 @@ def test_reference_range_errors():
 
 def test_core_state_carried_from_epoch():
     """DE421's core angular velocity carried to JDEPOC itself is the header's OMGCX/Y/Z."""
-    got = ref.core_angular_velocity(C.epoch_tdb_d)
+    from spinorbit.models.start import core_de421
+
+    got = core_de421(C.epoch_tdb_d)
     assert np.abs(got - C.omega_core0_rad_d).max() < 1e-15
 
 
 def test_spherical_core_carry_equals_linear_solution():
-    """With f_c = 0 the core's RK4 carry equals the exact solution of C_c dw_c/dt = -k_v (w_c - w_m)."""
-    rng = np.random.default_rng(2)
-    n, h, k = 2001, 0.25, 3e-4
-    s = np.arange(n) * h
-    poles = np.tile([0.0, 0.0, 1.0], (n, 1)) + 0.01 * rng.normal(size=(n, 3))
-    poles /= np.linalg.norm(poles, axis=1, keepdims=True)
-    w_m = np.array([1e-4 * np.sin(s / 4.3), 2e-4 * np.cos(s / 4.3), 0.23 + 1e-5 * np.sin(s / 30)]).T
+    """With f_c = 0 the core's equation under DE421's mantle (spinorbit.models.start.core_rhs) is linear,
+    C_c dw_c/dt = -k_v (w_c - w_m) in inertial axes, and its RK4 carry (0.5-d steps, as core_de421 runs it)
+    equals the exact solution e^{-k T} w_0 + int_0^T k e^{-k (T - s)} w_m(s) ds (k = k_v/C_c), the integral
+    by the trapezoid over DE421's mantle rates every 1/16 d (its error (h^2/12) k w_m'' T ~ 1e-13; RK4's
+    (h w)^4 k T |w_m - <w_m>| / 120 ~ 1e-11): bound 1e-9 of |w|."""
+    from scipy.integrate import trapezoid
+
+    from spinorbit.bodies import de421_orientation
+    from spinorbit.integrators import integrate
+    from spinorbit.models.layout import Layout
+    from spinorbit.models.start import core_rhs
+    from spinorbit.models.system import Ode
+
+    coefficients, (start, end) = de421_orientation.series(), de421_orientation.span()
+    length = (end - start) / coefficients.shape[0]
+    k, c_c, t0, span = 3e-4, 7e-4, 1000.0, 500.0
     w0 = np.array([-0.006, -0.001, 0.2294])
-    got = ref._carry_core(w0, h, poles, w_m, k * 7e-4, 7e-4, 0.0)
-    weights = k * np.exp(-k * (s[-1] - s))[:, None]
-    expected = np.exp(-k * s[-1]) * w0 + np.trapezoid(weights * w_m, s, axis=0)
-    assert np.abs(got - expected).max() < 1e-9 * 0.23         # trapezoid error (k h)^2 w_m ~ 1e-10
+    ode = Ode(core_rhs, (coefficients, start, length, k * c_c, c_c, c_c), t0, c_c * w0,
+              Layout([("core.momentum", 3, "vector", "units of C, inertial")]))
+    got = integrate(ode, [t0 + span], "rk4", step=0.5).y[-1] / c_c
+    s = t0 + np.linspace(0.0, span, 8001)
+    w_m = np.array([m.T @ omega for m, omega in (de421_orientation.mantle(si, coefficients, start, length)
+                                                 for si in s)])
+    weights = k * np.exp(-k * (t0 + span - s))[:, None]
+    expected = np.exp(-k * span) * w0 + trapezoid(weights * w_m, s, axis=0)
+    assert np.abs(got - expected).max() < 1e-9 * 0.23
 
 
 # --- the scene against DE421 on 5 years (2000-2005) ------------------------------------

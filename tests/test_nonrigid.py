@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from spinorbit import nonrigid
-from spinorbit.earth import H_D
+from spinorbit.bodies.earth import H_D
 from spinorbit.errors import ScenarioError
 from spinorbit.results import run_scenario
 from tests.units import mas

@@ -7,11 +7,12 @@ from numba import njit
 from spinorbit.bodies.de421_header import gm_km3_d2, header
 from spinorbit.constants import JULIAN_YEAR_D
 from spinorbit.integrators.rk8 import fixed_step
-from spinorbit.relativity import accelerations, c_km_d
+from spinorbit.models.assemblies.earth_moon import c_km_d
+from spinorbit.models.interactions.relativity import accelerations
 from tests.units import mas
 
 
-@njit     # not cached: numba's disk cache would keep a stale copy of relativity.accelerations
+@njit     # not cached: numba's disk cache would keep a stale copy of spinorbit.models.interactions.relativity.accelerations
 def nbody_rhs(t, y, p):
     """y = (positions (N, 3), velocities (N, 3)) flattened, km and km/d; p = (gm (N,), c km/d, eih 0 or 1)."""
     gm, c, eih = p
