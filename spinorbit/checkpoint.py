@@ -47,6 +47,10 @@ class Checkpoint:
         return Checkpoint(self.path.with_name(f"{self.path.stem}-{name}{self.path.suffix}"), self.resume,
                           self.settings, self.every_s)
 
+    def fingerprint(self, rhs, params, t0, y0, t_out, step):
+        """{part: sha256 hex} of the run offered this checkpoint (:func:`run_fingerprint` with its settings)."""
+        return run_fingerprint(rhs, params, t0, y0, t_out, step, self)
+
     def load(self, fingerprint):
         """The outputs (k, dim) a matching checkpoint holds, or None when resume is off or there is none."""
         if not self.resume or not self.path.exists():

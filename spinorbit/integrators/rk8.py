@@ -253,10 +253,8 @@ class _Run:
                 raise
 
     def fingerprint(self, checkpoint):
-        from ..checkpoint import run_fingerprint
-
         s = self.system
-        return run_fingerprint(s.rhs, s.params, s.t0, s.y0, self.t_out, abs(self.h), checkpoint)
+        return checkpoint.fingerprint(s.rhs, s.params, s.t0, s.y0, self.t_out, abs(self.h))
 
 
 class _Landing(_Run):
