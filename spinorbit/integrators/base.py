@@ -116,5 +116,5 @@ def check_finite(y, t, method, partial=None):
 
 
 def normalised(system, y):
-    """The states (n, dim) with every quaternion of the system's layout made unit."""
-    return system.layout.normalise(y) if len(y) else np.array(y, dtype=float)
+    """The states (n, dim) with every quaternion of the system's layout made unit (a bare equation has none)."""
+    return system.layout.normalise(y) if len(y) and system.layout is not None else np.array(y, dtype=float)

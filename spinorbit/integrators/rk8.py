@@ -147,20 +147,19 @@ def fixed_step(rhs, params, t0, y0, t_out, step, max_steps=10**9):
     """States (len(t_out), dim) of y' = rhs(t, y, params) from (t0, y0), any state (no quaternion renormalised):
     the RK8 with steps <= ``step`` landing on every output; IntegrationError if the state becomes non-finite or
     max_steps runs out."""
-    from ..models.layout import Layout
-
-    y0 = np.ascontiguousarray(y0, dtype=float)
-    ode = _Bare(rhs, params, float(t0), y0, Layout([("y", y0.size, "vector", "")]))
+    ode = _Bare(rhs, params, float(t0), np.ascontiguousarray(y0, dtype=float))
     integrator = RK8(step=step, max_steps=max_steps)
     integrator.label, integrator.lands = None, True
     return integrator.solve(ode, t_out).y
 
 
 class _Bare:
-    """An equation with no model behind it (what :func:`fixed_step` integrates)."""
+    """An equation with no model behind it (what :func:`fixed_step` integrates): no layout, nothing renormalised."""
 
-    def __init__(self, rhs, params, t0, y0, layout):
-        self.rhs, self.params, self.t0, self.y0, self.layout, self.name = rhs, params, t0, y0, layout, "ode"
+    layout = None
+
+    def __init__(self, rhs, params, t0, y0):
+        self.rhs, self.params, self.t0, self.y0, self.name = rhs, params, t0, y0, "ode"
         self.torque, self.meta = None, {}
 
 
