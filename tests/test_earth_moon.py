@@ -183,6 +183,16 @@ def test_the_generated_rhs_is_the_models_physics(external):
         assert np.abs(got[part] - expected[part]).max() < 1e-12 * np.abs(expected[part]).max(), name
 
 
+def test_planets_off_with_an_orbit_source_that_carries_them_is_refused(external):
+    """The "planets" switch puts Mercury to Pluto on the orbit; Newton takes every mass the orbit source carries,
+    so the switch off with a source that carries them would leave them acting: refused, naming the switches
+    (the scene samples a source without them)."""
+    from spinorbit.errors import InputError
+
+    with pytest.raises(InputError, match="^switches: got .*'planets' among them"):
+        solar_system(external, ("relativity", "earth_tides"))
+
+
 def test_the_moon_follows_de421_for_two_years(external):
     """From DE421's state, with DE421's equations and constants, the geocentric Moon stays on DE421's for
     2 yr to 0.005" and 2 m: the issue's aim (0.05" and 0.1 km over a century) taken linearly to 2 yr would
