@@ -30,7 +30,8 @@ def circular(figures=tuple(FIGURES), moon_moments_factor=1.0):
     system = closed(figures, earth_rotator=Rigid(), moon_core=False)
     if moon_moments_factor != 1.0:
         moon = system.bodies["moon"]
-        moon = dataclasses.replace(moon, figure=Figure(moon.figure.moments * moon_moments_factor, moon.figure.field))
+        figure = Figure(moon.figure.moments * moon_moments_factor, moon.figure.field)
+        moon = dataclasses.replace(moon, figure=figure)
         system = System(system.name, [moon, system.bodies["earth"]], system.motion, system.interactions)
     gm, r = system.bodies["earth"].gm + system.bodies["moon"].gm, 384400.0
     n = np.sqrt(gm / r**3)
@@ -58,8 +59,8 @@ def reference(system):
 
 
 def interrupt_after(monkeypatch, calls, error=RuntimeError):
-    """Make the RK8 driver raise ``error`` before its compiled chunk number ``calls`` + 1 (None: never); returns
-    the number of outputs each chunk made."""
+    """Make the RK8 driver raise ``error`` before its compiled chunk number ``calls`` + 1 (None: never);
+    returns the number of outputs each chunk made."""
     made, chunk = [], rk8._uninterrupted
 
     def counted(advance):
@@ -92,7 +93,7 @@ def test_interrupted_run_resumes_bit_identical(system, reference, tmp_path, monk
         assert saved["outputs"].shape == (k, system.y0.size)
     made = interrupt_after(monkeypatch, None)
     states = run(system, Checkpoint(tmp_path / "run.npz", resume=True))
-    assert sum(made) == T_OUT.size - k                   # only the outputs the checkpoint lacked were integrated
+    assert sum(made) == T_OUT.size - k                   # only the outputs the checkpoint lacked
     assert np.array_equal(states, reference)
 
 
@@ -103,7 +104,8 @@ def test_checkpoint_of_another_run_is_refused(system, tmp_path, change, named):
     path = tmp_path / "run.npz"
     run(system, Checkpoint(path, every_s=0.0, settings={"a": 1}), T_OUT[:3])
     step, settings = (0.25 if change == "step" else STEP), ({"a": 2} if change == "settings" else {"a": 1})
-    other = {"params": lambda: circular(moon_moments_factor=1.001), "figures": lambda: circular(tuple(FIGURES)[1:]),
+    other = {"params": lambda: circular(moon_moments_factor=1.001),
+             "figures": lambda: circular(tuple(FIGURES)[1:]),
              "start": lambda: system.with_start(0.0, system.y0 + 1e-9)}.get(change, lambda: system)()
     with pytest.raises(ScenarioError, match=f"--resume: .*differs in: {named}\\)"):
         run(other, Checkpoint(path, resume=True, settings=settings), T_OUT[:3], step)

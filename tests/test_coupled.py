@@ -1,5 +1,5 @@
-"""The closed Earth-Moon system (spinorbit.models.assemblies.earth_moon.closed): action equals reaction for the
-assembled System's generated rhs, each interaction's energy against its force, conservation of the total
+"""The closed Earth-Moon system (spinorbit.models.assemblies.earth_moon.closed): action equals reaction for
+the assembled System's generated rhs, each interaction's energy against its force, conservation of the total
 angular momentum and energy at the rounding floor, and the two-body Kepler orbit with the figures off."""
 import math
 
@@ -28,7 +28,8 @@ def figures_alone(figures=tuple(FIGURES), earth_rotator="rigid"):
 
 
 def random_state(system):
-    """A state with the Moon 360 000-410 000 km away in any direction, any attitudes, lunar and daily spins."""
+    """A state with the Moon 360 000-410 000 km away in any direction, any attitudes, lunar and daily
+    spins."""
     r = RNG.normal(size=3)
     r *= RNG.uniform(3.6e5, 4.1e5) / np.linalg.norm(r)
     q_m, q_e = RNG.normal(size=4), RNG.normal(size=4)
@@ -45,8 +46,9 @@ def random_state(system):
 def actions(system, y):
     """(force on the Moon (inertial), torque on the Moon, torque on the Earth (both inertial)), G-scaled, read
     off the rhs: F = mu r'' (the figures' forces on the two are opposite, so r'' = F_moon / mu), a rigid
-    body's N = R (I w' + w x I w) (Euler §813, w x I w = ((C - B) w_y w_z, ...) with the moments' differences,
-    exact for the nearly equal moments, as euler_omega_dot takes it), a gyroscopic one's N = l'."""
+    body's N = R (I w' + w x I w) (Euler §813, w x I w = ((C - B) w_y w_z, ...) with the moments'
+    differences, exact for the nearly equal moments, as euler_omega_dot takes it), a gyroscopic one's
+    N = l'."""
     dy, parts = system.rhs(0.0, y, system.params), system.layout.split(y)
     gm_e, gm_m = system.bodies["earth"].gm, system.bodies["moon"].gm
     force = gm_e * gm_m / (gm_e + gm_m) * dy[system.layout["moon.v"]]
@@ -77,9 +79,9 @@ def test_total_torque_of_the_closed_system_vanishes(earth_rotator):
 
 
 def test_each_interaction_is_on_alone_and_off_exactly():
-    """The balance above is not 0 = 0: each interaction alone pulls and turns (the degree-2 torque on each body
-    within the P91 bound 3 GM/r^3 (C - A)/2, §815), and with every figure off nothing does: the rhs is then
-    the two free bodies' Euler equations and no acceleration."""
+    """The balance above is not 0 = 0: each interaction alone pulls and turns (the degree-2 torque on each
+    body within the P91 bound 3 GM/r^3 (C - A)/2, §815), and with every figure off nothing does: the rhs is
+    then the two free bodies' Euler equations and no acceleration."""
     from spinorbit.models.spin import euler_omega_dot
 
     for name in FIGURES:
@@ -91,18 +93,20 @@ def test_each_interaction_is_on_alone_and_off_exactly():
     system = figures_alone(("moon_figure",))
     y = random_state(system)
     r3 = np.linalg.norm(y[system.layout["moon.r"]]) ** 3
-    assert np.linalg.norm(actions(system, y)[1]) <= 1.5 * gm_e / r3 * (moments_m[2] - moments_m[0]) * (1 + 1e-12)
+    bound = 1.5 * gm_e / r3 * (moments_m[2] - moments_m[0]) * (1 + 1e-12)
+    assert np.linalg.norm(actions(system, y)[1]) <= bound
     system = figures_alone(("earth_figure",))
     y = random_state(system)
     r3 = np.linalg.norm(y[system.layout["moon.r"]]) ** 3
-    assert np.linalg.norm(actions(system, y)[2]) <= 1.5 * gm_m / r3 * (moments_e[2] - moments_e[0]) * (1 + 1e-12)
+    bound = 1.5 * gm_m / r3 * (moments_e[2] - moments_e[0]) * (1 + 1e-12)
+    assert np.linalg.norm(actions(system, y)[2]) <= bound
     system = figures_alone(())
     y = random_state(system)
     dy, layout = system.rhs(0.0, y, system.params), system.layout
     assert not dy[layout["moon.v"]].any()
     for name, moments in (("moon", moments_m), ("earth", moments_e)):
-        assert np.array_equal(dy[layout[f"{name}.omega"]], euler_omega_dot(moments, y[layout[f"{name}.omega"]],
-                                                                           np.zeros(3)))
+        omega = layout[f"{name}.omega"]
+        assert np.array_equal(dy[omega], euler_omega_dot(moments, y[omega], np.zeros(3)))
 
 
 def _minus_gradient(energy, r, step):
@@ -118,7 +122,8 @@ def test_point_mass_energy_gradient_is_the_force():
     §818 force (the finite difference good to ~1e-8 at a 10 km step)."""
     from spinorbit.bodies.moon import de421
 
-    inertia, gm = np.diag(de421().moments) + 1e-5 * np.array([[0, 1, 2], [1, 0, 3], [2, 3, 0]]), np.array([2.9e15])
+    inertia = np.diag(de421().moments) + 1e-5 * np.array([[0, 1, 2], [1, 0, 3], [2, 3, 0]])
+    gm = np.array([2.9e15])
     force = point_mass.force(ROT, inertia, R, gm)[0]
     numeric = _minus_gradient(lambda r: point_mass.energy(ROT, inertia, r[None], gm), R[0], 10.0)
     assert np.abs(force - numeric).max() < 1e-7 * np.abs(force).max()
@@ -130,7 +135,8 @@ def test_harmonics_energy_gradient_is_the_force(body):
     (the Moon's DE421 field; the Earth's J3, J4)."""
     figure = closed().bodies[body]
     field = figure.figure.field
-    args = (figure.gm * field.radius_km ** 2, field.radius_km, field.c_nm, field.s_nm, field.n_min, field.n_max)
+    args = (figure.gm * field.radius_km ** 2, field.radius_km, field.c_nm, field.s_nm, field.n_min,
+            field.n_max)
     gm = np.array([2.9e15])
     force = harmonics.force(ROT, R, gm, *args)[0]
     numeric = _minus_gradient(lambda r: harmonics.energy(ROT, r[None], gm, *args), R[0], 10.0)
@@ -236,11 +242,11 @@ def test_the_stress_scene_reports_the_drifts_and_judges_only_a_decade():
 
 
 def test_the_invariants_hold_the_lunar_cores_angular_momentum():
-    """The closed assembly as it comes (the Moon's fluid core, the gyroscopic Earth): System.invariants' angular
-    momentum is mu r x v + R ((I - I_c) w_m + I_c w_c) + l (the core's own in it: Folkner et al. 2014, eqs.
-    34-35, whose friction and pressure torques are internal), and it keeps that over a year at 0.25 d to
-    rounding (measured 5e-15 relative; the core's share, left out, moved it by 9e-11): bound 4 eps sqrt(N),
-    N = 1461 steps."""
+    """The closed assembly as it comes (the Moon's fluid core, the gyroscopic Earth): System.invariants'
+    angular momentum is mu r x v + R ((I - I_c) w_m + I_c w_c) + l (the core's own in it: Folkner et al.
+    2014, eqs. 34-35, whose friction and pressure torques are internal), and it keeps that over a year at
+    0.25 d to rounding (measured 5e-15 relative; the core's share, left out, moved it by 9e-11): bound
+    4 eps sqrt(N), N = 1461 steps."""
     from spinorbit.bodies.moon import de421
     from spinorbit.models.start import earth_moon_de421
     from spinorbit.references.erfa_pole import cip_vector
@@ -252,9 +258,9 @@ def test_the_invariants_hold_the_lunar_cores_angular_momentum():
     _, big_l = system.invariants(states, t)
     moon, terra, parts = system.bodies["moon"], system.bodies["earth"], system.layout.split(states)
     flattening = de421().core_flattening
-    core = de421().core_c_over_c * moon.figure.moments[2] * np.array([1.0 - flattening, 1.0 - flattening, 1.0])
-    mu = terra.gm * moon.gm / (terra.gm + moon.gm)
-    by_hand = [mu * np.cross(r, v) + matrix_from_quat(q) @ ((moon.figure.moments - core) * w + core * w_c) + spin
+    core = de421().core_c_over_c * moon.figure.moments[2] * np.array([1 - flattening, 1 - flattening, 1])
+    mu, mantle = terra.gm * moon.gm / (terra.gm + moon.gm), moon.figure.moments - core
+    by_hand = [mu * np.cross(r, v) + matrix_from_quat(q) @ (mantle * w + core * w_c) + spin
                for r, v, q, w, w_c, spin in zip(*(parts[name] for name in (
                    "moon.r", "moon.v", "moon.q", "moon.omega", "moon.omega_core", "earth.spin")))]
     norm = np.linalg.norm(big_l[0])

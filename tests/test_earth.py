@@ -38,8 +38,8 @@ def circles(bodies=("moon", "sun")):
 def circle_earth(orbits, model, geodesic=False, forced=True):
     """The rigid Earth (no J2 rate) on the circles, its figure axis at Z0 at t = 0 (body x axis near x)."""
     system = rigid_earth(orbits, model, j2_rate=False, ecliptic_pole=ECLIPTIC_POLE if geodesic else None)
-    system.y0 = system.layout.pack(on_pole(system, "earth", 0.0, Z0, earth.ERA_RATE_RAD_D, np.array([1.0, 0, 0]),
-                                           forced))
+    start = on_pole(system, "earth", 0.0, Z0, earth.ERA_RATE_RAD_D, np.array([1.0, 0, 0]), forced)
+    system.y0 = system.layout.pack(start)
     return system
 
 
@@ -144,8 +144,9 @@ def test_bad_model_name_is_a_scenario_error():
 
 def j4_torque(rows, gm, z, j4_coef):
     """Inertial torque per C of point masses at ``rows`` (n, 3) on an axisymmetric J4 about the unit axis z:
-    from U_4 = GM_E J4 R^4 P4(s)/r^5 (s = z.r/r), N = G m M_E J4 R^4 P4'(s) (r x z)/r^6, per C = (C/MR^2) M_E R^2
-    GM_m [J4 R^2/(C/MR^2)] P4'(s) (r x z)/r^6, P4'(s) = (35 s^3 - 15 s)/2; ``j4_coef`` = J4 R^2/(C/MR^2)."""
+    from U_4 = GM_E J4 R^4 P4(s)/r^5 (s = z.r/r), N = G m M_E J4 R^4 P4'(s) (r x z)/r^6, per
+    C = (C/MR^2) M_E R^2: GM_m [J4 R^2/(C/MR^2)] P4'(s) (r x z)/r^6, P4'(s) = (35 s^3 - 15 s)/2;
+    ``j4_coef`` = J4 R^2/(C/MR^2)."""
     total = np.zeros(3)
     for r, g in zip(rows, gm):
         s = r @ z / np.linalg.norm(r)
@@ -164,7 +165,8 @@ def test_j4_torque_equals_the_degree4_recursion():
     rot = matrix_from_quat(np.array([0.8, 0.3, -0.4, 0.33]) / np.linalg.norm([0.8, 0.3, -0.4, 0.33]))
     r = np.array([[2.1e5, -3.0e5, 1.1e5], [1.0e8, 1.1e8, 0.4e8]])
     gm = np.array([4.0e12, 9.9e20])
-    recursion = rot @ harmonics.torque(rot, r, gm, 1.0, earth.EQUATORIAL_RADIUS_KM, c_nm, s_nm, 4, 4) / earth.C_MR2
+    recursion = rot @ harmonics.torque(rot, r, gm, 1.0, earth.EQUATORIAL_RADIUS_KM, c_nm, s_nm, 4, 4)
+    recursion /= earth.C_MR2
     closed = j4_torque(r, gm, rot[:, 2], earth.J4 * earth.EQUATORIAL_RADIUS_KM**2 / earth.C_MR2)
     assert np.abs(closed - recursion).max() < 1e-12 * np.abs(closed).max()
 
@@ -221,11 +223,12 @@ def tidal_tensor(rows, gm):
 
 
 def test_gyroscopic_rhs_is_the_torques_on_its_oppolzer_axis():
-    """The generated rhs of the gyroscopic Earth (J2 rate, J4, geodesic precession with its annual term) at one
-    state against its physics written out: dl/dt = (C - A)(1 + k t) (T z) x z (§815 summed over the masses, T
-    their tidal tensor) + the J4 closed form (per C, times C) + Omega_gp(t) x l, on the figure axis
-    z = ell - ell x N(ell) / (|l| lam), lam = |l|/A (the first-order Oppolzer term; spinorbit.models.gyroscopic).
-    J4's part is 3e-7 of the total and the geodesic one 5e-4: a bound of 1e-12 of the total checks both."""
+    """The generated rhs of the gyroscopic Earth (J2 rate, J4, geodesic precession with its annual term) at
+    one state against its physics written out: dl/dt = (C - A)(1 + k t) (T z) x z (§815 summed over the
+    masses, T their tidal tensor) + the J4 closed form (per C, times C) + Omega_gp(t) x l, on the figure axis
+    z = ell - ell x N(ell) / (|l| lam), lam = |l|/A (the first-order Oppolzer term,
+    spinorbit.models.gyroscopic).  J4's part is 3e-7 of the total and the geodesic one 5e-4: a bound of
+    1e-12 of the total checks both."""
     orbits = circles()
     system = rigid_earth(orbits, "gyroscopic", j2_rate=True, j4=True, ecliptic_pole=ECLIPTIC_POLE,
                          geodesic_nutation=True)
@@ -240,7 +243,8 @@ def test_gyroscopic_rhs_is_the_torques_on_its_oppolzer_axis():
     lam = np.linalg.norm(l_spin) / moments[0]
     z = unit(ell - np.cross(ell, c_minus_a * np.cross(tensor @ ell, ell)) / (np.linalg.norm(l_spin) * lam))
     torque = c_minus_a * np.cross(tensor @ z, z)
-    torque += moments[2] * j4_torque(rows, orbits.gm, z, earth.J4 * earth.EQUATORIAL_RADIUS_KM**2 / earth.C_MR2)
+    j4_coef = earth.J4 * earth.EQUATORIAL_RADIUS_KM**2 / earth.C_MR2
+    torque += moments[2] * j4_torque(rows, orbits.gm, z, j4_coef)
     rate = earth.GEODESIC_PRECESSION_ARCSEC_CY * arcsec / JULIAN_CENTURY_D * ECLIPTIC_POLE
     rate *= 1.0 + 3 * 0.0167086 * math.cos(SUN_MEAN_ANOMALY_RAD[0] + SUN_MEAN_ANOMALY_RAD[1] * t)
     expected = torque + np.cross(rate, l_spin)
@@ -249,9 +253,9 @@ def test_gyroscopic_rhs_is_the_torques_on_its_oppolzer_axis():
 
 def test_full_rhs_is_eulers_equations_in_the_geodesic_frame():
     """The generated rhs of the full (triaxial) Earth at one state against Euler's equations written out:
-    I w' + w x I w = N, N = sum 3 GM/r^5 r x (I (1 + k t) r) in body axes (§813, §815; I less its isotropic part
-    C 1, which exerts none and would cancel to rounding), and q' = q (0, w + R^T Omega_gp) / 2 (the equations
-    hold in the frame turning at Omega_gp)."""
+    I w' + w x I w = N, N = sum 3 GM/r^5 r x (I (1 + k t) r) in body axes (§813, §815; I less its isotropic
+    part C 1, which exerts none and would cancel to rounding), and q' = q (0, w + R^T Omega_gp) / 2 (the
+    equations hold in the frame turning at Omega_gp)."""
     from spinorbit.rotations import matrix_from_quat, quat_rate
 
     orbits = circles()

@@ -1,6 +1,6 @@
-"""The Earth-Moon system in the solar system (spinorbit.models.assemblies.earth_moon.solar_system): its generated
-rhs against its physics written out, the Moon's orbit against DE421, the closed system's angular momentum, and
-the scene.
+"""The Earth-Moon system in the solar system (spinorbit.models.assemblies.earth_moon.solar_system): its
+generated rhs against its physics written out, the Moon's orbit against DE421, the closed system's angular
+momentum, and the scene.
 
 Run times: one compile of the rhs (~30 s cold, cached after), then 2 yr of integration (~0.5 s each).
 """
@@ -24,8 +24,8 @@ T0 = -18262.5                       # 1950-01-01 TDB, days from J2000
 SPAN_D = 730.5
 STEP_D = 0.5
 EPS = np.finfo(float).eps
-# DE421's equations: the switches the comparison with DE421 runs (the planets' torques on the Moon's figure and
-# the Sun's on the Earth's J3, J4 are not in DE421)
+# DE421's equations: the switches the comparison with DE421 runs (the planets' torques on the Moon's figure
+# and the Sun's on the Earth's J3, J4 are not in DE421)
 DE421_SWITCHES = ("relativity", "earth_tides", "moon_distortion", "geodesic", "planets")
 
 
@@ -60,15 +60,16 @@ def direct_rhs(external, t, y):
     """dy/dt of the solar-system Earth-Moon model at (t, y) written out from DE421's constants and the
     interactions' kernels (the state: moon.r, .v, .q, .omega, .omega_core, earth.spin; every switch on).
 
-    Orbit: Newton (the pair's monopole, each other mass's pull on the Moon minus its pull on the Earth, the two
-    about DE421's barycentre by their mass shares) + EIH + every figure's force on the two centres (F_moon /
-    m_m - F_earth / m_e) + the Earth's tides.  Figures: the Moon's degree 2-4 under the Earth, the Sun and the
-    planets; the Earth's degree 2 and J3, J4 under the Moon and the Sun; the Earth's J2 on the Moon's degree 2
-    with its reaction on the Earth; each pull's reaction on its figure (§818).  The Moon: DE421's mantle and
-    fluid core with its inertia distorted by the tide the Earth raised tau ago (the Earth then from the orbit's
-    point-mass acceleration and two-body jerk); the Earth: gyroscopic, its figure axis from l by the first-order
-    Oppolzer term of the Moon's and the Sun's tidal tensor, its spin turned by the torques, the tides' reaction
-    and the geodesic precession Omega x l, Omega = 3/2 GM_sun / (c^2 |x|^3) x x w."""
+    Orbit: Newton (the pair's monopole, each other mass's pull on the Moon minus its pull on the Earth, the
+    two about DE421's barycentre by their mass shares) + EIH + every figure's force on the two centres
+    (F_moon / m_m - F_earth / m_e) + the Earth's tides.  Figures: the Moon's degree 2-4 under the Earth, the
+    Sun and the planets; the Earth's degree 2 and J3, J4 under the Moon and the Sun; the Earth's J2 on the
+    Moon's degree 2 with its reaction on the Earth; each pull's reaction on its figure (§818).  The Moon:
+    DE421's mantle and fluid core with its inertia distorted by the tide the Earth raised tau ago (the Earth
+    then from the orbit's point-mass acceleration and two-body jerk); the Earth: gyroscopic, its figure axis
+    from l by the first-order Oppolzer term of the Moon's and the Sun's tidal tensor, its spin turned by the
+    torques, the tides' reaction and the geodesic precession Omega x l, Omega = 3/2 GM_sun/(c^2 |x|^3) x x w.
+    Returns (dy/dt, the Keplerian part of the orbit's acceleration)."""
     from spinorbit.bodies.de421_header import gm_km3_d2, header
     from spinorbit.bodies.moon import de421
     from spinorbit.constants import DAY_S
@@ -119,7 +120,8 @@ def direct_rhs(external, t, y):
     inertia_e = np.diag([c_e - c_minus_a, c_e - c_minus_a, c_e])
     c_nm_e = np.zeros((5, 5))
     c_nm_e[3, 0], c_nm_e[4, 0] = -h["J3E"], -earth.J4
-    fields = {"moon": (scale, moon.radius_km, np.ascontiguousarray(moon.c_nm), np.ascontiguousarray(moon.s_nm), 3, 4),
+    c_nm_m, s_nm_m = np.ascontiguousarray(moon.c_nm), np.ascontiguousarray(moon.s_nm)
+    fields = {"moon": (scale, moon.radius_km, c_nm_m, s_nm_m, 3, 4),
               "earth": (gm["earth"] * h["RE"] ** 2, h["RE"], c_nm_e, np.zeros((5, 5)), 3, 4)}
     rot, inertia = {"moon": rot_m, "earth": rot_e}, {"moon": inertia_m, "earth": inertia_e}
     force, torque = {"earth": np.zeros(3), "moon": np.zeros(3)}, {"earth": np.zeros(3), "moon": np.zeros(3)}
@@ -151,42 +153,45 @@ def direct_rhs(external, t, y):
     helio, helio_v = x["earth"] - x["sun"], u["earth"] - u["sun"]
     geodesic = 1.5 * gm["sun"] / (c_light ** 2 * np.linalg.norm(helio) ** 3) * np.cross(helio, helio_v)
 
-    core_c = moon.core_c_over_c * moments_m[2]
-    mantle_rate, core_rate = spin.mantle_and_core_rates(w, w_c, inertia_m, inertia_rate, rot_m.T @ torque["moon"],
-                                                        core_c, moon.core_flattening, moon.kv_over_c_per_d * moments_m[2])
-    return np.concatenate([v, acc, quat_rate(q, w), mantle_rate, core_rate,
-                           torque["earth"] + np.cross(geodesic, l_spin)]), -(gm["earth"] + gm["moon"]) * r / np.linalg.norm(r) ** 3
+    core_c, friction = moon.core_c_over_c * moments_m[2], moon.kv_over_c_per_d * moments_m[2]
+    on_mantle = rot_m.T @ torque["moon"]
+    mantle_rate, core_rate = spin.mantle_and_core_rates(w, w_c, inertia_m, inertia_rate, on_mantle, core_c,
+                                                        moon.core_flattening, friction)
+    spin_rate = torque["earth"] + np.cross(geodesic, l_spin)
+    dy = np.concatenate([v, acc, quat_rate(q, w), mantle_rate, core_rate, spin_rate])
+    return dy, -(gm["earth"] + gm["moon"]) * r / np.linalg.norm(r) ** 3
 
 
 def test_the_generated_rhs_is_the_models_physics(external):
     """The solar-system assembly with every switch on, its generated rhs at DE421's state at T0 + 100.3 d (the
     Moon's rates and the Earth's spin moved off it) against :func:`direct_rhs`: the orbit's acceleration apart
-    from its Keplerian part to 1e-12 of that perturbation, the Moon's mantle and core rates and the Earth's spin
-    rate to 1e-12 of their largest component (measured 8e-14, 2e-16, 0, 4e-16).  Each switch is seen: without
-    it the rhs moves by (measured) EIH 8e-6 and the Earth's tides 1.6e-9 of the orbit's perturbation, the
-    Moon's distortion 2e-4 and the planets on its figure 1.3e-7 of its rates, the tides 1.1e-5, the geodesic
-    precession 4e-4 and the Sun on J3, J4 8e-8 of the Earth's spin rate."""
+    from its Keplerian part to 1e-12 of that perturbation, the Moon's mantle and core rates and the Earth's
+    spin rate to 1e-12 of their largest component (measured 8e-14, 2e-16, 0, 4e-16). Each switch is seen:
+    without it the rhs moves by (measured) EIH 8e-6 and the Earth's tides 1.6e-9 of the orbit's perturbation,
+    the Moon's distortion 2e-4 and the planets on its figure 1.3e-7 of its rates, the tides 1.1e-5, the
+    geodesic precession 4e-4 and the Sun on J3, J4 8e-8 of the Earth's spin rate."""
     system = solar_system(external, t0=T0)
     t = T0 + 100.3
     start = earth_moon_de421(system, t, cip_vector(t), earth.ERA_RATE_RAD_D)
     start["moon.omega"] = start["moon.omega"] * (1.0 + np.array([1e-3, -2e-3, 5e-4]))
-    start["earth.spin"] = start["earth.spin"] + 1e-6 * np.linalg.norm(start["earth.spin"]) * np.array([1.0, -2, 0.5])
+    start["earth.spin"] += 1e-6 * np.linalg.norm(start["earth.spin"]) * np.array([1.0, -2, 0.5])
     y = system.layout.pack(start)
     got = system.rhs(t, y, system.params)
     expected, kepler = direct_rhs(external, t, y)
     layout = system.layout
     assert np.array_equal(got[layout["moon.r"]], expected[layout["moon.r"]])
-    perturbation = expected[layout["moon.v"]] - kepler
-    assert np.abs(got[layout["moon.v"]] - expected[layout["moon.v"]]).max() < 1e-12 * np.abs(perturbation).max()
+    velocity = layout["moon.v"]
+    perturbation = np.abs(expected[velocity] - kepler).max()
+    assert np.abs(got[velocity] - expected[velocity]).max() < 1e-12 * perturbation
     for name in ("moon.q", "moon.omega", "moon.omega_core", "earth.spin"):
         part = layout[name]
         assert np.abs(got[part] - expected[part]).max() < 1e-12 * np.abs(expected[part]).max(), name
 
 
 def test_planets_off_with_an_orbit_source_that_carries_them_is_refused(external):
-    """The "planets" switch puts Mercury to Pluto on the orbit; Newton takes every mass the orbit source carries,
-    so the switch off with a source that carries them would leave them acting: refused, naming the switches
-    (the scene samples a source without them)."""
+    """The "planets" switch puts Mercury to Pluto on the orbit; Newton takes every mass the orbit source
+    carries, so the switch off with a source that carries them would leave them acting: refused, naming the
+    switches (the scene samples a source without them)."""
     from spinorbit.errors import InputError
 
     with pytest.raises(InputError, match="^switches: got .*'planets' among them"):
@@ -214,17 +219,18 @@ def test_relativity_is_what_the_moon_needs(external):
 def test_the_closed_system_keeps_its_angular_momentum(external):
     """No Sun or planets (their GMs zero), the Earth's tides on (their torque on the Earth is the orbit's
     reaction), the Moon rigid with its core: the total angular momentum mu r x v + R (I_m w_m + I_c w_c) + l
-    stays within 1e-13 over 2 yr at 0.25 d (rounding walks as eps sqrt(N), N ~ 35000 stage evaluations:
-    4e-14; at 0.5 d RK8's truncation shows, 4e-13)."""
+    stays within 1e-13 over 2 yr at 0.25 d (rounding walks as eps sqrt(N), N ~ 35000 stage evaluations: 4e-14;
+    at 0.5 d RK8's truncation shows, 4e-13)."""
     from spinorbit.bodies.moon import de421
 
     _, states, system = run(massless(external), ("earth_tides",), step=0.25)
     moon, layout, flattening = system.bodies["moon"], system.layout, de421().core_flattening
-    core = de421().core_c_over_c * moon.figure.moments[2] * np.array([1.0 - flattening, 1.0 - flattening, 1.0])
+    core = de421().core_c_over_c * moon.figure.moments[2] * np.array([1 - flattening, 1 - flattening, 1])
     gm_e, gm_m = system.bodies["earth"].gm, moon.gm
     mu = gm_e * gm_m / (gm_e + gm_m)
     parts = layout.split(states)
-    total = np.array([mu * np.cross(r, v) + spin + matrix_from_quat(q) @ ((moon.figure.moments - core) * w + core * w_c)
+    mantle = moon.figure.moments - core
+    total = np.array([mu * np.cross(r, v) + spin + matrix_from_quat(q) @ (mantle * w + core * w_c)
                       for r, v, q, w, w_c, spin in zip(*(parts[name] for name in (
                           "moon.r", "moon.v", "moon.q", "moon.omega", "moon.omega_core", "earth.spin")))])
     drift = np.linalg.norm(total - total[0], axis=1).max() / np.linalg.norm(total[0])

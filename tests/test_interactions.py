@@ -206,7 +206,8 @@ def test_figure_figure_energy_gradients_equal_the_complex_step():
 
 
 def test_figure_figure_force_is_minus_the_energy_gradient():
-    """The interaction's force on the attractor equals a central finite difference of the interaction energy."""
+    """The interaction's force on the attractor equals a central finite difference of the interaction
+    energy."""
     r = np.array([3.1e5, -2.2e5, 0.4e5])
     force = figure_figure.with_pole(np.eye(3), INERTIA, r, POLE, 2.0e20)[1]
     h = 10.0
@@ -299,7 +300,8 @@ def test_newton_pair_monopole_is_central():
 
 
 def test_sun_j2_term_is_the_suns_published_oblateness():
-    """The Moon's sun_j2 term carries GM_sun J2 R^2 with the DE421 header's J2SUN and ASUN and the IAU pole."""
+    """The Moon's sun_j2 term carries GM_sun J2 R^2 with the DE421 header's J2SUN and ASUN and the IAU
+    pole."""
     from spinorbit.models.assemblies.moon import term
     from spinorbit.orbits.analytic import CircularOrbits
 

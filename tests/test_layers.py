@@ -15,7 +15,7 @@ LAYERS = {
     "models": 2, "integrators": 2, "theory": 2, "analysis": 2, "nonrigid": 2,
     "simulate": 3,
 }
-EDGE = 9          # scenarios, scenes, references, results, reports, cli, bench, sweep, checkpoint, __init__ ...
+EDGE = 9          # scenarios, scenes, references, results, reports, cli, bench, sweep, checkpoint, ...
 EDGE_ONLY_LIBRARIES = {"astropy", "matplotlib", "dask", "distributed", "erfa", "skyfield"}
 
 
@@ -157,12 +157,15 @@ def test_scene_modules_are_thin(path):
     assert len(path.read_text().splitlines()) <= MAX_SCENE_LINES
 
 
-@pytest.mark.parametrize("path", [
-    pytest.param(p, marks=pytest.mark.xfail(strict=True, reason="issue 22: lines over 110 characters, being rewritten"))
-    if scene_id(p) in LONG_LINES_PENDING else p for p in SCENE_MODULES], ids=scene_id)
+PENDING = pytest.mark.xfail(strict=True, reason="issue 22: lines over 110 characters, being rewritten")
+
+
+@pytest.mark.parametrize("path", [pytest.param(p, marks=PENDING) if scene_id(p) in LONG_LINES_PENDING else p
+                                  for p in SCENE_MODULES], ids=scene_id)
 def test_scene_lines_are_at_most_110_characters(path):
     """Issue 22: a scene module is read, not scrolled: no line over 110 characters."""
-    long = [f"{k}: {len(line)}" for k, line in enumerate(path.read_text().splitlines(), 1) if len(line) > MAX_LINE_CHARS]
+    lines = enumerate(path.read_text().splitlines(), 1)
+    long = [f"{k}: {len(line)}" for k, line in lines if len(line) > MAX_LINE_CHARS]
     assert not long, f"lines over {MAX_LINE_CHARS} characters (line: length): {', '.join(long)}"
 
 
@@ -175,7 +178,7 @@ def test_the_pending_list_names_scene_modules():
 COMPILERS = {"njit", "jit", "cfunc", "template", "generated_jit"}       # numba's decorators, linker.template
 RHS_SIGNATURE = ["t", "y", "p"]
 GENERATED_RHS = re.compile(r"def \w+\(\s*t\s*,\s*y\s*,\s*p\s*\)")
-RHS_HOMES = ("models", "integrators")          # the models write every rhs; the integrators' steps are their own
+RHS_HOMES = ("models", "integrators")          # the models write every rhs, the integrators their steps
 
 
 def _called_name(node):
@@ -184,19 +187,20 @@ def _called_name(node):
 
 
 def compiled_rhs(source):
-    """Names of the compiled right-hand sides a module defines: a function of the signature (t, y, p) that numba
-    compiles or the linker links (decorated with njit/jit/cfunc/template, or passed to one of them), or source
-    text defining one for the linker to compile (``link_source``)."""
+    """Names of the compiled right-hand sides a module defines: a function of the signature (t, y, p) that
+    numba compiles or the linker links (decorated with njit/jit/cfunc/template, or passed to one of them), or
+    source text defining one for the linker to compile (``link_source``)."""
     tree = ast.parse(source)
     functions = {node.name: node for node in ast.walk(tree) if isinstance(node, ast.FunctionDef)}
     shaped = {name for name, node in functions.items()
               if [a.arg for a in node.args.posonlyargs + node.args.args] == RHS_SIGNATURE}
-    found = {name for name in shaped if any(_called_name(d) in COMPILERS for d in functions[name].decorator_list)}
+    found = {name for name in shaped
+             if any(_called_name(d) in COMPILERS for d in functions[name].decorator_list)}
     for node in ast.walk(tree):
         if isinstance(node, ast.Call) and _called_name(node) in COMPILERS:
             found |= {a.id for a in node.args if isinstance(a, ast.Name) and a.id in shaped}
-        elif isinstance(node, ast.Constant) and isinstance(node.value, str) and GENERATED_RHS.search(node.value):
-            found.add(f"generated source: {GENERATED_RHS.search(node.value).group(0)}")
+        elif isinstance(node, ast.Constant) and isinstance(node.value, str):
+            found |= {f"generated source: {m.group(0)}" for m in GENERATED_RHS.finditer(node.value)}
     return sorted(found)
 
 
@@ -216,6 +220,6 @@ def test_the_detector_finds_compiled_right_hand_sides():
 @pytest.mark.parametrize("path", [p for p in MODULES if p.relative_to(PACKAGE).parts[0] not in RHS_HOMES],
                          ids=lambda p: str(p.relative_to(PACKAGE)))
 def test_no_compiled_rhs_outside_the_models(path):
-    """Issue 22: every right-hand side is a System's, generated in spinorbit.models (the integrators' own steps
-    aside); nothing else hand-writes one."""
+    """Issue 22: every right-hand side is a System's, generated in spinorbit.models (the integrators' own
+    steps aside); nothing else hand-writes one."""
     assert compiled_rhs(path.read_text()) == []

@@ -91,12 +91,12 @@ def test_spherical_core_carry_equals_linear_solution():
 @pytest.mark.parametrize("level", [1, 2, 3, 4])
 def test_the_generated_rhs_is_the_lunar_model(level):
     """The Moon's System at each level, its generated rhs at DE421's state (rates moved off it) against the
-    level's equations evaluated by hand from DE421's constants and the interactions' kernels: the torques of the
-    level's bodies on the degree-2 figure (§815) and on the degree 3-4 field, the Earth's J2 on the figure (the
-    IAU 1976 pole table of references.moon_de421, as DE421), the inertia distorted by the tide the Earth raised
-    tau ago (its position from the orbit source, its velocity by central differences of 1e-3 d) and the spin,
-    the mantle and fluid core (Folkner et al. 2014, §III); q' = q (0, w) / 2.  Bound 1e-13 of each slice's
-    largest rate (at this state the Earth's J2 is 6e-6 of the torque, the planets' 4e-8)."""
+    level's equations evaluated by hand from DE421's constants and the interactions' kernels: the torques of
+    the level's bodies on the degree-2 figure (§815) and on the degree 3-4 field, the Earth's J2 on the
+    figure (the IAU 1976 pole table of references.moon_de421, as DE421), the inertia distorted by the tide the
+    Earth raised tau ago (its position from the orbit source, its velocity by central differences of 1e-3 d)
+    and the spin, the mantle and fluid core (Folkner et al. 2014, §III); q' = q (0, w) / 2.  Bound 1e-13 of
+    each slice's largest rate (at this state the Earth's J2 is 6e-6 of the torque, the planets' 4e-8)."""
     from spinorbit.bodies.de421_header import header
     from spinorbit.models import distortion, spin
     from spinorbit.models.assemblies.moon import LEVELS, moon
@@ -138,8 +138,9 @@ def test_the_generated_rhs_is_the_lunar_model(level):
                                            np.ascontiguousarray(C.s_nm), 3, 4)
     if "earth_j2" in spec.terms:
         earth_pole_now = figure_figure.pole_at(t, *pole)
-        torque = torque + figure_figure.figure_torque(inertia, rot.T @ rows[list(orbits.names).index("earth")],
-                                                      rot.T @ earth_pole_now, gm_earth * h["J2E"] * h["RE"] ** 2)
+        earth_row = rows[list(orbits.names).index("earth")]
+        torque = torque + figure_figure.figure_torque(inertia, rot.T @ earth_row, rot.T @ earth_pole_now,
+                                                      gm_earth * h["J2E"] * h["RE"] ** 2)
     if spec.core:
         c = C.moments[2] * scale
         rates = spin.mantle_and_core_rates(w, parts["moon.omega_core"], inertia, inertia_rate, torque,
