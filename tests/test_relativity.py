@@ -12,7 +12,7 @@ from spinorbit.models.interactions.relativity import accelerations
 from tests.units import mas
 
 
-@njit     # not cached: numba's disk cache would keep a stale copy of spinorbit.models.interactions.relativity.accelerations
+@njit     # not cached: numba's disk cache would keep a stale copy of relativity.accelerations
 def nbody_rhs(t, y, p):
     """y = (positions (N, 3), velocities (N, 3)) flattened, km and km/d; p = (gm (N,), c km/d, eih 0 or 1)."""
     gm, c, eih = p
