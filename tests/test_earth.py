@@ -8,10 +8,13 @@ import math
 import numpy as np
 import pytest
 
-from spinorbit import earth
+from spinorbit.analysis.precession import free_nutation_amplitude
+from spinorbit.bodies import earth
 from spinorbit.constants import GM_KM3_D2, JULIAN_CENTURY_D
 from spinorbit.errors import PhysicsError, ScenarioError
 from spinorbit.integrators import integrate
+from spinorbit.models.assemblies.earth import SUN_MEAN_ANOMALY_RAD, geodesic_precession, rigid_earth
+from spinorbit.models.start import on_pole
 from spinorbit.orbits.analytic import CircularOrbits
 from spinorbit.results import run_scenario
 from spinorbit.theory import SymmetricPrecession
@@ -19,6 +22,8 @@ from tests.units import arcsec, mas
 
 SCENARIOS = "scenarios/earth_precession_nutation"
 EPS0 = 84381.406 * arcsec
+ECLIPTIC_POLE = np.array([0.0, -math.sin(EPS0), math.cos(EPS0)])      # the circles' pole
+Z0 = np.array([0.0, 0.0, 1.0])
 
 
 def circles(bodies=("moon", "sun")):
@@ -30,22 +35,23 @@ def circles(bodies=("moon", "sun")):
                           [EPS0] * len(bodies))
 
 
-def circle_params(orbits, geodesic=False):
-    pole = np.array([0.0, -math.sin(EPS0), math.cos(EPS0)])
-    return earth.earth_params(earth.earth_moments(), orbits.gm, orbits.data, earth.extra_parameters(pole, geodesic, False))
+def circle_earth(orbits, model, geodesic=False, forced=True):
+    """The rigid Earth (no J2 rate) on the circles, its figure axis at Z0 at t = 0 (body x axis near x)."""
+    system = rigid_earth(orbits, model, j2_rate=False, ecliptic_pole=ECLIPTIC_POLE if geodesic else None)
+    start = on_pole(system, "earth", 0.0, Z0, earth.ERA_RATE_RAD_D, np.array([1.0, 0, 0]), forced)
+    system.y0 = system.layout.pack(start)
+    return system
 
 
 @pytest.fixture(scope="module")
 def circle_runs():
     """Full (rk8, 0.1 d) and gyroscopic (rk8, 1 d) runs on circles, 4 yr from the pole z = (0, 0, 1)."""
     orbits = circles()
-    params = circle_params(orbits)
-    z0, t = np.array([0.0, 0.0, 1.0]), np.arange(0.0, 1461.0, 0.5)
-    gyro = earth.gyroscopic_system(orbits.kernel, params, 0.0, z0)
-    z_gyro = gyro.meta["figure_axes"](t, integrate(gyro, t, "rk8", step=1.0).y, params)
-    full = earth.full_system(orbits.kernel, params, 0.0, z0, np.array([1.0, 0.0, 0.0]))
-    z_full = earth.figure_axes_from_full(integrate(full, t, "rk8", step=0.1).y)
-    return orbits, params, t, z_gyro, z_full
+    t = np.arange(0.0, 1461.0, 0.5)
+    gyro, full = circle_earth(orbits, "gyroscopic"), circle_earth(orbits, "full")
+    z_gyro = gyro.figure_axes("earth", t, integrate(gyro, t, "rk8", step=1.0).y)
+    z_full = full.figure_axes("earth", t, integrate(full, t, "rk8", step=0.1).y)
+    return orbits, gyro.bodies["earth"].figure.moments, t, z_gyro, z_full
 
 
 def node_longitude_rate(t, z, orbits):
@@ -65,8 +71,7 @@ def test_full_and_gyroscopic_agree_on_circles(circle_runs):
 
 def test_precession_rate_matches_euler_p96(circle_runs):
     """The numerical rate vs Euler's N cos n (§846) summed over Moon and Sun."""
-    orbits, params, t, z_gyro, z_full = circle_runs
-    moments = params[0]
+    orbits, moments, t, z_gyro, z_full = circle_runs
     p96 = sum(SymmetricPrecession(earth.ERA_RATE_RAD_D, rate,
                                   1.5 * gm * (moments[2] - moments[0]) / (earth.ERA_RATE_RAD_D * moments[2] * r**3),
                                   EPS0).precession_rate
@@ -81,14 +86,12 @@ def test_precession_rate_matches_euler_p96(circle_runs):
 def test_forced_start_excites_no_free_nutation():
     """Fit the Euler-period (~305 d in body axes) component of the full model's pole."""
     orbits = circles()
-    params = circle_params(orbits)
-    z0 = np.array([0.0, 0.0, 1.0])
     t = np.arange(0.0, 610.0, 0.125)
     amplitudes = {}
     for forced in (True, False):
-        system = earth.full_system(orbits.kernel, params, 0.0, z0, np.array([1.0, 0.0, 0.0]), forced=forced)
+        system = circle_earth(orbits, "full", forced=forced)
         omega = integrate(system, t, "rk8", step=0.125).omega
-        amplitudes[forced] = earth.free_nutation_amplitude(t, omega, params[0])
+        amplitudes[forced] = free_nutation_amplitude(t, omega, system.bodies["earth"].figure.moments)
     assert amplitudes[True] < 0.1 * mas
     # Without the Oppolzer terms the start tilts L from the figure axis by ~9 mas: a free nutation.
     assert amplitudes[False] > 5 * mas
@@ -96,21 +99,18 @@ def test_forced_start_excites_no_free_nutation():
 
 def test_geodesic_precession_reduces_the_rate_by_1_919883_arcsec_per_century():
     orbits = circles()
-    z0, t = np.array([0.0, 0.0, 1.0]), np.arange(0.0, 3653.0, 2.0)
+    t = np.arange(0.0, 3653.0, 2.0)
     rates = []
     for geodesic in (False, True):
-        params = circle_params(orbits, geodesic)
-        gyro = earth.gyroscopic_system(orbits.kernel, params, 0.0, z0)
-        z = gyro.meta["figure_axes"](t, integrate(gyro, t, "rk8", step=2.0).y, params)
+        gyro = circle_earth(orbits, "gyroscopic", geodesic)
+        z = gyro.figure_axes("earth", t, integrate(gyro, t, "rk8", step=2.0).y)
         rates.append(-node_longitude_rate(t, z, orbits) * JULIAN_CENTURY_D)
     assert rates[1] - rates[0] == pytest.approx(-1.919883 * arcsec, abs=0.002 * arcsec)
 
 
 def test_gyroscopic_model_rejects_a_triaxial_earth():
-    orbits = circles()
-    params = (earth.earth_moments(earth.H_D, earth.B_MINUS_A_OVER_C),) + circle_params(orbits)[1:]
     with pytest.raises(PhysicsError, match="axisymmetric"):
-        earth.gyroscopic_system(orbits.kernel, params, 0.0, np.array([0.0, 0.0, 1.0]))
+        rigid_earth(circles(), "gyroscopic", b_minus_a_over_c=earth.B_MINUS_A_OVER_C)
 
 
 @pytest.mark.slow
@@ -142,33 +142,47 @@ def test_bad_model_name_is_a_scenario_error():
         run_scenario(f"{SCENARIOS}.toml", ["earth.model=\"euler\""])
 
 
+def j4_torque(rows, gm, z, j4_coef):
+    """Inertial torque per C of point masses at ``rows`` (n, 3) on an axisymmetric J4 about the unit axis z:
+    from U_4 = GM_E J4 R^4 P4(s)/r^5 (s = z.r/r), N = G m M_E J4 R^4 P4'(s) (r x z)/r^6, per
+    C = (C/MR^2) M_E R^2: GM_m [J4 R^2/(C/MR^2)] P4'(s) (r x z)/r^6, P4'(s) = (35 s^3 - 15 s)/2;
+    ``j4_coef`` = J4 R^2/(C/MR^2)."""
+    total = np.zeros(3)
+    for r, g in zip(rows, gm):
+        s = r @ z / np.linalg.norm(r)
+        total += g * j4_coef * 0.5 * (35.0 * s**3 - 15.0 * s) / np.linalg.norm(r) ** 6 * np.cross(r, z)
+    return total
+
+
 def test_j4_torque_equals_the_degree4_recursion():
-    """The closed form N = GM J4 R^2 P4'(s) (r x z)/(c r^6) per C equals the harmonics term's
-    Montenbruck-Gill recursion with C40 = -J4 (per M R^2, divided by c = C/MR^2)."""
+    """The closed form N = GM J4 R^2 P4'(s) (r x z)/(c r^6) per C equals the harmonics interaction's
+    Montenbruck-Gill recursion with C40 = -J4 (per M R^2: scale 1, divided by c = C/MR^2)."""
+    from spinorbit.models.interactions import harmonics
     from spinorbit.rotations import matrix_from_quat
-    from spinorbit.terms import harmonics
 
     c_nm, s_nm = np.zeros((5, 5)), np.zeros((5, 5))
     c_nm[4, 0] = -earth.J4
     rot = matrix_from_quat(np.array([0.8, 0.3, -0.4, 0.33]) / np.linalg.norm([0.8, 0.3, -0.4, 0.33]))
     r = np.array([[2.1e5, -3.0e5, 1.1e5], [1.0e8, 1.1e8, 0.4e8]])
     gm = np.array([4.0e12, 9.9e20])
-    recursion = rot @ harmonics.torque(0.0, np.zeros(7), rot, np.eye(3), r, gm,
-                                       (earth.EQUATORIAL_RADIUS_KM, c_nm, s_nm, 4, 4)) / earth.C_MR2
-    closed = earth.j4_torque(r, gm, rot[:, 2], earth.J4 * earth.EQUATORIAL_RADIUS_KM**2 / earth.C_MR2)
+    recursion = rot @ harmonics.torque(rot, r, gm, 1.0, earth.EQUATORIAL_RADIUS_KM, c_nm, s_nm, 4, 4)
+    recursion /= earth.C_MR2
+    closed = j4_torque(r, gm, rot[:, 2], earth.J4 * earth.EQUATORIAL_RADIUS_KM**2 / earth.C_MR2)
     assert np.abs(closed - recursion).max() < 1e-12 * np.abs(closed).max()
 
 
 def test_geodesic_nutation_is_fukushimas_annual_term():
     """The annual term of the geodesic precession integrates to Fukushima's (1991) geodesic nutation,
     0.153 mas in psi: the rate's annual part, fitted over a year, divided by n'."""
-    extra = earth.extra_parameters(np.array([0.0, -0.3978, 0.9175]), geodesic_nutation=True)
+    from spinorbit.models.interactions.geodesic import constant_rate
+
+    geodesic = geodesic_precession(np.array([0.0, -0.3978, 0.9175]), annual=True)
     t = np.linspace(0.0, 365.25, 4001)
-    rate = np.array([np.linalg.norm(earth.geodesic_rate(extra, ti)) for ti in t])
-    phase = earth.SUN_MEAN_ANOMALY_RAD[0] + earth.SUN_MEAN_ANOMALY_RAD[1] * t
+    rate = np.array([np.linalg.norm(constant_rate(geodesic.rate_rad_d, geodesic.annual, ti)) for ti in t])
+    phase = SUN_MEAN_ANOMALY_RAD[0] + SUN_MEAN_ANOMALY_RAD[1] * t
     mean, amplitude = np.linalg.lstsq(np.column_stack([np.ones_like(t), np.cos(phase)]), rate, rcond=None)[0]
-    assert mean == pytest.approx(np.linalg.norm(extra[:3]), rel=1e-12)
-    assert amplitude / earth.SUN_MEAN_ANOMALY_RAD[1] == pytest.approx(0.153 * mas, abs=0.003 * mas)
+    assert mean == pytest.approx(earth.GEODESIC_PRECESSION_ARCSEC_CY * arcsec / JULIAN_CENTURY_D, rel=1e-12)
+    assert amplitude / SUN_MEAN_ANOMALY_RAD[1] == pytest.approx(0.153 * mas, abs=0.003 * mas)
 
 
 def test_first_order_lunisolar_rate_of_de421_is_p03s():
@@ -184,10 +198,10 @@ def test_first_order_lunisolar_rate_of_de421_is_p03s():
 
     from spinorbit.analysis import nonrigid
     from spinorbit.analysis.harmonics import fit_harmonics
-    from spinorbit.earth_vs_iau import torque_rates
     from spinorbit.orbits.kernel import open_ephemeris
     from spinorbit.orbits.sources import gm_of
     from spinorbit.references import arguments, erfa_pole
+    from spinorbit.scenes.earth_precession_nutation.compare import torque_rates
 
     t = np.arange(-JULIAN_CENTURY_D, JULIAN_CENTURY_D, 1.0)
     ephemeris = open_ephemeris("de421", t[0], t[-1])
@@ -197,3 +211,66 @@ def test_first_order_lunisolar_rate_of_de421_is_p03s():
     fit = fit_harmonics(t, psi, arguments.named(t, {str(m): m for m in nonrigid.LUNISOLAR_ARGUMENTS}), degree=3)
     p03 = 5494.062986 * math.cos(EPS0) - 0.269430
     assert fit.poly[1] * arcsec == pytest.approx(p03 * arcsec, abs=10 * mas)
+
+
+def unit(v):
+    return np.asarray(v, dtype=float) / np.linalg.norm(v)
+
+
+def tidal_tensor(rows, gm):
+    """T = 3 sum GM r r^T / r^5 (1/d^2) of point masses at ``rows`` (n, 3)."""
+    return sum(3.0 * g * np.outer(r, r) / np.linalg.norm(r) ** 5 for r, g in zip(rows, gm))
+
+
+def test_gyroscopic_rhs_is_the_torques_on_its_oppolzer_axis():
+    """The generated rhs of the gyroscopic Earth (J2 rate, J4, geodesic precession with its annual term) at
+    one state against its physics written out: dl/dt = (C - A)(1 + k t) (T z) x z (§815 summed over the
+    masses, T their tidal tensor) + the J4 closed form (per C, times C) + Omega_gp(t) x l, on the figure axis
+    z = ell - ell x N(ell) / (|l| lam), lam = |l|/A (the first-order Oppolzer term,
+    spinorbit.models.gyroscopic).  J4's part is 3e-7 of the total and the geodesic one 5e-4: a bound of
+    1e-12 of the total checks both."""
+    orbits = circles()
+    system = rigid_earth(orbits, "gyroscopic", j2_rate=True, j4=True, ecliptic_pole=ECLIPTIC_POLE,
+                         geodesic_nutation=True)
+    moments = system.bodies["earth"].figure.moments
+    t, l_spin = 1234.5, moments[2] * earth.ERA_RATE_RAD_D * unit([0.1, -0.35, 0.93])
+    y = system.layout.pack({"earth.spin": l_spin})
+    got = system.rhs(t, y, system.params)
+
+    rows, scale = orbits.positions(t)[0], 1.0 + earth.J2_RATE_PER_CY / earth.J2 / JULIAN_CENTURY_D * t
+    c_minus_a, ell = (moments[2] - moments[0]) * scale, unit(l_spin)
+    tensor = tidal_tensor(rows, orbits.gm)
+    lam = np.linalg.norm(l_spin) / moments[0]
+    z = unit(ell - np.cross(ell, c_minus_a * np.cross(tensor @ ell, ell)) / (np.linalg.norm(l_spin) * lam))
+    torque = c_minus_a * np.cross(tensor @ z, z)
+    j4_coef = earth.J4 * earth.EQUATORIAL_RADIUS_KM**2 / earth.C_MR2
+    torque += moments[2] * j4_torque(rows, orbits.gm, z, j4_coef)
+    rate = earth.GEODESIC_PRECESSION_ARCSEC_CY * arcsec / JULIAN_CENTURY_D * ECLIPTIC_POLE
+    rate *= 1.0 + 3 * 0.0167086 * math.cos(SUN_MEAN_ANOMALY_RAD[0] + SUN_MEAN_ANOMALY_RAD[1] * t)
+    expected = torque + np.cross(rate, l_spin)
+    assert np.abs(got - expected).max() < 1e-12 * np.abs(expected).max()
+
+
+def test_full_rhs_is_eulers_equations_in_the_geodesic_frame():
+    """The generated rhs of the full (triaxial) Earth at one state against Euler's equations written out:
+    I w' + w x I w = N, N = sum 3 GM/r^5 r x (I (1 + k t) r) in body axes (§813, §815; I less its isotropic
+    part C 1, which exerts none and would cancel to rounding), and q' = q (0, w + R^T Omega_gp) / 2 (the
+    equations hold in the frame turning at Omega_gp)."""
+    from spinorbit.rotations import matrix_from_quat, quat_rate
+
+    orbits = circles()
+    system = rigid_earth(orbits, "full", b_minus_a_over_c=earth.B_MINUS_A_OVER_C, ecliptic_pole=ECLIPTIC_POLE)
+    moments = system.bodies["earth"].figure.moments
+    q, omega = unit([0.9, 0.1, -0.2, 0.3]), earth.ERA_RATE_RAD_D * np.array([2e-6, -1e-6, 1.0])
+    t = -765.4
+    got = system.rhs(t, system.layout.pack({"earth.q": q, "earth.omega": omega}), system.params)
+
+    rot = matrix_from_quat(q)
+    inertia = np.diag(moments - moments[2]) * (1.0 + earth.J2_RATE_PER_CY / earth.J2 / JULIAN_CENTURY_D * t)
+    torque = sum(3.0 * g / np.linalg.norm(r) ** 5 * np.cross(r, inertia @ r)
+                 for r, g in zip(orbits.positions(t)[0] @ rot, orbits.gm))
+    omega_dot = (torque - np.cross(omega, moments * omega)) / moments
+    rate = earth.GEODESIC_PRECESSION_ARCSEC_CY * arcsec / JULIAN_CENTURY_D * ECLIPTIC_POLE
+    np.testing.assert_allclose(got[system.layout["earth.q"]], quat_rate(q, omega + rot.T @ rate), rtol=0,
+                               atol=1e-15 * np.abs(omega).max())
+    assert np.abs(got[system.layout["earth.omega"]] - omega_dot).max() < 1e-12 * np.abs(omega_dot).max()

@@ -1,4 +1,4 @@
-"""The Earth's tides on the Moon's orbit (spinorbit.terms.earth_tides, Folkner et al. 2014 eq. 32):
+"""The Earth's tides on the Moon's orbit (spinorbit.models.interactions.tides, Folkner et al. 2014 eq. 32):
 the zero-delay limit against the static Love-number potential, the semi-diurnal recession of a
 circular equatorial orbit against the lagged-bulge torque, and the reaction torque against Euler's
 P91 torque of the Moon on the tidal bulge's inertia."""
@@ -7,10 +7,21 @@ import math
 import numpy as np
 import pytest
 
-from spinorbit.terms import earth_tides, point_mass
+from spinorbit.bodies.de421_header import gm_km3_d2, header
+from spinorbit.bodies.earth import de421_tides
+from spinorbit.models.interactions import point_mass, tides
 from tests.units import arcsec
 
-P = earth_tides.parameters()
+
+def de421_parameters():
+    """The tides' parameters from the DE421 header: [GM_E, GM_M, GM_S (km^3/d^2), R_E (km), k20, k21, k22,
+    tau0, tau1, tau2 (d)] (Folkner et al. 2014, the tidal acceleration)."""
+    love = de421_tides()
+    return np.array([gm_km3_d2("earth"), gm_km3_d2("moon"), gm_km3_d2("sun"), header()["RE"],
+                     *(love[m][0] for m in range(3)), *(love[m][1] for m in range(3))])
+
+
+P = de421_parameters()
 GM_E, GM_M, GM_S, R_E = P[:4]
 Q = GM_M / GM_E
 OMEGA = 6.300387486754831          # the Earth's spin, rad/d
@@ -49,11 +60,11 @@ def test_zero_delay_equal_love_numbers_is_the_static_tide():
     k2 GM_M R^5 / r^6 (a body's own tide, P2(1) = 1) pulls (1 + q) 3 k2 GM_M R^5 r / r^8, radially."""
     r, v, r_sun, v_sun, spin = geometry()
     p = parameters_with(k2=0.3, tau=0.0, gm_sun=0.0)
-    a = earth_tides.acceleration(r, v, r_sun, v_sun, spin, p)
+    a = tides.acceleration(r, v, r_sun, v_sun, spin, p)
     s = np.linalg.norm(r)
     expected = -3.0 * 0.3 * (1 + Q) * GM_M * R_E**5 * r / s**8
     assert np.linalg.norm(a - expected) < 1e-14 * np.linalg.norm(expected)
-    torque = earth_tides.torque_on_earth(r, v, r_sun, v_sun, spin, p)
+    torque = tides.torque_on_earth(r, v, r_sun, v_sun, spin, p)
     mu = GM_E * GM_M / (GM_E + GM_M)
     assert np.linalg.norm(torque) < 1e-14 * mu * s * np.linalg.norm(a)
 
@@ -73,7 +84,7 @@ def test_zero_delay_is_the_gradient_of_the_static_band_potential():
     band potential above (by the complex step), but not central: it torques the Earth."""
     r, v, r_sun, v_sun, spin = geometry()
     p = parameters_with(tau=0.0, gm_sun=0.0)
-    a = earth_tides.acceleration(r, v, r_sun, v_sun, spin, p)
+    a = tides.acceleration(r, v, r_sun, v_sun, spin, p)
     pole = unit(spin)
     h = 1e-20 * np.linalg.norm(r)
     grad = np.array([static_potential(r + 1j * h * e, pole, P[4:7]).imag / h for e in np.eye(3)])
@@ -97,7 +108,7 @@ def test_semidiurnal_recession_is_the_lagged_bulge_closed_form():
     v = n * a_km * np.cross(pole, x_axis)
     k22, tau2 = P[6], P[9]
     p = parameters_with(k2=[0.0, 0.0, k22], gm_sun=0.0)
-    acc = earth_tides.acceleration(r, v, np.array([1.5e8, 0, 0]), np.zeros(3), OMEGA * pole, p)
+    acc = tides.acceleration(r, v, np.array([1.5e8, 0, 0]), np.zeros(3), OMEGA * pole, p)
     along = acc @ unit(v)
     da_dt = 2.0 * along / n
     dn_dt = -1.5 * n / a_km * da_dt
@@ -127,7 +138,7 @@ def band_inertia(s, pole, k2, gm):
 
 @pytest.mark.parametrize("gm_sun", [0.0, GM_S])
 def test_reaction_is_the_moons_torque_on_the_tidal_bulge(gm_sun):
-    """The orbit's angular momentum change mu r x a plus Euler's torque (§815, terms.point_mass) of
+    """The orbit's angular momentum change mu r x a plus Euler's torque (§815, interactions.point_mass) of
     the Moon on the tidal bulge's inertia (band by band, each delayed) vanish to rounding, and
     torque_on_earth is that torque: for the Moon-raised tide and with the Sun-raised one."""
     r, v, r_sun, v_sun, spin = geometry()
@@ -136,13 +147,13 @@ def test_reaction_is_the_moons_torque_on_the_tidal_bulge(gm_sun):
     inertia = np.zeros((3, 3))
     for x, u, gm, gm_pair in ((r, v, GM_M, GM_E + GM_M), (r_sun, v_sun, gm_sun, GM_S + GM_E + GM_M)):
         for m in range(3):
-            s = earth_tides.delayed(x, u, gm_pair, pole, rate, P[7 + m], m)
+            s = tides.delayed(x, u, gm_pair, pole, rate, P[7 + m], m)
             k2 = np.zeros(3)
             k2[m] = P[4 + m]
             inertia += band_inertia(s, pole, k2, gm)
-    euler = point_mass.torque(0.0, np.zeros(7), np.eye(3), inertia, r[None], np.array([GM_M]), ())
+    euler = point_mass.torque(np.eye(3), inertia, r[None], np.array([GM_M]))
     mu = GM_E * GM_M / (GM_E + GM_M)
-    orbit = mu * np.cross(r, earth_tides.acceleration(r, v, r_sun, v_sun, spin, p))
+    orbit = mu * np.cross(r, tides.acceleration(r, v, r_sun, v_sun, spin, p))
     assert np.linalg.norm(orbit + euler) < 1e-12 * np.linalg.norm(euler)
-    torque = earth_tides.torque_on_earth(r, v, r_sun, v_sun, spin, p)
+    torque = tides.torque_on_earth(r, v, r_sun, v_sun, spin, p)
     assert np.linalg.norm(torque - euler) < 1e-12 * np.linalg.norm(euler)

@@ -6,9 +6,10 @@ import numpy as np
 import pytest
 from numba import njit
 
-from spinorbit.dynamics import SpinSystem, kinetic_energy, make_rigid_body_rhs, point_mass_system, torque_free_system
+from spinorbit.analysis.invariants import kinetic_energy
 from spinorbit.errors import InputError, IntegrationError
 from spinorbit.integrators import METHODS, get_method, integrate
+from spinorbit.models.assemblies.idealised import free_body, under_point_masses
 from spinorbit.orbits.analytic import CircularOrbits
 from spinorbit.rotations import quat_from_euler313
 
@@ -23,7 +24,7 @@ def torqued():
     """A smooth torqued problem: asymmetric body, one point mass on an inclined circle (P91 torque)."""
     orbit = CircularOrbits(("m",), gm=[0.5], radius=[1.0], rate=[1.0], inclination=[0.3])
     moments = np.array([0.8, 1.0, 1.3])
-    system = point_mass_system(moments, orbit, quat_from_euler313(0.2, 0.5, 0.1), [0.3, -0.4, 1.2])
+    system = under_point_masses(moments, orbit, quat_from_euler313(0.2, 0.5, 0.1), [0.3, -0.4, 1.2])
     t = np.linspace(0.0, 20.0, 11)
     reference = integrate(system, t, "rk8", step=0.01).y          # converged: error ~1e-14
     return system, t, reference
@@ -59,7 +60,7 @@ def test_adaptive_reaches_tolerance(method, rtol, torqued):
 @pytest.mark.parametrize("method", ["strang", "yoshida4", "suzuki4"])
 def test_splitting_keeps_invariants_of_free_body(method):
     """Torque-free HLW body, 1e5 steps: |L| to rounding; energy error bounded, no secular growth."""
-    system = torque_free_system(HLW_MOMENTS, np.array([1.0, 0, 0, 0]), HLW_OMEGA0)
+    system = free_body(HLW_MOMENTS, np.array([1.0, 0, 0, 0]), HLW_OMEGA0)
     t = np.linspace(0.0, 1e4, 2001)
     y = integrate(system, t, method, step=0.1).y
     l_norm = np.linalg.norm(HLW_MOMENTS * y[:, 4:7], axis=1)
@@ -75,7 +76,7 @@ def test_symmetric_free_flow_beats_axes_splitting_for_fast_nearly_symmetric_spin
     Strang splitting's error grows with the spin, the symmetric-exact one does not."""
     orbit = CircularOrbits(("sun",), gm=[2.96e-4], radius=[1.0], rate=[0.0172], inclination=[0.41])
     moments = np.array([1.0, 1.00001, 1.0033])
-    system = point_mass_system(moments, orbit, [1.0, 0, 0, 0], [1e-4, 0, 2 * math.pi])
+    system = under_point_masses(moments, orbit, [1.0, 0, 0, 0], [1e-4, 0, 2 * math.pi])
     t = np.linspace(0.0, 30.0, 31)
     reference = integrate(system, t, "rk8", step=0.01).y
     error = {flow: np.abs(integrate(system, t, "strang", step=0.05, free_flow=flow).y - reference).max()
@@ -85,25 +86,34 @@ def test_symmetric_free_flow_beats_axes_splitting_for_fast_nearly_symmetric_spin
 
 
 def test_splitting_needs_a_torque():
-    system = torque_free_system(HLW_MOMENTS, np.array([1.0, 0, 0, 0]), HLW_OMEGA0)
+    system = free_body(HLW_MOMENTS, np.array([1.0, 0, 0, 0]), HLW_OMEGA0)
     system.torque = None
     with pytest.raises(InputError, match="^method: got .strang."):
         integrate(system, [0.0, 1.0], "strang")
     with pytest.raises(InputError, match="^free_flow: got .exact."):
-        integrate(torque_free_system(HLW_MOMENTS, np.array([1.0, 0, 0, 0]), HLW_OMEGA0), [0.0, 1.0],
+        integrate(free_body(HLW_MOMENTS, np.array([1.0, 0, 0, 0]), HLW_OMEGA0), [0.0, 1.0],
                   "strang", free_flow="exact")
 
 
 @njit
-def _torque_blows_up(t, y, p):
-    return np.full(3, np.nan) if t > 5.0 else np.zeros(3)
+def _positions_blow_up(t, data):
+    """One mass at ``data`` (3,) until t = 5, then nowhere (NaN): the torque becomes non-finite."""
+    out = np.empty((1, 3))
+    for k in range(3):
+        out[0, k] = np.nan if t > 5.0 else data[k]
+    return out
+
+
+class BlowingUp:
+    """An orbit source (names, gm, kernel, data) whose one mass leaves the reals after t = 5."""
+
+    names, gm, data = ("m",), np.array([1e-3]), np.array([3.0, 1.0, 2.0])
+    kernel = staticmethod(_positions_blow_up)
 
 
 @pytest.mark.parametrize("method", ["rk8", "rk4", "strang", "dop853"])
 def test_failure_raises_integration_error_with_partial_solution(method):
-    moments = HLW_MOMENTS
-    system = SpinSystem(make_rigid_body_rhs(_torque_blows_up), (moments,), 0.0,
-                        np.concatenate([[1.0, 0, 0, 0], HLW_OMEGA0]), moments, _torque_blows_up)
+    system = under_point_masses(HLW_MOMENTS, BlowingUp(), [1.0, 0, 0, 0], HLW_OMEGA0)
     t = np.linspace(0.0, 10.0, 11)
     options = {"step": 0.1} if method != "dop853" else {}
     with pytest.raises(IntegrationError) as info:
@@ -118,8 +128,8 @@ def test_bench_writes_work_precision_table(tmp_path):
     """spinorbit bench on the HLW body (1000 d): files written; rk8 reaches 1e-9 rad vs the closed form."""
     from spinorbit.bench import bench_scenario
 
-    free_body = __import__("pathlib").Path(__file__).parent.parent / "scenarios" / "free_body.toml"
-    rows, paths = bench_scenario(free_body, ["rk8", "strang"], tmp_path, budget_s=0.5)
+    scene = __import__("pathlib").Path(__file__).parent.parent / "scenarios" / "free_body.toml"
+    rows, paths = bench_scenario(scene, ["rk8", "strang"], tmp_path, budget_s=0.5)
     assert all(p.exists() for p in paths)
     assert min(r["error_rad"] for r in rows if r["method"] == "rk8") < 1e-9
     assert {r["method"] for r in rows} == {"rk8", "strang"}
@@ -127,13 +137,12 @@ def test_bench_writes_work_precision_table(tmp_path):
 
 def test_rk8_step_does_not_depend_on_output_cadence():
     """Outputs closer than the step come from DOP853's continuous extension, as accurate as the steps."""
-    from spinorbit.dynamics import torque_free_system
     from spinorbit.rotations import quat_angle
     from spinorbit.theory import FreeRigidBody
 
     moments = np.array([2 / 3, 1.0, 2.0])
     omega0 = np.array([math.sin(1.1), 0.0, math.cos(1.1)]) / moments
-    system = torque_free_system(moments, [1.0, 0, 0, 0], omega0)
+    system = free_body(moments, [1.0, 0, 0, 0], omega0)
     exact = FreeRigidBody(moments, omega0, np.array([1.0, 0, 0, 0]))
     coarse_t, fine_t = np.arange(0, 200, 0.4), np.arange(0, 200, 0.013)
     coarse = integrate(system, coarse_t, "rk8", step=0.2)
@@ -172,7 +181,7 @@ def test_forward_then_backward_returns_to_the_start(method, options, torqued):
     whatever the step; rk8 at h = 0.05, rk4 at 0.005 and dop853 at rtol 1e-13 carry ~1e-12 truncation error each way."""
     system, t, _ = torqued
     there = integrate(system, t, method, **options)
-    back = SpinSystem(system.rhs, system.params, t[-1], there.y[-1], system.moments, system.torque)
+    back = system.with_start(t[-1], there.y[-1])
     returned = integrate(back, t[::-1], method, **options)
     assert np.allclose(returned.t, t[::-1])
     attitude = 2 * np.arcsin(min(1.0, np.linalg.norm(returned.y[-1, :4] - system.y0[:4] * np.sign(

@@ -2,7 +2,7 @@
 import numpy as np
 
 from spinorbit.analysis.ladder import work_precision
-from spinorbit.dynamics import torque_free_system
+from spinorbit.models.assemblies.idealised import free_body
 from spinorbit.rotations import quat_angle
 from spinorbit.theory import FreeRigidBody
 
@@ -11,7 +11,7 @@ MOMENTS, OMEGA0, Q0 = np.array([0.3, 0.35, 0.4]), np.array([0.1, 1.5, 0.1]), np.
 
 def test_rows_show_rk4_fourth_order_against_euler_closed_form_and_failures_as_rows():
     """Torque-free body (§808): rk4's error falls by 2^4 per halved step; max_steps = 1 fails as a row."""
-    system = torque_free_system(MOMENTS, Q0, OMEGA0)
+    system = free_body(MOMENTS, Q0, OMEGA0)
     t = np.linspace(0.0, 20.0, 11)
     exact = FreeRigidBody(MOMENTS, OMEGA0, Q0).attitude(t)
 

@@ -1,5 +1,7 @@
-"""The package's layering: imports point downward only, and only edge modules import astropy."""
+"""The package's layering (docs/DEVELOPING.md): imports point downward only, only edge modules import astropy,
+no import cycle between rooms; scene modules are thin; only the models write a compiled right-hand side."""
 import ast
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -9,11 +11,12 @@ import pytest
 PACKAGE = Path(__file__).parents[1] / "spinorbit"
 LAYERS = {
     "constants": 0, "errors": 0, "rotations": 0, "linker": 0, "progress": 0,
-    "bodies": 1, "orbits": 1,
-    "dynamics": 2, "integrators": 2, "theory": 2, "moon": 2, "earth": 2, "terms": 2, "coupled": 2, "relativity": 2, "earth_moon": 2,
-    "simulate": 3, "analysis": 2,
+    "layout": 0,
+    "bodies": 1, "orbits": 1,                       # bodies/de421_orientation.py: DE421's libration series
+    "models": 2, "integrators": 2, "theory": 2, "analysis": 2,
+    "simulate": 3,
 }
-EDGE = 9          # scenarios, scenes, references, results, reports, cli, bench, sweep, __init__
+EDGE = 9          # scenarios, scenes, references, results, reports, cli, bench, sweep, checkpoint, ...
 EDGE_ONLY_LIBRARIES = {"astropy", "matplotlib", "dask", "distributed", "erfa", "skyfield"}
 
 
@@ -130,8 +133,94 @@ def test_no_import_cycle_between_rooms():
         f"  {a} -> {b}: {', '.join(edges[a, b])}" for a, b in zip(cycle, cycle[1:]))
 
 
-@pytest.mark.parametrize("path", sorted((PACKAGE / "scenes").glob("*.py")), ids=lambda p: p.name)
+SCENE_MODULES = sorted(p for p in (PACKAGE / "scenes").rglob("*.py") if "__pycache__" not in p.parts)
+MAX_SCENE_LINES, MAX_LINE_CHARS = 150, 110
+# Scene modules with lines over 110 characters that no mechanical rewrap fixes within 150 lines (issue 22: the
+# lead rewrites them).  Strict: a module fixed and still listed fails, so that the list only shrinks.
+LONG_LINES_PENDING = {
+    "coupled_conservation/__init__.py", "earth_moon_coupled/__init__.py", "earth_moon_coupled/compare.py",
+    "earth_precession_nutation/__init__.py", "earth_precession_nutation/compare.py",
+    "earth_precession_nutation/start.py", "free_body/__init__.py", "moon_libration/__init__.py",
+    "moon_libration/compare.py", "p92_start_from_rest/__init__.py", "p93_planar_libration/__init__.py",
+    "p95_near_principal_axis/__init__.py", "p96_precession/__init__.py", "planar_spin_orbit.py",
+    "stress_fast_spin/__init__.py", "stress_free_body/__init__.py", "stress_hyperion/__init__.py",
+    "stress_mercury/__init__.py", "stress_separatrix/__init__.py"}
+
+
+def scene_id(path):
+    return path.relative_to(PACKAGE / "scenes").as_posix()
+
+
+@pytest.mark.parametrize("path", SCENE_MODULES, ids=scene_id)
 def test_scene_modules_are_thin(path):
     """A scene declares (bodies, terms, orbit source, integrator, reference, analyses) in at most 150 lines;
     models, fits and comparisons live below it."""
-    assert len(path.read_text().splitlines()) <= 150
+    assert len(path.read_text().splitlines()) <= MAX_SCENE_LINES
+
+
+PENDING = pytest.mark.xfail(strict=True, reason="issue 22: lines over 110 characters, being rewritten")
+
+
+@pytest.mark.parametrize("path", [pytest.param(p, marks=PENDING) if scene_id(p) in LONG_LINES_PENDING else p
+                                  for p in SCENE_MODULES], ids=scene_id)
+def test_scene_lines_are_at_most_110_characters(path):
+    """Issue 22: a scene module is read, not scrolled: no line over 110 characters."""
+    lines = enumerate(path.read_text().splitlines(), 1)
+    long = [f"{k}: {len(line)}" for k, line in lines if len(line) > MAX_LINE_CHARS]
+    assert not long, f"lines over {MAX_LINE_CHARS} characters (line: length): {', '.join(long)}"
+
+
+def test_the_pending_list_names_scene_modules():
+    assert LONG_LINES_PENDING <= {scene_id(p) for p in SCENE_MODULES}
+
+
+# --- compiled right-hand sides -------------------------------------------------------------------------
+
+COMPILERS = {"njit", "jit", "cfunc", "template", "generated_jit"}       # numba's decorators, linker.template
+RHS_SIGNATURE = ["t", "y", "p"]
+GENERATED_RHS = re.compile(r"def \w+\(\s*t\s*,\s*y\s*,\s*p\s*\)")
+RHS_HOMES = ("models", "integrators")          # the models write every rhs, the integrators their steps
+
+
+def _called_name(node):
+    target = node.func if isinstance(node, ast.Call) else node
+    return target.attr if isinstance(target, ast.Attribute) else getattr(target, "id", None)
+
+
+def compiled_rhs(source):
+    """Names of the compiled right-hand sides a module defines: a function of the signature (t, y, p) that
+    numba compiles or the linker links (decorated with njit/jit/cfunc/template, or passed to one of them), or
+    source text defining one for the linker to compile (``link_source``)."""
+    tree = ast.parse(source)
+    functions = {node.name: node for node in ast.walk(tree) if isinstance(node, ast.FunctionDef)}
+    shaped = {name for name, node in functions.items()
+              if [a.arg for a in node.args.posonlyargs + node.args.args] == RHS_SIGNATURE}
+    found = {name for name in shaped
+             if any(_called_name(d) in COMPILERS for d in functions[name].decorator_list)}
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Call) and _called_name(node) in COMPILERS:
+            found |= {a.id for a in node.args if isinstance(a, ast.Name) and a.id in shaped}
+        elif isinstance(node, ast.Constant) and isinstance(node.value, str):
+            found |= {f"generated source: {m.group(0)}" for m in GENERATED_RHS.finditer(node.value)}
+    return sorted(found)
+
+
+def test_the_detector_finds_compiled_right_hand_sides():
+    """Not vacuous: it finds the models' own (the planar problem's, DE421's core carried under the mantle) and
+    each way of writing one, and passes a kernel of another signature and a plain Python (t, y, p)."""
+    assert compiled_rhs((PACKAGE / "models" / "planar.py").read_text()) == ["planar_rhs"]
+    assert "core_rhs" in compiled_rhs((PACKAGE / "models" / "start.py").read_text())
+    written = ("from numba import njit, jit\nimport numba\n"
+               "@njit(cache=True)\ndef a(t, y, p): pass\n@numba.njit\ndef b(t, y, p): pass\n"
+               "def c(t, y, p): pass\nc_fast = jit(c)\n@template('torque')\ndef d(t, y, p): pass\n"
+               "SOURCE = 'def e(t, y, p):\\n    return y'\n"
+               "@njit\ndef kernel(rot, inertia, rows, gm): pass\ndef python_rhs(t, y, p): pass\n")
+    assert compiled_rhs(written) == ["a", "b", "c", "d", "generated source: def e(t, y, p)"]
+
+
+@pytest.mark.parametrize("path", [p for p in MODULES if p.relative_to(PACKAGE).parts[0] not in RHS_HOMES],
+                         ids=lambda p: str(p.relative_to(PACKAGE)))
+def test_no_compiled_rhs_outside_the_models(path):
+    """Issue 22: every right-hand side is a System's, generated in spinorbit.models (the integrators' own
+    steps aside); nothing else hand-writes one."""
+    assert compiled_rhs(path.read_text()) == []

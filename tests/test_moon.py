@@ -7,9 +7,9 @@ Euler's closed form, and the libration scene against DE421 on spans that fit in 
 import numpy as np
 import pytest
 
-from spinorbit.errors import EphemerisRangeError
 from spinorbit.analysis.librations import pole_and_longitude_difference
 from spinorbit.bodies.moon import de421
+from spinorbit.errors import EphemerisRangeError
 from spinorbit.references import moon_de421 as ref
 from spinorbit.rotations import omega_body_from_euler313_rates
 from tests.units import arcsec, mas
@@ -53,23 +53,104 @@ def test_reference_range_errors():
 
 def test_core_state_carried_from_epoch():
     """DE421's core angular velocity carried to JDEPOC itself is the header's OMGCX/Y/Z."""
-    got = ref.core_angular_velocity(C.epoch_tdb_d)
+    from spinorbit.models.start import core_de421
+
+    got = core_de421(C.epoch_tdb_d)
     assert np.abs(got - C.omega_core0_rad_d).max() < 1e-15
 
 
 def test_spherical_core_carry_equals_linear_solution():
-    """With f_c = 0 the core's RK4 carry equals the exact solution of C_c dw_c/dt = -k_v (w_c - w_m)."""
-    rng = np.random.default_rng(2)
-    n, h, k = 2001, 0.25, 3e-4
-    s = np.arange(n) * h
-    poles = np.tile([0.0, 0.0, 1.0], (n, 1)) + 0.01 * rng.normal(size=(n, 3))
-    poles /= np.linalg.norm(poles, axis=1, keepdims=True)
-    w_m = np.array([1e-4 * np.sin(s / 4.3), 2e-4 * np.cos(s / 4.3), 0.23 + 1e-5 * np.sin(s / 30)]).T
+    """With f_c = 0 the core's equation under DE421's mantle (spinorbit.models.start.core_rhs) is linear,
+    C_c dw_c/dt = -k_v (w_c - w_m) in inertial axes, and its RK4 carry (0.5-d steps, as core_de421 runs it)
+    equals the exact solution e^{-k T} w_0 + int_0^T k e^{-k (T - s)} w_m(s) ds (k = k_v/C_c), the integral
+    by the trapezoid over DE421's mantle rates every 1/16 d (its error (h^2/12) k w_m'' T ~ 1e-13; RK4's
+    (h w)^4 k T |w_m - <w_m>| / 120 ~ 1e-11): bound 1e-9 of |w|."""
+    from scipy.integrate import trapezoid
+
+    from spinorbit.bodies import de421_orientation
+    from spinorbit.integrators import integrate
+    from spinorbit.layout import Layout
+    from spinorbit.models.start import core_rhs
+    from spinorbit.models.ode import Ode
+
+    coefficients, (start, end) = de421_orientation.series(), de421_orientation.span()
+    length = (end - start) / coefficients.shape[0]
+    k, c_c, t0, span = 3e-4, 7e-4, 1000.0, 500.0
     w0 = np.array([-0.006, -0.001, 0.2294])
-    got = ref._carry_core(w0, h, poles, w_m, k * 7e-4, 7e-4, 0.0)
-    weights = k * np.exp(-k * (s[-1] - s))[:, None]
-    expected = np.exp(-k * s[-1]) * w0 + np.trapezoid(weights * w_m, s, axis=0)
-    assert np.abs(got - expected).max() < 1e-9 * 0.23         # trapezoid error (k h)^2 w_m ~ 1e-10
+    ode = Ode(core_rhs, (coefficients, start, length, k * c_c, c_c, c_c), t0, c_c * w0,
+              Layout([("core.momentum", 3, "vector", "units of C, inertial")]))
+    got = integrate(ode, [t0 + span], "rk4", step=0.5).y[-1] / c_c
+    s = t0 + np.linspace(0.0, span, 8001)
+    w_m = np.array([m.T @ omega for m, omega in (de421_orientation.mantle(si, coefficients, start, length)
+                                                 for si in s)])
+    weights = k * np.exp(-k * (t0 + span - s))[:, None]
+    expected = np.exp(-k * span) * w0 + trapezoid(weights * w_m, s, axis=0)
+    assert np.abs(got - expected).max() < 1e-9 * 0.23
+
+
+@pytest.mark.parametrize("level", [1, 2, 3, 4])
+def test_the_generated_rhs_is_the_lunar_model(level):
+    """The Moon's System at each level, its generated rhs at DE421's state (rates moved off it) against the
+    level's equations evaluated by hand from DE421's constants and the interactions' kernels: the torques of
+    the level's bodies on the degree-2 figure (§815) and on the degree 3-4 field, the Earth's J2 on the
+    figure (the IAU 1976 pole table of references.moon_de421, as DE421), the inertia distorted by the tide the
+    Earth raised tau ago (its position from the orbit source, its velocity by central differences of 1e-3 d)
+    and the spin, the mantle and fluid core (Folkner et al. 2014, §III); q' = q (0, w) / 2.  Bound 1e-13 of
+    each slice's largest rate (at this state the Earth's J2 is 6e-6 of the torque, the planets' 4e-8)."""
+    from spinorbit.bodies.de421_header import header
+    from spinorbit.models import distortion, spin
+    from spinorbit.models.assemblies.moon import LEVELS, moon
+    from spinorbit.models.interactions import figure_figure, harmonics, point_mass
+    from spinorbit.models.spin import euler_omega_dot
+    from spinorbit.models.start import moon_de421
+    from spinorbit.orbits.sources import sample_orbits
+    from spinorbit.references.moon_de421 import earth_pole
+    from spinorbit.rotations import matrix_from_quat, quat_rate
+
+    t, spec = 1234.5, LEVELS[level]
+    orbits = sample_orbits("de421", "moon", spec.bodies, t - 2.0, t + 2.0, 0.5)
+    pole = earth_pole(t - 2.0, t + 2.0)
+    start = moon_de421(t, spec.core)
+    start["moon.omega"] = start["moon.omega"] * (1.0 + np.array([1e-3, -2e-3, 5e-4]))
+    system = moon(level, orbits, earth_pole=pole, t0=t, start=start)
+    got = system.rhs(t, system.y0, system.params)
+
+    h = header()
+    parts = system.layout.split(system.y0)
+    q, w = parts["moon.q"], parts["moon.omega"]
+    rot, scale = matrix_from_quat(q), C.gm_km3_d2 * C.radius_km ** 2
+    gm = np.asarray(orbits.gm, dtype=float)
+    gm_earth = gm[list(orbits.names).index("earth")]
+    rows = orbits.kernel(t, orbits.data)
+    inertia, inertia_rate = np.diag(C.moments * scale), np.zeros((3, 3))
+    if spec.tides:
+        row = list(orbits.names).index("earth")
+        then = orbits.kernel(t - C.tau_d, orbits.data)[row]
+        then_v = (orbits.kernel(t - C.tau_d + 1e-3, orbits.data)[row]
+                  - orbits.kernel(t - C.tau_d - 1e-3, orbits.data)[row]) / 2e-3
+        r_del, v_del = distortion.delayed_in_body(rot, w, then, then_v, C.tau_d)
+        delta, inertia_rate = distortion.distortion(w, r_del, v_del, C.k2 * gm_earth * C.radius_km ** 5,
+                                                    C.k2 * C.radius_km ** 5 / 3, 2 * np.pi / 27.321661)
+        inertia = inertia + delta
+    torque = point_mass.torque(rot, inertia, rows, gm)
+    if "harmonics" in spec.terms:
+        torque = torque + harmonics.torque(rot, rows, gm, scale, C.radius_km, np.ascontiguousarray(C.c_nm),
+                                           np.ascontiguousarray(C.s_nm), 3, 4)
+    if "earth_j2" in spec.terms:
+        earth_pole_now = figure_figure.pole_at(t, *pole)
+        earth_row = rows[list(orbits.names).index("earth")]
+        torque = torque + figure_figure.figure_torque(inertia, rot.T @ earth_row, rot.T @ earth_pole_now,
+                                                      gm_earth * h["J2E"] * h["RE"] ** 2)
+    if spec.core:
+        c = C.moments[2] * scale
+        rates = spin.mantle_and_core_rates(w, parts["moon.omega_core"], inertia, inertia_rate, torque,
+                                           C.core_c_over_c * c, C.core_flattening, C.kv_over_c_per_d * c)
+    else:
+        rates = (euler_omega_dot(C.moments * scale, w, torque),)
+    expected = np.concatenate([quat_rate(q, w), *rates])
+    for name in system.layout.names:
+        part = system.layout[name]
+        assert np.abs(got[part] - expected[part]).max() < 1e-13 * np.abs(expected[part]).max(), name
 
 
 # --- the scene against DE421 on 5 years (2000-2005) ------------------------------------

@@ -7,7 +7,8 @@ from numba import njit
 from spinorbit.bodies.de421_header import gm_km3_d2, header
 from spinorbit.constants import JULIAN_YEAR_D
 from spinorbit.integrators.rk8 import fixed_step
-from spinorbit.relativity import accelerations, c_km_d
+from spinorbit.models.assemblies.earth_moon import c_km_d
+from spinorbit.models.interactions.relativity import accelerations
 from tests.units import mas
 
 

@@ -6,11 +6,12 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from spinorbit import theory
-from spinorbit.dynamics import euler_omega_dot, torque_free_system
 from spinorbit.errors import PhysicsError, ResonanceError
 from spinorbit.integrators import integrate
+from spinorbit.models.assemblies.idealised import free_body
+from spinorbit.models.interactions import point_mass
+from spinorbit.models.spin import euler_omega_dot
 from spinorbit.rotations import quat_angle
-from spinorbit.terms import point_mass
 
 HLW_MOMENTS = np.array([2 / 3, 1.0, 2.0])                         # (2, 1, 2/3) in A <= B <= C order
 HLW_OMEGA0 = np.array([math.sin(1.1), 0.0, math.cos(1.1)]) / HLW_MOMENTS
@@ -18,12 +19,12 @@ Q0 = np.array([0.3, 0.5, -0.2, 0.7]) / np.linalg.norm([0.3, 0.5, -0.2, 0.7])
 
 
 def point_mass_torque(moments, r_body, gm):
-    """Euler's P91 torque (§815) of one mass at r (body axes) through the point_mass term."""
-    return point_mass.torque(0.0, np.zeros(7), np.eye(3), np.diag(moments), np.atleast_2d(r_body), np.array([gm]), ())
+    """Euler's P91 torque (§815) of one mass at r (body axes) through the point-mass interaction's kernel."""
+    return point_mass.torque(np.eye(3), np.diag(moments), np.atleast_2d(r_body), np.array([gm]))
 
 
 def _integrated(moments, omega0, q0, t):
-    system = torque_free_system(np.asarray(moments, float), np.asarray(q0, float), np.asarray(omega0, float))
+    system = free_body(np.asarray(moments, float), np.asarray(q0, float), np.asarray(omega0, float))
     return integrate(system, t, "dop853", rtol=1e-13, atol=1e-15)
 
 

@@ -164,6 +164,30 @@ class MantleCore(_Attitude):
         code.line(f"{code.bind(put)}({dy}[{_span(code, f'{name}.omega')}], {mantle_rate})")
         code.line(f"{code.bind(put)}({dy}[{_span(code, f'{name}.omega_core')}], {core_rate})")
 
+    def _core(self, code, name):
+        """Variables (the core's moments (A_c, A_c, C_c), its angular velocity w_c) of the invariants."""
+        def emit():
+            moments, omega_core = code.local(f"core_moments_{name}"), code.local(f"omega_core_{name}")
+            c_c, f_c = code.param(f"{name}_core_c", self.core_c), code.param(f"{name}_core_flattening",
+                                                                              self.core_flattening)
+            code.line(f"{moments} = np.array([{c_c} * (1.0 - {f_c}), {c_c} * (1.0 - {f_c}), {c_c}])")
+            code.line(f"{omega_core} = y[{_span(code, f'{name}.omega_core')}]")
+            return moments, omega_core
+        return code.once(("core", name), emit)
+
+    def kinetic_energy(self, code, name):
+        """The mantle's (I - I_c) and the core's I_c kinetic energies."""
+        omega, (core, omega_core) = self.attitude(code, name)[1], self._core(code, name)
+        dot = code.bind(dot3)
+        return (f"0.5 * ({dot}({omega}, ({self.moments(code, name)} - {core}) * {omega}) "
+                f"+ {dot}({omega_core}, {core} * {omega_core}))")
+
+    def angular_momentum(self, code, name):
+        """R ((I - I_c) w + I_c w_c): the mantle's and the core's."""
+        omega, (core, omega_core) = self.attitude(code, name)[1], self._core(code, name)
+        return (f"{code.bind(matvec3)}({self.rot(code, name)}, ({self.moments(code, name)} - {core}) * {omega} "
+                f"+ {core} * {omega_core})")
+
 
 @dataclass(frozen=True)
 class Gyroscopic(Rotator):

@@ -115,6 +115,10 @@ def solar(switches, planets):
 def solar_system(external, switches=tuple(SWITCHES), t0=0.0, start=None):
     """The Earth-Moon system on ``external`` (a HermiteOrbits of EXTERNAL's barycentric states, or of the bodies
     the switches need): a System (module docstring)."""
+    carried = [p for p, gm in zip(external.names, external.gm) if p in PLANETS and gm > 0]
+    if carried and "planets" not in switches:       # Newton takes every mass the source carries
+        raise InputError("switches", tuple(switches), f"'planets' among them with an orbit source that carries "
+                                                      f"{carried}, or a source without the planets")
     planets = tuple(p for p in PLANETS if p in external.names) if "planets" in switches else ()
     moon, earth_ = moon_body("moon_distortion" in switches), earth_body()
     motion = Pair("earth", "moon", earth_.gm, moon.gm, "earth_moon_barycenter", external)
