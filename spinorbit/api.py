@@ -60,9 +60,9 @@ def moon_librations(times, *, level=3, ephemeris=None, optical=False):
     where it has data; with ``optical``, the optical libration (the sub-Earth point of the Cassini state)."""
     t, when = tdb_days(times, "times")
     _check_choice("level", level, (1, 2, 3, 4))
-    source = _ephemeris(ephemeris, t, (t.min() - 2.0, t.max() + 2.0))
-    start = float(np.clip(t.min() - 1.0, *DE421_LUNAR))
-    first, last = min(start, t.min()) - 1.0, max(start, t.max()) + 1.0
+    start = float(np.clip(t.min() - 1.0, *DE421_LUNAR))          # the scene starts there, outputs at the dates
+    source = _ephemeris(ephemeris, t, (min(start, t.min()) - 2.0, max(start, t.max()) + 2.0))
+    first, last = t.min() - 1.0, t.max() + 1.0
     sets = (*_span(first, last, max(0.5, (last - first) / 2000.0)), f"orbit.source={source}", f"model.level={level}")
     table, summary = _run("moon_libration", sets, t)
     columns = MOON_COLUMNS + (("optical_libration_longitude", "optical_libration_latitude") if optical else ())
@@ -91,9 +91,9 @@ def earth_moon(times, *, ephemeris=None):
     """The Earth-Moon system integrated as one at ``times``: the geocentric Moon (ICRF), the lunar angles, the
     Earth's axis, and the differences from DE421 where it has data (the validated coupled scene's model)."""
     t, when = tdb_days(times, "times")
-    start = float(np.clip(t.min() - 1.0, *DE421_LUNAR))
-    first, last = min(start, t.min()) - 1.0, max(start, t.max()) + 1.0
-    source = _ephemeris(ephemeris, t, (first - 1.0, last + 1.0))
+    start = float(np.clip(t.min() - 1.0, *DE421_LUNAR))          # the scene starts there, outputs at the dates
+    first, last = t.min() - 1.0, t.max() + 1.0
+    source = _ephemeris(ephemeris, t, (min(start, first) - 2.0, max(start, last) + 2.0))
     table, summary = _run("earth_moon_coupled", (*_span(first, last, 1.0), f"orbit.source={source}"), t)
     expected = {"moon_direction_arcsec": 1.0, "moon_range_km": 2.0, "pole_arcsec": 0.1, "longitude_arcsec": 1.0,
                 "basis": "the coupled scene's tolerances against DE421 over 1950-2050 (measured 0.084\", 9.8 m, "

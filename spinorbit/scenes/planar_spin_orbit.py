@@ -10,8 +10,8 @@ import math
 import numpy as np
 
 from ..analysis.lyapunov import benettin, compiled_flow, displaced, scipy_flow, system_flow
-from ..integrators import integrate
 from ..integrators.rk8 import fixed_step
+from ..simulate import simulate
 from ..models.assemblies.idealised import under_point_masses
 from ..models.planar import anomaly_and_distance, planar_rhs
 from ..orbits.analytic import KeplerOrbit
@@ -73,6 +73,6 @@ def planar_vs_rigid_body(moments, orbit, p, t0, period, start):
     n = p[0]
     t = t0 + np.linspace(0.0, 5 * period, 501)
     system = rigid_body_system(moments, orbit, t0, start[0], start[1] * n)
-    body = integrate(system, t, "rk8", step=period / 512)
+    body = simulate(system, t, "rk8", {"step": period / 512}, estimate_error=False)[0]
     planar = fixed_step(planar_rhs, p, t0, [start[0], start[1] * n], t, period / 512)
     return float(np.abs(theta_from_quaternions(body.quaternion) - planar[:, 0]).max()), system
