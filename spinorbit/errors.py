@@ -51,19 +51,26 @@ class EphemerisRangeError(SpinorbitError, ValueError):
 
     def __init__(self, source, requested, span, remedy=REMEDY):
         self.source, self.requested, self.span = source, tuple(requested), tuple(span)
-        super().__init__(f"{source} covers {tdb_dates(span)} TDB; asked for {tdb_dates(requested)}. {remedy}.")
+        covers, asked = tdb_dates(span), tdb_dates(requested)
+        if set(covers.split(" to ")) & set(asked.split(" to ")):      # the same day: say the hour
+            covers, asked = tdb_dates(span, "minutes"), tdb_dates(requested, "minutes")
+        super().__init__(f"{source} covers {covers} TDB; asked for {asked}. {remedy}.")
 
 
-def tdb_dates(days):
-    """'1899-07-29 to 2053-10-09' for (first, last) TDB days from J2000 (proleptic Gregorian, as astropy's ISO)."""
+def tdb_dates(days, timespec=None):
+    """'1899-07-29 to 2053-10-09' for (first, last) TDB days from J2000 (proleptic Gregorian, as astropy's ISO);
+    ``timespec="minutes"`` adds the time of day."""
     import datetime
 
     j2000 = datetime.datetime(2000, 1, 1, 12)
+
     def date(d):
         try:
-            return (j2000 + datetime.timedelta(days=float(d))).date().isoformat()
+            moment = j2000 + datetime.timedelta(days=float(d))
         except (OverflowError, ValueError):
             return f"J{2000.0 + float(d) / 365.25:.1f}"
+        return moment.isoformat(sep=" ", timespec=timespec) if timespec else moment.date().isoformat()
+
     first, last = date(days[0]), date(days[-1])
     return first if first == last else f"{first} to {last}"
 

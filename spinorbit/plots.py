@@ -52,7 +52,7 @@ def _panels(fig, x, panels, xlabel, sharex):
 
 def monthly_means(years, ys, month_d=27.321661):
     """(the middle years, the means (k, m)) of ``ys`` (k, n) over consecutive sidereal months of ``years``."""
-    bins = np.floor((years - years[0]) * 365.25 / month_d).astype(int)
+    bins = np.floor(np.abs(years - years[0]) * 365.25 / month_d).astype(int)
     counts = np.bincount(bins)
     kept = counts > 0
     means = np.array([np.bincount(bins, weights=y)[kept] / counts[kept] for y in np.atleast_2d(ys)])

@@ -56,15 +56,16 @@ def test_de421_arrays_match_bsp(de421, target, center):
 
 def test_de421_beyond_the_bsp_uses_the_arrays():
     assert open_ephemeris("de421", 0.0, 30000.0).span[1] == pytest.approx(73079.5)  # 2200-01
-    with pytest.raises(EphemerisRangeError, match="73079.5"):
+    with pytest.raises(EphemerisRangeError, match="covers 1899-12-04 to 2200-02-01 TDB; asked for 2000-01-01 to "
+                                                  "2219-01-13.*'de440'.*'rebound'"):
         open_ephemeris("de421", 0.0, 80000.0)
 
 
 def test_out_of_span_raises_with_the_span(de421):
-    with pytest.raises(EphemerisRangeError, match="-36680.5 to 19639.5"):
+    with pytest.raises(EphemerisRangeError, match="covers 1899-07-29 00:00 to 2053-10-09 00:00 TDB; asked for 2053-10-09 12:00"):
         de421.relative_states("moon", "earth", [19640.0])
     orbits = sample_orbits("de421", "moon", ("earth",), 0.0, 10.0)
-    with pytest.raises(EphemerisRangeError, match="0 to 10"):
+    with pytest.raises(EphemerisRangeError, match="covers 2000-01-01 to 2000-01-11 TDB; asked for 2000-01-12"):
         orbits.positions([10.5])
     inside, outside = orbits.kernel(10.0, orbits.data), orbits.kernel(10.0 + 1e-9, orbits.data)
     assert np.all(np.isfinite(inside)) and np.all(np.isnan(outside))      # never clamped

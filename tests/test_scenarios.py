@@ -31,7 +31,7 @@ def base_text():
         (lambda s: s.replace('step = "0.5 d"', 'step = "0.5 km"'), "span.step", "units convertible to 'd'"),
         (lambda s: s.replace('step = "0.5 d"', "step = 0.5"), "span.step", "a quantity with a unit"),
         (lambda s: s.replace('method = "dop853"', 'method = "euler"'), "integrator.method", "one of ["),
-        (lambda s: s.replace("rtol = 1e-13", "rtoll = 1e-13"), "integrator.rtoll", "one of ["),
+        (lambda s: s.replace("rtol = 1e-13", "rtoll = 1e-13"), "integrator.rtoll", "one of the keys ["),
         (lambda s: s.replace('kind = "free_body"', 'kind = "free_bdy"'), "scene.kind", "one of ["),
         (lambda s: s.replace("moments = [0.6666666666666666, 1.0, 2.0]", "moments = [1.0, 2.0]"),
          "body.moments", "a list of 3 numbers"),

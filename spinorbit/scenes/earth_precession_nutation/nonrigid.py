@@ -1,9 +1,10 @@
 """The non-rigid Earth from a rigid run, and beside its references: IAU 2000A, REN-2000, VLBI's pole.
 
-The Earth scene's non-rigid layer (edge: ERFA through references).  The rigid run's pole (GCRS) is taken to its nutation about the
-IAU 2006 mean pole, the transfer function chosen by ``earth.transfer_function`` is applied term by term
-(spinorbit.analysis.nonrigid), and the pole is rebuilt; the main terms of the rigid run, the non-rigid
-pole, IAU 2000A and REN-2000 (scaled to the run's H_d) are tabled alike (analysis.precession.term_table).
+The Earth scene's non-rigid layer (edge: ERFA through references).  The rigid run's pole (GCRS) is taken to
+its nutation about the IAU 2006 mean pole, the transfer function chosen by ``earth.transfer_function`` is
+applied term by term (spinorbit.analysis.nonrigid), and the pole is rebuilt; the main terms of the rigid run,
+the non-rigid pole, IAU 2000A and REN-2000 (scaled to the run's H_d) are tabled alike
+(analysis.precession.term_table).
 """
 import numpy as np
 
@@ -30,8 +31,8 @@ def settings(scenario):
 
 def geodesic_nutation(t_tdb_d):
     """The model's geodesic nutation in longitude (rad) at TDB days: the annual term of its geodesic
-    precession (models.interactions.geodesic.GeodesicRate: Omega_gp (1 + 3 e cos l')) integrated, -(3 e Omega_gp / n') sin l'
-    (Fukushima 1991)."""
+    precession (models.interactions.geodesic.GeodesicRate: Omega_gp (1 + 3 e cos l')) integrated,
+    -(3 e Omega_gp / n') sin l' (Fukushima 1991)."""
     rate = earth.GEODESIC_PRECESSION_ARCSEC_CY * ARCSEC / JULIAN_CENTURY_D
     l0, n = SUN_MEAN_ANOMALY_RAD
     return -3.0 * ORBIT_ECCENTRICITY * rate / n * np.sin(l0 + n * np.asarray(t_tdb_d))

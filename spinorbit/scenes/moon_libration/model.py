@@ -16,7 +16,8 @@ def start_epoch(scenario):
     from ...schema import parse_tdb_days
 
     first, last = span()
-    wanted = parse_tdb_days("model.start", scenario["model.start"]) if scenario["model.start"] else scenario.t_start
+    given = scenario["model.start"]
+    wanted = parse_tdb_days("model.start", given) if given else scenario.t_start
     return float(np.clip(wanted, first + MARGIN_D, last - MARGIN_D))
 
 
