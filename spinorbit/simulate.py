@@ -30,6 +30,8 @@ def refined_options(method_cls, options):
     for tol in ("rtol", "atol"):
         if tol in refined:
             refined[tol] = max(refined[tol] / 100, 2.3e-14 if tol == "rtol" else 0.0)   # scipy floor: 100 eps
+    if "tolerance" in refined:                      # heyoka's: below eps it raises the order, the floor is rounding
+        refined["tolerance"] = max(refined["tolerance"] / 100, 1e-18)
     return refined
 
 
