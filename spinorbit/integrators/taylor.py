@@ -96,11 +96,13 @@ class Taylor(Integrator):
         start = time.perf_counter()
         with progress(self.label, float(system.t0), float(t_out[-1])) as advance_to:
             for part in output_chunks(t_out.size):
-                grid = np.concatenate([[ta.time], t_out[part]])
+                at_start = t_out[part.start] == ta.time          # heyoka's grid starts at its time, once
+                grid = t_out[part] if at_start else np.concatenate([[ta.time], t_out[part]])
                 outcome, _, _, more, _, states = ta.propagate_grid(grid)
+                states = states if at_start else states[1:]
                 steps += more
-                finite = int(np.all(np.isfinite(states[1:]), axis=1).cumprod().sum())
-                y_out[part.start:part.start + finite] = states[1:1 + finite] * factors
+                finite = int(np.all(np.isfinite(states), axis=1).cumprod().sum())
+                y_out[part.start:part.start + finite] = states[:finite] * factors
                 done += finite
                 if outcome != heyoka().taylor_outcome.time_limit or finite < part.stop - part.start:
                     break
