@@ -116,6 +116,8 @@ def simulate(system, t_out, method="dop853", options=None, estimate_error=True, 
              "steps": solution.nsteps}
     if "step" in integrator.settings:
         point["step_d"] = float(integrator.settings["step"])
+    if hasattr(integrator, "compile_s"):          # the Taylor integrator's trace and build (heyoka)
+        point["compile_s"] = integrator.compile_s
     if estimate_error:
         other, covered, scale, how = (estimate.result() if concurrent
                                       else error_estimate(method_cls, options, system, t_out))
