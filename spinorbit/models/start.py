@@ -151,17 +151,17 @@ def earth_moon_de421(system, t0, earth_pole, spin_rate):
     return {**start, **on_pole(system, "earth", t0, earth_pole, spin_rate, states=partial[None])}
 
 
-def solar_system_de421(system, t0, earth_pole, spin_rate, sun_spin_rate=None):
+def solar_system_de421(system, t0, earth_pole, spin_rate, sun_spin_rate=None, others=None):
     """{slices} of a barycentric System (spinorbit.models.barycentric) at TDB day t0: every free body's and the
     Earth-Moon barycentre's barycentric state and the geocentric Moon's from DE421 (module docstring), the Moon's
     orientation, rates and core and the Earth's spin as :func:`earth_moon_de421`; a turning Sun spinning at
-    ``sun_spin_rate`` (rad/d) about the IAU pole."""
+    ``sun_spin_rate`` (rad/d) about the IAU pole; ``others``: {slice: value} of bodies DE421 does not carry."""
     from ..bodies import sun
     from ..bodies.de421_header import header
 
     motion, h = system.motion, header()
-    start = {}
-    for name in (*motion.free, motion.barycentre, motion.secondary):
+    start = dict(others or {})
+    for name in (n for n in (*motion.free, motion.barycentre, motion.secondary) if f"{n}.r" not in start):
         start[f"{name}.r"], start[f"{name}.v"] = _de421_state(name, t0, h)
     start.update(moon_de421(t0, core="moon.omega_core" in system.layout))
     if "sun.spin" in system.layout:

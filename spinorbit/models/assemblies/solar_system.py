@@ -45,22 +45,25 @@ def sun_body(turning=False):
     return Body("sun", gm, Figure(np.array([c - c_minus_a, c - c_minus_a, c])), rotator)
 
 
-def bodies(switches=tuple(SWITCHES), turning_sun=False):
-    """[the Sun, the planets, the Moon, the Earth] and the motion that carries them."""
+def bodies(switches=tuple(SWITCHES), turning_sun=False, extra=()):
+    """[the Sun, the planets, the ``extra`` point masses ((name, GM km^3/d^2), ...), the Moon, the Earth] and the
+    motion that carries them."""
     moon, earth = earth_moon.moon_body("moon_distortion" in switches), earth_moon.earth_body()
-    planets = [Body(name, gm_km3_d2(name)) for name in PLANETS]
-    motion = Barycentric(FREE, tuple(gm_km3_d2(name) for name in FREE), "earth", "moon", earth.gm, moon.gm)
-    return [sun_body(turning_sun), *planets, moon, earth], motion
+    points = [Body(name, gm_km3_d2(name)) for name in PLANETS] + [Body(name, gm) for name, gm in extra]
+    free = (*FREE, *(name for name, _ in extra))
+    motion = Barycentric(free, tuple(b.gm for b in [sun_body(), *points]), "earth", "moon", earth.gm, moon.gm)
+    return [sun_body(turning_sun), *points, moon, earth], motion
 
 
-def solar_system(switches=tuple(SWITCHES), t0=0.0, start=None):
-    """DE421's solar system (module docstring) with the ``switches`` (SWITCHES) on: a System."""
+def solar_system(switches=tuple(SWITCHES), t0=0.0, start=None, extra=()):
+    """DE421's solar system (module docstring) with the ``switches`` (SWITCHES) on, and ``extra`` point masses
+    ((name, GM km^3/d^2), ...: an asteroid, to see what it moves): a System."""
     unknown = sorted(set(switches) - set(SWITCHES))
     if unknown:
         from ...errors import InputError
 
         raise InputError("switches", unknown, f"names from {list(SWITCHES)}")
-    members, motion = bodies(switches)
+    members, motion = bodies(switches, extra=extra)
     orbit = [Newton()] + ([Relativity(earth_moon.c_km_d())] if "relativity" in switches else [])
     sun_j2 = [PointMass("sun", (*PLANETS, "earth", "moon"))] if "sun_j2" in switches else []
     return System("solar system", members, motion,
