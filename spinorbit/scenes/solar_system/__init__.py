@@ -2,12 +2,12 @@
 
 Every centre in one state with the Moon's mantle and core and the Earth's spin (spinorbit.models.assemblies.
 solar_system): DE421's model, every constant from its header, started from DE421's initial conditions at its
-epoch JDEPOC (1969-06-28; ``start.epoch = "span"``: DE421's states at span.start) and integrated both ways, the
-Earth on its forced motion about the IAU 2006/2000A pole; nothing fitted.  INPOP05 did the same with DE405
-(Fienga et al. 2008, A&A 477, 315, Table 2).  Compared with DE421 (compare.py): the Moon's direction and range,
-the lunar pole and longitude, every planet's heliocentric position.  DE421 integrated 343 asteroids this does
-not; what they move in each planet is stated beside its figure (compare.ASTEROIDS_KM).  Runs with the Taylor
-integrator (``integrator.method = "taylor"``) or any other.
+epoch JDEPOC (1969-06-28; ``start.epoch = "span"``: DE421's states at span.start) and integrated both ways,
+the Earth on its forced motion about the IAU 2006/2000A pole; nothing fitted.  INPOP05 did the same with
+DE405 (Fienga et al. 2008, A&A 477, 315, Table 2).  Compared with DE421 (compare.py): the Moon's direction
+and range, the lunar pole and longitude, every planet's heliocentric position.  DE421 integrated 343
+asteroids this does not; what they move in each planet is stated beside its figure (compare.ASTEROIDS_KM).
+Runs with the Taylor integrator (``integrator.method = "taylor"``) or any other.
 """
 from ...models.assemblies.solar_system import SWITCHES
 from ...schema import Key
@@ -21,24 +21,25 @@ SCHEMA = {
     "start.epoch": Key(type=str, default="de421", choices=("de421", "span"),
                        help="DE421's initial conditions at its epoch JDEPOC, or its states at span.start"),
 }
-INPOP = "INPOP05 re-integrating DE405 from its initial conditions: 0.17 mas, 0.034 m over 100 yr (Fienga et al. 2008)"
+INPOP = ("INPOP05 re-integrating DE405 from its initial conditions: 0.17 mas, 0.034 m over 100 yr "
+         "(Fienga et al. 2008)")
 
 
 def verdict(scenario, comparison):
-    """The Moon against DE421 (direction, range, pole, longitude); each planet within what the asteroids move."""
+    """The Moon against DE421 (direction, range, pole, longitude); each planet against what asteroids move."""
     from .compare import ASTEROIDS_KM
 
     checks = [Check("Moon direction", "moon_direction_error_max_mas", 10.0, " mas", INPOP),
               Check("Moon range", "moon_range_error_max_m", 1.0, " m", INPOP),
               Check("lunar pole", "pole_error_max_mas", 5.0, " mas", INPOP),
               Check("libration longitude", "longitude_error_max_mas", 10.0, " mas", INPOP)]
-    checks += [Check(name, f"{name}_heliocentric_error_max_km", 3 * km, " km",
-                     "3x what DE421's asteroids move it (compare.ASTEROIDS_KM)") for name, km in ASTEROIDS_KM.items()]
+    checks += [Check(name, f"{name}_heliocentric_error_max_km", 3 * km, " km", "3x what DE421's asteroids "
+                     "move it (compare.ASTEROIDS_KM)") for name, km in ASTEROIDS_KM.items()]
     return Verdict("DE421", tuple(checks))
 
 
 def build(scenario):
-    """For ``spinorbit bench``: (system, output times, error(solution) = the Moon's direction against DE421, rad)."""
+    """For ``spinorbit bench``: (system, output times, error = the Moon's direction vs DE421 [rad])."""
     from .compare import orbit_errors
 
     model, t = system(scenario), scenario.output_times()

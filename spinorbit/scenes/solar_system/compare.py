@@ -22,7 +22,8 @@ def heliocentric(system, solution):
     """{body: (n, 3) heliocentric positions, km} of the planets and the Earth in a barycentric run."""
     sun = solution.part("sun.r")
     out = {name: solution.part(f"{name}.r") - sun for name in PLANETS}
-    out["earth"] = solution.part("earth_moon_barycenter.r") - system.motion.share * solution.part("moon.r") - sun
+    moon = system.motion.share * solution.part("moon.r")
+    out["earth"] = solution.part("earth_moon_barycenter.r") - moon - sun
     return {name: out[name] for name in HELIOCENTRIC}
 
 
@@ -49,8 +50,8 @@ def metrics(direction, distance, lunar, planets):
 
 
 def table(t, r, errors, planets):
-    """The run's table: the geocentric Moon (km, ICRF) and its errors, the lunar pole and longitude errors, each
-    planet's heliocentric error.  errors: {name: array} in rad and km."""
+    """The run's table: the geocentric Moon (km, ICRF) and its errors, the lunar pole and longitude errors,
+    each planet's heliocentric error.  errors: {name: array} in rad and km."""
     import astropy.units as u
     from astropy.table import QTable
 
@@ -70,7 +71,7 @@ def table(t, r, errors, planets):
 
 
 def lunar(t, q):
-    """(pole and longitude differences (rad), their metrics) of the Moon's attitudes q (n, 4) against DE421."""
+    """(pole and longitude differences (rad), their metrics) of the Moon's attitudes q (n, 4) vs DE421."""
     _, _, pole, longitude, metrics_ = lunar_errors(t, q)
     return pole, longitude, metrics_
 
