@@ -17,6 +17,7 @@ HELIOCENTRIC = (*PLANETS[:2], "earth", *PLANETS[2:])
 # masses over theirs.
 ASTEROIDS_KM = {"mercury": 0.72, "venus": 0.75, "earth": 2.2, "mars": 69.0, "jupiter": 54.0, "saturn": 52.0,
                 "uranus": 15.0, "neptune": 39.0, "pluto": 35.0}
+ASTEROIDS_MOON = {"direction_mas": 2.3, "range_m": 0.54}        # the same, the geocentric Moon
 
 
 def heliocentric(system, solution):
