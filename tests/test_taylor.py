@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from spinorbit.errors import ScenarioError
+from spinorbit.errors import IntegrationError, ScenarioError
 from spinorbit.integrators.taylor import heyoka, scales
 from spinorbit.models.assemblies.earth_moon import closed
 from spinorbit.models.assemblies.idealised import free_body, under_point_masses
@@ -80,6 +80,19 @@ def test_free_body_against_euler_at_heyokas_floor():
     assert error < 1e-11
     assert point["integration_error_attitude_arcsec"] * 4.85e-6 < 1e-11
     assert point["steps"] == point["rhs_evaluations"] > 0
+
+
+def test_a_collision_is_an_integration_error_with_the_outputs_before_it():
+    """The Moon dropped from rest 4e5 km from the Earth falls in pi/(2 sqrt 2) sqrt(r^3/GM) = 5.12 d: heyoka's
+    state turns non-finite there, and the error carries the outputs before it (every half day to 5.0 d)."""
+    pair = closed(figures=(), moon_core=False)
+    pair.y0 = pair.layout.pack({"moon.r": [4e5, 0, 0], "moon.v": [0, 0, 0], "moon.q": [1, 0, 0, 0],
+                                "moon.omega": [0, 0, 0.23], "earth.spin": [0, 0, 1e23]})
+    fall = np.pi / (2 * np.sqrt(2)) * np.sqrt(4e5 ** 3 / (pair.motion.gm_primary + pair.motion.gm_secondary))
+    with pytest.raises(IntegrationError) as caught:
+        simulate(pair, np.linspace(0.0, 20.0, 41)[1:], "taylor", {"tolerance": 1e-15}, estimate_error=False)
+    assert caught.value.t == pytest.approx(fall, rel=1e-3)
+    assert caught.value.partial.t[-1] == 5.0 and np.all(np.isfinite(caught.value.partial.y))
 
 
 def taylor_copy(name, tmp_path, tolerance=1e-15):
