@@ -15,6 +15,7 @@ later process compiles nothing.
 """
 import copy
 import functools
+import os
 import time
 
 import numpy as np
@@ -26,15 +27,18 @@ from .base import Integrator, Solution, normalised, output_chunks
 
 @functools.cache
 def heyoka():
-    """heyoka, its on-disk cache under spinorbit's cache directory (private to the user, like the kernels')."""
+    """heyoka, its on-disk cache under spinorbit's cache directory (private to the user, like the kernels'; a
+    directory of another user's, or one others may read or write, is not used: every build compiles)."""
     import heyoka as hy
 
     from ..linker import cache_dir
 
     path = cache_dir().parent / "heyoka"
     path.mkdir(mode=0o700, exist_ok=True)
+    status = path.stat()
+    private = status.st_uid == os.getuid() and not status.st_mode & 0o077
     hy.llvm_state.set_diskcache_path(str(path))
-    hy.llvm_state.set_diskcache_enabled(True)
+    hy.llvm_state.set_diskcache_enabled(private)        # compiled code others could write is never loaded
     return hy
 
 
