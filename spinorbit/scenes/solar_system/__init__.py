@@ -41,11 +41,13 @@ def verdict(scenario, comparison):
 
 
 def build(scenario):
-    """For ``spinorbit bench``: (system, output times, error = the Moon's direction vs DE421 [rad])."""
-    from .compare import orbit_errors
+    """For ``spinorbit bench``: (system, output times, the lunar attitude's error vs converged RK8, rad)."""
+    from ...analysis.ladder import converged_error
 
     model, t = system(scenario), scenario.output_times()
-    return model, t, lambda solution: float(orbit_errors(t, solution.part("moon.r"))[0].max())
+    error, agreement = converged_error(model, t, 0.125)
+    model.meta["reference_agreement_rad"] = agreement
+    return model, t, error
 
 
 def system(scenario):
