@@ -3,9 +3,9 @@
 From that data a System derives its state layout, its parameter record and its compiled right-hand side
 (spinorbit.models.system); the assemblies (spinorbit.models.assemblies) write every model the scenes use.
 """
+from ..layout import Layout
 from .barycentric import Barycentric
 from .figure import Body, Field, Figure
-from ..layout import Layout
 from .motion import Centred, Pair
 from .rotators import Distortion, Fixed, Gyroscopic, MantleCore, Rigid
 from .system import System
