@@ -10,7 +10,8 @@ Every registered method that ``supports`` the system is run on a ladder of
 settings: fixed-step and splitting methods at steps halving from a quarter of
 the shortest time scale (capped at the output spacing for methods that land on
 every output; rk8 is not, it interpolates with its continuous extension),
-adaptive methods at rtol = 1e-3 ... 1e-13 (atol = rtol/1000).  The rows come from
+adaptive methods at rtol = 1e-3 ... 1e-13 (atol = rtol/1000), the Taylor integrator at tolerance = 1e-6 ...
+1e-17.  The rows come from
 :func:`spinorbit.analysis.ladder.work_precision`; a method's ladder stops when a run takes longer
 than ``budget_s`` or reaches the rounding floor (a setting too coarse to finish is left out).
 Wall times exclude one-off compilation (each integrator warms up first).
@@ -48,6 +49,8 @@ def ladder(cls, system, t_out, n=14):
     """
     if "rtol" in cls.options:
         return [{"rtol": 10.0**-k, "atol": 10.0**-k * 1e-3} for k in range(3, 14)]
+    if "tolerance" in cls.options:               # heyoka's Taylor integrator
+        return [{"tolerance": 10.0**-k} for k in range(6, 18)]
     h0 = time_scale(system) / 4
     spacing = np.diff(t_out)
     if getattr(cls, "DENSE", None) is None and spacing.size:

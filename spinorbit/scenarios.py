@@ -94,6 +94,9 @@ class Scenario:
         self._check_cycles()
         from .integrators import get_method
 
+        if self["integrator.method"] == "taylor" and not getattr(self.module, "TAYLOR", False):
+            raise ScenarioError("integrator.method", "taylor", f"a method other than 'taylor' for scene kind "
+                                f"'{kind}', which reads an ephemeris (taylor runs: {', '.join(taylor_kinds())})")
         with scenario_errors(self):
             get_method(self["integrator.method"])(**self.integrator_options())   # checks method and options now
 
@@ -293,6 +296,14 @@ def backward_kinds():
     from .scenes import SCENES, scene_module
 
     return sorted(kind for kind in SCENES if getattr(scene_module(kind), "BACKWARD", False))
+
+
+def taylor_kinds():
+    """Scene kinds whose every term is a function of the state and the time (their module sets TAYLOR = True):
+    heyoka's Taylor integrator takes them."""
+    from .scenes import SCENES, scene_module
+
+    return sorted(kind for kind in SCENES if getattr(scene_module(kind), "TAYLOR", False))
 
 
 def _toml_datetime_text(key, value):

@@ -85,6 +85,7 @@ INTEGRATOR_OPTIONS = {
     "atol": Key(unit="", min=1e-20, max=1e-3, help="absolute tolerance"),
     "max_step": Key(unit="", positive=True, count="adaptive steps (at max_step)", help="largest step, days"),
     "step": Key(unit="d", positive=True, count="integrator steps", help="fixed step"),
+    "tolerance": Key(unit="", min=1e-18, max=1e-6, help="Taylor (heyoka) tolerance, relative per step"),
 }
 
 

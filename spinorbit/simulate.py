@@ -30,6 +30,8 @@ def refined_options(method_cls, options):
     for tol in ("rtol", "atol"):
         if tol in refined:
             refined[tol] = max(refined[tol] / 100, 2.3e-14 if tol == "rtol" else 0.0)   # scipy floor: 100 eps
+    if "tolerance" in refined:                      # heyoka's: below eps it raises the order, the floor is rounding
+        refined["tolerance"] = max(refined["tolerance"] / 100, 1e-18)
     return refined
 
 
@@ -114,6 +116,8 @@ def simulate(system, t_out, method="dop853", options=None, estimate_error=True, 
              "steps": solution.nsteps}
     if "step" in integrator.settings:
         point["step_d"] = float(integrator.settings["step"])
+    if hasattr(integrator, "compile_s"):          # the Taylor integrator's trace and build (heyoka)
+        point["compile_s"] = integrator.compile_s
     if estimate_error:
         other, covered, scale, how = (estimate.result() if concurrent
                                       else error_estimate(method_cls, options, system, t_out))

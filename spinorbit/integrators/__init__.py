@@ -18,6 +18,7 @@ METHODS = {
     "strang": "spinorbit.integrators.splitting:Strang",
     "yoshida4": "spinorbit.integrators.splitting:Yoshida4",
     "suzuki4": "spinorbit.integrators.splitting:Suzuki4",
+    "taylor": "spinorbit.integrators.taylor:Taylor",
 }
 
 

@@ -22,7 +22,9 @@ Contract for subclass authors (numbered so reviews can point at it):
 6. ``nfev`` counts right-hand-side (or torque) evaluations, ``nsteps`` the steps (None where the
    method does not report them: scipy's solve_ivp); ``wall_s`` is the
    wall time of the solve excluding one-off compilation (warm up first).
-7. Hooks, set on the instance before ``solve``: ``label`` names its progress bar (None: no bar);
+7. A method that compiles the equations itself (``taylor``) reads ``system.expressions()`` (heyoka
+   variables and derivatives) and ``system.traceable`` instead of ``rhs``.
+8. Hooks, set on the instance before ``solve``: ``label`` names its progress bar (None: no bar);
    ``checkpoint`` (spinorbit.checkpoint.Checkpoint or None) is offered the outputs so far between
    compiled chunks and resumes from them, by the methods whose ``resumable`` is True.
 """

@@ -3,11 +3,12 @@
 From that data a System derives its state layout, its parameter record and its compiled right-hand side
 (spinorbit.models.system); the assemblies (spinorbit.models.assemblies) write every model the scenes use.
 """
-from .figure import Body, Field, Figure
 from ..layout import Layout
+from .barycentric import Barycentric
+from .figure import Body, Field, Figure
 from .motion import Centred, Pair
-from .rotators import Distortion, Gyroscopic, MantleCore, Rigid
+from .rotators import Distortion, Fixed, Gyroscopic, MantleCore, Rigid
 from .system import System
 
-__all__ = ["Body", "Centred", "Distortion", "Field", "Figure", "Gyroscopic", "Layout", "MantleCore", "Pair",
-           "Rigid", "System"]
+__all__ = ["Barycentric", "Body", "Centred", "Distortion", "Field", "Figure", "Fixed", "Gyroscopic", "Layout",
+           "MantleCore", "Pair", "Rigid", "System"]

@@ -41,6 +41,7 @@ class Centred:
 
     origin: str
     externals: object = None
+    barycentric = False          # no centre integrated (spinorbit.models.barycentric: every centre)
 
     @property
     def names(self):
@@ -128,6 +129,7 @@ class Pair:
     gm_secondary: float
     barycentre: str | None = None
     externals: object = None
+    barycentric = False
 
     @property
     def names(self):

@@ -6,13 +6,16 @@
 * :class:`MantleCore` -- the same mantle with a fluid core w_c (mantle axes) coupled by friction and by the
   fluid's pressure on an oblate boundary (spinorbit.models.spin, Folkner et al. 2014);
 * :class:`Gyroscopic` -- an axisymmetric body that carries only its spin angular momentum l (inertial axes),
-  its figure axis from l by the Oppolzer terms (spinorbit.models.gyroscopic).
+  its figure axis from l by the Oppolzer terms (spinorbit.models.gyroscopic);
+* :class:`Fixed` -- a figure held in space, with no state (the Sun's in the ephemerides).
 
 The inertia every torque acts with is the body's figure (``Figure.moments``, principal axes, G-scaled), its
 anisotropy scaled by (1 + k t) where the figure changes secularly (the Earth's J2 rate), plus the distortion;
 Euler's equations turn the undistorted moments.  Each quantity is written into the code once, when first asked.
 """
 from dataclasses import dataclass
+
+import numpy as np
 
 from ..rotations import cross3, diag3, dot3, matrix_from_quat, matvec3, put, quat_rate
 from . import distortion as distortion_kernels
@@ -187,6 +190,32 @@ class MantleCore(_Attitude):
         omega, (core, omega_core) = self.attitude(code, name)[1], self._core(code, name)
         return (f"{code.bind(matvec3)}({self.rot(code, name)}, ({self.moments(code, name)} - {core}) * {omega} "
                 f"+ {core} * {omega_core})")
+
+
+@dataclass(frozen=True)
+class Fixed(Rotator):
+    """A figure held in space (no state): ``rot`` its body-to-inertial matrix (3, 3).  The DE ephemerides hold
+    the Sun's pole fixed (its J2 acting on the planets); torques on it are dropped."""
+
+    rot_matrix: tuple
+
+    def slices(self, name):
+        return []
+
+    def rot(self, code, name):
+        return code.param(f"{name}_orientation", np.ascontiguousarray(self.rot_matrix, dtype=float))
+
+    def spin(self, code, name):
+        return "np.zeros(3)"
+
+    def derivatives(self, code, name, dy):
+        pass
+
+    def kinetic_energy(self, code, name):
+        return "0.0"
+
+    def angular_momentum(self, code, name):
+        return "np.zeros(3)"
 
 
 @dataclass(frozen=True)

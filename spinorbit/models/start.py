@@ -7,6 +7,9 @@
   mantle pole z, A_c = C_c (1 - COBLAT) (k_v/C_c = KVC/IFAC: 128 yr; free core precession ~200 yr), integrated by
   the classical RK4 (spinorbit.integrators) in steps of about half a day;
 * :func:`earth_moon_de421` -- the same Moon with its geocentric orbit from DE421, and the Earth on a pole;
+* :func:`solar_system_de421` -- every centre of a barycentric System from DE421 (the header's initial conditions
+  at its epoch JDEPOC, the SPK file's states elsewhere: they agree to 1e-7 km at JDEPOC), the Moon and the Earth
+  as :func:`earth_moon_de421`;
 * :func:`on_pole` -- a body whose figure axis at t0 is a given pole (the Earth on the IAU pole), spinning about it
   on its forced (slow) motion: its angular momentum leads the figure axis by the Oppolzer terms
   (spinorbit.models.gyroscopic), found by fixed-point iteration, so that no free nutation starts.
@@ -18,6 +21,7 @@ from numba import njit
 
 from ..bodies import de421_orientation
 from ..bodies.moon import de421
+from ..constants import J2000_JD
 from ..rotations import cross3, dot3, quat_from_matrix
 from .gyroscopic import figure_axis_third_order, tidal_tensor
 from ..layout import Layout
@@ -146,3 +150,39 @@ def earth_moon_de421(system, t0, earth_pole, spin_rate):
     start = {"moon.r": pos[0], "moon.v": vel[0], **moon_de421(t0, core="moon.omega_core" in system.layout)}
     partial = system.layout.pack({**start, **on_pole(system, "earth", t0, earth_pole, spin_rate, forced=False)})
     return {**start, **on_pole(system, "earth", t0, earth_pole, spin_rate, states=partial[None])}
+
+
+def solar_system_de421(system, t0, earth_pole, spin_rate, sun_spin_rate=None, others=None):
+    """{slices} of a barycentric System (spinorbit.models.barycentric) at TDB day t0: every free body's and the
+    Earth-Moon barycentre's barycentric state and the geocentric Moon's from DE421 (module docstring), the Moon's
+    orientation, rates and core and the Earth's spin as :func:`earth_moon_de421`; a turning Sun spinning at
+    ``sun_spin_rate`` (rad/d) about the IAU pole; ``others``: {slice: value} of bodies DE421 does not carry."""
+    from ..bodies import sun
+    from ..bodies.de421_header import header
+
+    motion, h = system.motion, header()
+    start = dict(others or {})
+    for name in (n for n in (*motion.free, motion.barycentre, motion.secondary) if f"{n}.r" not in start):
+        start[f"{name}.r"], start[f"{name}.v"] = _de421_state(name, t0, h)
+    start.update(moon_de421(t0, core="moon.omega_core" in system.layout))
+    if "sun.spin" in system.layout:
+        start["sun.spin"] = system.bodies["sun"].figure.moments[2] * sun_spin_rate * sun.POLE_ICRF
+    partial = system.layout.pack({**start, **on_pole(system, "earth", t0, earth_pole, spin_rate, forced=False)})
+    return {**start, **on_pole(system, "earth", t0, earth_pole, spin_rate, states=partial[None])}
+
+
+HEADER_KEYS = {"mercury": "1", "venus": "2", "mars": "4", "jupiter": "5", "saturn": "6", "uranus": "7",
+               "neptune": "8", "pluto": "9", "sun": "S", "earth_moon_barycenter": "B", "moon": "M"}
+
+
+def _de421_state(name, t0, h):
+    """(position km, velocity km/d) of ``name`` (barycentric; the Moon geocentric) at t0 from DE421."""
+    if t0 == h["JDEPOC"] - J2000_JD:
+        k = HEADER_KEYS[name]
+        return (np.array([h[f"X{k}"], h[f"Y{k}"], h[f"Z{k}"]]) * h["AU"],
+                np.array([h[f"XD{k}"], h[f"YD{k}"], h[f"ZD{k}"]]) * h["AU"])
+    from ..orbits.kernel import open_ephemeris
+
+    center = "earth" if name == "moon" else "solar_system_barycenter"
+    pos, vel = open_ephemeris("de421", t0, t0).relative_states(name, center, [t0])
+    return pos[0], vel[0]

@@ -84,6 +84,23 @@ class System:
         """The slice ``name`` of a state (or states (n, size))."""
         return np.asarray(y)[..., self.layout[name]]
 
+    def expressions(self, scales=None):
+        """(heyoka variables, their derivatives' expressions) of the state (divided by ``scales``, one per
+        component): the generated rhs run on expressions (spinorbit.models.trace), what the Taylor integrator
+        compiles; NotTraceable (a ValueError naming the kernel) where the System reads an ephemeris."""
+        from .trace import expressions
+
+        return expressions(self, scales)
+
+    @functools.cached_property
+    def traceable(self):
+        """True when :meth:`expressions` can be built (every term a function of the state and the time)."""
+        try:
+            self.expressions()
+        except ValueError:
+            return False
+        return True
+
     @functools.cached_property
     def _invariants(self):
         functions = {}

@@ -2,7 +2,9 @@
 
 For the pair's relative orbit r (the secondary from the primary): the pair's own monopole exactly,
 -(GM_p + GM_s) r / r^3, and every other mass's pull as the difference of its pulls on the two,
-GM_j [(x_j - x_s)/|x_j - x_s|^3 - (x_j - x_p)/|x_j - x_p|^3].
+GM_j [(x_j - x_s)/|x_j - x_s|^3 - (x_j - x_p)/|x_j - x_p|^3].  Where every centre is in the state
+(spinorbit.models.barycentric), every body's barycentric acceleration too, sum_j GM_j (x_j - x_i)/|x_j - x_i|^3
+(spinorbit.models.interactions.relativity.newtonian), and the energy -sum_{i<j} GM_i GM_j / r_ij.
 """
 from dataclasses import dataclass
 
@@ -11,6 +13,7 @@ from numba import njit
 
 from ...rotations import dot3
 from .base import Interaction
+from .relativity import newtonian
 
 
 @njit(cache=True, nogil=True)
@@ -26,6 +29,18 @@ def pair_acceleration(x, mu, r):
     return acc
 
 
+@njit(cache=True, nogil=True)
+def potential_energy(x, mu, r):
+    """-sum_{i<j} GM_i GM_j / r_ij (G-scaled) of the masses at x (n, 3) km, the pair (the last two rows) at r."""
+    n = x.shape[0]
+    total = -mu[n - 2] * mu[n - 1] / np.sqrt(dot3(r, r))
+    for i in range(n - 1):
+        for j in range(i + 1, n if i < n - 2 else n - 1):      # the pair's own term from r
+            d = x[j] - x[i]
+            total -= mu[i] * mu[j] / np.sqrt(dot3(d, d))
+    return total
+
+
 @dataclass(frozen=True)
 class Newton(Interaction):
     """Every point mass of the System (the orbit source's and the pair) attracting the pair in the state."""
@@ -37,11 +52,18 @@ class Newton(Interaction):
         return ()
 
     def emit(self, code):
-        x, _, mu = code.system.motion.point_masses(code)
-        code.system.motion.add_relative_acceleration(code, f"{code.bind(pair_acceleration)}({x}, {mu}, r)")
+        motion = code.system.motion
+        x, _, mu = motion.point_masses(code)
+        if motion.barycentric:
+            code.line(f"newton = {code.bind(newtonian)}({x}, {mu})[0]")
+            motion.add_barycentric_accelerations(code, "newton")
+        motion.add_relative_acceleration(code, f"{code.bind(pair_acceleration)}({x}, {mu}, r)")
 
     def energy(self, code):
         motion = code.system.motion
+        if motion.barycentric:
+            x, _, mu = motion.point_masses(code)
+            return f"{code.bind(potential_energy)}({x}, {mu}, r)"
         if motion.externals is not None:
             return super().energy(code)
         product = motion.gm_primary * motion.gm_secondary

@@ -89,8 +89,8 @@ def accelerations(pos, vel, gm, c, targets):
 
 @dataclass(frozen=True)
 class Relativity(Interaction):
-    """The EIH 1/c^2 correction to the point-mass accelerations of the bodies in the state; ``c_km_d`` the speed
-    of light (DE421's CLIGHT in km/d)."""
+    """The EIH 1/c^2 correction to the point-mass accelerations of the bodies in the state (a pair's relative
+    orbit; with every centre in the state, every body's); ``c_km_d`` the speed of light (DE421's CLIGHT in km/d)."""
 
     c_km_d: float
     phase = "orbit"
@@ -100,9 +100,15 @@ class Relativity(Interaction):
         return ()
 
     def emit(self, code):
-        x, w, mu = code.system.motion.point_masses(code)
-        n = len(code.system.motion.point_mass_names())
+        motion = code.system.motion
+        x, w, mu = motion.point_masses(code)
+        n = len(motion.point_mass_names())
+        barycentric = motion.barycentric
+        targets = motion.eih_targets() if barycentric else np.array([n - 2, n - 1], dtype=np.int64)
         correction = code.local("eih")
         code.line(f"{correction} = {code.bind(accelerations)}({x}, {w}, {mu}, {code.param('c_km_d', self.c_km_d)}, "
-                  f"{code.param('eih_targets', np.array([n - 2, n - 1], dtype=np.int64))})[1]")
-        code.system.motion.add_relative_acceleration(code, f"{correction}[1] - {correction}[0]")
+                  f"{code.param('eih_targets', targets)})[1]")
+        if barycentric:
+            motion.add_barycentric_accelerations(code, correction)
+        k = len(targets)
+        motion.add_relative_acceleration(code, f"{correction}[{k - 1}] - {correction}[{k - 2}]")

@@ -20,6 +20,7 @@ from ...schema import Key
 from ...verdict import Check, Verdict
 from .. import common
 
+TAYLOR = True          # every term a function of the state and the time: heyoka's Taylor integrator takes it
 SCHEMA = {
     **{f"model.{name}": Key(type=bool, default=True, help=text) for name, text in FIGURES.items()},
     "model.earth_rotator": Key(type=str, default="gyroscopic", choices=("gyroscopic", "rigid"),

@@ -17,6 +17,7 @@ from ...schema import ANGLE, SPIN, Key
 from ...verdict import Check, Verdict
 from .. import common
 
+TAYLOR = True          # every term a function of the state and the time: heyoka's Taylor integrator takes it
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A <= B <= C, any unit"),
     "body.omega0": Key(**SPIN, size=3, help="initial body angular velocity"),

@@ -17,6 +17,7 @@ from ...schema import DISTANCE, GM, RATE, Key
 from ...verdict import Check, Verdict
 from .. import common
 
+TAYLOR = True          # every term a function of the state and the time: heyoka's Taylor integrator takes it
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A < B <= C, any unit"),
     "orbit.gm": Key(**GM, help="GM of the centre of forces"),

@@ -15,6 +15,7 @@ from ...verdict import Check, Verdict
 from .. import common
 from ..p93_planar_libration import planar_system, zeta_from_solution
 
+TAYLOR = True          # every term a function of the state and the time: heyoka's Taylor integrator takes it
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A < B <= C, any unit"),
     "orbit.gm": Key(**GM, help="GM of the centre of forces"),

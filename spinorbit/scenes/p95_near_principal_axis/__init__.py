@@ -19,6 +19,7 @@ from ...schema import ANGLE, DISTANCE, GM, SPIN, Key
 from ...verdict import Check, Verdict
 from .. import common
 
+TAYLOR = True          # every term a function of the state and the time: heyoka's Taylor integrator takes it
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="symmetric body [cc, cc, aa]"),
     "body.spin": Key(**SPIN, help="angular speed gamma'"),

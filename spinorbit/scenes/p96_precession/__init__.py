@@ -24,6 +24,7 @@ from ...schema import ANGLE, DISTANCE, GM, RATE, SPIN, Key
 from ...verdict import Check, Verdict
 from .. import common
 
+TAYLOR = True          # every term a function of the state and the time: heyoka's Taylor integrator takes it
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments cc = cc < aa (symmetric, oblate)"),
     "body.spin": Key(**SPIN, help="spin rate eps about the figure axis"),
