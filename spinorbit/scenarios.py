@@ -84,6 +84,10 @@ class Scenario:
         if not isinstance(kind, str):
             raise ScenarioError("scene.kind", kind, "a string naming a scene kind")
         self.module = scene_module(kind)
+        method = data.get("integrator", {}).get("method") if isinstance(data.get("integrator"), dict) else None
+        if method == "taylor" and not getattr(self.module, "TAYLOR", False):
+            raise ScenarioError("integrator.method", "taylor", f"a method other than 'taylor' for scene kind "
+                                f"'{kind}', which reads an ephemeris (taylor runs: {', '.join(taylor_kinds())})")
         self.schema = {**COMMON_SCHEMA, **self.module.SCHEMA}
         self._check_keys()
         self.values = {key: self._convert(key, spec) for key, spec in self.schema.items()}
@@ -94,9 +98,6 @@ class Scenario:
         self._check_cycles()
         from .integrators import get_method
 
-        if self["integrator.method"] == "taylor" and not getattr(self.module, "TAYLOR", False):
-            raise ScenarioError("integrator.method", "taylor", f"a method other than 'taylor' for scene kind "
-                                f"'{kind}', which reads an ephemeris (taylor runs: {', '.join(taylor_kinds())})")
         with scenario_errors(self):
             get_method(self["integrator.method"])(**self.integrator_options())   # checks method and options now
 
