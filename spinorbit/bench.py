@@ -28,6 +28,7 @@ from .integrators import METHODS, get_method
 
 COLUMNS = ("method", "kind", "order", "setting", "wall_s", "rhs_evaluations", "steps", "error_rad")
 LEVELS = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12)
+MAX_BUDGET_S = 3600.0           # --budget: the longest run a method's ladder may take
 
 
 def time_scale(system):
@@ -141,20 +142,29 @@ def write(rows, out, title, command, note=""):
     return paths
 
 
-def bench_scenario(path, methods=None, out=None, budget_s=10.0, overrides=()):
-    """Load a scenario, build its system and write the work-precision table; returns (rows, paths)."""
+def bench_scenario(path, methods=None, out=None, budget_s=10.0, overrides=(), force=False):
+    """Load a scenario, build its system and write the work-precision table into the run directory ``out``
+    (spinorbit.rundir: a previous table replaced whole, files spinorbit did not write refused unless
+    ``force``); returns (rows, paths)."""
+    from .rundir import RunDirectory
     from .scenarios import load_scenario, scenario_errors
 
+    if not isinstance(budget_s, (int, float)) or not 0 < budget_s <= MAX_BUDGET_S:
+        raise ScenarioError("--budget", budget_s, f"seconds in (0, {MAX_BUDGET_S:g}]")
     scenario = load_scenario(path, overrides)
     if not hasattr(scenario.module, "build"):
         raise ScenarioError("scene.kind", scenario.kind, "a scene kind whose module defines build() for benchmarking")
-    with scenario_errors(scenario):
-        system, t_out, error = scenario.module.build(scenario)
-    rows = bench_system(system, t_out, error, methods, budget_s)
-    command = " ".join(["spinorbit bench", str(path), *(f"--set {shlex.quote(o)}" for o in overrides),
-                        *([f"--methods {','.join(methods)}"] if methods else [])])
-    title = scenario["scene.title"] or scenario.name
-    agreement = system.meta.get("reference_agreement_rad")
-    note = "" if agreement is None else (f"Reference: a converged run (agrees with one at half its step "
-                                         f"to {agreement:.1e} rad).")
-    return rows, write(rows, out or Path("runs") / f"{scenario.name}-bench", title, command, note)
+    target = Path(out or Path("runs") / f"{scenario.name}-bench")
+    with RunDirectory(target, force=force) as run_dir:     # refuses a bad --out before the ladder runs
+        with scenario_errors(scenario):
+            system, t_out, error = scenario.module.build(scenario)
+        rows = bench_system(system, t_out, error, methods, budget_s)
+        command = " ".join(["spinorbit bench", str(path), *(f"--set {shlex.quote(o)}" for o in overrides),
+                            *([f"--methods {','.join(methods)}"] if methods else [])])
+        title = scenario["scene.title"] or scenario.name
+        agreement = system.meta.get("reference_agreement_rad")
+        note = "" if agreement is None else (f"Reference: a converged run (agrees with one at half its step "
+                                             f"to {agreement:.1e} rad).")
+        names = []
+        run_dir.commit(lambda d: names.extend(p.name for p in write(rows, d, title, command, note)))
+    return rows, [run_dir.out / name for name in names]

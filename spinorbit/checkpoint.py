@@ -16,6 +16,7 @@ directory, removed when the run is committed; ``rundir.RunDirectory.checkpoint``
 import hashlib
 import json
 import os
+import stat
 import sys
 import time
 import zipfile
@@ -26,7 +27,7 @@ import numpy as np
 from .errors import ScenarioError
 from .integrators import rk8
 from .integrators.base import output_chunks
-from .linker import package_fingerprint
+from .linker import fingerprint
 from .progress import progress
 
 WHAT_DIFFERS = {"settings": "scenario settings", "source": "spinorbit source code", "rhs": "equations",
@@ -36,45 +37,99 @@ WHAT_DIFFERS = {"settings": "scenario settings", "source": "spinorbit source cod
 
 class Checkpoint:
     """Where a run keeps its checkpoint (``path``, npz), whether it resumes from it, and the run's
-    ``settings`` (anything JSON can write; part of the fingerprint)."""
+    ``settings`` (anything JSON can write; part of the fingerprint).
+
+    A checkpoint is validated as input is: a regular file of this user, an npz spinorbit wrote
+    (``outputs``, ``fingerprint``, and ``sha256`` of the two), the fingerprint of this run, outputs of
+    float64 in the run's shape and finite.  Anything else is refused in one line, never resumed.
+    """
 
     def __init__(self, path, resume=False, settings=None, every_s=30.0):
         self.path, self.resume, self.settings, self.every_s = Path(path), resume, settings, every_s
         self.resumed_outputs = 0             # outputs a resumed run took from the file
+        self.written = {self.path}           # files this checkpoint and its parts may leave: discard() removes them
 
     def part(self, name):
         """The checkpoint of a scene's further run ``name``: ``<out>.checkpoint-<name>.npz``, removed with this one."""
-        return Checkpoint(self.path.with_name(f"{self.path.stem}-{name}{self.path.suffix}"), self.resume,
+        part = Checkpoint(self.path.with_name(f"{self.path.stem}-{name}{self.path.suffix}"), self.resume,
                           self.settings, self.every_s)
+        part.written = self.written
+        self.written.add(part.path)
+        return part
 
     def load(self, fingerprint):
         """The outputs (k, dim) a matching checkpoint holds, or None when resume is off or there is none."""
-        if not self.resume or not self.path.exists():
+        if not self.resume or not os.path.lexists(self.path):
             return None
-        try:
-            with np.load(self.path) as data:
-                stored, outputs = json.loads(str(data["fingerprint"])), data["outputs"]
-        except (OSError, ValueError, KeyError, zipfile.BadZipFile) as exc:
-            raise ScenarioError("--resume", str(self.path), f"a readable checkpoint ({exc}); run without --resume "
-                                "to start afresh") from None
+        stored, outputs = self._read()
         differ = [text for name, text in WHAT_DIFFERS.items() if stored.get(name) != fingerprint[name]]
         if differ:
-            raise ScenarioError("--resume", str(self.path), "a checkpoint of this run (it was written by a run that "
-                                f"differs in: {', '.join(differ)}); run without --resume to start afresh")
+            self._refuse(f"a checkpoint of this run (it was written by a run that differs in: {', '.join(differ)})")
+        rows, dim = fingerprint.get("outputs", (None, outputs.shape[1]))
+        if outputs.shape[1] != dim or (rows is not None and outputs.shape[0] > rows):
+            self._refuse(f"outputs of at most {rows} rows of {dim} states (it holds {outputs.shape})")
         self.resumed_outputs = len(outputs)
         return outputs
 
     def save(self, fingerprint, outputs):
-        """Write the outputs so far atomically (aside, then renamed over the checkpoint)."""
+        """Write the outputs so far atomically (aside, synced, then renamed over the checkpoint)."""
+        outputs = np.ascontiguousarray(outputs, dtype=np.float64)
+        text = json.dumps(fingerprint, sort_keys=True)
         tmp = self.path.with_name(f".{self.path.name}.tmp-{os.getpid()}")
         try:
             with open(tmp, "wb") as f:
-                np.savez(f, outputs=outputs, fingerprint=json.dumps(fingerprint, sort_keys=True))
+                np.savez(f, outputs=outputs, fingerprint=text, sha256=_content_hash(text, outputs))
                 f.flush()
                 os.fsync(f.fileno())
             os.replace(tmp, self.path)
+            self.written.add(self.path)
         finally:
             tmp.unlink(missing_ok=True)
+
+    def discard(self):
+        """Remove the checkpoint files of this run (its own and its parts'): the run is whole."""
+        for path in self.written:
+            if os.path.isfile(path) and not os.path.islink(path):
+                path.unlink()
+
+    def _read(self):
+        """(fingerprint dict, outputs) of a checkpoint spinorbit wrote, or a one-line refusal."""
+        info = os.lstat(self.path)
+        if not stat.S_ISREG(info.st_mode):
+            self._refuse("a regular file (this is not one)")
+        if info.st_uid != os.geteuid():
+            self._refuse(f"a checkpoint of your own (it belongs to uid {info.st_uid})")
+        keys = ["fingerprint", "outputs", "sha256"]
+        try:
+            with np.load(self.path, allow_pickle=False) as data:
+                files = sorted(data.files)
+                content = [data[key] for key in keys] if files == keys else None
+        except (OSError, ValueError, EOFError, zipfile.BadZipFile) as exc:
+            self._refuse(f"a readable checkpoint ({str(exc).splitlines()[0] if str(exc) else type(exc).__name__})")
+        if content is None:
+            self._refuse(f"a checkpoint spinorbit wrote (it holds {files})")
+        text, outputs, digest = str(content[0]), content[1], str(content[2])
+        if outputs.dtype != np.float64 or outputs.ndim != 2 or not outputs.shape[0]:
+            self._refuse(f"outputs of float64 states, one row per output (it holds {outputs.dtype} {outputs.shape})")
+        if digest != _content_hash(text, outputs):
+            self._refuse("a checkpoint as spinorbit wrote it (its content does not match its sha256: edited or damaged)")
+        if not np.isfinite(outputs).all():
+            self._refuse("finite states (it holds NaN or inf)")
+        try:
+            stored = json.loads(text)
+        except ValueError:
+            stored = None
+        if not isinstance(stored, dict) or any(not isinstance(stored.get(name), str) for name in WHAT_DIFFERS):
+            self._refuse("a checkpoint whose fingerprint names every part of the run")
+        return stored, outputs
+
+    def _refuse(self, accepted):
+        raise ScenarioError("--resume", str(self.path), f"{accepted}; run without --resume to start afresh")
+
+
+def _content_hash(fingerprint_text, outputs):
+    """sha256 of a checkpoint's content: its fingerprint and its outputs (shape and bytes)."""
+    return _sha(fingerprint_text.encode(), str(outputs.shape).encode(), np.ascontiguousarray(outputs).tobytes())
 
 
 def fixed_step(rhs, params, t0, y0, t_out, step, checkpoint=None, label=None):
@@ -100,19 +155,31 @@ def fixed_step(rhs, params, t0, y0, t_out, step, checkpoint=None, label=None):
                 done = part.stop
                 advance_to(t_out[done - 1])
                 if checkpoint is not None and time.monotonic() - last_save >= checkpoint.every_s:
-                    checkpoint.save(fingerprint, states[:done])
+                    _save(checkpoint, fingerprint, states[:done])
                     saved, last_save = done, time.monotonic()
             if checkpoint is not None and done > saved:          # whole: a scene's next run may be interrupted
-                checkpoint.save(fingerprint, states[:done])
+                _save(checkpoint, fingerprint, states[:done])
                 saved = done
         except BaseException:
             if checkpoint is not None and done > 0:
-                if done > saved:
-                    checkpoint.save(fingerprint, states[:done])
-                print(f"checkpoint: {done} of {t_out.size} outputs in {checkpoint.path} (continue with --resume)",
-                      file=sys.stderr)
+                if done > saved and _save(checkpoint, fingerprint, states[:done]):
+                    saved = done
+                if saved:
+                    print(f"checkpoint: {saved} of {t_out.size} outputs in {checkpoint.path} (continue with --resume)",
+                          file=sys.stderr)
             raise
     return states
+
+
+def _save(checkpoint, fingerprint, outputs):
+    """Save a checkpoint; a failure (a full disk, a name too long) is said in one line and the run goes on."""
+    try:
+        checkpoint.save(fingerprint, outputs)
+        return True
+    except OSError as exc:
+        print(f"checkpoint: could not save {checkpoint.path} ({exc.strerror or exc}); the run goes on without it",
+              file=sys.stderr)
+        return False
 
 
 def _chunk(rhs, params, t0, y0, t_out, step):
@@ -129,12 +196,13 @@ def run_fingerprint(rhs, params, t0, y0, t_out, step, checkpoint):
     """{part: sha256 hex} of what decides a run's states (WHAT_DIFFERS names the parts)."""
     settings = None if checkpoint is None else checkpoint.settings
     return {"settings": _sha(json.dumps(settings, sort_keys=True, default=str).encode()),
-            "source": package_fingerprint(),
+            "source": fingerprint(rhs),
             "rhs": _sha(f"{rhs.py_func.__module__}.{rhs.py_func.__qualname__}".encode()),
             "start": _sha(np.float64(t0).tobytes(), y0.tobytes()),
             "output_times": _sha(t_out.tobytes()),
             "step": _sha(np.float64(step).tobytes()),
-            "parameters": _sha(*_leaves(params))}
+            "parameters": _sha(*_leaves(params)),
+            "outputs": [int(t_out.size), int(y0.size)]}
 
 
 def _leaves(value):

@@ -16,9 +16,11 @@ import numpy as np
 from numba import njit
 
 from . import terms as term_registry
-from .linker import link, template
+from .linker import free, link, template
 from .rotations import diag3, matrix_from_quat, put, quat_rate, rotate_to_body
 from .terms.base import Context, fuse
+
+positions, terms, torque = free("positions", "terms", "torque")    # bound by link()
 
 
 @njit(cache=True)

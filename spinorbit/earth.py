@@ -37,11 +37,13 @@ from .bodies.earth import (A_AXIS_LONGITUDE_DEG, B_MINUS_A_OVER_C, C_MR2,  # noq
                            J4)
 from .dynamics import SpinSystem, euler_omega_dot
 from .errors import PhysicsError
-from .linker import link, template
+from .linker import free, link, template
 from .rotations import (cross3, diag3, dot3, mat_t_vec3, matrix_from_quat, matvec3, put, quat_from_matrix,
                         quat_rate)
 from .terms import point_mass
 from .terms.base import fuse
+
+positions, terms, torque, tensor = free("positions", "terms", "torque", "tensor")    # bound by link()
 
 POINT_MASSES = (point_mass.build(None),)
 # The Earth's heliocentric orbit: eccentricity and the Sun's mean anomaly l' = l'_0 + n' t (rad, rad/d),

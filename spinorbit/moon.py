@@ -52,9 +52,11 @@ import numpy as np
 from numba import njit
 
 from .dynamics import SpinSystem, make_figure_torque
-from .linker import link, template
+from .linker import free, link, template
 from .rotations import cross3, diag3, dot3, mat_t_vec3, matrix_from_quat, matvec3, put, quat_rate, solve3
 from .terms.base import fuse
+
+positions, terms, WITH_CORE, WITH_TIDES = free("positions", "terms", "WITH_CORE", "WITH_TIDES")    # bound by link()
 
 # Layout of the float vector ``consts`` in the parameters (see moon_params).
 R_KM, K2_MASS_RATIO, K2_ROT, TAU_D, KV, C_CORE, N_MEAN, F_CORE = range(8)

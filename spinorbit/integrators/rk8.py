@@ -16,11 +16,13 @@ import time
 import numpy as np
 
 from ..errors import InputError, IntegrationError
-from ..linker import link, template
+from ..linker import free, link, template
 from ..progress import progress
 from ..rotations import put
 from . import dop853_tableau as dop853
 from .base import Integrator, Solution, normalise_quaternions, output_chunks
+
+rhs = free("rhs")    # bound by link()
 
 
 @template("rhs")
