@@ -172,7 +172,7 @@ def damage(kind, path, fingerprint, outputs, digest):
 
 @pytest.mark.parametrize("kind, says", [
     ("zero bytes", "a readable checkpoint"), ("truncated", "a readable checkpoint"),
-    ("integers", "float64"), ("wrong shape", "(3, 52)"), ("edited states", "does not match its sha256"),
+    ("integers", "float64"), ("wrong shape", "of 20 states (it holds (3, 40))"), ("edited states", "does not match its sha256"),
     ("NaN rows", "finite states"), ("malformed fingerprint", "fingerprint"),
     ("fingerprint missing a part", "fingerprint"), ("written without a hash", "a checkpoint spinorbit wrote"),
     ("a link", "a regular file"),
