@@ -24,7 +24,7 @@ def as_user(fn, *args, uid=OTHER):
             os.setgid(uid)
             os.setuid(uid)
             outcome = ("ok", fn(*args))
-        except BaseException as exc:                 # reported to the parent, whatever it was
+        except BaseException as exc:  # noqa: BLE001 (the forked child reports anything to the parent)
             outcome = ("raised", f"{type(exc).__name__}: {exc}")
         with os.fdopen(write, "wb") as pipe:
             pipe.write(pickle.dumps(outcome))

@@ -97,18 +97,25 @@ def link(fn, **bindings):
 
 
 def fingerprint(function):
-    """sha256 (hex) of what ``function`` (a template, a compiled or a plain function) reaches: the source
-    of the modules whose functions and constants it uses, followed through compiled callees (a
-    generated module by the hash of its text, which holds its own), and numba's version."""
+    """sha256 (hex) of what ``function`` (a template, a compiled or a plain function) reaches
+    (:func:`reached`) and of numba's version."""
     import numba
 
-    sources = {}
-    _reach(getattr(function, "py_func", function), sources, set())
+    sources = reached(function)
     digest = hashlib.sha256(f"numba {numba.__version__}".encode())
     for module in sorted(sources):
         digest.update(f"\0{module}\0".encode())
         digest.update(sources[module])
     return digest.hexdigest()
+
+
+def reached(function):
+    """{module name: its source bytes} of the modules whose functions and constants ``function`` uses,
+    followed through compiled callees; a generated module stands by the hash of its text (which
+    holds its own reach), a module without a file by the function's code."""
+    sources = {}
+    _reach(getattr(function, "py_func", function), sources, set())
+    return sources
 
 
 _LOCK = threading.RLock()
