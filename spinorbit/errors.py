@@ -44,11 +44,12 @@ class PhysicsError(SpinorbitError, ValueError):
 class EphemerisRangeError(SpinorbitError, ValueError):
     """A time outside the span an orbit source covers; never extrapolated."""
 
-    def __init__(self, source, requested, span, unit="TDB days from J2000"):
-        self.source, self.requested, self.span = source, requested, span
+    def __init__(self, source, requested, span, unit="TDB days from J2000", note=""):
+        self.source, self.requested, self.span, self.note = source, requested, span, note
+        asked = f"{requested[0]:.6g} to {requested[1]:.6g}" if isinstance(requested, tuple) else requested
         super().__init__(
-            f"{source} covers {span[0]:.6g} to {span[1]:.6g} {unit} ({_epochs(span)}); "
-            f"asked for {requested}. Shorten [span], or choose a source that covers it "
+            f"{source} covers {span[0]:.6g} to {span[1]:.6g} {unit} ({_epochs(span)}{note}); "
+            f"asked for {asked}. Shorten [span], or choose a source that covers it "
             "(a larger .bsp in ephemerides/, or orbit.source = 'rebound')."
         )
 

@@ -17,28 +17,60 @@ Beyond types and units, every number must be finite and inside its key's
 plausible range (``Key.min``/``Key.max``), tolerances inside [100 eps, 1e-3];
 a step over the span must not ask for more output rows, orbit samples or
 integrator steps than ``LIMITS`` allows, nor a rate for more than ``MAX_CYCLES``
-cycles: the run is refused up front with the estimate, instead of hanging or
-filling the memory.  Files must be UTF-8 and nest at most ``MAX_DEPTH`` levels.
+cycles; and the run's time and memory, estimated from the counts and the costs
+measured per item for its scene kind (``COSTS``: seconds per integrator step,
+bytes per row and per orbit sample), must fit ``limits.time`` (default 1 h) and
+``limits.memory`` (default half the machine's): the run is refused up front with
+the estimate, instead of hanging or filling the memory.  Files must be UTF-8, at
+most ``MAX_FILE_BYTES``, and nest at most ``MAX_DEPTH`` levels.
 """
 import datetime
 import math
+import os
 import tomllib
 from contextlib import contextmanager
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from .errors import InputError, ScenarioError
+from .errors import EphemerisRangeError, InputError, ScenarioError
 from .schema import (INTEGRATOR_OPTIONS, MAX_TEXT, REQUIRED, Key, checked_float, dotted_items, finite_float,
                      parse_tdb_days)
 
 MAX_DEPTH = 8                  # nesting of tables and arrays in a scenario
-# What a step over the span may ask for: count limit and bytes per item (estimate).
-# Compiled fixed-step methods take ~1-10 us a step; scipy's adaptive ones ~100 us (Python per stage).
-LIMITS = {"output rows": (1_000_000, 200), "orbit samples": (10_000_000, 150),
-          "integrator steps": (100_000_000, 0), "adaptive steps (at max_step)": (1_000_000, 0)}
+MAX_FILE_BYTES = 1 << 20       # a scenario file (a few kB; every string in it is at most schema.MAX_TEXT)
+# The most a step over the span may ask for, whatever the time and memory limits.
+LIMITS = {"output rows": 1_000_000, "orbit samples": 10_000_000, "integrator steps": 1_000_000_000,
+          "adaptive steps (at max_step)": 1_000_000}
 
 
+@dataclass(frozen=True)
+class Cost:
+    """What one item of a count costs a scene kind, measured (``python benchmarks/bench_costs.py``, peak
+    resident memory and wall time of whole runs at two sizes; benchmarks/results_costs.md): wall
+    seconds per integrator step of its fixed-step method, peak bytes per output row and per orbit
+    sample, and the peak of a small run."""
+
+    step_s: float
+    row_bytes: float
+    sample_bytes: float
+    base_bytes: float = 400e6
+
+    @property
+    def bytes_per(self):
+        return {"output rows": self.row_bytes, "orbit samples": self.sample_bytes}
+
+
+# Measured on a 2-core x86-64 (2.1 GHz): each figure rounded up, the slowest of its runs.
+COSTS = {
+    "coupled_conservation": Cost(step_s=1.3e-4, row_bytes=2000, sample_bytes=0),
+    "earth_moon_coupled": Cost(step_s=3e-4, row_bytes=3000, sample_bytes=1100),
+    "moon_libration": Cost(step_s=4e-5, row_bytes=2500, sample_bytes=1100),
+    "earth_precession_nutation": Cost(step_s=2e-5, row_bytes=2500, sample_bytes=1100),
+}
+DEFAULT_COST = Cost(step_s=1e-5, row_bytes=2500, sample_bytes=1100)     # the simple rigid-body scenes
+ADAPTIVE_STEP_S = 2e-4         # scipy's adaptive methods: Python between the stages of each step
 COMMON_SCHEMA = {
     "scene.kind": Key(type=str),
     "scene.title": Key(type=str, default=""),
@@ -49,6 +81,10 @@ COMMON_SCHEMA = {
     "integrator.method": Key(type=str, default="dop853"),
     "integrator.estimate_error": Key(type=bool, default=True),
     "output.plots": Key(type=bool, default=True),
+    "limits.time": Key(unit="s", positive=True, default=3600.0, max=3.2e7,
+                       help="longest run the up-front estimate lets through (e.g. '10 h')"),
+    "limits.memory": Key(unit="byte", positive=True, default=None, max=1e15,
+                         help="largest memory the estimate lets through (default: half the machine's)"),
 }
 OPEN_TABLES = ("integrator",)     # [integrator] options go to the method, which checks their names
 MIN_SPAN_D = 1e-6              # shortest span, days (0.0864 s)
@@ -188,28 +224,81 @@ class Scenario:
             raise ScenarioError("span.end", end_text, f"a span of at least {MIN_SPAN_D:g} d from span.start")
         return start, end
 
-    def _check_counts(self):
-        """Refuse a step that would ask for too many rows, samples or steps over the span."""
-        span = abs(self.t_end - self.t_start)
-        steps = [(key, spec, self.values[key]) for key, spec in self.schema.items() if spec.count]
-        steps += [(f"integrator.{name}", INTEGRATOR_OPTIONS[name], value) for name, value in self._options.items()
-                  if name in INTEGRATOR_OPTIONS and INTEGRATOR_OPTIONS[name].count]
-        for key, spec, step in steps:
-            limit, item_bytes = LIMITS[spec.count]
-            n = span / step + 1
-            if n > limit:
-                count = f"{n:,.0f}" if n < 1e15 else f"{n:.3g}"
-                memory = f", ~{_bytes(n * item_bytes)} in memory" if item_bytes else ""
-                raise ScenarioError(key, _lookup(self.data, key, spec) if _has(self.data, key) else step,
-                                    f"a step giving at most {limit:,} {spec.count} over the {span:.6g} d span "
-                                    f"(this one gives {count}{memory}); lengthen {key} or shorten the span")
+    def counts(self):
+        """{count: items} the span asks for at each step key (output rows, orbit samples, integrator steps ...),
+        the largest where two keys count the same."""
+        counts = {}
+        for key, kind, step in self._count_keys():
+            counts[kind] = max(counts.get(kind, 0), abs(self.t_end - self.t_start) / step + 1)
+        return counts
 
+    def cost(self):
+        """The measured per-item costs of this scene kind (COSTS)."""
+        return COSTS.get(self.kind, DEFAULT_COST)
+
+    def estimate(self):
+        """{"time_s", "memory_bytes"} of the run, from its counts and the kind's measured costs."""
+        counts, cost = self.counts(), self.cost()
+        return {"time_s": counts.get("integrator steps", 0) * cost.step_s
+                + counts.get("adaptive steps (at max_step)", 0) * ADAPTIVE_STEP_S,
+                "memory_bytes": cost.base_bytes + sum(counts.get(kind, 0) * size
+                                                      for kind, size in cost.bytes_per.items())}
+
+    def _count_keys(self):
+        """(key, count, step) of every step key that sets a count."""
+        steps = [(key, spec.count, self.values[key]) for key, spec in self.schema.items()
+                 if spec.count and self.values[key] is not None]
+        steps += [(f"integrator.{name}", INTEGRATOR_OPTIONS[name].count, value) for name, value in self._options.items()
+                  if name in INTEGRATOR_OPTIONS and INTEGRATOR_OPTIONS[name].count]
+        return steps
+
+    def _check_counts(self):
+        """Refuse a step that would ask for more rows, samples or steps than LIMITS, or a run the estimate
+        says takes longer than limits.time or more memory than limits.memory."""
+        span = abs(self.t_end - self.t_start)
+        cost = self.cost()
+        for key, kind, step in self._count_keys():
+            n = span / step + 1
+            if n > LIMITS[kind]:
+                size = cost.bytes_per.get(kind, 0) * n
+                memory = f", ~{_bytes(size)} in memory" if size else ""
+                self._refuse(key, step, f"a step giving at most {LIMITS[kind]:,} {kind} over the {span:.6g} d span "
+                                        f"(this one gives {_count(n)}{memory}); lengthen {key} or shorten the span")
+        estimate = self.estimate()
+        time_limit, memory_limit = self["limits.time"], self["limits.memory"] or physical_memory() / 2
+        culprits = {kind: (key, step) for key, kind, step in self._count_keys()}
+        if estimate["time_s"] > time_limit:
+            kind = max(("integrator steps", "adaptive steps (at max_step)"), key=lambda k: self.counts().get(k, 0)
+                       * (cost.step_s if k == "integrator steps" else ADAPTIVE_STEP_S))
+            key, step = culprits[kind]
+            each = cost.step_s if kind == "integrator steps" else ADAPTIVE_STEP_S
+            self._refuse(key, step, f"a run the estimate finishes within limits.time = {_duration(time_limit)}: "
+                                    f"{_count(self.counts()[kind])} {kind} at ~{each * 1e6:.3g} us each "
+                                    f"(measured for {self.kind}) is ~{_duration(estimate['time_s'])}; lengthen "
+                                    f"{key}, shorten the span, or raise limits.time")
+        if estimate["memory_bytes"] > memory_limit:
+            kind = max(cost.bytes_per, key=lambda k: self.counts().get(k, 0) * cost.bytes_per[k])
+            key, step = culprits.get(kind, ("span", span))
+            self._refuse(key, step, f"a run the estimate holds within limits.memory = {_bytes(memory_limit)}: "
+                                    f"{_count(self.counts().get(kind, 0))} {kind} at ~{_bytes(cost.bytes_per[kind])} "
+                                    f"each (measured for {self.kind}) is ~{_bytes(estimate['memory_bytes'])}; "
+                                    f"lengthen {key}, shorten the span, or raise limits.memory")
+
+    def _refuse(self, key, value, accepted):
+        raise ScenarioError(key, _lookup(self.data, key, Key()) if _has(self.data, key) else value, accepted)
 
     def _check_cycles(self):
         """Refuse rates (and GM over distance^3) that would make the run follow more than MAX_CYCLES cycles."""
         span = abs(self.t_end - self.t_start)
         rates = [(key, float(np.linalg.norm(self.values[key])), "") for key, spec in self.schema.items()
                  if spec.unit == "rad/d" and self.values[key] is not None]
+        moments = self.values.get("body.moments")
+        if moments is not None and np.all(np.abs(moments) > 0):
+            a, b, c = (float(m) for m in moments)
+            euler = max(abs(b - c) / abs(a), abs(c - a) / abs(b), abs(a - b) / abs(c))   # Euler's equations
+            rates += [("body.moments", rate * euler, f" (the body-frame rate |{key}| x {euler:.3g}, Euler's "
+                                                      "equations)") for key, rate, _ in list(rates)
+                      if key.startswith("body.") and euler > 1]
         distance = next((key for key in DISTANCE_KEYS if key in self.values), None)
         if "orbit.gm" in self.values and distance:
             torque_rate = math.sqrt(3 * self.values["orbit.gm"] / self.values[distance] ** 3)
@@ -238,6 +327,15 @@ def scenario_errors(scenario):
         options = scenario.data.get("integrator", {})
         key = f"integrator.{exc.name}" if exc.name in options else ARGUMENT_KEYS.get(exc.name, exc.name)
         raise ScenarioError(key, exc.given, exc.accepted) from None
+    except EphemerisRangeError as exc:
+        (first, last) = scenario.bounds
+        asked_first, asked_last = exc.requested if isinstance(exc.requested, tuple) else (first, last)
+        margin = max(first - asked_first, asked_last - last, 0.0)
+        low, high = exc.span[0] + margin, exc.span[1] - margin
+        fits = (f"a span from {_iso(low)} to {_iso(high)} TDB fits" if high > low else "no span fits")
+        around = f"the run samples the orbit {margin:.3g} d beyond each end of its span, so " if margin else ""
+        raise EphemerisRangeError(exc.source, exc.requested, exc.span,
+                                  note=f"{exc.note}; {around}{fits}") from None
 
 
 def check_depth(data, where, limit=MAX_DEPTH):
@@ -253,11 +351,34 @@ def check_depth(data, where, limit=MAX_DEPTH):
             stack.extend((v, depth + 1, name) for v in node)
 
 
+def _iso(t_tdb_d):
+    """TDB days from J2000 as an ISO date and time to the minute."""
+    from .schema import tdb_days_to_time
+
+    return tdb_days_to_time(t_tdb_d).isot[:16]
+
+
 def _bytes(n):
     for unit in ("B", "kB", "MB", "GB", "TB"):
         if n < 1000 or unit == "TB":
             return f"{n:.3g} {unit}"
         n /= 1000
+
+
+def _count(n):
+    return f"{n:,.0f}" if n < 1e15 else f"{n:.3g}"
+
+
+def _duration(seconds):
+    for unit, size in (("d", 86400), ("h", 3600), ("min", 60)):
+        if seconds >= size:
+            return f"{seconds / size:.3g} {unit}"
+    return f"{seconds:.3g} s"
+
+
+def physical_memory():
+    """Bytes of memory the machine has (POSIX sysconf)."""
+    return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
 
 
 def backward_kinds():
@@ -326,9 +447,17 @@ def apply_override(data, assignment):
 
 def load_scenario(path, overrides=()):
     """Read and validate a scenario file; ``overrides`` are ``key=value`` strings."""
+    if isinstance(path, bytes) or not isinstance(path, (str, os.PathLike)):
+        raise ScenarioError("scenario", path, "a path to a scenario .toml file (a str or os.PathLike)")
+    if isinstance(overrides, (str, bytes)) or not isinstance(overrides, (list, tuple)) or not all(
+            isinstance(item, str) for item in overrides):
+        raise ScenarioError("--set", overrides, "a list of 'key=value' strings, e.g. ['span.end=10 d']")
     path = Path(path)
-    if not path.is_file() or not _is_utf8(str(path)):
+    if not _is_utf8(str(path)) or not path.is_file():
         raise ScenarioError("scenario", str(path), "an existing .toml file with a UTF-8 name (see `spinorbit list`)")
+    if path.stat().st_size > MAX_FILE_BYTES:
+        raise ScenarioError("scenario", str(path), f"a scenario file of at most {MAX_FILE_BYTES:,} bytes "
+                                                   f"({path.stat().st_size:,} given)")
     raw = path.read_bytes()
     try:
         text = raw.decode("utf-8")

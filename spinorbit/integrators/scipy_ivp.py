@@ -34,15 +34,21 @@ class ScipyIVP(Integrator):
                 last_finite[:2] = t, y
             return dy
 
-        fun(system.t0, system.y0)          # compile outside the timed region
+        if not np.all(np.isfinite(fun(system.t0, system.y0))):   # (also compiles outside the timed region)
+            err = IntegrationError(f"{self.name}: the right-hand side is not finite at the start", system.t0,
+                                   system.y0, "Check the initial state and the model's parameters.")
+            err.partial = Solution(np.empty(0), np.empty((0, system.y0.size)), self.name, 1, None, 0.0,
+                                   dict(self.settings))
+            raise err                      # scipy's first step would be NaN and never shrink below its floor
         nfev[0] = 0
         start = time.perf_counter()
         sol = solve_ivp(fun, (system.t0, t_out[-1]), system.y0, method=self.scipy_method,
                         t_eval=t_out, rtol=self.settings["rtol"], atol=self.settings["atol"],
                         max_step=self.settings["max_step"])
         wall = time.perf_counter() - start
-        y = sol.y.T
-        partial = Solution(sol.t, normalise_quaternions(y) if len(y) else y, self.name, nfev[0],
+        t = np.asarray(sol.t, dtype=float)                # lists when it failed before the first output
+        y = np.asarray(sol.y, dtype=float).reshape(system.y0.size, t.size).T
+        partial = Solution(t, normalise_quaternions(y) if len(y) else y, self.name, nfev[0],
                            None, wall, dict(self.settings))     # solve_ivp does not report its steps
         if sol.status != 0:
             t_fail, y_fail, nan = last_finite

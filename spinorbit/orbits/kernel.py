@@ -89,7 +89,8 @@ class JPLKernel:
         for code in NAIF.get(name, ()):
             if code == 0 or code in self._parent:
                 return code
-        raise InputError("body", name, f"one of {sorted(n for n in NAIF if self._has(n))}")
+        raise InputError("source", str(self.path), f"a kernel holding {name} (this one holds "
+                                                   f"{sorted(n for n in NAIF if self._has(n))})")
 
     def _has(self, name):
         return any(c == 0 or c in self._parent for c in NAIF[name])
@@ -142,7 +143,7 @@ class JPLKernel:
     def check_span(self, t_start, t_end):
         """Raise EphemerisRangeError unless [t_start, t_end] (TDB days) lies in the kernel's span."""
         if not (self.span[0] <= t_start and t_end <= self.span[1]):
-            raise EphemerisRangeError(self.name, f"{t_start:.6g} to {t_end:.6g}", self.span)
+            raise EphemerisRangeError(self.name, (float(t_start), float(t_end)), self.span)
 
 
 class DE421Arrays:
@@ -173,7 +174,8 @@ class DE421Arrays:
             return emb_p - share * moon_p, emb_v - share * moon_v
         key = {"earth_moon_barycenter": "earthmoon"}.get(name, name)
         if key not in eph.names or key in ("librations", "nutations"):
-            raise InputError("body", name, f"one of {sorted(NAIF)}")
+            raise InputError("source", self.name, f"a source holding {name} (the de421 package's arrays hold "
+                                                  f"{sorted(NAIF)})")
         return state(key)
 
     def relative_states(self, target, center, t_tdb_days):
@@ -198,7 +200,12 @@ def open_ephemeris(source, t_start, t_end):
     ``de421`` package arrays; any other name is a .bsp (see :func:`kernel_path`).
     """
     kernel = JPLKernel(kernel_path(source))
-    if source == "de421" and not (kernel.span[0] <= t_start and t_end <= kernel.span[1]):
-        kernel = DE421Arrays()
-    kernel.check_span(t_start, t_end)
-    return kernel
+    if source != "de421" or kernel.span[0] <= t_start and t_end <= kernel.span[1]:
+        kernel.check_span(t_start, t_end)
+        return kernel
+    arrays = DE421Arrays()
+    if not (arrays.span[0] <= t_start and t_end <= arrays.span[1]):
+        raise EphemerisRangeError("de421", (t_start, t_end), (kernel.span[0], arrays.span[1]),
+                                  note=f"; its .bsp to {kernel.span[1]:.6g}, the de421 package's arrays from "
+                                       f"{arrays.span[0]:.6g}: one of them must hold the whole span")
+    return arrays
