@@ -18,6 +18,7 @@ import json
 import os
 import stat
 import sys
+import tempfile
 import time
 import zipfile
 from pathlib import Path
@@ -75,16 +76,17 @@ class Checkpoint:
         """Write the outputs so far atomically (aside, synced, then renamed over the checkpoint)."""
         outputs = np.ascontiguousarray(outputs, dtype=np.float64)
         text = json.dumps(fingerprint, sort_keys=True)
-        tmp = self.path.with_name(f".{self.path.name}.tmp-{os.getpid()}")
+        handle, tmp = tempfile.mkstemp(prefix=f".{self.path.name}.tmp-", dir=self.path.parent)   # a new file
         try:
-            with open(tmp, "wb") as f:
+            with os.fdopen(handle, "wb") as f:
                 np.savez(f, outputs=outputs, fingerprint=text, sha256=_content_hash(text, outputs))
                 f.flush()
                 os.fsync(f.fileno())
             os.replace(tmp, self.path)
             self.written.add(self.path)
         finally:
-            tmp.unlink(missing_ok=True)
+            if os.path.lexists(tmp):
+                os.unlink(tmp)
 
     def discard(self):
         """Remove the checkpoint files of this run (its own and its parts'): the run is whole."""

@@ -1,14 +1,14 @@
 """The output directory as a transaction that owns only what it wrote.
 
-A run writes aside into a fresh sibling ``.<name>.new-<pid>``, records what it wrote in a manifest
-(``.spinorbit-manifest.json``: relative path -> size and sha256) and swaps it in: ``out`` ->
-``.<name>.old-<pid>``, the new one -> ``out``.  So ``out`` always holds one whole run, the old one
+A run writes aside into a fresh sibling ``.<name>.new-<pid>-<random>``, records what it wrote in a
+manifest (``.spinorbit-manifest.json``: relative path -> size and sha256) and swaps it in: ``out`` ->
+``.<name>.old-<pid>-<random>``, the new one -> ``out``.  So ``out`` always holds one whole run, the old one
 or the new one; a run killed between the two renames leaves a complete new directory (it has its
 manifest) that the next run moves into place.  The old directory is then retired: whatever in it
 spinorbit did not write (files, folders, links, sockets, FIFOs the user put there, before or during
 the run) is moved into the new ``out``, and only the old run's own files, as its manifest lists
 them and unchanged, are deleted; anything that can be neither moved nor deleted is left in a
-visible ``<out>.leftover-<pid>`` and said.  The new directory takes the old one's mode (and owner,
+visible ``<out>.leftover-<pid>-<random>`` and said.  The new directory takes the old one's mode (and owner,
 where the system allows; a directory of another user is refused up front).
 
 Foreign entries are recognised from metadata only (``lstat``; a file is spinorbit's when the
@@ -16,10 +16,11 @@ manifest lists it with its size and its sha256 still matches, and only such file
 nothing foreign is read, followed or hashed.  A run refuses an ``out`` holding foreign entries
 unless ``force``, which keeps them and replaces only the files the new run writes itself.  Entries
 that appear while the run computes are kept; if they take a name the run writes, the run goes to
-``<out>.new-<pid>`` instead and the refusal says so.
+``<out>.new-<pid>-<random>`` instead and the refusal says so.
 
 A failed run leaves a good previous run alone and puts its partial output beside it in
-``<out>.failed`` (``<out>.failed-<pid>`` when that is not a directory of spinorbit's own).  Output
+``<out>.failed`` (``<out>.failed-<pid>-<random>`` when that is not a directory of this user's
+holding only spinorbit's files).  Output
 staged by a writer that then fails (an exception, a full disk) is kept the same way.  ``sweep``
 and ``bench`` fill a staging directory progressively (:meth:`RunDirectory.stage`) and commit it.
 
@@ -37,6 +38,7 @@ import hashlib
 import json
 import os
 import re
+import secrets
 import shutil
 import stat
 import sys
@@ -64,13 +66,16 @@ class RunDirectory:
             self.out = self.out.resolve()          # a link to a directory: the run goes into its target
         self.force = force
         parent, name = self.out.parent, self.out.name
+        token = f"{os.getpid()}-{secrets.token_hex(4)}"      # not predictable: nobody can plant these first
         self.lock = parent / f".{name}.lock"
-        self.staging = parent / f".{name}.new-{os.getpid()}"
-        self.old = parent / f".{name}.old-{os.getpid()}"
+        self.staging = parent / f".{name}.new-{token}"
+        self.old = parent / f".{name}.old-{token}"
         self.failed = parent / f"{name}.failed"
         self.checkpoint = parent / f"{name}.checkpoint.npz"
         self.foreign = []                          # (relative path, kind) found when the run started
+        self._token = token
         self._lock_fd = None
+        self._keep_staging = False
 
     def __enter__(self):
         self._acquire()
@@ -93,16 +98,17 @@ class RunDirectory:
         try:
             if exc_type is not None and _has_content(self.staging):
                 self._keep_staged()
-            _remove_tree(self.staging)
+            if not self._keep_staging:
+                _remove_tree(self.staging)
         finally:
             self._release()
 
     # --- writing ----------------------------------------------------------
     def stage(self):
-        """The staging directory (created on first call), for writers that fill it as they go."""
-        if not self.staging.is_dir():
-            _remove_tree(self.staging)
-            self._io(self.staging.mkdir)
+        """The staging directory (created on first call, never an entry that was there), for writers that
+        fill it as they go."""
+        if not os.path.lexists(self.staging):
+            self._io(os.mkdir, self.staging)
         return self.staging
 
     def commit(self, write=None):
@@ -123,12 +129,14 @@ class RunDirectory:
         return target
 
     def _failed_target(self):
+        """``<out>.failed``, unless it is something else than a directory of this user's holding only
+        spinorbit's files; then ``<out>.failed-<token>``."""
         try:
-            usable = not os.path.lexists(self.failed) or (
-                self.failed.is_dir() and not self.failed.is_symlink() and not foreign_entries(self.failed))
-        except ScenarioError:
-            usable = False
-        return self.failed if usable else self.failed.with_name(f"{self.failed.name}-{os.getpid()}")
+            info = os.lstat(self.failed)
+            usable = stat.S_ISDIR(info.st_mode) and info.st_uid == os.geteuid() and not foreign_entries(self.failed)
+        except FileNotFoundError:
+            usable = True
+        return self.failed if usable else self.failed.with_name(f"{self.failed.name}-{self._token}")
 
     def _keep_staged(self):
         """Keep what a failed writer staged (``<out>.failed`` or ``out``); say where in one line."""
@@ -137,7 +145,7 @@ class RunDirectory:
         except (ScenarioError, OSError) as error:
             print(f"could not keep the partial output staged in {self.staging} ({error}); it is left there",
                   file=sys.stderr)
-            self.staging = self.staging.with_name(self.staging.name + "-kept")   # not removed on exit
+            self._keep_staging = True
             return
         print(f"the output written before the run stopped is in {where}/", file=sys.stderr)
 
@@ -149,7 +157,7 @@ class RunDirectory:
         arrived = [entry for entry in foreign_entries(target, self.key) if entry not in self.foreign]
         clash = [rel for rel, _ in arrived if _overlaps(rel, manifest["files"])]
         if clash:
-            elsewhere = target.with_name(f"{target.name}.new-{os.getpid()}")
+            elsewhere = target.with_name(f"{target.name}.new-{self._token}")
             self._io(os.replace, staged, elsewhere)
             raise ScenarioError(self.key, str(target),
                                 f"a directory nothing else writes into during the run: {describe(arrived)} appeared "
@@ -181,7 +189,7 @@ class RunDirectory:
                 pass
         _prune(old)
         if os.path.lexists(old):
-            leftover = into.with_name(f"{into.name}.leftover-{os.getpid()}")
+            leftover = into.with_name(f"{into.name}.leftover-{self._token}")
             os.replace(old, leftover)
             print(f"kept in {leftover}/ what could be neither moved into {into}/ nor deleted "
                   f"({describe(foreign_entries(leftover))})", file=sys.stderr)
@@ -238,7 +246,7 @@ class RunDirectory:
         except FileNotFoundError:
             return
         if not stat.S_ISDIR(info.st_mode):
-            raise ScenarioError(self.key, str(self.out), f"a directory (this is a "
+            raise ScenarioError(self.key, str(self.out), "a directory (this is a "
                                 f"{KINDS.get(stat.S_IFMT(info.st_mode), 'special file')})")
         if info.st_uid != os.geteuid() and os.geteuid() != 0:
             raise ScenarioError(self.key, str(self.out), f"a directory of your own (it belongs to uid {info.st_uid}, "
@@ -247,8 +255,8 @@ class RunDirectory:
     def _repair(self):
         """Finish or undo what a killed run left (we hold the lock, so its writer is gone)."""
         parent, name = self.out.parent, self.out.name
-        pattern = re.compile(rf"\.{re.escape(name)}\.(new|old)-(\d+)")
-        tmp = re.compile(rf"\.{re.escape(self.checkpoint.stem)}(-\w+)?\.npz\.tmp-\d+")
+        pattern = re.compile(rf"\.{re.escape(name)}\.(new|old)-\d+(-[0-9a-f]{{8}})?")
+        tmp = re.compile(rf"\.{re.escape(self.checkpoint.stem)}(-\w+)?\.npz\.tmp-\w+")
         left = {"new": [], "old": []}
         with os.scandir(parent) as entries:
             for entry in entries:

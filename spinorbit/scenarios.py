@@ -35,8 +35,16 @@ from pathlib import Path
 import numpy as np
 
 from .errors import EphemerisRangeError, InputError, ScenarioError
-from .schema import (INTEGRATOR_OPTIONS, MAX_TEXT, REQUIRED, Key, checked_float, dotted_items, finite_float,
-                     parse_tdb_days)
+from .schema import (
+    INTEGRATOR_OPTIONS,
+    MAX_TEXT,
+    REQUIRED,
+    Key,
+    checked_float,
+    dotted_items,
+    finite_float,
+    parse_tdb_days,
+)
 
 MAX_DEPTH = 8                  # nesting of tables and arrays in a scenario
 MAX_FILE_BYTES = 1 << 20       # a scenario file (a few kB; every string in it is at most schema.MAX_TEXT)
@@ -104,7 +112,7 @@ class Scenario:
         self.path = Path(path) if path else None
         self.name = self.path.stem if self.path else "scenario"
         self.checkpoint = None          # a checkpoint.Checkpoint when the command line runs it (--resume)
-        from .scenes import scene_module            # the scene registry (lazy imports)
+        from .scenes import scene_module  # the scene registry (lazy imports)
 
         check_depth(data, str(self.path) if self.path else "scenario")
         kind = _lookup(data, "scene.kind", Key(type=str))
@@ -296,9 +304,8 @@ class Scenario:
         if moments is not None and np.all(np.abs(moments) > 0):
             a, b, c = (float(m) for m in moments)
             euler = max(abs(b - c) / abs(a), abs(c - a) / abs(b), abs(a - b) / abs(c))   # Euler's equations
-            rates += [("body.moments", rate * euler, f" (the body-frame rate |{key}| x {euler:.3g}, Euler's "
-                                                      "equations)") for key, rate, _ in list(rates)
-                      if key.startswith("body.") and euler > 1]
+            rates += [("body.moments", rate * euler, f" (the body-frame rate |{key}| x {euler:.3g}, Euler's equations)")
+                      for key, rate, _ in list(rates) if key.startswith("body.") and euler > 1]
         distance = next((key for key in DISTANCE_KEYS if key in self.values), None)
         if "orbit.gm" in self.values and distance:
             torque_rate = math.sqrt(3 * self.values["orbit.gm"] / self.values[distance] ** 3)

@@ -15,6 +15,7 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from spinorbit.cli import main
@@ -201,7 +202,7 @@ def test_an_entry_taking_a_name_the_run_writes_is_kept_and_the_run_goes_beside(t
     with pytest.raises(ScenarioError) as info, RunDirectory(out) as run:
         (out / "summary.json").write_text("my own summary\n")
         run.commit(writer(summary_json="{}\n"))
-    elsewhere = tmp_path / f"run.new-{os.getpid()}"
+    (elsewhere,) = tmp_path.glob(f"run.new-{os.getpid()}-*")
     assert f"this run was written to {elsewhere}/" in one_line(info) and "summary.json (file)" in str(info.value)
     assert (out / "summary.json").read_text() == "my own summary\n"
     assert (elsewhere / "summary.json").read_text() == "{}\n" and read_manifest(elsewhere)["status"] == "ok"
@@ -373,7 +374,32 @@ def test_a_failed_run_beside_a_good_one_when_out_failed_is_a_file(tmp_path, caps
                               'method = "rk8"\nstep = "0.1 d"\nmax_steps = 100\n', FREE_BODY.read_text()))
     assert main(["run", str(stopped), "--out", str(out), "--set", "output.plots=false"]) == 3
     err = capsys.readouterr().err
-    failed = tmp_path / f"run.failed-{os.getpid()}"
+    (failed,) = tmp_path.glob(f"run.failed-{os.getpid()}-*")
     assert json.loads((failed / "summary.json").read_text())["run"]["outputs_written"] == 21
     assert (tmp_path / "run.failed").read_text() == "a file of the user's\n"
     assert f"partial output written to {failed}/" in err and "error: rk8" in err
+
+
+def test_names_a_run_writes_beside_out_cannot_be_planted(tmp_path, shared):
+    """Links planted (by another user, in a shared folder) where a run used to stage, retire and checkpoint
+    (names from its pid alone) lead nowhere: those names now carry a random part and are made afresh."""
+    from spinorbit.checkpoint import Checkpoint
+
+    victim = tmp_path / "victim"
+    victim.mkdir()
+    (victim / "summary.json").write_text("the victim's\n")
+    (tmp_path / "precious.npz").write_text("the victim's\n")
+    pid = os.getpid()
+    links = {f".run.new-{pid}": victim, f".run.old-{pid}": victim,
+             f".run.checkpoint.npz.tmp-{pid}": tmp_path / "precious.npz"}
+
+    def plant():
+        for name, target in links.items():
+            os.symlink(target, shared / name)
+    as_user(plant) if IS_ROOT else plant()
+    good_run(shared / "run")
+    good_run(shared / "run", summary_json="{}\n")
+    Checkpoint(shared / "run.checkpoint.npz").save({"a": "b"}, np.zeros((1, 3)))
+    assert sorted(os.listdir(victim)) == ["summary.json"] and (victim / "summary.json").read_text() == "the victim's\n"
+    assert (tmp_path / "precious.npz").read_text() == "the victim's\n"
+    assert (shared / "run" / "summary.json").read_text() == "{}\n"

@@ -4,6 +4,7 @@ These are the yardstick everything else is checked against; their cost per
 step is dominated by Python call overhead (one compiled rhs call per stage).
 """
 import time
+from typing import ClassVar
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -17,7 +18,7 @@ class ScipyIVP(Integrator):
 
     kind = "adaptive"
     scipy_method = "DOP853"
-    options = {"rtol": 1e-12, "atol": 1e-14, "max_step": np.inf}
+    options: ClassVar[dict] = {"rtol": 1e-12, "atol": 1e-14, "max_step": np.inf}
 
     def solve(self, system, t_out):
         t_out = self._check_times(system, t_out)
@@ -70,10 +71,10 @@ class DOP853(ScipyIVP):
 class Radau(ScipyIVP):
     """Radau IIA implicit Runge-Kutta (order 5), adaptive; for stiff problems."""
     name, order, scipy_method = "radau", 5, "Radau"
-    options = {"rtol": 1e-10, "atol": 1e-12, "max_step": np.inf}
+    options: ClassVar[dict] = {"rtol": 1e-10, "atol": 1e-12, "max_step": np.inf}
 
 
 class RK45(ScipyIVP):
     """Dormand-Prince 5(4), adaptive."""
     name, order, scipy_method = "rk45", 5, "RK45"
-    options = {"rtol": 1e-9, "atol": 1e-12, "max_step": np.inf}
+    options: ClassVar[dict] = {"rtol": 1e-9, "atol": 1e-12, "max_step": np.inf}
