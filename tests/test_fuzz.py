@@ -94,7 +94,7 @@ def assert_sane(scenario):
         if isinstance(value, (float, np.ndarray)):
             assert np.all(np.isfinite(value)), key
     assert math.isfinite(scenario.t_start) and scenario.t_end > scenario.t_start
-    assert len(scenario.output_times()) <= LIMITS["output rows"][0]
+    assert len(scenario.output_times()) <= LIMITS["output rows"]
     for name in ("rtol", "atol"):
         assert 0 < scenario.integrator_options().get(name, 1e-12) < 1
 
@@ -188,3 +188,96 @@ def test_non_utf8_bytes_from_the_shell_and_the_file(tmp_path):
     assert err.splitlines() == [
         f"error: {scene}: got 'byte 0xe9 at offset {offset}'; expected a UTF-8 text file (re-save it as UTF-8)",
         "error: --set: got 'scene.title=\\udce9'; expected UTF-8 text (a byte that is not UTF-8 at offset 12)"]
+
+
+# --- issue 27: the run directory under random user entries; the Python API under random types ------
+
+USER_NAMES = ["notes.txt", "summary.json", "report.md", "sub/x.csv", "sub", "run[1]", "*", "000/summary.json"]
+USER_KINDS = ["file", "empty folder", "link", "dangling link", "FIFO"]
+
+
+def make_user_entry(out, rel, kind):
+    path = out / rel
+    if os.path.lexists(path) or not path.parent.is_dir() and os.path.lexists(path.parent):
+        return None                                      # the name is taken, or its parent is not a folder
+    path.parent.mkdir(parents=True, exist_ok=True)
+    if kind == "file":
+        path.write_text(f"the user's {rel}\n")
+    elif kind == "empty folder":
+        path.mkdir()
+    elif kind == "link":
+        os.symlink("/etc", path)
+    elif kind == "dangling link":
+        os.symlink(out / "nowhere", path)
+    else:
+        os.mkfifo(path)
+    return rel
+
+
+def state(path):
+    """What a user entry is: its kind and content (a file's bytes, a link's target), read without blocking."""
+    info = os.lstat(path)
+    if os.path.islink(path):
+        return "link", os.readlink(path)
+    if os.path.isdir(path):
+        return "folder", None
+    if not os.path.isfile(path):
+        return "other", info.st_mode
+    return "file", Path(path).read_bytes()
+
+
+@settings(max_examples=40, deadline=None, derandomize=True, database=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(entries=st.lists(st.tuples(st.sampled_from(USER_NAMES), st.sampled_from(USER_KINDS)), max_size=5),
+       during=st.booleans(), force=st.booleans(), writes=st.sampled_from([("summary.json",), ("a.txt", "b/c.txt")]))
+def test_nothing_of_the_users_is_lost(tmp_path_factory, entries, during, force, writes):
+    """Entries a user puts in --out, before the run or while it computes: refused (one line) or kept, each
+    as it was, except with --force the files of the names the run writes itself."""
+    from spinorbit.rundir import RunDirectory
+
+    out = tmp_path_factory.mktemp("rundir") / "run"
+    with RunDirectory(out) as run:
+        run.commit(lambda d: (d / "summary.json").write_text("{}\n"))
+
+    def add():
+        made = [make_user_entry(out, rel, kind) for rel, kind in entries]
+        return {rel: state(out / rel) for rel in made if rel is not None}
+
+    def write(directory):
+        for rel in writes:
+            (directory / rel).parent.mkdir(parents=True, exist_ok=True)
+            (directory / rel).write_text("new\n")
+
+    users = {} if during else add()
+    try:
+        with RunDirectory(out, force=force) as run:
+            users.update(add() if during else {})
+            run.commit(write)
+    except ScenarioError as exc:
+        assert_one_line(exc)
+    replaced = {rel for rel in users if force and not during and any(rel == w or w.startswith(rel + "/")
+                                                                     for w in writes)}
+    for rel, before in users.items():
+        if rel not in replaced and not any(rel.startswith(r + "/") for r in replaced):
+            assert os.path.lexists(out / rel) and state(out / rel) == before, rel
+
+
+API_VALUES = st.one_of(st.none(), st.integers(), st.floats(), st.binary(max_size=20), st.text(max_size=20),
+                       st.lists(st.text(max_size=10), max_size=3), st.dictionaries(st.text(max_size=5), st.integers(),
+                                                                                   max_size=2))
+
+
+@SETTINGS
+@given(scenario=API_VALUES, overrides=API_VALUES)
+def test_run_scenario_with_any_python_values_is_refused_in_one_line(scenario, overrides):
+    """Values that are not a scenario file and a list of 'key=value' strings never reach a scene."""
+    from spinorbit import run_scenario
+
+    if isinstance(scenario, str) and Path(scenario).is_file():
+        return
+    try:
+        run_scenario(scenario, overrides)
+    except ScenarioError as exc:
+        assert_one_line(exc)
+    else:
+        raise AssertionError(f"run_scenario({scenario!r}, {overrides!r}) ran")
