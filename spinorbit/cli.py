@@ -123,7 +123,12 @@ def _run(args):
         except IntegrationError as exc:
             _keep_partial(run_dir, exc, out)
             raise
-        run_dir.commit(lambda d: write_run(result, d, painter=paint))
+        try:
+            run_dir.commit(lambda d: write_run(result, d, painter=paint))
+        except SpinorbitError:
+            if not run_dir.staged():                    # nothing of the finished run on disk: keep it elsewhere
+                _rescue(result, scenario.name)
+            raise
         scenario.checkpoint.discard()                   # the run is whole: nothing left to resume
     verdict = result.summary["verdict"]
     print(verdict["headline"])
@@ -135,6 +140,21 @@ def _run(args):
     for key, reason in result.summary.get("not_measured", {}).items():
         print(f"  {key}: {reason}")
     return EXIT_VERDICT_FAIL if args.strict and verdict["result"] == "fail" else 0
+
+
+def _rescue(result, name):
+    """Write a finished run that its --out could not take into a new private temporary directory."""
+    import tempfile
+
+    from .reports import write_run
+
+    try:
+        where = tempfile.mkdtemp(prefix=f"spinorbit-{name}-")
+        write_run(result, where)
+    except OSError as exc:
+        print(f"the finished run could not be written anywhere ({exc.strerror or exc})", file=sys.stderr)
+        return
+    print(f"the finished run is written to {where}/ instead", file=sys.stderr)
 
 
 def _keep_partial(run_dir, exc, out):

@@ -111,6 +111,10 @@ class RunDirectory:
             self._io(os.mkdir, self.staging)
         return self.staging
 
+    def staged(self):
+        """Does the staging directory hold anything (what a failed commit keeps)?"""
+        return _has_content(self.staging)
+
     def commit(self, write=None):
         """Write a whole run aside with ``write(path)`` (or take what was staged) and swap it in as
         ``out``; return ``out``."""

@@ -403,3 +403,22 @@ def test_names_a_run_writes_beside_out_cannot_be_planted(tmp_path, shared):
     assert sorted(os.listdir(victim)) == ["summary.json"] and (victim / "summary.json").read_text() == "the victim's\n"
     assert (tmp_path / "precious.npz").read_text() == "the victim's\n"
     assert (shared / "run" / "summary.json").read_text() == "{}\n"
+
+
+def test_a_finished_run_its_out_cannot_take_is_kept_elsewhere(tmp_path, capsys, monkeypatch):
+    """The output directory fails before anything is staged (here: no space for the staging folder): the
+    finished run goes to a new private temporary directory, said in one line beside the error."""
+    import tempfile
+
+    def full(self):
+        self._io(lambda: (_ for _ in ()).throw(OSError(errno.ENOSPC, "No space left on device")))
+    monkeypatch.setattr(RunDirectory, "stage", full)
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+    code = main(["--quiet", "run", str(FREE_BODY), "--out", str(tmp_path / "run"), "--set", "span.end=5 d",
+                 "--set", "output.plots=false"])
+    err = capsys.readouterr().err.strip().splitlines()
+    (rescued,) = tmp_path.glob("spinorbit-free_body-*")
+    assert code == 2 and err == [f"the finished run is written to {rescued}/ instead",
+                                 f"error: --out: got '{tmp_path / 'run'}'; expected a directory spinorbit can write: "
+                                 "No space left on device"]
+    assert json.loads((rescued / "summary.json").read_text())["verdict"]["result"] == "pass"
