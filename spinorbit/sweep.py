@@ -1,6 +1,6 @@
 """Parameter sweeps and ensembles on Dask (a local cluster by default).
 
-``spinorbit sweep SCENE.toml --vary body.moments.0=0.5,0.6 --vary span.end="10 d","20 d"``
+``spinorbit sweep SCENE.toml --vary integrator.rtol=1e-8,1e-10 --vary span.end="10 d","20 d"``
 runs the Cartesian product of the values (at most ``MAX_MEMBERS``), one run directory
 per member (``OUT/000/``, ``OUT/001/`` ...), and collects every member's comparison and
 run metrics into ``OUT/sweep.json`` and ``OUT/sweep.csv``.  ``OUT`` is a run directory
