@@ -133,3 +133,15 @@ def test_scipy_failing_before_its_first_output_is_an_integration_error(rhs):
         integrate(system, np.array([0.0, 1.0, 2.0]), "dop853")
     assert info.value.partial.t.size == 0 and info.value.partial.y.shape == (0, 7)
     assert "\n" not in str(info.value)
+
+
+def test_mercury_on_a_span_too_short_for_its_88_day_term_is_not_compared():
+    """20 d cannot separate the 88-d term from the fit's constant (half a cycle, 44 d, is needed): no
+    amplitude is reported and the verdict is not-compared, with the span it needs."""
+    result = run_scenario(ROOT / "scenarios" / "stress" / "mercury_3_2.toml",
+                          ['span.end="20 d"', "output.plots=false", "integrator.estimate_error=false"])
+    summary = result.summary
+    assert summary["verdict"]["result"] == "not-compared"
+    assert summary["comparison"]["libration_88d_measured_arcsec"] is None
+    reason = summary["not_measured"]["comparison.libration_88d_measured_arcsec"]
+    assert "needs a span of 44 d, the run has 20 d" in reason

@@ -310,14 +310,20 @@ class CheckedCache(FunctionCache):
             return super().load_overload(sig, target_context)
         except UNREADABLE as exc:
             self._repair(exc)
-            return None
+        except OSError:                               # e.g. the cache cleared meanwhile: compile
+            pass
+        return None
 
     def save_overload(self, sig, data):
         try:
-            super().save_overload(sig, data)
-        except UNREADABLE as exc:                     # the index it adds to was damaged
-            self._repair(exc)
-            super().save_overload(sig, data)
+            try:
+                super().save_overload(sig, data)
+            except UNREADABLE as exc:                 # the index it adds to was damaged
+                self._repair(exc)
+                super().save_overload(sig, data)
+        except OSError as exc:
+            say(f"could not save the compiled {self._py_func.__qualname__} in {self._cache_path} "
+                f"({exc.strerror or exc}); it compiles again in the next run")
 
     def _repair(self, exc):
         say(f"numba's cache entry of {self._py_func.__qualname__} in {self._cache_path} was damaged ({exc}); "
