@@ -28,6 +28,8 @@ def parse_vary(text):
     if "=" not in text:
         raise ScenarioError("--vary", text, "key=value1,value2,... e.g. span.end=10 d,20 d")
     key, values = (s.strip() for s in text.split("=", 1))
+    if not key:
+        raise ScenarioError("--vary", text, "key=value1,value2,... with a dotted key, e.g. span.end=10 d,20 d")
     items = [v.strip() for v in _split_top_level(values) if v.strip()]
     if not items:
         raise ScenarioError(f"--vary {key}", values, "at least one value")
@@ -74,8 +76,9 @@ def run_sweep(scenario_path, grid, out_dir, scheduler="local", base_overrides=()
     from .rundir import RunDirectory
     from .scenarios import load_scenario
 
-    load_scenario(scenario_path, base_overrides)          # fail fast on a bad base scene
-    runs = members(grid)
+    load_scenario(scenario_path, base_overrides)          # fail fast on a bad base scene, a grid too big,
+    runs = members(grid)                                  # or a key the scene lacks
+    load_scenario(scenario_path, [*base_overrides, *(f"{key}={values[0]}" for key, values in grid.items())])
     out = Path(out_dir)
     with RunDirectory(out, force=force) as run_dir:
         staged = run_dir.stage()
