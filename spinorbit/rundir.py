@@ -48,6 +48,7 @@ from .errors import ScenarioError
 
 MANIFEST = ".spinorbit-manifest.json"
 MAX_MANIFEST_BYTES = 64 << 20
+BESIDE_CHARS = 64              # what the longest sibling adds to out's name (.<name>.checkpoint-<part>.npz.tmp-...)
 KINDS = {stat.S_IFREG: "file", stat.S_IFDIR: "folder", stat.S_IFLNK: "symbolic link", stat.S_IFIFO: "FIFO",
          stat.S_IFSOCK: "socket", stat.S_IFCHR: "device", stat.S_IFBLK: "device"}
 
@@ -214,7 +215,7 @@ class RunDirectory:
         def refuse(why):
             raise ScenarioError(self.key, str(self.out), f"a directory whose lock file {self.lock} is spinorbit's "
                                 f"own ({why}): remove it, or choose another {self.key}")
-        self._io(self.out.parent.mkdir, 0o777, True, True)
+        self._make_parent()
         try:
             fd = os.open(self.lock, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW | os.O_NONBLOCK | os.O_CLOEXEC, 0o644)
         except OSError as exc:
@@ -236,6 +237,20 @@ class RunDirectory:
         os.ftruncate(fd, 0)
         os.pwrite(fd, f"{os.getpid()}\n".encode(), 0)
         self._lock_fd = fd
+
+    def _make_parent(self):
+        """Create ``out``'s parent; refuse a path under a file, or a name too long for what is written beside."""
+        above = next((p for p in self.out.parents if os.path.lexists(p) and not os.path.isdir(p)), None)
+        if above is not None:
+            raise ScenarioError(self.key, str(self.out), f"a path through folders ({above} is not a folder)")
+        self._io(self.out.parent.mkdir, 0o777, True, True)
+        try:
+            longest = os.pathconf(self.out.parent, "PC_NAME_MAX") - BESIDE_CHARS
+        except (OSError, ValueError):
+            longest = 255 - BESIDE_CHARS
+        if len(self.out.name.encode()) > longest:
+            raise ScenarioError(self.key, str(self.out), f"a name of at most {longest} bytes (spinorbit writes "
+                                f"siblings such as .<name>.new-<pid>-<random> beside it)")
 
     def _release(self):
         if self._lock_fd is not None:

@@ -290,9 +290,13 @@ class Scenario:
                                     f"{key}, shorten the span, or raise limits.time")
         if estimate["memory_bytes"] > memory_limit:
             kind = max(cost.bytes_per, key=lambda k: self.counts().get(k, 0) * cost.bytes_per[k])
-            key, step = culprits.get(kind, ("span", span))
+            items = self.counts().get(kind, 0)
+            if kind not in culprits or items * cost.bytes_per[kind] < cost.base_bytes:
+                self._refuse("limits.memory", memory_limit, f"at least the ~{_bytes(cost.base_bytes)} any run of "
+                                                            f"{self.kind} takes (measured)")
+            key, step = culprits[kind]
             self._refuse(key, step, f"a run the estimate holds within limits.memory = {_bytes(memory_limit)}: "
-                                    f"{_count(self.counts().get(kind, 0))} {kind} at ~{_bytes(cost.bytes_per[kind])} "
+                                    f"{_count(items)} {kind} at ~{_bytes(cost.bytes_per[kind])} "
                                     f"each (measured for {self.kind}) is ~{_bytes(estimate['memory_bytes'])}; "
                                     f"lengthen {key}, shorten the span, or raise limits.memory")
 

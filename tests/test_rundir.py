@@ -361,7 +361,7 @@ def test_out_under_a_file_is_refused_in_one_line(tmp_path):
     (tmp_path / "file").write_text("x")
     with pytest.raises(ScenarioError) as info:
         good_run(tmp_path / "file" / "run")
-    assert "a directory spinorbit can write" in one_line(info)
+    assert f"a path through folders ({tmp_path / 'file'} is not a folder)" in one_line(info)
 
 
 def test_a_failed_run_beside_a_good_one_when_out_failed_is_a_file(tmp_path, capsys):
@@ -422,3 +422,9 @@ def test_a_finished_run_its_out_cannot_take_is_kept_elsewhere(tmp_path, capsys, 
                                  f"error: --out: got '{tmp_path / 'run'}'; expected a directory spinorbit can write: "
                                  "No space left on device"]
     assert json.loads((rescued / "summary.json").read_text())["verdict"]["result"] == "pass"
+
+
+def test_a_name_too_long_for_its_siblings_is_refused_in_one_line(tmp_path):
+    with pytest.raises(ScenarioError) as info:
+        good_run(tmp_path / ("x" * 250))
+    assert "a name of at most" in one_line(info) and not list(tmp_path.iterdir())
