@@ -204,7 +204,7 @@ def _cache(action):
         return 0
     where, modules, compiled, size = cache.usage()
     print(f"{where}/: {modules} generated kernel modules, {compiled} compiled files, {size / 1e6:.3g} MB "
-          f"(set by {cache.ENVIRONMENT}; `spinorbit cache clear` empties it)")
+          f"({cache.ENVIRONMENT} moves it; `spinorbit cache clear` empties it)")
     return 0
 
 
