@@ -89,8 +89,10 @@ class JPLKernel:
         for code in NAIF.get(name, ()):
             if code == 0 or code in self._parent:
                 return code
-        raise InputError("source", str(self.path), f"a kernel holding {name} (this one holds "
-                                                   f"{sorted(n for n in NAIF if self._has(n))})")
+        held = sorted(n for n in NAIF if self._has(n))
+        if name not in NAIF:                     # a name no kernel has
+            raise InputError("body", name, f"one of {held}")
+        raise InputError("source", str(self.path), f"a kernel holding {name} (this one holds {held})")
 
     def _has(self, name):
         return any(c == 0 or c in self._parent for c in NAIF[name])
@@ -174,8 +176,7 @@ class DE421Arrays:
             return emb_p - share * moon_p, emb_v - share * moon_v
         key = {"earth_moon_barycenter": "earthmoon"}.get(name, name)
         if key not in eph.names or key in ("librations", "nutations"):
-            raise InputError("source", self.name, f"a source holding {name} (the de421 package's arrays hold "
-                                                  f"{sorted(NAIF)})")
+            raise InputError("body", name, f"one of {sorted(NAIF)}")
         return state(key)
 
     def relative_states(self, target, center, t_tdb_days):
