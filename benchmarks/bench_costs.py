@@ -6,7 +6,7 @@ Each case runs a scene (its own settings: error estimate, plots) twice through t
 fresh processes with warm kernel caches,
 at two sizes of one count (integrator steps, output rows, orbit samples), and takes the slope:
 seconds per integrator step from the wall time, bytes per row or sample from the peak resident
-memory (``ru_maxrss``).  Printed beside each: what ``scenarios.COSTS`` holds and the estimate it
+memory (VmHWM of the process image).  Printed beside each: what ``scenarios.COSTS`` holds and the estimate it
 gives for the larger run against the measured one.
 """
 import argparse
@@ -24,12 +24,12 @@ sys.path.insert(0, str(ROOT))
 from spinorbit.scenarios import load_scenario
 
 CHILD = """
-import json, resource, sys, time
+import json, sys, time
 from spinorbit.cli import main
 start = time.perf_counter()
 code = main(sys.argv[1:])
-print(json.dumps({"code": code, "wall_s": time.perf_counter() - start,
-                  "peak_bytes": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024}))
+peak = next(int(line.split()[1]) * 1024 for line in open("/proc/self/status") if line.startswith("VmHWM"))
+print(json.dumps({"code": code, "wall_s": time.perf_counter() - start, "peak_bytes": peak}))
 """
 QUIET = []                     # the scenes' own settings (error estimate, plots): what a user's run costs
 # (kind, count, scenario, common overrides, the two sizes as overrides)

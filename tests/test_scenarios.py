@@ -94,11 +94,12 @@ def test_list_shows_every_scene(capsys):
 
 MOON = Path(__file__).parents[1] / "scenarios" / "moon_libration.toml"
 COUPLED = Path(__file__).parents[1] / "scenarios" / "stress" / "coupled_conservation.toml"
+# The peak resident memory of this process's image (VmHWM; ru_maxrss would keep the forking parent's peak).
 PEAK = """
-import resource, sys
+import sys
 from spinorbit.cli import main
 assert main(sys.argv[1:]) == 0
-print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024)
+print(next(int(line.split()[1]) * 1024 for line in open("/proc/self/status") if line.startswith("VmHWM")))
 """
 
 
