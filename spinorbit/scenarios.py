@@ -70,15 +70,15 @@ class Cost:
         return {"output rows": self.row_bytes, "orbit samples": self.sample_bytes}
 
 
-# Measured with the scenes' own settings (error estimate, plots) on a 2-core x86-64 shared with other jobs,
-# each rounded up from the slowest of its runs: peak memory 590-710 B per output row, 690 B per orbit sample
-# of the Moon's (140 of the Earth's), 200-340 MB for a small run; 0.09-0.8 ms per step of the closed
-# Earth-Moon system, 0.27 ms of the solar-system one, 0.3 ms of the lunar model (its error-vs-cost ladder
-# included), 8-23 us of a rigid body on a Kepler orbit (stress_mercury).
+# Measured with the scenes' own settings (error estimate, plots), benchmarks/results_costs.md: peak memory
+# 590-720 B per output row, 690 B per orbit sample of the Moon's (140 of the Earth's), 200-350 MB for a small
+# run; per step 25-48 us of the closed Earth-Moon system, 0.16-0.27 ms of the solar-system one, 84 us of the
+# lunar model (its error-vs-cost ladder included), 8-21 us of a rigid body on a Kepler orbit, on one free
+# core of a 2-core x86-64; each cost here is about twice that (a machine shared with other jobs is slower).
 COSTS = {
-    "coupled_conservation": Cost(step_s=8e-4),
-    "earth_moon_coupled": Cost(step_s=3.5e-4),
-    "moon_libration": Cost(step_s=4e-4),
+    "coupled_conservation": Cost(step_s=1e-4),
+    "earth_moon_coupled": Cost(step_s=3e-4),
+    "moon_libration": Cost(step_s=2e-4),
     "earth_precession_nutation": Cost(step_s=3e-5, sample_bytes=300),
 }
 DEFAULT_COST = Cost(step_s=3e-5)             # the rigid-body scenes
