@@ -80,7 +80,8 @@ def main():
         trees = [("this tree", copy_package(work, None))]
         if args.baseline:
             trees.append((args.baseline, copy_package(work, args.baseline)))
-        print(f"{Path(args.scenario).name} {' '.join(SHORT[1::2])}; wall s of one run (modules compiled anew)")
+        settings = " ".join(SHORT[1::2])
+        print(f"{Path(args.scenario).name} {settings}; wall s of one run (modules compiled anew)")
         results = {name: measure(tree, args.scenario, work, args.repeat) for name, tree in trees}
         for label in next(iter(results.values())):
             cells = "   ".join(f"{name}: {r[label][0]:6.2f} s ({r[label][1]})" for name, r in results.items())

@@ -45,9 +45,11 @@ COMMON = ["span.start", "span.end", "span.step", "integrator.rtol", "integrator.
 NUMBERS = ["0", "-1", "1", "nan", "inf", "-inf", "1e-300", "1e300", "1e999", "10", "0.5", "1e-7", "9" * 5000]
 UNITS = ["", "d", "s", "yr", "km", "deg", "rad/d", "deg/d", "km3/s2", "GB", "h", "foo"]
 TEXTS = ['"2000-13-01"', '"1899-12-31"', '"9999-12-31T23:59:59"', '"x"', '"' + "y" * 20000 + '"', "{a = 1}",
-         "[1, 2]", "[" * 2000 + "]" * 2000, "true", '"de421"', '"/nonexistent.bsp"', '"rebound"', "[1, 1, 1e30]"]
+         "[1, 2]", "[" * 2000 + "]" * 2000, "true", '"de421"', '"/nonexistent.bsp"', '"rebound"',
+         "[1, 1, 1e30]"]
 UNIT_OF = {"orbit.gm": "km3/s2", "orbit.radius": "km", "orbit.rate": "deg/d", "body.spin": "rad/d",
-           "body.obliquity": "deg", "span.step": "d", "span.end": "d", "orbit.step": "d", "integrator.rtol": "",
+           "body.obliquity": "deg", "span.step": "d", "span.end": "d", "orbit.step": "d",
+           "integrator.rtol": "",
            "integrator.atol": "", "integrator.max_step": "", "libration.energy_over_n": "", "model.level": "",
            "integrator.step": "d", "limits.time": "s", "limits.memory": "GB"}
 NEAR = ["0.1", "3", "0.001", "100", "1e4", "1e-4", "2e5", "-3", "0.9", "1e6", "4e-4"]
@@ -61,7 +63,8 @@ BUDGETS = ["0.5", "nan", "inf", "-1", "0", "1e9", "0.2"]
 API_ARGS = ["None", "42", "3.5", "b'scenarios/free_body.toml'", "['scenarios/free_body.toml']", "{}",
             "Path('scenarios/free_body.toml')", "'scenarios/free_body.toml'", "'nope.toml'", "'scenarios'",
             "'scenarios/free_body.toml\\x00'", "object()"]
-API_SETS = ["()", "None", "'span.end=5 d'", "['span.end=5 d']", "[1]", "[b'span.end=5 d']", "['span.end=5 d', None]",
+API_SETS = ["()", "None", "'span.end=5 d'", "['span.end=5 d']", "[1]", "[b'span.end=5 d']",
+            "['span.end=5 d', None]",
             "('span.end=5 d', 'output.plots=false')", "{'span.end': '5 d'}", "['x' * 100000 + '=1']",
             "['span.end=nan d']", "['span.end=5 d', 'body.moments=[1, 1, 1e30]']"]
 
@@ -183,7 +186,8 @@ def case_sweep(rng, args, work):
     vary = rng.sample(VARY, rng.randint(1, 2))
     scheduler = rng.choice(SCHEDULERS)
     command = [sys.executable, "-m", "spinorbit.cli", "sweep", str(ROOT / "scenarios" / "free_body.toml"),
-               "--scheduler", scheduler, "--out", str(out), "--set", 'span.end="5 d"', "--set", "output.plots=false"]
+               "--scheduler", scheduler, "--out", str(out), "--set", 'span.end="5 d"',
+               "--set", "output.plots=false"]
     for item in vary:
         command += ["--vary", item]
     command += ["--force"] if rng.random() < 0.3 else []
@@ -263,7 +267,8 @@ try:
 except SpinorbitError as exc:
     print(str(exc), file=sys.stderr)
     sys.exit(2 if "\\n" not in str(exc) else 5)
-bad = [k for k, v in result.summary.get("comparison", {{}}).items() if isinstance(v, float) and not math.isfinite(v)]
+bad = [k for k, v in result.summary.get("comparison", {{}}).items()
+       if isinstance(v, float) and not math.isfinite(v)]
 json.dumps(result.summary, allow_nan=False)
 sys.exit(6 if bad else 0)
 """
@@ -302,7 +307,8 @@ def main():
     for i in range(args.cases):
         command = commands[i % len(commands)]
         label, outcome, detail = CASES[command](rng, args, out / "work")
-        rows.append({"case": i, "command": command, "input": label[:300], "outcome": outcome, "detail": detail})
+        rows.append({"case": i, "command": command, "input": label[:300], "outcome": outcome,
+                     "detail": detail})
         print(f"{i:4d} {outcome:9s} {label[:90]} {detail[:120]}", flush=True)
     with open(out / "fuzz_cli.csv", "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=list(rows[0]))

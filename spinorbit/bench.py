@@ -73,7 +73,8 @@ def run_method(name, system, t_out, error, budget_s=10.0, floor=1e-14):
                           lambda solution: {"error_rad": error(solution)}, until=enough)
     return [{"method": cls.name, "kind": cls.kind, "order": cls.order,
              "setting": ", ".join(f"{k}={v:.3g}" for k, v in setting.items()),
-             **{k: row[k] for k in COLUMNS[4:]}} for setting, row in zip(settings, rows) if "failed" not in row]
+             **{k: row[k] for k in COLUMNS[4:]}}
+            for setting, row in zip(settings, rows) if "failed" not in row]
 
 
 def bench_system(system, t_out, error, methods=None, budget_s=10.0):
@@ -87,14 +88,16 @@ def bench_system(system, t_out, error, methods=None, budget_s=10.0):
 
 def fastest_at(rows, level, error="error_rad", wall="wall_s"):
     """{method: least ``wall`` over rows whose ``error`` is <= level}."""
-    best = {m: cheapest([r for r in rows if r["method"] == m], error, level, wall) for m in {r["method"] for r in rows}}
+    best = {m: cheapest([r for r in rows if r["method"] == m], error, level, wall)
+            for m in {r["method"] for r in rows}}
     return {m: row[wall] for m, row in best.items() if row is not None}
 
 
 def markdown(rows, title, command, note=""):
     lines = [f"# Work-precision: {title}", "", f"Command: `{command}`. Wall times exclude compilation; "
              "error = max attitude error over the outputs, rad." + (f" {note}" if note else ""), "",
-             "| method | order | setting | wall_s | rhs evaluations | error [rad] |", "|---|---|---|---|---|---|"]
+             "| method | order | setting | wall_s | rhs evaluations | error [rad] |",
+             "|---|---|---|---|---|---|"]
     for r in rows:
         lines.append(f"| {r['method']} | {r['order'] or '-'} | {r['setting']} | {r['wall_s']:.3g} | "
                      f"{r['rhs_evaluations']} | {r['error_rad']:.2e} |")
@@ -153,7 +156,8 @@ def bench_scenario(path, methods=None, out=None, budget_s=10.0, overrides=(), fo
         raise ScenarioError("--budget", budget_s, f"seconds in (0, {MAX_BUDGET_S:g}]")
     scenario = load_scenario(path, overrides)
     if not hasattr(scenario.module, "build"):
-        raise ScenarioError("scene.kind", scenario.kind, "a scene kind whose module defines build() for benchmarking")
+        raise ScenarioError("scene.kind", scenario.kind,
+                            "a scene kind whose module defines build() for benchmarking")
     target = Path(out or Path("runs") / f"{scenario.name}-bench")
     with RunDirectory(target, force=force) as run_dir:     # refuses a bad --out before the ladder runs
         with scenario_errors(scenario):

@@ -48,10 +48,11 @@ class Checkpoint:
     def __init__(self, path, resume=False, settings=None, every_s=30.0):
         self.path, self.resume, self.settings, self.every_s = Path(path), resume, settings, every_s
         self.resumed_outputs = 0             # outputs a resumed run took from the file
-        self.written = {self.path}           # files this checkpoint and its parts may leave: discard() removes them
+        self.written = {self.path}           # files it and its parts may leave: discard() removes them
 
     def part(self, name):
-        """The checkpoint of a scene's further run ``name``: ``<out>.checkpoint-<name>.npz``, removed with this one."""
+        """The checkpoint of a scene's further run ``name``: ``<out>.checkpoint-<name>.npz``, discarded with
+        this one."""
         part = Checkpoint(self.path.with_name(f"{self.path.stem}-{name}{self.path.suffix}"), self.resume,
                           self.settings, self.every_s)
         part.written = self.written
@@ -65,7 +66,8 @@ class Checkpoint:
         stored, outputs = self._read()
         differ = [text for name, text in WHAT_DIFFERS.items() if stored.get(name) != fingerprint[name]]
         if differ:
-            self._refuse(f"a checkpoint of this run (it was written by a run that differs in: {', '.join(differ)})")
+            self._refuse(f"a checkpoint of this run (it was written by a run that differs in: "
+                         f"{', '.join(differ)})")
         rows, dim = fingerprint.get("outputs", (None, outputs.shape[1]))
         if outputs.shape[1] != dim or (rows is not None and outputs.shape[0] > rows):
             self._refuse(f"outputs of at most {rows} rows of {dim} states (it holds {outputs.shape})")
@@ -107,21 +109,24 @@ class Checkpoint:
                 files = sorted(data.files)
                 content = [data[key] for key in keys] if files == keys else None
         except (OSError, ValueError, EOFError, zipfile.BadZipFile) as exc:
-            self._refuse(f"a readable checkpoint ({str(exc).splitlines()[0] if str(exc) else type(exc).__name__})")
+            reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+            self._refuse(f"a readable checkpoint ({reason})")
         if content is None:
             self._refuse(f"a checkpoint spinorbit wrote (it holds {files})")
         text, outputs, digest = str(content[0]), content[1], str(content[2])
         if outputs.dtype != np.float64 or outputs.ndim != 2 or not outputs.shape[0]:
-            self._refuse(f"outputs of float64 states, one row per output (it holds {outputs.dtype} {outputs.shape})")
+            self._refuse(f"outputs of float64 states, one row per output (it holds {outputs.dtype} "
+                         f"{outputs.shape})")
         if digest != _content_hash(text, outputs):
-            self._refuse("a checkpoint as spinorbit wrote it (its content does not match its sha256: edited or damaged)")
+            self._refuse("a checkpoint as spinorbit wrote it (its content does not match its sha256: edited "
+                         "or damaged)")
         if not np.isfinite(outputs).all():
             self._refuse("finite states (it holds NaN or inf)")
         try:
             stored = json.loads(text)
         except ValueError:
             stored = None
-        if not isinstance(stored, dict) or any(not isinstance(stored.get(name), str) for name in WHAT_DIFFERS):
+        if not (isinstance(stored, dict) and all(isinstance(stored.get(name), str) for name in WHAT_DIFFERS)):
             self._refuse("a checkpoint whose fingerprint names every part of the run")
         return stored, outputs
 
@@ -131,7 +136,8 @@ class Checkpoint:
 
 def _content_hash(fingerprint_text, outputs):
     """sha256 of a checkpoint's content: its fingerprint and its outputs (shape and bytes)."""
-    return _sha(fingerprint_text.encode(), str(outputs.shape).encode(), np.ascontiguousarray(outputs).tobytes())
+    return _sha(fingerprint_text.encode(), str(outputs.shape).encode(),
+                np.ascontiguousarray(outputs).tobytes())
 
 
 def fixed_step(rhs, params, t0, y0, t_out, step, checkpoint=None, label=None):
@@ -147,7 +153,8 @@ def fixed_step(rhs, params, t0, y0, t_out, step, checkpoint=None, label=None):
         states[:done] = stored
         print(f"resuming from {checkpoint.path} at output {done} of {t_out.size}", file=sys.stderr)
     saved, last_save = done, time.monotonic()
-    with progress(label, float(t_out[done - 1] if done else t0), float(t_out[-1])) as advance_to:   # what is left
+    left_from = float(t_out[done - 1] if done else t0)
+    with progress(label, left_from, float(t_out[-1])) as advance_to:
         try:
             for part in output_chunks(t_out.size):
                 if part.stop <= done:
@@ -159,7 +166,7 @@ def fixed_step(rhs, params, t0, y0, t_out, step, checkpoint=None, label=None):
                 if checkpoint is not None and time.monotonic() - last_save >= checkpoint.every_s:
                     _save(checkpoint, fingerprint, states[:done])
                     saved, last_save = done, time.monotonic()
-            if checkpoint is not None and done > saved:          # whole: a scene's next run may be interrupted
+            if checkpoint is not None and done > saved:          # whole: a scene's next run may stop
                 _save(checkpoint, fingerprint, states[:done])
                 saved = done
         except BaseException:
@@ -167,8 +174,8 @@ def fixed_step(rhs, params, t0, y0, t_out, step, checkpoint=None, label=None):
                 if done > saved and _save(checkpoint, fingerprint, states[:done]):
                     saved = done
                 if saved:
-                    print(f"checkpoint: {saved} of {t_out.size} outputs in {checkpoint.path} (continue with --resume)",
-                          file=sys.stderr)
+                    print(f"checkpoint: {saved} of {t_out.size} outputs in {checkpoint.path} "
+                          "(continue with --resume)", file=sys.stderr)
             raise
     return states
 
@@ -179,13 +186,13 @@ def _save(checkpoint, fingerprint, outputs):
         checkpoint.save(fingerprint, outputs)
         return True
     except OSError as exc:
-        print(f"checkpoint: could not save {checkpoint.path} ({exc.strerror or exc}); the run goes on without it",
-              file=sys.stderr)
+        print(f"checkpoint: could not save {checkpoint.path} ({exc.strerror or exc}); the run goes on "
+              "without it", file=sys.stderr)
         return False
 
 
 def _chunk(rhs, params, t0, y0, t_out, step):
-    """rk8.fixed_step; an interrupt (Ctrl-C, SIGTERM) that numba wrapped in a SystemError is an interrupt again."""
+    """rk8.fixed_step; an interrupt (Ctrl-C, SIGTERM) numba wrapped in a SystemError is an interrupt again."""
     try:
         return rk8.fixed_step(rhs, params, t0, y0, t_out, step)
     except SystemError as exc:           # the handler ran in a Python callback of the compiled call

@@ -22,13 +22,14 @@ from .errors import IntegrationError, SpinorbitError
 
 SCENARIO_DIR = Path("scenarios")
 EXIT_VERDICT_FAIL = 4
-FORCE_HELP = ("write into an --out holding entries spinorbit did not write: they are kept, except files of the "
-              "names the run writes, which it overwrites")
+FORCE_HELP = ("write into an --out holding entries spinorbit did not write: they are kept, except files of "
+              "the names the run writes, which it overwrites")
 MAX_LISTED_BYTES = 1 << 20          # `list` reads at most this much of a file (a scenario is a few kB)
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(prog="spinorbit", description="Couple orbit and spin (Euler, Theoria motus ch. 16).")
+    parser = argparse.ArgumentParser(prog="spinorbit",
+                                     description="Couple orbit and spin (Euler, Theoria motus ch. 16).")
     parser.add_argument("--quiet", action="store_true", help="no progress bars on stderr")
     sub = parser.add_subparsers(dest="command", required=True)
     run = sub.add_parser("run", help="run a scenario and write a run directory")
@@ -36,22 +37,26 @@ def main(argv=None):
     run.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
                      help="override a scenario key by dotted path (repeatable)")
     run.add_argument("--out", help="run directory (default runs/<scenario name>)")
-    run.add_argument("--strict", action="store_true", help=f"exit {EXIT_VERDICT_FAIL} when the verdict is 'fail'")
+    run.add_argument("--strict", action="store_true",
+                     help=f"exit {EXIT_VERDICT_FAIL} when the verdict is 'fail'")
     run.add_argument("--force", action="store_true", help=FORCE_HELP)
     run.add_argument("--resume", action="store_true",
                      help="continue an interrupted run from <out>.checkpoint.npz (long fixed-step scenes)")
-    sweep = sub.add_parser("sweep", help="run a parameter sweep / ensemble on Dask (local cluster by default)")
+    sweep = sub.add_parser("sweep", help="a parameter sweep / ensemble on Dask (a local cluster by default)")
     sweep.add_argument("scenario")
     sweep.add_argument("--vary", action="append", required=True, metavar="KEY=V1,V2,...",
                        help="values of one key (repeatable; the sweep is their Cartesian product)")
     sweep.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE")
-    sweep.add_argument("--scheduler", default="local", help="'local' (default), 'synchronous' or tcp://host:port")
+    sweep.add_argument("--scheduler", default="local",
+                       help="'local' (default), 'synchronous' or tcp://host:port")
     sweep.add_argument("--out", help="sweep directory (default runs/<scenario name>-sweep)")
     sweep.add_argument("--force", action="store_true", help=FORCE_HELP)
     bench = sub.add_parser("bench", help="work-precision of every suitable integrator on a scene")
     bench.add_argument("scenario")
-    bench.add_argument("--methods", help="comma-separated method names (default: every method that supports the scene)")
-    bench.add_argument("--budget", type=float, default=10.0, help="stop a method's ladder after a run this long, s")
+    bench.add_argument("--methods",
+                       help="comma-separated method names (default: every method that supports the scene)")
+    bench.add_argument("--budget", type=float, default=10.0,
+                       help="stop a method's ladder after a run this long, s")
     bench.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE")
     bench.add_argument("--out", help="output directory (default runs/<scenario name>-bench)")
     bench.add_argument("--force", action="store_true", help=FORCE_HELP)
@@ -126,7 +131,7 @@ def _run(args):
         try:
             run_dir.commit(lambda d: write_run(result, d, painter=paint))
         except SpinorbitError:
-            if not run_dir.staged():                    # nothing of the finished run on disk: keep it elsewhere
+            if not run_dir.staged():                    # none of the finished run on disk: keep it elsewhere
                 _rescue(result, scenario.name)
             raise
         scenario.checkpoint.discard()                   # the run is whole: nothing left to resume
@@ -191,7 +196,8 @@ def _bench(args):
     from .bench import bench_scenario
 
     methods = args.methods.split(",") if args.methods else None
-    rows, paths = bench_scenario(args.scenario, methods, args.out, args.budget, args.overrides, force=args.force)
+    rows, paths = bench_scenario(args.scenario, methods, args.out, args.budget, args.overrides,
+                                 force=args.force)
     print(f"bench: {len(rows)} runs; wrote {', '.join(str(p) for p in paths)}")
     return 0
 
@@ -225,7 +231,8 @@ def _list(folder):
         except (UnicodeDecodeError, ValueError, RecursionError):     # TOMLDecodeError is a ValueError
             scene = {"title": "(not a readable UTF-8 TOML file)"}
         scene = scene if isinstance(scene, dict) else {}
-        kind, title = (" ".join(str(scene.get(key, default)).split()) for key, default in (("kind", "?"), ("title", "")))
+        kind, title = (" ".join(str(scene.get(key, default)).split())
+                       for key, default in (("kind", "?"), ("title", "")))
         print(f"{_printable(path.relative_to(folder)):48s} {kind[:28]:28s} {title[:80]}")
     return 0
 

@@ -48,7 +48,7 @@ from .errors import ScenarioError
 
 MANIFEST = ".spinorbit-manifest.json"
 MAX_MANIFEST_BYTES = 64 << 20
-BESIDE_CHARS = 64              # what the longest sibling adds to out's name (.<name>.checkpoint-<part>.npz.tmp-...)
+BESIDE_CHARS = 64              # the longest sibling's additions (.<name>.checkpoint-<part>.npz.tmp-...)
 KINDS = {stat.S_IFREG: "file", stat.S_IFDIR: "folder", stat.S_IFLNK: "symbolic link", stat.S_IFIFO: "FIFO",
          stat.S_IFSOCK: "socket", stat.S_IFCHR: "device", stat.S_IFBLK: "device"}
 
@@ -60,7 +60,8 @@ class RunDirectory:
         try:
             str(out).encode("utf-8")
         except UnicodeEncodeError as exc:          # undecodable bytes from the command line
-            raise ScenarioError(key, str(out), f"a UTF-8 path (a byte that is not UTF-8 at offset {exc.start})") from None
+            accepted = f"a UTF-8 path (a byte that is not UTF-8 at offset {exc.start})"
+            raise ScenarioError(key, str(out), accepted) from None
         self.key = key
         self.out = Path(os.path.abspath(out))
         if os.path.isdir(self.out):
@@ -85,11 +86,11 @@ class RunDirectory:
             self._check_owner()
             self.foreign = foreign_entries(self.out, self.key)
             if self.foreign and not self.force:
-                raise ScenarioError(self.key, str(self.out),
-                                    f"a new directory or one holding a spinorbit run; it holds {len(self.foreign)} "
-                                    f"entr{'y' if len(self.foreign) == 1 else 'ies'} spinorbit did not write "
-                                    f"({describe(self.foreign)}): choose another {self.key}, or pass --force to "
-                                    "keep them and overwrite only the files the run writes")
+                count = f"{len(self.foreign)} entr{'y' if len(self.foreign) == 1 else 'ies'}"
+                raise ScenarioError(self.key, str(self.out), f"a new directory or one holding a "
+                                    f"spinorbit run; it holds {count} spinorbit did not write "
+                                    f"({describe(self.foreign)}): choose another {self.key}, or pass --force "
+                                    "to keep them and overwrite only the files the run writes")
         except BaseException:
             self._release()
             raise
@@ -138,7 +139,8 @@ class RunDirectory:
         spinorbit's files; then ``<out>.failed-<token>``."""
         try:
             info = os.lstat(self.failed)
-            usable = stat.S_ISDIR(info.st_mode) and info.st_uid == os.geteuid() and not foreign_entries(self.failed)
+            usable = (stat.S_ISDIR(info.st_mode) and info.st_uid == os.geteuid()
+                      and not foreign_entries(self.failed))
         except FileNotFoundError:
             usable = True
         return self.failed if usable else self.failed.with_name(f"{self.failed.name}-{self._token}")
@@ -164,9 +166,9 @@ class RunDirectory:
         if clash:
             elsewhere = target.with_name(f"{target.name}.new-{self._token}")
             self._io(os.replace, staged, elsewhere)
-            raise ScenarioError(self.key, str(target),
-                                f"a directory nothing else writes into during the run: {describe(arrived)} appeared "
-                                f"in it meanwhile, under names the run writes; this run was written to {elsewhere}/")
+            raise ScenarioError(self.key, str(target), f"a directory nothing else writes into during the "
+                                f"run: {describe(arrived)} appeared in it meanwhile, under names the run "
+                                f"writes; this run was written to {elsewhere}/")
         if os.path.lexists(target):
             _copy_mode(target, staged)
             self._io(os.replace, target, self.old)
@@ -213,33 +215,34 @@ class RunDirectory:
         """Take the lock: flock on ``.<name>.lock`` opened without following links; its content (the
         holder's pid) is written only in a regular file of this user with one link."""
         def refuse(why):
-            raise ScenarioError(self.key, str(self.out), f"a directory whose lock file {self.lock} is spinorbit's "
-                                f"own ({why}): remove it, or choose another {self.key}")
+            raise ScenarioError(self.key, str(self.out), f"a directory whose lock file {self.lock} is "
+                                f"spinorbit's own ({why}): remove it, or choose another {self.key}")
         self._make_parent()
         try:
-            fd = os.open(self.lock, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW | os.O_NONBLOCK | os.O_CLOEXEC, 0o644)
+            fd = os.open(self.lock, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW | os.O_NONBLOCK | os.O_CLOEXEC,
+                         0o644)
         except OSError as exc:
             refuse("it is a symbolic link" if os.path.islink(self.lock) else exc.strerror)
         info = os.fstat(fd)
         if not stat.S_ISREG(info.st_mode) or info.st_uid != os.geteuid() or info.st_nlink != 1:
             os.close(fd)
-            refuse(f"it is a {KINDS.get(stat.S_IFMT(info.st_mode), 'special file')}" if not stat.S_ISREG(info.st_mode)
-                   else f"it belongs to uid {info.st_uid}" if info.st_uid != os.geteuid()
-                   else f"it has {info.st_nlink} hard links")
+            refuse(f"it is a {KINDS.get(stat.S_IFMT(info.st_mode), 'special file')}"
+                   if not stat.S_ISREG(info.st_mode) else f"it belongs to uid {info.st_uid}"
+                   if info.st_uid != os.geteuid() else f"it has {info.st_nlink} hard links")
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
             holder = os.pread(fd, 32, 0).decode(errors="replace").strip() or "?"
             os.close(fd)
-            raise ScenarioError(self.key, str(self.out),
-                                f"a directory no other run is writing (process {holder} holds {self.lock.name}): "
-                                f"wait for it, or choose another {self.key}") from None
+            raise ScenarioError(self.key, str(self.out), f"a directory no other run is writing (process "
+                                f"{holder} holds {self.lock.name}): wait for it, or choose another {self.key}"
+                                ) from None
         os.ftruncate(fd, 0)
         os.pwrite(fd, f"{os.getpid()}\n".encode(), 0)
         self._lock_fd = fd
 
     def _make_parent(self):
-        """Create ``out``'s parent; refuse a path under a file, or a name too long for what is written beside."""
+        """Create ``out``'s parent; refuse a path under a file, or a name too long for its siblings."""
         above = next((p for p in self.out.parents if os.path.lexists(p) and not os.path.isdir(p)), None)
         if above is not None:
             raise ScenarioError(self.key, str(self.out), f"a path through folders ({above} is not a folder)")
@@ -249,8 +252,8 @@ class RunDirectory:
         except (OSError, ValueError):
             longest = 255 - BESIDE_CHARS
         if len(self.out.name.encode()) > longest:
-            raise ScenarioError(self.key, str(self.out), f"a name of at most {longest} bytes (spinorbit writes "
-                                f"siblings such as .<name>.new-<pid>-<random> beside it)")
+            raise ScenarioError(self.key, str(self.out), f"a name of at most {longest} bytes (spinorbit "
+                                "writes siblings such as .<name>.new-<pid>-<random> beside it)")
 
     def _release(self):
         if self._lock_fd is not None:
@@ -259,7 +262,7 @@ class RunDirectory:
             self._lock_fd = None
 
     def _check_owner(self):
-        """Refuse an ``out`` that is not a directory, or is another user's (the swap would change its owner)."""
+        """Refuse an ``out`` that is not a directory, or another user's (the swap would change its owner)."""
         try:
             info = os.lstat(self.out)
         except FileNotFoundError:
@@ -268,8 +271,9 @@ class RunDirectory:
             raise ScenarioError(self.key, str(self.out), "a directory (this is a "
                                 f"{KINDS.get(stat.S_IFMT(info.st_mode), 'special file')})")
         if info.st_uid != os.geteuid() and os.geteuid() != 0:
-            raise ScenarioError(self.key, str(self.out), f"a directory of your own (it belongs to uid {info.st_uid}, "
-                                "and a run replaces the directory whole): choose another " + self.key)
+            raise ScenarioError(self.key, str(self.out), f"a directory of your own (it belongs to uid "
+                                f"{info.st_uid}, and a run replaces the directory whole): choose another "
+                                f"{self.key}")
 
     def _repair(self):
         """Finish or undo what a killed run left (we hold the lock, so its writer is gone)."""
@@ -294,7 +298,7 @@ class RunDirectory:
 
 
 def read_manifest(directory):
-    """The manifest of a run directory ({} if there is none, or it is not a regular file spinorbit can read)."""
+    """The manifest of a run directory ({} if there is none, or not a regular file spinorbit can read)."""
     try:
         with _open_regular(Path(directory) / MANIFEST) as f:
             manifest = json.loads(f.read(MAX_MANIFEST_BYTES))

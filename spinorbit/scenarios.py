@@ -134,7 +134,7 @@ class Scenario:
         from .integrators import get_method
 
         with scenario_errors(self):
-            get_method(self["integrator.method"])(**self.integrator_options())   # checks method and options now
+            get_method(self["integrator.method"])(**self.integrator_options())   # checks method and options
 
     def __getitem__(self, key):
         if key not in self.values:
@@ -155,7 +155,9 @@ class Scenario:
         step = self["span.step"] * (1.0 if self.t_end > self.t_start else -1.0)
         n = int(np.floor((self.t_end - self.t_start) / step + 1e-9))
         times = self.t_start + step * np.arange(n + 1)
-        return times if np.isclose(times[-1], self.t_end, rtol=0, atol=1e-9 * abs(step)) else np.append(times, self.t_end)
+        if np.isclose(times[-1], self.t_end, rtol=0, atol=1e-9 * abs(step)):
+            return times
+        return np.append(times, self.t_end)
 
     @property
     def bounds(self):
@@ -175,7 +177,8 @@ class Scenario:
             for name, _ in dotted_items(content, table + "."):
                 if name not in self.schema:
                     accepted = sorted(k for k in self.schema if k.startswith(table + "."))
-                    raise ScenarioError(name, _lookup(self.data, name, Key(type=object)), f"one of the keys {accepted}")
+                    raise ScenarioError(name, _lookup(self.data, name, Key(type=object)),
+                                        f"one of the keys {accepted}")
         for key, spec in self.schema.items():
             if spec.default is REQUIRED and not _has(self.data, key):
                 table = key.split(".")[0]
@@ -198,7 +201,8 @@ class Scenario:
             if not isinstance(value, spec.type) or (spec.type is not bool and isinstance(value, bool)):
                 raise ScenarioError(key, value, spec.accepted())
             if isinstance(value, str) and len(value) > MAX_TEXT:
-                raise ScenarioError(key, value, f"a string of at most {MAX_TEXT} characters ({len(value)} given)")
+                raise ScenarioError(key, value, f"a string of at most {MAX_TEXT} characters "
+                                                f"({len(value)} given)")
             if isinstance(value, (int, float)) and not isinstance(value, bool):
                 spec.check_range(key, finite_float(key, value), value)
             return value
@@ -209,7 +213,8 @@ class Scenario:
             with np.errstate(over="ignore"):
                 length = np.linalg.norm(vector)
             if spec.direction and not 0 < length < math.inf:
-                raise ScenarioError(key, value, f"a direction: {spec.size} numbers, not all zero, with a finite length")
+                raise ScenarioError(key, value, f"a direction: {spec.size} numbers, not all zero, with a "
+                                                "finite length")
             return vector
         return checked_float(key, value, spec)
 
@@ -230,17 +235,18 @@ class Scenario:
         except ScenarioError:
             end = start + checked_float("span.end", end_text, Key(unit="d"))
         if end < start and not getattr(self.module, "BACKWARD", False):
-            raise ScenarioError("span.end", end_text, f"a time after span.start ({self['span.start']}); scene kind "
-                                f"'{self.kind}' runs forward only (backward runs: {', '.join(backward_kinds())})")
+            raise ScenarioError("span.end", end_text, f"a time after span.start ({self['span.start']}); "
+                                f"scene kind '{self.kind}' runs forward only (backward runs: "
+                                f"{', '.join(backward_kinds())})")
         if abs(end - start) < MIN_SPAN_D:
             raise ScenarioError("span.end", end_text, f"a span of at least {MIN_SPAN_D:g} d from span.start")
         return start, end
 
     def counts(self):
-        """{count: items} the span asks for at each step key (output rows, orbit samples, integrator steps ...),
-        the largest where two keys count the same."""
+        """{count: items} the span asks for at each step key (output rows, orbit samples, integrator
+        steps ...), the largest where two keys count the same."""
         counts = {}
-        for key, kind, step in self._count_keys():
+        for _, kind, step in self._count_keys():
             counts[kind] = max(counts.get(kind, 0), abs(self.t_end - self.t_start) / step + 1)
         return counts
 
@@ -251,16 +257,21 @@ class Scenario:
     def estimate(self):
         """{"time_s", "memory_bytes"} of the run, from its counts and the kind's measured costs."""
         counts, cost = self.counts(), self.cost()
-        return {"time_s": counts.get("integrator steps", 0) * cost.step_s
-                + counts.get("adaptive steps (at max_step)", 0) * ADAPTIVE_STEP_S,
-                "memory_bytes": cost.base_bytes + sum(counts.get(kind, 0) * size
-                                                      for kind, size in cost.bytes_per.items())}
+        memory = cost.base_bytes + sum(counts.get(kind, 0) * size for kind, size in cost.bytes_per.items())
+        time = sum(n * self._step_cost(kind) for kind, n in counts.items())
+        return {"time_s": time, "memory_bytes": memory}
+
+    def _step_cost(self, kind):
+        """Seconds per item of a count (0 for those that cost memory only)."""
+        return {"integrator steps": self.cost().step_s,
+                "adaptive steps (at max_step)": ADAPTIVE_STEP_S}.get(kind, 0.0)
 
     def _count_keys(self):
         """(key, count, step) of every step key that sets a count."""
         steps = [(key, spec.count, self.values[key]) for key, spec in self.schema.items()
                  if spec.count and self.values[key] is not None]
-        steps += [(f"integrator.{name}", INTEGRATOR_OPTIONS[name].count, value) for name, value in self._options.items()
+        steps += [(f"integrator.{name}", INTEGRATOR_OPTIONS[name].count, value)
+                  for name, value in self._options.items()
                   if name in INTEGRATOR_OPTIONS and INTEGRATOR_OPTIONS[name].count]
         return steps
 
@@ -268,43 +279,49 @@ class Scenario:
         """Refuse a step that would ask for more rows, samples or steps than LIMITS, or a run the estimate
         says takes longer than limits.time or more memory than limits.memory."""
         span = abs(self.t_end - self.t_start)
-        cost = self.cost()
         for key, kind, step in self._count_keys():
             n = span / step + 1
             if n > LIMITS[kind]:
-                size = cost.bytes_per.get(kind, 0) * n
+                size = self.cost().bytes_per.get(kind, 0) * n
                 memory = f", ~{_bytes(size)} in memory" if size else ""
-                self._refuse(key, step, f"a step giving at most {LIMITS[kind]:,} {kind} over the {span:.6g} d span "
-                                        f"(this one gives {_count(n)}{memory}); lengthen {key} or shorten the span")
-        estimate = self.estimate()
-        time_limit, memory_limit = self["limits.time"], self["limits.memory"] or physical_memory() / 2
+                self._refuse(key, step, f"a step giving at most {LIMITS[kind]:,} {kind} over the "
+                                        f"{span:.6g} d span (this one gives {_count(n)}{memory}); lengthen "
+                                        f"{key} or shorten the span")
         culprits = {kind: (key, step) for key, kind, step in self._count_keys()}
-        if estimate["time_s"] > time_limit:
-            kind = max(("integrator steps", "adaptive steps (at max_step)"), key=lambda k: self.counts().get(k, 0)
-                       * (cost.step_s if k == "integrator steps" else ADAPTIVE_STEP_S))
-            key, step = culprits[kind]
-            each = cost.step_s if kind == "integrator steps" else ADAPTIVE_STEP_S
-            self._refuse(key, step, f"a run the estimate finishes within limits.time = {_duration(time_limit)}: "
-                                    f"{_count(self.counts()[kind])} {kind} at ~{each * 1e6:.3g} us each "
-                                    f"(measured for {self.kind}) is ~{_duration(estimate['time_s'])}; lengthen "
-                                    f"{key}, shorten the span, or raise limits.time")
-        if estimate["memory_bytes"] > memory_limit:
-            kind = max(cost.bytes_per, key=lambda k: self.counts().get(k, 0) * cost.bytes_per[k])
-            items = self.counts().get(kind, 0)
-            if kind not in culprits or items * cost.bytes_per[kind] < cost.base_bytes:
-                self._refuse("limits.memory", memory_limit, f"at least the ~{_bytes(cost.base_bytes)} any run of "
-                                                            f"{self.kind} takes (measured)")
-            key, step = culprits[kind]
-            self._refuse(key, step, f"a run the estimate holds within limits.memory = {_bytes(memory_limit)}: "
-                                    f"{_count(items)} {kind} at ~{_bytes(cost.bytes_per[kind])} "
-                                    f"each (measured for {self.kind}) is ~{_bytes(estimate['memory_bytes'])}; "
-                                    f"lengthen {key}, shorten the span, or raise limits.memory")
+        self._check_time(culprits)
+        self._check_memory(culprits)
+
+    def _check_time(self, culprits):
+        limit, estimate, counts = self["limits.time"], self.estimate()["time_s"], self.counts()
+        if estimate <= limit:
+            return
+        kind = max(counts, key=lambda k: counts[k] * self._step_cost(k))
+        key, step = culprits[kind]
+        self._refuse(key, step, f"a run the estimate finishes within limits.time = {_duration(limit)}: "
+                                f"{_count(counts[kind])} {kind} at ~{self._step_cost(kind) * 1e6:.3g} us "
+                                f"each (measured for {self.kind}) is ~{_duration(estimate)}; lengthen {key}, "
+                                "shorten the span, or raise limits.time")
+
+    def _check_memory(self, culprits):
+        limit, estimate = self["limits.memory"] or physical_memory() / 2, self.estimate()["memory_bytes"]
+        if estimate <= limit:
+            return
+        cost, counts = self.cost(), self.counts()
+        kind = max(cost.bytes_per, key=lambda k: counts.get(k, 0) * cost.bytes_per[k])
+        if kind not in culprits or counts[kind] * cost.bytes_per[kind] < cost.base_bytes:
+            self._refuse("limits.memory", limit, f"at least the ~{_bytes(cost.base_bytes)} any run of "
+                                                 f"{self.kind} takes (measured)")
+        key, step = culprits[kind]
+        self._refuse(key, step, f"a run the estimate holds within limits.memory = {_bytes(limit)}: "
+                                f"{_count(counts[kind])} {kind} at ~{_bytes(cost.bytes_per[kind])} each "
+                                f"(measured for {self.kind}) is ~{_bytes(estimate)}; lengthen {key}, shorten "
+                                "the span, or raise limits.memory")
 
     def _refuse(self, key, value, accepted):
         raise ScenarioError(key, _lookup(self.data, key, Key()) if _has(self.data, key) else value, accepted)
 
     def _check_cycles(self):
-        """Refuse rates (and GM over distance^3) that would make the run follow more than MAX_CYCLES cycles."""
+        """Refuse rates (and GM over distance^3) that would make the run follow over MAX_CYCLES cycles."""
         span = abs(self.t_end - self.t_start)
         rates = [(key, float(np.linalg.norm(self.values[key])), "") for key, spec in self.schema.items()
                  if spec.unit == "rad/d" and self.values[key] is not None]
@@ -312,22 +329,25 @@ class Scenario:
         if moments is not None and np.all(np.abs(moments) > 0):
             a, b, c = (float(m) for m in moments)
             euler = max(abs(b - c) / abs(a), abs(c - a) / abs(b), abs(a - b) / abs(c))   # Euler's equations
-            rates += [("body.moments", rate * euler, f" (the body-frame rate |{key}| x {euler:.3g}, Euler's equations)")
+            rates += [("body.moments", rate * euler,
+                       f" (the body-frame rate |{key}| x {euler:.3g}, Euler's equations)")
                       for key, rate, _ in list(rates) if key.startswith("body.") and euler > 1]
         distance = next((key for key in DISTANCE_KEYS if key in self.values), None)
         if "orbit.gm" in self.values and distance:
             torque_rate = math.sqrt(3 * self.values["orbit.gm"] / self.values[distance] ** 3)
-            rates.append((distance, torque_rate, f" (sqrt(3 orbit.gm/{distance}^3) = {torque_rate:.3g} rad/d)"))
+            rates.append((distance, torque_rate,
+                          f" (sqrt(3 orbit.gm/{distance}^3) = {torque_rate:.3g} rad/d)"))
         for key, rate, how in rates:
             cycles = rate * span / (2 * math.pi)
             if cycles > MAX_CYCLES:
-                raise ScenarioError(key, _lookup(self.data, key, Key()) if _has(self.data, key) else rate,
-                                    f"a value giving at most {MAX_CYCLES:.0e} cycles over the {span:.6g} d span "
-                                    f"(this one gives {cycles:.3g}{how}); change {key} or shorten the span")
+                self._refuse(key, rate, f"a value giving at most {MAX_CYCLES:.0e} cycles over the {span:.6g} "
+                                        f"d span (this one gives {cycles:.3g}{how}); change {key} or shorten "
+                                        "the span")
 
 
 # The library names an argument it cannot use (errors.InputError); the scenario key that sets it:
-ARGUMENT_KEYS = {"method": "integrator.method", "step": "integrator.step", "free_flow": "integrator.free_flow",
+ARGUMENT_KEYS = {"method": "integrator.method", "step": "integrator.step",
+                 "free_flow": "integrator.free_flow",
                  "source": "orbit.source", "bodies": "orbit.bodies", "radius": "orbit.radius", "a": "orbit.a",
                  "e": "orbit.e", "f": "orbit.f", "beta": "orbit.beta", "t_out": "span"}
 
@@ -348,7 +368,8 @@ def scenario_errors(scenario):
         margin = max(first - asked_first, asked_last - last, 0.0)
         low, high = exc.span[0] + margin, exc.span[1] - margin
         fits = (f"a span from {_iso(low)} to {_iso(high)} TDB fits" if high > low else "no span fits")
-        around = f"the run samples the orbit {margin:.3g} d beyond each end of its span, so " if margin else ""
+        around = (f"the run samples the orbit {margin:.3g} d beyond each end of its span, so "
+                  if margin else "")
         raise EphemerisRangeError(exc.source, exc.requested, exc.span,
                                   note=f"{exc.note}; {around}{fits}") from None
 
@@ -359,7 +380,8 @@ def check_depth(data, where, limit=MAX_DEPTH):
     while stack:
         node, depth, name = stack.pop()
         if depth > limit:
-            raise ScenarioError(name or where, "(nested deeper)", f"tables and arrays nested at most {limit} deep")
+            raise ScenarioError(name or where, "(nested deeper)",
+                                f"tables and arrays nested at most {limit} deep")
         if isinstance(node, dict):
             stack.extend((v, depth + 1, f"{name}.{k}" if name else str(k)) for k, v in node.items())
         elif isinstance(node, list):
@@ -406,7 +428,8 @@ def backward_kinds():
 def _toml_datetime_text(key, value):
     """An unquoted TOML date/datetime as ISO text; a time zone makes no sense for TDB."""
     if getattr(value, "tzinfo", None) is not None:
-        raise ScenarioError(key, value.isoformat(), "a TDB time without a time-zone offset, e.g. 2000-01-01T12:00:00")
+        raise ScenarioError(key, value.isoformat(),
+                            "a TDB time without a time-zone offset, e.g. 2000-01-01T12:00:00")
     return value.isoformat()
 
 
@@ -469,7 +492,8 @@ def load_scenario(path, overrides=()):
         raise ScenarioError("--set", overrides, "a list of 'key=value' strings, e.g. ['span.end=10 d']")
     path = Path(path)
     if not _is_utf8(str(path)) or not path.is_file():
-        raise ScenarioError("scenario", str(path), "an existing .toml file with a UTF-8 name (see `spinorbit list`)")
+        raise ScenarioError("scenario", str(path),
+                            "an existing .toml file with a UTF-8 name (see `spinorbit list`)")
     if path.stat().st_size > MAX_FILE_BYTES:
         raise ScenarioError("scenario", str(path), f"a scenario file of at most {MAX_FILE_BYTES:,} bytes "
                                                    f"({path.stat().st_size:,} given)")

@@ -29,7 +29,8 @@ def parse_vary(text):
         raise ScenarioError("--vary", text, "key=value1,value2,... e.g. span.end=10 d,20 d")
     key, values = (s.strip() for s in text.split("=", 1))
     if not key:
-        raise ScenarioError("--vary", text, "key=value1,value2,... with a dotted key, e.g. span.end=10 d,20 d")
+        raise ScenarioError("--vary", text, "key=value1,value2,... with a dotted key, e.g. "
+                                            "span.end=10 d,20 d")
     items = [v.strip() for v in _split_top_level(values) if v.strip()]
     if not items:
         raise ScenarioError(f"--vary {key}", values, "at least one value")
@@ -59,7 +60,8 @@ def run_member(scenario_path, overrides, staged, out_dir):
     try:
         result = run_scenario(scenario_path, overrides)
         write_whole(staged, lambda d: write_run(result, d))
-        record.update(status="ok", verdict=result.summary["verdict"]["result"], **_flat_metrics(result.summary))
+        record.update(status="ok", verdict=result.summary["verdict"]["result"],
+                      **_flat_metrics(result.summary))
     except SpinorbitError as exc:
         record.update(status="failed", error=str(exc))
     except OSError as exc:
@@ -117,7 +119,8 @@ class _scheduler:
                 raise ScenarioError("--scheduler", self.name, f"a Dask scheduler that answers within "
                                     f"{CONNECT_TIMEOUT_S} s ({reason})") from None
         else:
-            raise ScenarioError("--scheduler", self.name, "'local', 'synchronous' or a scheduler address tcp://host:port")
+            raise ScenarioError("--scheduler", self.name,
+                                "'local', 'synchronous' or a scheduler address tcp://host:port")
         return lambda *jobs: self.client.gather(self.client.compute(list(jobs)))
 
     def __exit__(self, *exc):

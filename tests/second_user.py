@@ -1,5 +1,6 @@
 """A second user for attacker tests: ``as_user(fn, *args)`` runs ``fn`` in a forked child as uid/gid
-``OTHER`` (65534, "nobody"), which needs root; ``shared_dir()`` a sticky world-writable folder both can use."""
+``OTHER`` (65534, "nobody"), which needs root; ``shared_dir()`` is a sticky world-writable folder both
+can use."""
 import os
 import pickle
 import tempfile

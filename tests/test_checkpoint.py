@@ -39,7 +39,8 @@ def reference(system):
 
 
 def interrupt_after(monkeypatch, calls, error=RuntimeError):
-    """Make rk8.fixed_step raise ``error`` after ``calls`` calls (None: never); returns the outputs of each call."""
+    """Make rk8.fixed_step raise ``error`` after ``calls`` calls (None: never); returns the outputs of each
+    call."""
     made, chunk = [], rk8.fixed_step
 
     def counted(*args):
@@ -64,12 +65,13 @@ def test_interrupted_run_resumes_bit_identical(system, reference, tmp_path, monk
     with monkeypatch.context() as patch:
         interrupt_after(patch, k)
         with pytest.raises(RuntimeError, match="injected"):
-            fixed_step(coupled.rhs, p, 0.0, y0, T_OUT, STEP, Checkpoint(tmp_path / "run.npz", every_s=every_s))
+            fixed_step(coupled.rhs, p, 0.0, y0, T_OUT, STEP,
+                       Checkpoint(tmp_path / "run.npz", every_s=every_s))
     with np.load(tmp_path / "run.npz") as saved:
         assert saved["outputs"].shape == (k, y0.size)
     made = interrupt_after(monkeypatch, None)
     states = fixed_step(coupled.rhs, p, 0.0, y0, T_OUT, STEP, Checkpoint(tmp_path / "run.npz", resume=True))
-    assert sum(made) == T_OUT.size - k                   # only the outputs the checkpoint lacked were integrated
+    assert sum(made) == T_OUT.size - k                   # only the outputs the checkpoint lacked
     assert np.array_equal(states, reference)
 
 
@@ -83,13 +85,15 @@ def test_checkpoint_of_another_run_is_refused(system, tmp_path, change, named):
     y1 = y0 + (change == "start") * 1e-9
     p1 = coupled.parameters(coupled.FIGURES[1:]) if change == "params" else p
     with pytest.raises(ScenarioError, match=f"--resume: .*differs in: {named}\\)"):
-        fixed_step(coupled.rhs, p1, 0.0, y1, T_OUT[:3], step, Checkpoint(path, resume=True, settings=settings))
+        fixed_step(coupled.rhs, p1, 0.0, y1, T_OUT[:3], step,
+                   Checkpoint(path, resume=True, settings=settings))
 
 
 def test_unreadable_checkpoint_is_refused(system, tmp_path):
     (tmp_path / "run.npz").write_bytes(b"not a checkpoint")
     with pytest.raises(ScenarioError, match="--resume: .*a readable checkpoint"):
-        fixed_step(coupled.rhs, *system[:1], 0.0, system[1], T_OUT[:3], STEP, Checkpoint(tmp_path / "run.npz", True))
+        fixed_step(coupled.rhs, *system[:1], 0.0, system[1], T_OUT[:3], STEP,
+                   Checkpoint(tmp_path / "run.npz", True))
 
 
 @pytest.fixture(scope="module")
@@ -120,7 +124,8 @@ def test_resumed_cli_run_writes_the_uninterrupted_run(uninterrupted, tmp_path, m
 def test_resume_with_no_checkpoint_says_so(tmp_path, capsys):
     assert main(["--quiet", "run", str(SCENE), *SHORT, "--set", "span.end=2 d", "--out", str(tmp_path / "r"),
                  "--resume"]) == 0
-    assert f"no checkpoint at {tmp_path / 'r.checkpoint.npz'}: starting from the beginning" in capsys.readouterr().err
+    said = f"no checkpoint at {tmp_path / 'r.checkpoint.npz'}: starting from the beginning"
+    assert said in capsys.readouterr().err
 
 
 # --- issue 27: a checkpoint is validated like input, and a failing save never loses a finished run ---
@@ -151,7 +156,7 @@ def damage(kind, path, fingerprint, outputs, digest):
         rewrite(path, outputs=wide, fingerprint=fingerprint, sha256=_content_hash(fingerprint, wide))
     elif kind == "edited states":
         edited = outputs.copy()
-        edited[1, 8] += 1.0                               # the Moon's position, 1 km: a valid npz, hash unchanged
+        edited[1, 8] += 1.0                      # the Moon's position, 1 km: a valid npz, hash unchanged
         rewrite(path, outputs=edited, fingerprint=fingerprint, sha256=digest)
     elif kind == "NaN rows":
         nan = outputs.copy()
@@ -172,7 +177,8 @@ def damage(kind, path, fingerprint, outputs, digest):
 
 @pytest.mark.parametrize("kind, says", [
     ("zero bytes", "a readable checkpoint"), ("truncated", "a readable checkpoint"),
-    ("integers", "float64"), ("wrong shape", "of 20 states (it holds (3, 40))"), ("edited states", "does not match its sha256"),
+    ("integers", "float64"), ("wrong shape", "of 20 states (it holds (3, 40))"),
+    ("edited states", "does not match its sha256"),
     ("NaN rows", "finite states"), ("malformed fingerprint", "fingerprint"),
     ("fingerprint missing a part", "fingerprint"), ("written without a hash", "a checkpoint spinorbit wrote"),
     ("a link", "a regular file"),
@@ -228,7 +234,8 @@ def test_discard_removes_only_this_runs_files(system, tmp_path):
     for checkpoint in (main_checkpoint, main_checkpoint.part("tides_off")):
         fixed_step(coupled.rhs, p, 0.0, y0, T_OUT[:3], STEP, checkpoint)
     main_checkpoint.discard()
-    assert sorted(q.name for q in tmp_path.iterdir()) == ["run1.checkpoint-tides_off.npz", "run1.checkpoint.npz"]
+    left = sorted(q.name for q in tmp_path.iterdir())
+    assert left == ["run1.checkpoint-tides_off.npz", "run1.checkpoint.npz"]
 
 
 def test_an_edited_checkpoint_through_the_command_line(tmp_path, capsys, monkeypatch):

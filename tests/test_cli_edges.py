@@ -44,7 +44,8 @@ def test_list_never_opens_a_fifo_or_a_device(tmp_path):
 
 
 @pytest.mark.parametrize("args, key", [
-    ((None,), "scenario"), ((42,), "scenario"), ((b"free_body.toml",), "scenario"), (([FREE_BODY],), "scenario"),
+    ((None,), "scenario"), ((42,), "scenario"), ((b"free_body.toml",), "scenario"),
+    (([FREE_BODY],), "scenario"),
     ((FREE_BODY, "span.end=5 d"), "--set"), ((FREE_BODY, [1]), "--set"), ((FREE_BODY, None), "--set"),
 ])
 def test_run_scenario_with_wrong_python_types_says_so_in_one_line(args, key):
@@ -65,7 +66,8 @@ def test_run_scenario_refuses_overrides_it_would_ignore():
 def test_out_at_a_file_is_refused_in_one_line(tmp_path, capsys, command):
     (tmp_path / "file").write_text("mine\n")
     extra = ["--vary", "integrator.rtol=1e-8", "--scheduler", "synchronous"] if command == "sweep" else []
-    assert main([command, str(FREE_BODY), *extra, "--out", str(tmp_path / "file"), "--set", "span.end=5 d"]) == 2
+    out = str(tmp_path / "file")
+    assert main([command, str(FREE_BODY), *extra, "--out", out, "--set", "span.end=5 d"]) == 2
     assert "expected a directory (this is a file)" in one_line_error(capsys, "--out")
     assert (tmp_path / "file").read_text() == "mine\n"
 
@@ -95,15 +97,15 @@ def test_a_sweep_replaces_its_own_previous_sweep_and_keeps_the_users_files(tmp_p
 
 def test_an_unreachable_scheduler_is_said_in_one_line(tmp_path, capsys, monkeypatch):
     monkeypatch.setattr(sweep, "CONNECT_TIMEOUT_S", 2)
-    code = main(["sweep", str(FREE_BODY), "--vary", "integrator.rtol=1e-8", "--scheduler", "tcp://127.0.0.1:9",
-                 "--out", str(tmp_path / "out"), "--set", "span.end=5 d"])
+    code = main(["sweep", str(FREE_BODY), "--vary", "integrator.rtol=1e-8", "--scheduler",
+                 "tcp://127.0.0.1:9", "--out", str(tmp_path / "out"), "--set", "span.end=5 d"])
     assert code == 2 and "a Dask scheduler that answers within 2 s" in one_line_error(capsys, "--scheduler")
 
 
 def test_a_grid_too_big_is_refused_before_it_is_built(tmp_path, capsys):
     values = ",".join(str(i) for i in range(1000))
-    code = main(["sweep", str(FREE_BODY), "--vary", f"body.moments.0={values}", "--vary", f"span.step={values}",
-                 "--scheduler", "synchronous", "--out", str(tmp_path / "out")])
+    code = main(["sweep", str(FREE_BODY), "--vary", f"body.moments.0={values}", "--vary",
+                 f"span.step={values}", "--scheduler", "synchronous", "--out", str(tmp_path / "out")])
     assert code == 2 and "at most 10,000 members (this one has 1,000,000)" in one_line_error(capsys, "--vary")
     assert not (tmp_path / "out").exists()
 

@@ -20,8 +20,8 @@ from hypothesis import strategies as st
 
 from spinorbit.cli import main
 from spinorbit.errors import ScenarioError
-from spinorbit.schema import dotted_items
 from spinorbit.scenarios import LIMITS, Scenario, load_scenario
+from spinorbit.schema import dotted_items
 
 ROOT = Path(__file__).parents[1]
 SCENE_FILES = {name: ROOT / "scenarios" / f"{name}.toml"
@@ -53,14 +53,14 @@ DATES = st.one_of(
                      "-0001-01-01", "0000-01-01", "2000-01-01T25:00:00", "1e9 yr", "-5 d", "nan d", "inf d",
                      "1e-300 d", "2000-01-01T12:00:00Z", "J2000", "3000000-01-01"]),
     st.datetimes(min_value=datetime.datetime(1, 1, 1)).map(lambda t: t.isoformat()),
-    st.dates(), st.datetimes(timezones=st.just(datetime.timezone.utc)), st.times(),
+    st.dates(), st.datetimes(timezones=st.just(datetime.UTC)), st.times(),
 )
 TEXT = st.one_of(st.text(max_size=40), st.sampled_from(["x" * 20_000, "\x00", "é", "\udce9"]))
 LEAVES = st.one_of(NUMBERS, QUANTITIES, DATES, TEXT, st.booleans())
 VALUES = st.one_of(
     LEAVES,
-    st.recursive(LEAVES, lambda inner: st.lists(inner, max_size=4) | st.dictionaries(st.text(max_size=6), inner,
-                                                                                       max_size=3), max_leaves=8),
+    st.recursive(LEAVES, lambda inner: st.lists(inner, max_size=4)
+                 | st.dictionaries(st.text(max_size=6), inner, max_size=3), max_leaves=8),
     st.integers(min_value=5, max_value=5000).map(nested),
     st.lists(QUANTITIES, min_size=3, max_size=3),
 )
@@ -147,18 +147,21 @@ def test_set_overrides_are_accepted_sanely_or_refused_in_one_line(name, data):
 def test_the_issue_cases_each_name_their_key(capsys):
     """The inputs that used to hang, trace back or run to nonsense (issue 13), through the command line."""
     cases = {
-        'span.end="inf d"': "span.end", 'span.end="1e-300 d"': "span.end", "integrator.atol=1e-300": "integrator.atol",
+        'span.end="inf d"': "span.end", 'span.end="1e-300 d"': "span.end",
+        "integrator.atol=1e-300": "integrator.atol",
         "integrator.atol=-1": "integrator.atol", "integrator.atol=0": "integrator.atol",
         "integrator.rtol=nan": "integrator.rtol", "integrator.rtol=inf": "integrator.rtol",
         "integrator.rtol=10": "integrator.rtol", "integrator.rtol=0": "integrator.rtol",
-        "integrator.rtol=1": "integrator.rtol", 'span.step="1 s"': "span.step", 'span.step="1e-7 d"': "span.step",
-        'span.step="inf d"': "span.step", 'orbit.gm="1e30 km3/s2"': "orbit.gm", 'orbit.radius="inf km"': "orbit.radius",
+        "integrator.rtol=1": "integrator.rtol", 'span.step="1 s"': "span.step",
+        'span.step="1e-7 d"': "span.step", 'span.step="inf d"': "span.step",
+        'orbit.gm="1e30 km3/s2"': "orbit.gm", 'orbit.radius="inf km"': "orbit.radius",
         'orbit.rate="1e9 deg/d"': "orbit.rate", "scene.kind={a = 1}": "scene.kind",
         "integrator.rtol=" + "9" * 5000: "integrator.rtol", "body.moments=[nan, 1, 1]": "body.moments",
         'orbit.radius="1 km"': "orbit.radius", "integrator.max_step=1e-6": "integrator.max_step",
     }
     for assignment in ("force.direction=[0, 0, 0]", "force.direction=[1e300, 1e300, 1e300]"):
-        assert main(["run", str(ROOT / "scenarios" / "p95_symmetric.toml"), "--out", "unused", "--set", assignment]) == 2
+        p95 = str(ROOT / "scenarios" / "p95_symmetric.toml")
+        assert main(["run", p95, "--out", "unused", "--set", assignment]) == 2
         assert capsys.readouterr().err.startswith("error: force.direction: got ")
     for assignment, key in cases.items():
         assert main(["run", str(SCENE_FILES["p93_bounded"]), "--out", "unused", "--set", assignment]) == 2
@@ -167,7 +170,8 @@ def test_the_issue_cases_each_name_their_key(capsys):
 
 
 def test_a_long_key_is_echoed_short(capsys):
-    assert main(["run", str(SCENE_FILES["p93_bounded"]), "--out", "unused", "--set", "x" * 100_000 + "=1"]) == 2
+    long_key = "x" * 100_000 + "=1"
+    assert main(["run", str(SCENE_FILES["p93_bounded"]), "--out", "unused", "--set", long_key]) == 2
     err = capsys.readouterr().err
     assert len(err) < MAX_MESSAGE and "(100000 characters)" in err
 
@@ -180,14 +184,16 @@ def test_non_utf8_bytes_from_the_shell_and_the_file(tmp_path):
     code = ("import sys; from spinorbit.cli import main; "
             "sys.exit(max(main(['run', sys.argv[1], '--out', 'x']), "
             "main(['run', sys.argv[2], '--out', 'x', '--set', sys.argv[3]])))")
-    done = subprocess.run([sys.executable, "-c", code, scene, SCENE_FILES["p93_bounded"], b"scene.title=\xe9"],
-                          cwd=tmp_path, env=env, capture_output=True)
+    done = subprocess.run([sys.executable, "-c", code, scene, SCENE_FILES["p93_bounded"],
+                           b"scene.title=\xe9"], cwd=tmp_path, env=env, capture_output=True, check=False)
     err = done.stderr.decode()
     offset = SCENE_FILES["p93_bounded"].read_bytes().index(b'title = "') + len(b'title = "')
     assert done.returncode == 2 and "Traceback" not in err, err
     assert err.splitlines() == [
-        f"error: {scene}: got 'byte 0xe9 at offset {offset}'; expected a UTF-8 text file (re-save it as UTF-8)",
-        "error: --set: got 'scene.title=\\udce9'; expected UTF-8 text (a byte that is not UTF-8 at offset 12)"]
+        (f"error: {scene}: got 'byte 0xe9 at offset {offset}'; expected a UTF-8 text file "
+         "(re-save it as UTF-8)"),
+        ("error: --set: got 'scene.title=\\udce9'; expected UTF-8 text (a byte that is not UTF-8 at "
+         "offset 12)")]
 
 
 # --- issue 27: the run directory under random user entries; the Python API under random types ------
@@ -229,7 +235,8 @@ def state(path):
 @settings(max_examples=40, deadline=None, derandomize=True, database=None,
           suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(entries=st.lists(st.tuples(st.sampled_from(USER_NAMES), st.sampled_from(USER_KINDS)), max_size=5),
-       during=st.booleans(), force=st.booleans(), writes=st.sampled_from([("summary.json",), ("a.txt", "b/c.txt")]))
+       during=st.booleans(), force=st.booleans(),
+       writes=st.sampled_from([("summary.json",), ("a.txt", "b/c.txt")]))
 def test_nothing_of_the_users_is_lost(tmp_path_factory, entries, during, force, writes):
     """Entries a user puts in --out, before the run or while it computes: refused (one line) or kept, each
     as it was, except with --force the files of the names the run writes itself."""
@@ -263,8 +270,8 @@ def test_nothing_of_the_users_is_lost(tmp_path_factory, entries, during, force, 
 
 
 API_VALUES = st.one_of(st.none(), st.integers(), st.floats(), st.binary(max_size=20), st.text(max_size=20),
-                       st.lists(st.text(max_size=10), max_size=3), st.dictionaries(st.text(max_size=5), st.integers(),
-                                                                                   max_size=2))
+                       st.lists(st.text(max_size=10), max_size=3),
+                       st.dictionaries(st.text(max_size=5), st.integers(), max_size=2))
 
 
 @SETTINGS

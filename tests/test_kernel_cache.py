@@ -32,9 +32,13 @@ print(any("kernels" in p for p in sys.path))
 EULER = [(2 - 3) * 0.2 * 0.3 / 1, (3 - 1) * 0.3 * 0.1 / 2, (1 - 2) * 0.1 * 0.2 / 3]
 
 
+def environment(cache, **env):
+    return {**os.environ, "PYTHONPATH": str(ROOT), "SPINORBIT_CACHE_DIR": str(cache), **env}
+
+
 def run(cache, code=LINK, **env):
-    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=cache.parent, check=False,
-                          env={**os.environ, "PYTHONPATH": str(ROOT), "SPINORBIT_CACHE_DIR": str(cache), **env})
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=cache.parent,
+                          check=False, env=environment(cache, **env))
     return done
 
 
@@ -119,8 +123,8 @@ def test_a_damaged_numba_cache_file_is_never_unpickled_but_compiled_again(cache,
 
 def refusal(cache, **env):
     """The one line `spinorbit cache` prints (exit 2) for ``cache``."""
-    done = subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache"], capture_output=True, text=True, check=False,
-                          env={**os.environ, "PYTHONPATH": str(ROOT), "SPINORBIT_CACHE_DIR": str(cache), **env})
+    done = subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache"], capture_output=True, text=True,
+                          check=False, env=environment(cache, **env))
     lines = done.stderr.strip().splitlines()
     assert done.returncode == 2 and len(lines) == 1, done.stderr
     assert lines[0].startswith(f"error: SPINORBIT_CACHE_DIR: got '{cache}'")
@@ -166,7 +170,8 @@ def test_a_cache_made_by_another_user_is_refused_and_nothing_in_it_runs(tmp_path
                           capture_output=True, text=True, cwd=ROOT, check=False,
                           env={**os.environ, "PYTHONPATH": str(ROOT), "SPINORBIT_CACHE_DIR": str(cache)})
     err = moon.stderr.strip().splitlines()
-    assert moon.returncode == 2 and len(err) == 1 and err[0].startswith(f"error: SPINORBIT_CACHE_DIR: got '{cache}'")
+    assert moon.returncode == 2 and len(err) == 1
+    assert err[0].startswith(f"error: SPINORBIT_CACHE_DIR: got '{cache}'")
     assert not marker.exists()
 
 
@@ -174,10 +179,10 @@ def test_no_fallback_into_a_shared_temporary_directory(tmp_path):
     """Home not writable, no SPINORBIT_CACHE_DIR: refused in one line naming SPINORBIT_CACHE_DIR (once, the
     cache fell back to $TMPDIR/spinorbit-<uid>, which another user could create first)."""
     home = Path("/proc/self/no-home")                       # nothing can be created under /proc
-    done = subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache"], capture_output=True, text=True, check=False,
-                          env={**{k: v for k, v in os.environ.items() if k not in ("SPINORBIT_CACHE_DIR",
-                                                                                    "XDG_CACHE_HOME")},
-                               "HOME": str(home), "TMPDIR": str(tmp_path), "PYTHONPATH": str(ROOT)})
+    env = {k: v for k, v in os.environ.items() if k not in ("SPINORBIT_CACHE_DIR", "XDG_CACHE_HOME")}
+    env.update(HOME=str(home), TMPDIR=str(tmp_path), PYTHONPATH=str(ROOT))
+    done = subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache"], capture_output=True, text=True,
+                          check=False, env=env)
     err = done.stderr.strip().splitlines()
     assert done.returncode == 2 and len(err) == 1 and "set SPINORBIT_CACHE_DIR" in err[0], done.stderr
     assert list(tmp_path.iterdir()) == []
@@ -210,13 +215,14 @@ def test_a_cache_with_one_second_timestamps_loads_what_it_just_wrote(tmp_path, m
 
 
 def test_cache_show_and_clear(cache):
-    show = subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache"], capture_output=True, text=True, check=False,
-                          env={**os.environ, "PYTHONPATH": str(ROOT), "SPINORBIT_CACHE_DIR": str(cache)})
+    show = subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache"], capture_output=True, text=True,
+                          check=False, env=environment(cache))
     assert show.returncode == 0 and f"{cache}/: 1 generated kernel modules, 2 compiled files" in show.stdout
     cleared = subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache", "clear"], capture_output=True,
-                             text=True, check=False, env={**os.environ, "PYTHONPATH": str(ROOT), "SPINORBIT_CACHE_DIR": str(cache)})
+                             text=True, check=False, env=environment(cache))
     assert cleared.returncode == 0 and "removed 3 files" in cleared.stdout
-    assert [p.name for p in (cache / "kernels").iterdir()] == ["numba"] and not list((cache / "kernels" / "numba").iterdir())
+    assert [p.name for p in (cache / "kernels").iterdir()] == ["numba"]
+    assert not list((cache / "kernels" / "numba").iterdir())
     assert linked(cache)[1] == 0                            # compiled afresh
 
 

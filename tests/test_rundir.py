@@ -67,9 +67,10 @@ def test_failed_run_keeps_the_previous_good_run(tmp_path, capsys):
     assert snapshot(out) == before
     failed = tmp_path / "run.failed"
     summary = json.loads((failed / "summary.json").read_text())
-    assert summary["status"] == "failed" and summary["run"]["outputs_written"] == 21    # t = 0, 0.5, ..., 10 d
+    assert summary["status"] == "failed" and summary["run"]["outputs_written"] == 21   # t = 0, 0.5, ... 10 d
     assert read_manifest(failed)["status"] == "failed"
-    assert f"partial output written to {failed}/; the previous run in {out}/ is kept" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    assert f"partial output written to {failed}/; the previous run in {out}/ is kept" in err
 
 
 @pytest.mark.parametrize("name", ["report.md", "omega.png"])
@@ -79,7 +80,8 @@ def test_files_spinorbit_did_not_write_are_refused_up_front(tmp_path, capsys, na
     (out / name).write_text("the user's own file\n")
     assert main(["run", str(P93), "--out", str(out)]) == 2
     err = capsys.readouterr().err.strip()
-    assert len(err.splitlines()) == 1 and err.startswith("error: --out: got ") and name in err and "--force" in err
+    assert len(err.splitlines()) == 1 and err.startswith("error: --out: got ")
+    assert name in err and "--force" in err
     assert snapshot(out) == {name: b"the user's own file\n"}
 
 
@@ -106,7 +108,7 @@ def test_an_edited_output_counts_as_foreign(tmp_path):
 
 
 def test_a_swap_interrupted_between_its_renames_is_finished_by_the_next_run(tmp_path):
-    """Killed after out -> .run.old-N and before .run.new-N -> out: the complete new run is moved into place."""
+    """Killed after out -> .run.old-N and before .run.new-N -> out: the complete new run is moved in."""
     out = tmp_path / "run"
     good_run(out)
     new = tmp_path / ".run.new-999999"
@@ -203,7 +205,8 @@ def test_an_entry_taking_a_name_the_run_writes_is_kept_and_the_run_goes_beside(t
         (out / "summary.json").write_text("my own summary\n")
         run.commit(writer(summary_json="{}\n"))
     (elsewhere,) = tmp_path.glob(f"run.new-{os.getpid()}-*")
-    assert f"this run was written to {elsewhere}/" in one_line(info) and "summary.json (file)" in str(info.value)
+    assert f"this run was written to {elsewhere}/" in one_line(info)
+    assert "summary.json (file)" in str(info.value)
     assert (out / "summary.json").read_text() == "my own summary\n"
     assert (elsewhere / "summary.json").read_text() == "{}\n" and read_manifest(elsewhere)["status"] == "ok"
 
@@ -326,8 +329,9 @@ def test_as_another_user_unreadable_files_are_foreign_and_a_read_only_subfolder_
     inside, beside = as_user(forced_then_again)
     assert inside == [MANIFEST, "secret", "summary.json"]
     assert (out / "secret").read_text() == "root's\n"
-    leftovers = [name for name in beside if ".leftover-" in name]     # the read-only folder it could not empty
-    assert len(leftovers) <= 1 and all((shared / name / "000" / "summary.json").is_file() for name in leftovers)
+    leftovers = [name for name in beside if ".leftover-" in name]     # the read-only folder it kept
+    assert len(leftovers) <= 1
+    assert all((shared / name / "000" / "summary.json").is_file() for name in leftovers)
 
 
 def test_a_writer_failing_half_way_keeps_what_it_wrote_beside_the_good_run(tmp_path, capsys):
@@ -400,7 +404,8 @@ def test_names_a_run_writes_beside_out_cannot_be_planted(tmp_path, shared):
     good_run(shared / "run")
     good_run(shared / "run", summary_json="{}\n")
     Checkpoint(shared / "run.checkpoint.npz").save({"a": "b"}, np.zeros((1, 3)))
-    assert sorted(os.listdir(victim)) == ["summary.json"] and (victim / "summary.json").read_text() == "the victim's\n"
+    assert sorted(os.listdir(victim)) == ["summary.json"]
+    assert (victim / "summary.json").read_text() == "the victim's\n"
     assert (tmp_path / "precious.npz").read_text() == "the victim's\n"
     assert (shared / "run" / "summary.json").read_text() == "{}\n"
 
@@ -418,9 +423,9 @@ def test_a_finished_run_its_out_cannot_take_is_kept_elsewhere(tmp_path, capsys, 
                  "--set", "output.plots=false"])
     err = capsys.readouterr().err.strip().splitlines()
     (rescued,) = tmp_path.glob("spinorbit-free_body-*")
-    assert code == 2 and err == [f"the finished run is written to {rescued}/ instead",
-                                 f"error: --out: got '{tmp_path / 'run'}'; expected a directory spinorbit can write: "
-                                 "No space left on device"]
+    refusal = (f"error: --out: got '{tmp_path / 'run'}'; expected a directory spinorbit can write: "
+               "No space left on device")
+    assert code == 2 and err == [f"the finished run is written to {rescued}/ instead", refusal]
     assert json.loads((rescued / "summary.json").read_text())["verdict"]["result"] == "pass"
 
 

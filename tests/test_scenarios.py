@@ -28,7 +28,8 @@ def base_text():
         (lambda s: s + '\n[body.extra]\nfoo = 1\n', "body.extra.foo", "one of the keys"),
         (lambda s: s.replace('step = "0.5 d"', 'stepp = "0.5 d"'), "span.stepp", "one of the keys"),
         (lambda s: s.replace("[body]", "[bodyy]"), "bodyy", "one of the tables"),
-        (lambda s: s.replace('end = "1073.15 d"', 'end = "1999-01-01T00:00:00"'), "span.end", "a time after span.start"),
+        (lambda s: s.replace('end = "1073.15 d"', 'end = "1999-01-01T00:00:00"'), "span.end",
+         "a time after span.start"),
         (lambda s: s.replace('step = "0.5 d"', 'step = "0.5 km"'), "span.step", "units convertible to 'd'"),
         (lambda s: s.replace('step = "0.5 d"', "step = 0.5"), "span.step", "a quantity with a unit"),
         (lambda s: s.replace('method = "dop853"', 'method = "euler"'), "integrator.method", "one of ["),
@@ -51,7 +52,8 @@ def test_bad_input_gives_one_line_naming_the_key(tmp_path, capsys, edit, key, ac
 
 @pytest.mark.parametrize(
     "moments, accepted",
-    [("[0.4, 0.5, 1.0]", "triangle inequality"), ("[-0.8, 0.9, 1.0]", "positive"), ("[0.9, 0.8, 1.0]", "ordered")],
+    [("[0.4, 0.5, 1.0]", "triangle inequality"), ("[-0.8, 0.9, 1.0]", "positive"),
+     ("[0.9, 0.8, 1.0]", "ordered")],
 )
 def test_non_physical_inertia_is_named(tmp_path, capsys, moments, accepted):
     path = write_scene(tmp_path, P93.read_text().replace("moments = [0.8, 0.9, 1.0]", f"moments = {moments}"))
@@ -76,8 +78,8 @@ def test_set_overrides_by_dotted_path(tmp_path, capsys):
 
 def test_no_traceback_from_the_command_line(tmp_path):
     path = write_scene(tmp_path, base_text().replace('step = "0.5 d"', 'step = "0.5 km"'))
-    proc = subprocess.run([sys.executable, "-m", "spinorbit.cli", "run", str(path)], capture_output=True, text=True,
-                          check=False)
+    proc = subprocess.run([sys.executable, "-m", "spinorbit.cli", "run", str(path)], capture_output=True,
+                          text=True, check=False)
     assert proc.returncode == 2
     assert "Traceback" not in proc.stderr
     assert proc.stderr.strip().splitlines() == [proc.stderr.strip()]
@@ -142,8 +144,8 @@ def refused(capsys, scenario, *sets):
 def test_a_run_longer_than_the_time_limit_is_refused_with_its_estimate(capsys):
     """A 0.0004-d step on the closed Earth-Moon system over its 10 yr: ~9 million steps, hours."""
     err = refused(capsys, COUPLED, "integrator.step=0.0004 d", "span.end=100 yr")
-    assert err.startswith("error: integrator.step: got '0.0004 d'; expected a run the estimate finishes within "
-                          "limits.time = 1 h: 91,312,501 integrator steps at ~")
+    assert err.startswith("error: integrator.step: got '0.0004 d'; expected a run the estimate finishes "
+                          "within limits.time = 1 h: 91,312,501 integrator steps at ~")
     assert "raise limits.time" in err
     from spinorbit.scenarios import load_scenario
 

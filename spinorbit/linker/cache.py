@@ -75,23 +75,23 @@ def kernels_dir():
 
 def _check_private(folder, named):
     info = os.lstat(folder)
+    mode = stat.S_IMODE(info.st_mode)
     why = ("it is not a directory" if not stat.S_ISDIR(info.st_mode)
            else f"{folder} belongs to uid {info.st_uid}" if info.st_uid != os.geteuid()
-           else f"{folder} is writable by others (mode {stat.S_IMODE(info.st_mode):o})" if info.st_mode & 0o022
-           else None)
+           else f"{folder} is writable by others (mode {mode:o})" if mode & 0o022 else None)
     if why:
-        raise InputError(ENVIRONMENT, str(named), f"a private directory for compiled kernels, yours and writable "
-                                                  f"by you only ({why}); set {ENVIRONMENT} to one")
+        raise InputError(ENVIRONMENT, str(named), f"a private directory for compiled kernels, yours and "
+                                                  f"writable by you only ({why}); set {ENVIRONMENT} to one")
 
 
 def _check_above(folder, named):
     info = os.stat(folder)
     others_write = info.st_mode & 0o022 and not info.st_mode & stat.S_ISVTX
     if others_write or info.st_uid not in (0, os.geteuid()):
-        raise InputError(ENVIRONMENT, str(named), f"a private directory for compiled kernels in folders only you "
-                                                  f"(or root) can change ({folder} is "
-                                                  f"{'writable by others' if others_write else 'another user’s'}); "
-                                                  f"set {ENVIRONMENT} to one")
+        what = "writable by others" if others_write else "another user's"
+        raise InputError(ENVIRONMENT, str(named), f"a private directory for compiled kernels in folders only "
+                                                  f"you (or root) can change ({folder} is {what}); set "
+                                                  f"{ENVIRONMENT} to one")
 
 
 def say(message):
@@ -105,7 +105,8 @@ def load_module(name, text):
     found = _read_own(path)
     if found != expected:
         if found is not None:
-            say(f"the compiled-kernel cache entry {path} was damaged (its content does not match its name); rebuilt")
+            say(f"the compiled-kernel cache entry {path} was damaged (its content does not match its name); "
+                "rebuilt")
             remove_compiled(name)
         _write_atomically(path, expected)
     spec = importlib.util.spec_from_file_location(name, path, loader=_VerifiedSource(path, expected))
@@ -279,7 +280,8 @@ class _CheckedFile(IndexDataCacheFile):
 
     def _write_checked(self, path, payload):
         with self._open_for_write(path) as f:
-            f.write(MAGIC + self._version.encode() + b"\n" + hashlib.sha256(payload).hexdigest().encode() + b"\n")
+            digest = hashlib.sha256(payload).hexdigest().encode()
+            f.write(MAGIC + self._version.encode() + b"\n" + digest + b"\n")
             f.write(payload)
 
     def remove(self):

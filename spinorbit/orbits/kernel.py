@@ -56,7 +56,8 @@ def _open_spk(spk_class, path):
     short = [seg for seg in spk.segments if seg.end_i * 8 > size]     # DAF addresses are 8-byte words
     if short or not spk.segments:
         spk.close()
-        detail = f"segment of body {short[0].target} ends at byte {short[0].end_i * 8}" if short else "no segments"
+        detail = (f"segment of body {short[0].target} ends at byte {short[0].end_i * 8}" if short
+                  else "no segments")
         raise InputError("source", str(path), f"{accepted}; this file is truncated or empty "
                                                         f"({size} bytes, {detail})")
     return spk

@@ -31,9 +31,13 @@ from . import common
 from .planar_spin_orbit import forcing_coefficients, kepler_orbit, rigid_body_system, theta_from_quaternions
 
 MARGOT_2007_ARCSEC = (35.8, 2.0)
-RADAR_NOT_INDEPENDENT = ("Margot et al. (2007)'s 35.8\" radar amplitude is not compared: the (B - A)/C used here "
-                         "was inferred from it, so agreement would be circular")
+RADAR_NOT_INDEPENDENT = ("Margot et al. (2007)'s 35.8\" radar amplitude is not compared: the (B - A)/C used "
+                         "here was inferred from it, so agreement would be circular")
 HARMONICS = 6          # fitted harmonics of M; the initial rate sums the linear forced solution to k = 24
+# comparison key -> the fitted term it comes from (k - 1 for the harmonic k, HARMONICS the free libration)
+FITTED_FROM = {"libration_88d_measured_arcsec": 0, "libration_88d_rel_error_vs_linear": 0,
+               "libration_88d_rel_error_vs_series": 0, "libration_88d_cos_term_arcsec": 0, "passed": 0,
+               "libration_44d_measured_arcsec": 1, "free_libration_fitted_arcsec": HARMONICS}
 
 
 def verdict(scenario, comparison):
@@ -84,7 +88,7 @@ def run(scenario):
     t0 = scenario.t_start
     theory = libration_theory(gamma, e)
     k = np.arange(1, theory["g"].size + 1)
-    gamma_dot0 = n * float(np.sum(k * theory["g"]))         # start on the forced solution (gamma(0) = 0 at periapsis)
+    gamma_dot0 = n * float(np.sum(k * theory["g"]))     # on the forced solution (gamma(0) = 0 at periapsis)
     system = rigid_body_system(body.moments, kepler_orbit(gm, a, e, t0), t0, 0.0, 1.5 * n + gamma_dot0)
     t = scenario.output_times()
     solution, point = common.simulate_scenario(scenario, system, t)
@@ -101,9 +105,9 @@ def run(scenario):
     rel_linear = None if measured is None else measured / theory["amplitude_linear"] - 1
     rel_series = None if measured is None else measured / theory["amplitude_series"] - 1
     comparison = {
-        "checks": "88-d (sin M) term of theta - 3/2 M fitted to the 3-D rigid body started in 3:2, vs the linear "
-                  "forced solution (quadrature S_1, w0 correction) within stress.linear_rel_tol and vs "
-                  "Margot et al. 2007's (3/2)(B-A)/C (1 - 11e^2 + 959e^4/48) within stress.series_rel_tol",
+        "checks": "88-d (sin M) term of theta - 3/2 M fitted to the 3-D rigid body started in 3:2, vs the "
+                  "linear forced solution (quadrature S_1, w0 correction) within stress.linear_rel_tol and "
+                  "vs Margot et al. 2007's (3/2)(B-A)/C (1 - 11e^2 + 959e^4/48) within stress.series_rel_tol",
         "b_minus_a_over_c": gamma,
         "libration_88d_measured_arcsec": None if measured is None else measured / ARCSEC,
         "libration_88d_linear_theory_arcsec": theory["amplitude_linear"] / ARCSEC,
@@ -115,7 +119,8 @@ def run(scenario):
         "libration_44d_linear_theory_arcsec": float(abs(theory["g"][1]) / ARCSEC),
         "free_libration_fitted_arcsec": float(math.hypot(coef[-2], coef[-1]) / ARCSEC) if keep[-1] else None,
         "free_libration_period_linear_yr": 2 * math.pi / w0 / 365.25,
-        "S1_quadrature": theory["S1"], "S1_series_e4": 1 - 11 * e**2 + 959 * e**4 / 48, "H_quadrature": theory["H"],
+        "S1_quadrature": theory["S1"], "S1_series_e4": 1 - 11 * e**2 + 959 * e**4 / 48,
+        "H_quadrature": theory["H"],
         "margot_2007_radar_arcsec": MARGOT_2007_ARCSEC[0],
         "margot_2007_radar_sigma_arcsec": MARGOT_2007_ARCSEC[1],
         "margot_2007_radar_independent": False,
@@ -125,14 +130,13 @@ def run(scenario):
     }
     refused = refusals(names, np.append(n * np.arange(1, HARMONICS + 1), w0), abs(dt[-1]))
     not_measured = {f"comparison.{key}": f"not fitted: the {names[k]} {refused[names[k]]}"
-                    for key, k in (("libration_88d_measured_arcsec", 0), ("libration_88d_rel_error_vs_linear", 0),
-                                   ("libration_88d_rel_error_vs_series", 0), ("libration_88d_cos_term_arcsec", 0),
-                                   ("passed", 0), ("libration_44d_measured_arcsec", 1),
-                                   ("free_libration_fitted_arcsec", HARMONICS)) if names[k] in refused}
+                    for key, k in FITTED_FROM.items() if names[k] in refused}
     table = common.attitude_table(solution)
     table["libration"] = lib * common.u().rad
     figures = {"libration": common.plot_series(dt[dt < 440], lib[dt < 440] / ARCSEC, "days from periapsis",
                                                "theta - 3/2 M [arcsec]")}
-    summary = {"comparison": comparison, "run": point, **({"not_measured": not_measured} if not_measured else {})}
+    summary = {"comparison": comparison, "run": point}
+    if not_measured:
+        summary["not_measured"] = not_measured
     return common.result(scenario, table, summary, figures, solution)
 
