@@ -1,51 +1,76 @@
-"""Fuzz the command line: mutated scenes run through `spinorbit run`, each outcome classified.
+"""Fuzz the command line and the Python API: mutated inputs through `run`, `sweep`, `bench`, `list` and
+``spinorbit.run_scenario``, each outcome classified.
 
-    python benchmarks/fuzz_cli.py [--cases 120] [--seed 13] [--timeout 120] [--out runs/fuzz] [--near]
+    python benchmarks/fuzz_cli.py [--cases 200] [--seed 27] [--timeout 180] [--out runs/fuzz]
+                                  [--commands run,sweep,bench,list,api] [--near]
 
-Mutations of four scenes (p93_bounded, free_body, p96_earthlike, moon_libration on a short span):
-wrong types, NaN/inf/huge/zero numbers, wrong units, bad dates, long strings, non-UTF-8 bytes,
-deep nesting, integers past Python's digit limit, as file edits and as ``--set``; with
-``--near``, numbers (plausible and extreme) in each key's own unit, which probe the ranges and
-run.  Outcomes:
-``error`` (exit 2, one stderr line), ``ok`` (exit 0, strict JSON summary without NaN),
-``failed`` (exit 3), and the bad ones: ``traceback``, ``hang`` (timeout), ``nan`` (exit 0 with a
-non-finite summary), ``noisy`` (exit 2 with more than one line), ``other``.  Writes
-``<out>/fuzz_cli.csv`` and prints the counts.  Not a test: each run pays the start-up.
+Mutations: scene values (wrong types, NaN/inf/huge/zero numbers, wrong units, bad dates, long strings,
+non-UTF-8 bytes, deep nesting, integers past Python's digit limit; as file edits and as ``--set``;
+with ``--near``, numbers in each key's own unit, which probe the ranges and run), output directories
+(a file, a FIFO, a dangling link, a folder holding foreign files, links, sockets or FIFOs, names with
+glob characters, names too long, a path under a file), ``--vary`` grids, ``--methods``/``--budget``,
+scheduler addresses, folders to list (FIFOs, links to devices, binary and huge files), and Python
+objects of every type passed to ``run_scenario``.  Outcomes: ``error`` (exit 2, one stderr line),
+``ok`` (exit 0; a run's summary is strict JSON without NaN and its files are there), ``failed``
+(exit 3 with one error line, or a sweep's exit 1), and the bad ones: ``traceback``, ``hang``
+(timeout), ``killed`` (a signal), ``nan`` (exit 0 with a non-finite or missing result), ``noisy``
+(exit 2 with more than one line), ``other``.  Writes ``<out>/fuzz_cli.csv`` and prints the counts.
+Not a test: each case pays the start-up of a process.
 """
 import argparse
 import csv
 import json
+import os
 import random
+import shutil
+import socket
 import subprocess
 import sys
+import time
 from collections import Counter
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 SHORT = {"p93_bounded": ['span.end="20 d"'], "free_body": ['span.end="20 d"'],
          "p96_earthlike": ['span.end="5 d"'],
-         "moon_libration": ['span.start="2000-01-01T12:00:00"', 'span.end="4 d"', "model.level=1"]}
+         "moon_libration": ['span.start="2000-01-01T12:00:00"', 'span.end="4 d"', "model.level=1"],
+         "stress/coupled_conservation": ['span.end="4 d"', 'span.step="1 d"']}
 KEYS = {"p93_bounded": ["orbit.gm", "orbit.radius", "orbit.rate", "body.moments", "libration.energy_over_n"],
         "free_body": ["body.moments", "body.omega0", "body.attitude0"],
         "p96_earthlike": ["body.spin", "body.obliquity", "orbit.gm", "orbit.radius", "orbit.rate"],
-        "moon_libration": ["orbit.source", "orbit.step", "model.level"]}
+        "moon_libration": ["orbit.source", "orbit.step", "model.level"],
+        "stress/coupled_conservation": ["integrator.step", "model.figure_figure"]}
 COMMON = ["span.start", "span.end", "span.step", "integrator.rtol", "integrator.atol", "integrator.max_step",
-          "integrator.method", "scene.kind", "scene.title", "output.plots"]
+          "integrator.method", "scene.kind", "scene.title", "output.plots", "limits.time", "limits.memory"]
 NUMBERS = ["0", "-1", "1", "nan", "inf", "-inf", "1e-300", "1e300", "1e999", "10", "0.5", "1e-7", "9" * 5000]
-UNITS = ["", "d", "s", "yr", "km", "deg", "rad/d", "deg/d", "km3/s2", "foo"]
+UNITS = ["", "d", "s", "yr", "km", "deg", "rad/d", "deg/d", "km3/s2", "GB", "h", "foo"]
 TEXTS = ['"2000-13-01"', '"1899-12-31"', '"9999-12-31T23:59:59"', '"x"', '"' + "y" * 20000 + '"', "{a = 1}",
-         "[1, 2]", "[" * 2000 + "]" * 2000, "true", '"de421"', '"/nonexistent.bsp"', '"rebound"']
-
-
-# The key's own unit, so that a value passes the unit check and probes the key's range.
+         "[1, 2]", "[" * 2000 + "]" * 2000, "true", '"de421"', '"/nonexistent.bsp"', '"rebound"',
+         "[1, 1, 1e30]"]
 UNIT_OF = {"orbit.gm": "km3/s2", "orbit.radius": "km", "orbit.rate": "deg/d", "body.spin": "rad/d",
-           "body.obliquity": "deg", "span.step": "d", "span.end": "d", "orbit.step": "d", "integrator.rtol": "",
-           "integrator.atol": "", "integrator.max_step": "", "libration.energy_over_n": "", "model.level": ""}
-NEAR = ["0.1", "3", "0.001", "100", "1e4", "1e-4", "2e5", "-3", "0.9", "1e6"]
+           "body.obliquity": "deg", "span.step": "d", "span.end": "d", "orbit.step": "d",
+           "integrator.rtol": "",
+           "integrator.atol": "", "integrator.max_step": "", "libration.energy_over_n": "", "model.level": "",
+           "integrator.step": "d", "limits.time": "s", "limits.memory": "GB"}
+NEAR = ["0.1", "3", "0.001", "100", "1e4", "1e-4", "2e5", "-3", "0.9", "1e6", "4e-4"]
+OUTS = ["fresh", "nested", "file", "fifo", "dangling link", "link to a folder", "foreign files", "glob [1]",
+        "too long", "under a file", "socket inside", "fifo inside", "empty folder inside", "previous run"]
+VARY = ['integrator.rtol=1e-8,1e-10', 'span.end="5 d","6 d"', "body.moments.0=nan,1", "x.y=1,2",
+        "integrator.rtol=", "=1", "span.step=" + ",".join(["1 d"] * 40), 'integrator.method="rk8","euler"']
+SCHEDULERS = ["synchronous", "synchronous", "tcp://127.0.0.1:9", "tcp://", "udp://x", "local2"]
+METHODS = [None, "dop853", "rk8,rk4", "euler", "", "rk8,rk8", "strang"]
+BUDGETS = ["0.5", "nan", "inf", "-1", "0", "1e9", "0.2"]
+API_ARGS = ["None", "42", "3.5", "b'scenarios/free_body.toml'", "['scenarios/free_body.toml']", "{}",
+            "Path('scenarios/free_body.toml')", "'scenarios/free_body.toml'", "'nope.toml'", "'scenarios'",
+            "'scenarios/free_body.toml\\x00'", "object()"]
+API_SETS = ["()", "None", "'span.end=5 d'", "['span.end=5 d']", "[1]", "[b'span.end=5 d']",
+            "['span.end=5 d', None]",
+            "('span.end=5 d', 'output.plots=false')", "{'span.end': '5 d'}", "['x' * 100000 + '=1']",
+            "['span.end=nan d']", "['span.end=5 d', 'body.moments=[1, 1, 1e30]']"]
 
 
-def mutation(rng, scene, near):
-    """One (--set list, file edit or None) mutation; ``near``: a plausible number in the key's own unit."""
+def scene_mutation(rng, scene, near):
+    """One (--set list, file edit or None) mutation of a scene's values."""
     key = rng.choice(KEYS[scene] + COMMON)
     if near and key in UNIT_OF:
         number = rng.choice(NEAR + NUMBERS[:9])
@@ -62,63 +87,236 @@ def mutation(rng, scene, near):
     return [f"{key}={value}"], None
 
 
-def run_case(scene, sets, junk, out, timeout):
-    path = ROOT / "scenarios" / f"{scene}.toml"
-    if junk is not None:
-        raw = path.read_bytes()
-        at = raw.index(b'title = "') + 9
-        path = out / f"{scene}_junk.toml"
-        path.write_bytes(raw[:at] + junk + raw[at:])
-    run_dir = out / "run"
-    command = [sys.executable, "-m", "spinorbit.cli", "run", str(path), "--out", str(run_dir), "--force",
-               "--set", "output.plots=false", "--set", "integrator.estimate_error=false"]
-    for assignment in SHORT[scene] + sets:
-        command += ["--set", assignment]
-    try:
-        done = subprocess.run(command, cwd=ROOT, capture_output=True, timeout=timeout)
-    except subprocess.TimeoutExpired:
-        return "hang", ""
+def make_out(kind, work):
+    """An --out of the given kind under ``work`` (emptied first); returns its path."""
+    shutil.rmtree(work, ignore_errors=True)
+    work.mkdir(parents=True)
+    out = work / "out"
+    if kind == "nested":
+        out = work / "a" / "b" / "out"
+    elif kind == "file":
+        out.write_text("a file of the user's\n")
+    elif kind == "fifo":
+        os.mkfifo(out)
+    elif kind == "dangling link":
+        os.symlink(work / "nowhere", out)
+    elif kind == "link to a folder":
+        (work / "real").mkdir()
+        os.symlink(work / "real", out)
+    elif kind == "glob [1]":
+        out = work / "out[1]"
+        (work / "out1").mkdir()
+        (work / "out1" / "keep.txt").write_text("keep\n")
+    elif kind == "too long":
+        out = work / ("x" * 300)
+    elif kind == "under a file":
+        (work / "file").write_text("x")
+        out = work / "file" / "out"
+    elif kind in ("foreign files", "socket inside", "fifo inside", "empty folder inside"):
+        out.mkdir()
+        if kind == "foreign files":
+            (out / "notes.txt").write_text("mine\n")
+        elif kind == "socket inside":
+            server = socket.socket(socket.AF_UNIX)
+            server.bind(str(out / "s"))
+            server.close()
+        elif kind == "fifo inside":
+            os.mkfifo(out / "summary.json")
+        else:
+            (out / "empty").mkdir()
+    return out
+
+
+def classify(done, out, check_summary):
     err = done.stderr.decode(errors="replace").strip()
+    lines = err.splitlines()
     if "Traceback" in err:
-        return "traceback", err.splitlines()[-1]
+        return "traceback", lines[-1][:300]
+    if done.returncode < 0:
+        return "killed", f"signal {-done.returncode}"
     if done.returncode == 2:
-        return ("error" if len(err.splitlines()) == 1 else "noisy"), err[:300]
-    if done.returncode == 3:
-        return "failed", err.splitlines()[0][:300] if err else ""
+        return ("error" if len(lines) == 1 else "noisy"), err[:300]
+    if done.returncode in (1, 3):
+        return "failed", lines[-1][:300] if lines else ""
     if done.returncode == 0:
-        try:
-            json.loads((run_dir / "summary.json").read_text(),
-                       parse_constant=lambda c: (_ for _ in ()).throw(ValueError(c)))
-        except ValueError as exc:
-            return "nan", str(exc)
+        if check_summary:
+            try:
+                json.loads((out / "summary.json").read_text(),
+                           parse_constant=lambda c: (_ for _ in ()).throw(ValueError(c)))
+            except (OSError, ValueError) as exc:
+                return "nan", str(exc)[:300]
         return "ok", ""
     return "other", f"exit {done.returncode}: {err[:300]}"
 
 
+def execute(command, timeout):
+    try:
+        return subprocess.run(command, cwd=ROOT, capture_output=True, timeout=timeout, check=False,
+                              env={**os.environ, "PYTHONPATH": str(ROOT), "SPINORBIT_QUIET": "1"})
+    except subprocess.TimeoutExpired:
+        return None
+
+
+def case_run(rng, args, work):
+    scene = rng.choice(sorted(SHORT))
+    sets, junk = scene_mutation(rng, scene, args.near) if rng.random() < 0.8 else ([], None)
+    path = ROOT / "scenarios" / f"{scene}.toml"
+    if junk is not None:
+        raw = path.read_bytes()
+        at = raw.index(b'title = "') + 9
+        path = work.parent / f"{scene.replace('/', '_')}_junk.toml"
+        path.write_bytes(raw[:at] + junk + raw[at:])
+    out_kind = rng.choice(OUTS) if rng.random() < 0.4 else "previous run"
+    out = make_out(out_kind, work)
+    flags = rng.sample(["--force", "--resume", "--strict"], rng.randint(0, 2))
+    command = [sys.executable, "-m", "spinorbit.cli", "run", str(path), "--out", str(out), *flags,
+               "--set", "output.plots=false", "--set", "integrator.estimate_error=false"]
+    for assignment in SHORT[scene] + sets:
+        command += ["--set", assignment]
+    done = execute(command, args.timeout)
+    label = f"{scene} {' '.join(s[:60] for s in sets)} {junk or ''} out={out_kind} {' '.join(flags)}"
+    if done is None:
+        return label, "hang", ""
+    return label, *classify(done, out, done.returncode == 0)
+
+
+def case_sweep(rng, args, work):
+    out_kind = rng.choice(OUTS) if rng.random() < 0.3 else "fresh"
+    out = make_out(out_kind, work)
+    vary = rng.sample(VARY, rng.randint(1, 2))
+    scheduler = rng.choice(SCHEDULERS)
+    command = [sys.executable, "-m", "spinorbit.cli", "sweep", str(ROOT / "scenarios" / "free_body.toml"),
+               "--scheduler", scheduler, "--out", str(out), "--set", 'span.end="5 d"',
+               "--set", "output.plots=false"]
+    for item in vary:
+        command += ["--vary", item]
+    command += ["--force"] if rng.random() < 0.3 else []
+    done = execute(command, args.timeout)
+    label = f"sweep {' '.join(v[:40] for v in vary)} {scheduler} out={out_kind}"
+    if done is None:
+        return label, "hang", ""
+    outcome, detail = classify(done, out, False)
+    if outcome == "ok" and not (out / "sweep.csv").is_file():
+        return label, "nan", "exit 0 without sweep.csv"
+    return label, outcome, detail
+
+
+def case_bench(rng, args, work):
+    out_kind = rng.choice(OUTS) if rng.random() < 0.3 else "fresh"
+    out = make_out(out_kind, work)
+    scene = rng.choice(["free_body", "p93_bounded"])
+    methods, budget = rng.choice(METHODS), rng.choice(BUDGETS)
+    command = [sys.executable, "-m", "spinorbit.cli", "bench", str(ROOT / "scenarios" / f"{scene}.toml"),
+               "--budget", budget, "--out", str(out), "--set", 'span.end="5 d"']
+    command += ["--methods", methods] if methods is not None else []
+    sets, _ = scene_mutation(rng, scene, args.near) if rng.random() < 0.3 else ([], None)
+    for assignment in sets:
+        command += ["--set", assignment]
+    done = execute(command, args.timeout)
+    label = f"bench {scene} methods={methods} budget={budget} out={out_kind} {' '.join(s[:40] for s in sets)}"
+    if done is None:
+        return label, "hang", ""
+    outcome, detail = classify(done, out, False)
+    if outcome == "ok" and not (out / "work_precision.csv").is_file():
+        return label, "nan", "exit 0 without work_precision.csv"
+    return label, outcome, detail
+
+
+def case_list(rng, args, work):
+    shutil.rmtree(work, ignore_errors=True)
+    folder = work / "scenarios"
+    folder.mkdir(parents=True)
+    made = []
+    for i in range(rng.randint(1, 5)):
+        kind = rng.choice(["good", "fifo", "zero", "binary", "huge", "deep", "dangling", "loop", "dir.toml"])
+        path = folder / f"{i}_{kind}.toml"
+        if kind == "good":
+            path.write_text((ROOT / "scenarios" / "free_body.toml").read_text())
+        elif kind == "fifo":
+            os.mkfifo(path)
+        elif kind == "zero":
+            os.symlink("/dev/zero", path)
+        elif kind == "binary":
+            path.write_bytes(bytes(rng.randrange(256) for _ in range(200)))
+        elif kind == "huge":
+            path.write_bytes(b"#" * (3 << 20))
+        elif kind == "deep":
+            path.write_text("x = " + "[" * 5000 + "]" * 5000 + "\n")
+        elif kind == "dangling":
+            os.symlink(folder / "nowhere.toml", path)
+        elif kind == "loop":
+            os.symlink(folder, folder / f"{i}_loop")
+        else:
+            path.mkdir()
+        made.append(kind)
+    target = rng.choice([folder, folder, work / "missing", folder / f"0_{made[0]}.toml"])
+    done = execute([sys.executable, "-m", "spinorbit.cli", "list", str(target)], args.timeout)
+    label = f"list {','.join(made)} target={target.name}"
+    if done is None:
+        return label, "hang", ""
+    return label, *classify(done, target, False)
+
+
+API = """
+import math, json, sys
+from pathlib import Path
+import spinorbit
+from spinorbit.errors import SpinorbitError
+try:
+    result = spinorbit.run_scenario({scenario}, {overrides})
+except SpinorbitError as exc:
+    print(str(exc), file=sys.stderr)
+    sys.exit(2 if "\\n" not in str(exc) else 5)
+bad = [k for k, v in result.summary.get("comparison", {{}}).items()
+       if isinstance(v, float) and not math.isfinite(v)]
+json.dumps(result.summary, allow_nan=False)
+sys.exit(6 if bad else 0)
+"""
+
+
+def case_api(rng, args, work):
+    scenario, overrides = rng.choice(API_ARGS), rng.choice(API_SETS)
+    if scenario == "'scenarios/free_body.toml'" and overrides in ("()", "None"):
+        overrides = "['span.end=5 d']"
+    done = execute([sys.executable, "-c", API.format(scenario=scenario, overrides=overrides)], args.timeout)
+    label = f"run_scenario({scenario[:40]}, {overrides[:40]})"
+    if done is None:
+        return label, "hang", ""
+    if done.returncode == 6:
+        return label, "nan", "non-finite comparison"
+    return label, *classify(done, work, False)
+
+
+CASES = {"run": case_run, "sweep": case_sweep, "bench": case_bench, "list": case_list, "api": case_api}
+
+
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("--cases", type=int, default=120)
-    parser.add_argument("--seed", type=int, default=13)
-    parser.add_argument("--timeout", type=float, default=120.0)
+    parser.add_argument("--cases", type=int, default=200)
+    parser.add_argument("--seed", type=int, default=27)
+    parser.add_argument("--timeout", type=float, default=180.0)
     parser.add_argument("--out", default="runs/fuzz")
+    parser.add_argument("--commands", default="run,sweep,bench,list,api")
     parser.add_argument("--near", action="store_true", help="plausible numbers in each key's own unit")
     args = parser.parse_args()
     out = Path(args.out).resolve()
     out.mkdir(parents=True, exist_ok=True)
     rng = random.Random(args.seed)
-    rows = []
+    commands = args.commands.split(",")
+    rows, start = [], time.monotonic()
     for i in range(args.cases):
-        scene = rng.choice(sorted(SHORT))
-        sets, junk = mutation(rng, scene, args.near)
-        outcome, detail = run_case(scene, sets, junk, out, args.timeout)
-        rows.append({"case": i, "scene": scene, "set": " ".join(s[:80] for s in sets),
-                     "junk": junk, "outcome": outcome, "detail": detail})
-        print(f"{i:4d} {outcome:9s} {scene:15s} {rows[-1]['set'][:60]} {junk or ''} {detail[:120]}", flush=True)
+        command = commands[i % len(commands)]
+        label, outcome, detail = CASES[command](rng, args, out / "work")
+        rows.append({"case": i, "command": command, "input": label[:300], "outcome": outcome,
+                     "detail": detail})
+        print(f"{i:4d} {outcome:9s} {label[:90]} {detail[:120]}", flush=True)
     with open(out / "fuzz_cli.csv", "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=list(rows[0]))
         writer.writeheader()
         writer.writerows(rows)
-    print(dict(Counter(r["outcome"] for r in rows)))
+    counts = Counter((r["command"], r["outcome"]) for r in rows)
+    print(f"{len(rows)} cases in {time.monotonic() - start:.0f} s:",
+          {f"{c}/{o}": n for (c, o), n in sorted(counts.items())})
 
 
 if __name__ == "__main__":

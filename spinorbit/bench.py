@@ -29,6 +29,7 @@ from .integrators import METHODS, get_method
 
 COLUMNS = ("method", "kind", "order", "setting", "wall_s", "rhs_evaluations", "steps", "error_rad")
 LEVELS = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12)
+MAX_BUDGET_S = 3600.0           # --budget: the longest run a method's ladder may take
 
 
 def time_scale(system):
@@ -76,7 +77,8 @@ def run_method(name, system, t_out, error, budget_s=10.0, floor=1e-14):
                           lambda solution: {"error_rad": error(solution)}, until=enough)
     return [{"method": cls.name, "kind": cls.kind, "order": cls.order,
              "setting": ", ".join(f"{k}={v:.3g}" for k, v in setting.items()),
-             **{k: row[k] for k in COLUMNS[4:]}} for setting, row in zip(settings, rows) if "failed" not in row]
+             **{k: row[k] for k in COLUMNS[4:]}}
+            for setting, row in zip(settings, rows) if "failed" not in row]
 
 
 def bench_system(system, t_out, error, methods=None, budget_s=10.0):
@@ -90,14 +92,16 @@ def bench_system(system, t_out, error, methods=None, budget_s=10.0):
 
 def fastest_at(rows, level, error="error_rad", wall="wall_s"):
     """{method: least ``wall`` over rows whose ``error`` is <= level}."""
-    best = {m: cheapest([r for r in rows if r["method"] == m], error, level, wall) for m in {r["method"] for r in rows}}
+    best = {m: cheapest([r for r in rows if r["method"] == m], error, level, wall)
+            for m in {r["method"] for r in rows}}
     return {m: row[wall] for m, row in best.items() if row is not None}
 
 
 def markdown(rows, title, command, note=""):
     lines = [f"# Work-precision: {title}", "", f"Command: `{command}`. Wall times exclude compilation; "
              "error = max attitude error over the outputs, rad." + (f" {note}" if note else ""), "",
-             "| method | order | setting | wall_s | rhs evaluations | error [rad] |", "|---|---|---|---|---|---|"]
+             "| method | order | setting | wall_s | rhs evaluations | error [rad] |",
+             "|---|---|---|---|---|---|"]
     for r in rows:
         lines.append(f"| {r['method']} | {r['order'] or '-'} | {r['setting']} | {r['wall_s']:.3g} | "
                      f"{r['rhs_evaluations']} | {r['error_rad']:.2e} |")
@@ -145,20 +149,30 @@ def write(rows, out, title, command, note=""):
     return paths
 
 
-def bench_scenario(path, methods=None, out=None, budget_s=10.0, overrides=()):
-    """Load a scenario, build its system and write the work-precision table; returns (rows, paths)."""
+def bench_scenario(path, methods=None, out=None, budget_s=10.0, overrides=(), force=False):
+    """Load a scenario, build its system and write the work-precision table into the run directory ``out``
+    (spinorbit.rundir: a previous table replaced whole, files spinorbit did not write refused unless
+    ``force``); returns (rows, paths)."""
+    from .rundir import RunDirectory
     from .scenarios import load_scenario, scenario_errors
 
+    if not isinstance(budget_s, (int, float)) or not 0 < budget_s <= MAX_BUDGET_S:
+        raise ScenarioError("--budget", budget_s, f"seconds in (0, {MAX_BUDGET_S:g}]")
     scenario = load_scenario(path, overrides)
     if not hasattr(scenario.module, "build"):
-        raise ScenarioError("scene.kind", scenario.kind, "a scene kind whose module defines build() for benchmarking")
-    with scenario_errors(scenario):
-        system, t_out, error = scenario.module.build(scenario)
-    rows = bench_system(system, t_out, error, methods, budget_s)
-    command = " ".join(["spinorbit bench", str(path), *(f"--set {shlex.quote(o)}" for o in overrides),
-                        *([f"--methods {','.join(methods)}"] if methods else [])])
-    title = scenario["scene.title"] or scenario.name
-    agreement = system.meta.get("reference_agreement_rad")
-    note = "" if agreement is None else (f"Reference: a converged run (agrees with one at half its step "
-                                         f"to {agreement:.1e} rad).")
-    return rows, write(rows, out or Path("runs") / f"{scenario.name}-bench", title, command, note)
+        raise ScenarioError("scene.kind", scenario.kind,
+                            "a scene kind whose module defines build() for benchmarking")
+    target = Path(out or Path("runs") / f"{scenario.name}-bench")
+    with RunDirectory(target, force=force) as run_dir:     # refuses a bad --out before the ladder runs
+        with scenario_errors(scenario):
+            system, t_out, error = scenario.module.build(scenario)
+        rows = bench_system(system, t_out, error, methods, budget_s)
+        command = " ".join(["spinorbit bench", str(path), *(f"--set {shlex.quote(o)}" for o in overrides),
+                            *([f"--methods {','.join(methods)}"] if methods else [])])
+        title = scenario["scene.title"] or scenario.name
+        agreement = system.meta.get("reference_agreement_rad")
+        note = "" if agreement is None else (f"Reference: a converged run (agrees with one at half its step "
+                                             f"to {agreement:.1e} rad).")
+        names = []
+        run_dir.commit(lambda d: names.extend(p.name for p in write(rows, d, title, command, note)))
+    return rows, [run_dir.out / name for name in names]

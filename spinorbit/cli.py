@@ -22,10 +22,14 @@ from .errors import IntegrationError, SpinorbitError
 
 SCENARIO_DIR = Path("scenarios")
 EXIT_VERDICT_FAIL = 4
+FORCE_HELP = ("write into an --out holding entries spinorbit did not write: they are kept, except files of "
+              "the names the run writes, which it overwrites")
+MAX_LISTED_BYTES = 1 << 20          # `list` reads at most this much of a file (a scenario is a few kB)
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(prog="spinorbit", description="Couple orbit and spin (Euler, Theoria motus ch. 16).")
+    parser = argparse.ArgumentParser(prog="spinorbit",
+                                     description="Couple orbit and spin (Euler, Theoria motus ch. 16).")
     parser.add_argument("--quiet", action="store_true", help="no progress bars on stderr")
     sub = parser.add_subparsers(dest="command", required=True)
     run = sub.add_parser("run", help="run a scenario and write a run directory")
@@ -33,26 +37,33 @@ def main(argv=None):
     run.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
                      help="override a scenario key by dotted path (repeatable)")
     run.add_argument("--out", help="run directory (default runs/<scenario name>)")
-    run.add_argument("--strict", action="store_true", help=f"exit {EXIT_VERDICT_FAIL} when the verdict is 'fail'")
-    run.add_argument("--force", action="store_true",
-                     help="overwrite files in --out that spinorbit did not write (others are kept)")
+    run.add_argument("--strict", action="store_true",
+                     help=f"exit {EXIT_VERDICT_FAIL} when the verdict is 'fail'")
+    run.add_argument("--force", action="store_true", help=FORCE_HELP)
     run.add_argument("--resume", action="store_true",
                      help="continue an interrupted run from <out>.checkpoint.npz (long fixed-step scenes)")
-    sweep = sub.add_parser("sweep", help="run a parameter sweep / ensemble on Dask (local cluster by default)")
+    sweep = sub.add_parser("sweep", help="a parameter sweep / ensemble on Dask (a local cluster by default)")
     sweep.add_argument("scenario")
     sweep.add_argument("--vary", action="append", required=True, metavar="KEY=V1,V2,...",
                        help="values of one key (repeatable; the sweep is their Cartesian product)")
     sweep.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE")
-    sweep.add_argument("--scheduler", default="local", help="'local' (default), 'synchronous' or tcp://host:port")
+    sweep.add_argument("--scheduler", default="local",
+                       help="'local' (default), 'synchronous' or tcp://host:port")
     sweep.add_argument("--out", help="sweep directory (default runs/<scenario name>-sweep)")
+    sweep.add_argument("--force", action="store_true", help=FORCE_HELP)
     bench = sub.add_parser("bench", help="work-precision of every suitable integrator on a scene")
     bench.add_argument("scenario")
-    bench.add_argument("--methods", help="comma-separated method names (default: every method that supports the scene)")
-    bench.add_argument("--budget", type=float, default=10.0, help="stop a method's ladder after a run this long, s")
+    bench.add_argument("--methods",
+                       help="comma-separated method names (default: every method that supports the scene)")
+    bench.add_argument("--budget", type=float, default=10.0,
+                       help="stop a method's ladder after a run this long, s")
     bench.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE")
     bench.add_argument("--out", help="output directory (default runs/<scenario name>-bench)")
+    bench.add_argument("--force", action="store_true", help=FORCE_HELP)
     listing = sub.add_parser("list", help="list the scenarios in a folder")
     listing.add_argument("folder", nargs="?", default=str(SCENARIO_DIR))
+    cache = sub.add_parser("cache", help="where the compiled-kernel cache is and how big; 'clear' empties it")
+    cache.add_argument("action", nargs="?", choices=["show", "clear"], default="show")
     args = parser.parse_args(argv)
     if args.quiet:
         os.environ["SPINORBIT_QUIET"] = "1"          # read by spinorbit.progress, here and in Dask workers
@@ -64,6 +75,8 @@ def main(argv=None):
             return _sweep(args)
         if args.command == "bench":
             return _bench(args)
+        if args.command == "cache":
+            return _cache(args.action)
         return _list(Path(args.folder))
     except IntegrationError as exc:
         print(f"error: {exc}", file=sys.stderr)
@@ -105,21 +118,23 @@ def _run(args):
     # the painter is forked before the lock is taken, so that it never holds it
     with painter(scenario["output.plots"]) as paint, RunDirectory(out, force=args.force) as run_dir:
         scenario.checkpoint = Checkpoint(run_dir.checkpoint, args.resume, scenario.data)
-        if args.resume and not run_dir.checkpoint.exists():
+        if args.resume and not os.path.lexists(run_dir.checkpoint):
             print(f"no checkpoint at {run_dir.checkpoint}: starting from the beginning", file=sys.stderr)
-        elif run_dir.checkpoint.exists() and not args.resume:
+        elif os.path.lexists(run_dir.checkpoint) and not args.resume:
             print(f"{run_dir.checkpoint} holds an interrupted run: starting from the beginning "
                   "(--resume continues it)", file=sys.stderr)
         try:
             result = run_scenario(scenario)
         except IntegrationError as exc:
-            partial = getattr(exc, "result", None)
-            if partial is not None:
-                where = run_dir.fail(lambda d: write_run(partial, d, status="failed", error=exc))
-                kept = "" if where == run_dir.out else f"; the previous run in {out}/ is kept"
-                print(f"partial output written to {where}/{kept}", file=sys.stderr)
+            _keep_partial(run_dir, exc, out)
             raise
-        run_dir.commit(lambda d: write_run(result, d, painter=paint))
+        try:
+            run_dir.commit(lambda d: write_run(result, d, painter=paint))
+        except SpinorbitError:
+            if not run_dir.staged():                    # none of the finished run on disk: keep it elsewhere
+                _rescue(result, scenario.name)
+            raise
+        scenario.checkpoint.discard()                   # the run is whole: nothing left to resume
     verdict = result.summary["verdict"]
     print(verdict["headline"])
     if verdict.get("note"):
@@ -132,12 +147,44 @@ def _run(args):
     return EXIT_VERDICT_FAIL if args.strict and verdict["result"] == "fail" else 0
 
 
+def _rescue(result, name):
+    """Write a finished run that its --out could not take into a new private temporary directory."""
+    import tempfile
+
+    from .reports import write_run
+
+    try:
+        where = tempfile.mkdtemp(prefix=f"spinorbit-{name}-")
+        write_run(result, where)
+    except OSError as exc:
+        print(f"the finished run could not be written anywhere ({exc.strerror or exc})", file=sys.stderr)
+        return
+    print(f"the finished run is written to {where}/ instead", file=sys.stderr)
+
+
+def _keep_partial(run_dir, exc, out):
+    """Write a failed integration's partial output (beside a good run); a failure to write it is said in
+    one line and never hides the integration's own error."""
+    from .reports import write_run
+
+    partial = getattr(exc, "result", None)
+    if partial is None:
+        return
+    try:
+        where = run_dir.fail(lambda d: write_run(partial, d, status="failed", error=exc))
+    except (SpinorbitError, OSError) as error:
+        print(f"the partial output could not be written ({error})", file=sys.stderr)
+        return
+    kept = "" if where == run_dir.out else f"; the previous run in {out}/ is kept"
+    print(f"partial output written to {where}/{kept}", file=sys.stderr)
+
+
 def _sweep(args):
     from .sweep import parse_vary, run_sweep
 
     grid = dict(parse_vary(v) for v in args.vary)
     out = Path(args.out or Path("runs") / f"{Path(args.scenario).stem}-sweep")
-    records = run_sweep(args.scenario, grid, out, args.scheduler, args.overrides)
+    records = run_sweep(args.scenario, grid, out, args.scheduler, args.overrides, force=args.force)
     failed = [r for r in records if r["status"] != "ok"]
     print(f"sweep: {len(records)} runs, {len(failed)} failed; table in {out}/sweep.csv")
     for record in failed:
@@ -149,26 +196,74 @@ def _bench(args):
     from .bench import bench_scenario
 
     methods = args.methods.split(",") if args.methods else None
-    rows, paths = bench_scenario(args.scenario, methods, args.out, args.budget, args.overrides)
+    rows, paths = bench_scenario(args.scenario, methods, args.out, args.budget, args.overrides,
+                                 force=args.force)
     print(f"bench: {len(rows)} runs; wrote {', '.join(str(p) for p in paths)}")
     return 0
 
 
+def _cache(action):
+    from .linker import cache
+
+    if action == "clear":
+        print(f"removed {cache.clear()} files from {cache.kernels_dir()}/")
+        return 0
+    where, modules, compiled, size = cache.usage()
+    print(f"{where}/: {modules} generated kernel modules, {compiled} compiled files, {size / 1e6:.3g} MB "
+          f"({cache.ENVIRONMENT} moves it; `spinorbit cache clear` empties it)")
+    return 0
+
+
 def _list(folder):
+    """One line per scenario file under ``folder``: only regular files are opened (a FIFO, a device or a
+    link to one is listed as such, never read), and at most MAX_LISTED_BYTES of each."""
     import tomllib
 
-    files = sorted(folder.rglob("*.toml"))
+    files = sorted(_toml_files(folder))
     if not files:
-        print(f"no scenarios in {folder}/")
+        print(f"no scenarios in {_printable(folder)}/")
         return 0
     for path in files:
         try:
-            scene = tomllib.loads(path.read_bytes().decode("utf-8")).get("scene", {})
+            scene = tomllib.loads(_read_small(path).decode("utf-8")).get("scene", {})
+        except OSError as exc:
+            scene = {"title": f"({exc.strerror or exc})"}
         except (UnicodeDecodeError, ValueError, RecursionError):     # TOMLDecodeError is a ValueError
             scene = {"title": "(not a readable UTF-8 TOML file)"}
         scene = scene if isinstance(scene, dict) else {}
-        print(f"{str(path.relative_to(folder)):48s} {str(scene.get('kind', '?')):28s} {str(scene.get('title', ''))[:80]}")
+        kind, title = (" ".join(str(scene.get(key, default)).split())
+                       for key, default in (("kind", "?"), ("title", "")))
+        print(f"{_printable(path.relative_to(folder)):48s} {kind[:28]:28s} {title[:80]}")
     return 0
+
+
+def _printable(path):
+    """A path as text, undecodable bytes shown as escapes."""
+    return str(path).encode("utf-8", "backslashreplace").decode()
+
+
+def _toml_files(folder):
+    """Paths ending in .toml under ``folder``, without following links to folders."""
+    for directory, _, names in os.walk(folder):
+        for name in names:
+            if name.endswith(".toml"):
+                yield Path(directory) / name
+
+
+def _read_small(path):
+    """The bytes of a regular file (following a link to one), never opening anything else."""
+    import stat
+
+    if not stat.S_ISREG(os.stat(path).st_mode):
+        raise OSError(0, "not a regular file")
+    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)
+    with os.fdopen(fd, "rb") as f:
+        info = os.fstat(fd)
+        if not stat.S_ISREG(info.st_mode):
+            raise OSError(0, "not a regular file")
+        if info.st_size > MAX_LISTED_BYTES:
+            raise OSError(0, f"{info.st_size} bytes, not a scenario")
+        return f.read(MAX_LISTED_BYTES)
 
 
 def console():

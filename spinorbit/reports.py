@@ -6,11 +6,11 @@ that fails half-way never leaves a truncated file, and earlier files stay.
 import io
 import json
 import math
-import textwrap
 import os
 import pickle
 import signal
 import sys
+import textwrap
 from contextlib import contextmanager
 from pathlib import Path
 

@@ -9,7 +9,7 @@ import re
 
 import numpy as np
 
-from .errors import IntegrationError
+from .errors import IntegrationError, ScenarioError
 from .run_result import RunResult, attitude_table
 from .scenarios import Scenario, load_scenario, scenario_errors
 
@@ -18,6 +18,8 @@ def run_scenario(scenario, overrides=()):
     """Run a scenario (a Scenario or a path to its TOML file) and return a RunResult."""
     if not isinstance(scenario, Scenario):
         scenario = load_scenario(scenario, overrides)
+    elif overrides:
+        raise ScenarioError("overrides", overrides, "none with a Scenario (they apply to a file: pass its path)")
     try:
         # NaN/inf are reported as not measured; the library's InputError names its scenario key
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"), scenario_errors(scenario):

@@ -17,18 +17,24 @@ Beyond types and units, every number must be finite and inside its key's
 plausible range (``Key.min``/``Key.max``), tolerances inside [100 eps, 1e-3];
 a step over the span must not ask for more output rows, orbit samples or
 integrator steps than ``LIMITS`` allows, nor a rate for more than ``MAX_CYCLES``
-cycles: the run is refused up front with the estimate, instead of hanging or
-filling the memory.  Files must be UTF-8 and nest at most ``MAX_DEPTH`` levels.
+cycles; and the run's time and memory, estimated from the counts and the costs
+measured per item for its scene kind (``COSTS``: seconds per integrator step,
+bytes per row and per orbit sample), must fit ``limits.time`` (default 1 h) and
+``limits.memory`` (default half the machine's): the run is refused up front with
+the estimate, instead of hanging or filling the memory.  Files must be UTF-8, at
+most ``MAX_FILE_BYTES``, and nest at most ``MAX_DEPTH`` levels.
 """
 import datetime
 import math
+import os
 import tomllib
 from contextlib import contextmanager
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from .errors import InputError, ScenarioError
+from .errors import EphemerisRangeError, InputError, ScenarioError
 from .schema import (
     INTEGRATOR_OPTIONS,
     MAX_TEXT,
@@ -41,12 +47,42 @@ from .schema import (
 )
 
 MAX_DEPTH = 8                  # nesting of tables and arrays in a scenario
-# What a step over the span may ask for: count limit and bytes per item (estimate).
-# Compiled fixed-step methods take ~1-10 us a step; scipy's adaptive ones ~100 us (Python per stage).
-LIMITS = {"output rows": (1_000_000, 200), "orbit samples": (10_000_000, 150),
-          "integrator steps": (100_000_000, 0), "adaptive steps (at max_step)": (1_000_000, 0)}
+MAX_FILE_BYTES = 1 << 20       # a scenario file (a few kB; every string in it is at most schema.MAX_TEXT)
+# The most a step over the span may ask for, whatever the time and memory limits.
+LIMITS = {"output rows": 1_000_000, "orbit samples": 10_000_000, "integrator steps": 1_000_000_000,
+          "adaptive steps (at max_step)": 1_000_000}
 
 
+@dataclass(frozen=True)
+class Cost:
+    """What one item of a count costs a scene kind, measured (``python benchmarks/bench_costs.py``, peak
+    resident memory and wall time of whole runs at two sizes; benchmarks/results_costs.md): wall
+    seconds per integrator step of its fixed-step method, peak bytes per output row and per orbit
+    sample, and the peak of a small run."""
+
+    step_s: float
+    row_bytes: float = 1000
+    sample_bytes: float = 1000
+    base_bytes: float = 350e6
+
+    @property
+    def bytes_per(self):
+        return {"output rows": self.row_bytes, "orbit samples": self.sample_bytes}
+
+
+# Measured with the scenes' own settings (error estimate, plots), benchmarks/results_costs.md: peak memory
+# 590-720 B per output row, 690 B per orbit sample of the Moon's (140 of the Earth's), 200-350 MB for a small
+# run; per step 25-48 us of the closed Earth-Moon system, 0.16-0.27 ms of the solar-system one, 84 us of the
+# lunar model (its error-vs-cost ladder included), 8-21 us of a rigid body on a Kepler orbit, on one free
+# core of a 2-core x86-64; each cost here is about twice that (a machine shared with other jobs is slower).
+COSTS = {
+    "coupled_conservation": Cost(step_s=1e-4),
+    "earth_moon_coupled": Cost(step_s=3e-4),
+    "moon_libration": Cost(step_s=2e-4),
+    "earth_precession_nutation": Cost(step_s=3e-5, sample_bytes=300),
+}
+DEFAULT_COST = Cost(step_s=3e-5)             # the rigid-body scenes
+ADAPTIVE_STEP_S = 2e-4         # scipy's adaptive methods: Python between the stages of each step
 COMMON_SCHEMA = {
     "scene.kind": Key(type=str),
     "scene.title": Key(type=str, default=""),
@@ -57,6 +93,10 @@ COMMON_SCHEMA = {
     "integrator.method": Key(type=str, default="dop853"),
     "integrator.estimate_error": Key(type=bool, default=True),
     "output.plots": Key(type=bool, default=True),
+    "limits.time": Key(unit="s", positive=True, default=3600.0, max=3.2e7,
+                       help="longest run the up-front estimate lets through (e.g. '10 h')"),
+    "limits.memory": Key(unit="byte", positive=True, default=None, max=1e15,
+                         help="largest memory the estimate lets through (default: half the machine's)"),
 }
 OPEN_TABLES = ("integrator",)     # [integrator] options go to the method, which checks their names
 MIN_SPAN_D = 1e-6              # shortest span, days (0.0864 s)
@@ -99,7 +139,7 @@ class Scenario:
         from .integrators import get_method
 
         with scenario_errors(self):
-            get_method(self["integrator.method"])(**self.integrator_options())   # checks method and options now
+            get_method(self["integrator.method"])(**self.integrator_options())   # checks method and options
 
     def __getitem__(self, key):
         if key not in self.values:
@@ -169,7 +209,8 @@ class Scenario:
             if not isinstance(value, spec.type) or (spec.type is not bool and isinstance(value, bool)):
                 raise ScenarioError(key, value, spec.accepted())
             if isinstance(value, str) and len(value) > MAX_TEXT:
-                raise ScenarioError(key, value, f"a string of at most {MAX_TEXT} characters ({len(value)} given)")
+                raise ScenarioError(key, value, f"a string of at most {MAX_TEXT} characters "
+                                                f"({len(value)} given)")
             if isinstance(value, (int, float)) and not isinstance(value, bool):
                 spec.check_range(key, finite_float(key, value), value)
             return value
@@ -180,7 +221,8 @@ class Scenario:
             with np.errstate(over="ignore"):
                 length = np.linalg.norm(vector)
             if spec.direction and not 0 < length < math.inf:
-                raise ScenarioError(key, value, f"a direction: {spec.size} numbers, not all zero, with a finite length")
+                raise ScenarioError(key, value, f"a direction: {spec.size} numbers, not all zero, with a "
+                                                "finite length")
             return vector
         return checked_float(key, value, spec)
 
@@ -214,48 +256,119 @@ class Scenario:
         except ScenarioError:
             end = start + checked_float("span.end", end_text, Key(unit="d"))
         if end < start and not getattr(self.module, "BACKWARD", False):
-            raise ScenarioError("span.end", end_text, f"a time after span.start ({self['span.start']}); scene kind "
-                                f"'{self.kind}' runs forward only (backward runs: {', '.join(backward_kinds())})")
+            raise ScenarioError("span.end", end_text, f"a time after span.start ({self['span.start']}); "
+                                f"scene kind '{self.kind}' runs forward only (backward runs: "
+                                f"{', '.join(backward_kinds())})")
         if abs(end - start) < MIN_SPAN_D:
             raise ScenarioError("span.end", end_text, f"a span of at least {MIN_SPAN_D:g} d from span.start")
         return start, end
 
-    def _check_counts(self):
-        """Refuse a step that would ask for too many rows, samples or steps over the span."""
-        span = abs(self.t_end - self.t_start)
-        steps = [(key, spec, self.values[key]) for key, spec in self.schema.items() if spec.count]
-        steps += [(f"integrator.{name}", INTEGRATOR_OPTIONS[name], value) for name, value in self._options.items()
-                  if name in INTEGRATOR_OPTIONS and INTEGRATOR_OPTIONS[name].count]
-        for key, spec, step in steps:
-            limit, item_bytes = LIMITS[spec.count]
-            n = span / step + 1
-            if n > limit:
-                count = f"{n:,.0f}" if n < 1e15 else f"{n:.3g}"
-                memory = f", ~{_bytes(n * item_bytes)} in memory" if item_bytes else ""
-                raise ScenarioError(key, _lookup(self.data, key, spec) if _has(self.data, key) else step,
-                                    f"a step giving at most {limit:,} {spec.count} over the {span:.6g} d span "
-                                    f"(this one gives {count}{memory}); lengthen {key} or shorten the span")
+    def counts(self):
+        """{count: items} the span asks for at each step key (output rows, orbit samples, integrator
+        steps ...), the largest where two keys count the same."""
+        counts = {}
+        for _, kind, step in self._count_keys():
+            counts[kind] = max(counts.get(kind, 0), abs(self.t_end - self.t_start) / step + 1)
+        return counts
 
+    def cost(self):
+        """The measured per-item costs of this scene kind (COSTS)."""
+        return COSTS.get(self.kind, DEFAULT_COST)
+
+    def estimate(self):
+        """{"time_s", "memory_bytes"} of the run, from its counts and the kind's measured costs."""
+        counts, cost = self.counts(), self.cost()
+        memory = cost.base_bytes + sum(counts.get(kind, 0) * size for kind, size in cost.bytes_per.items())
+        time = sum(n * self._step_cost(kind) for kind, n in counts.items())
+        return {"time_s": time, "memory_bytes": memory}
+
+    def _step_cost(self, kind):
+        """Seconds per item of a count (0 for those that cost memory only)."""
+        return {"integrator steps": self.cost().step_s,
+                "adaptive steps (at max_step)": ADAPTIVE_STEP_S}.get(kind, 0.0)
+
+    def _count_keys(self):
+        """(key, count, step) of every step key that sets a count."""
+        steps = [(key, spec.count, self.values[key]) for key, spec in self.schema.items()
+                 if spec.count and self.values[key] is not None]
+        steps += [(f"integrator.{name}", INTEGRATOR_OPTIONS[name].count, value)
+                  for name, value in self._options.items()
+                  if name in INTEGRATOR_OPTIONS and INTEGRATOR_OPTIONS[name].count]
+        return steps
+
+    def _check_counts(self):
+        """Refuse a step that would ask for more rows, samples or steps than LIMITS, or a run the estimate
+        says takes longer than limits.time or more memory than limits.memory."""
+        span = abs(self.t_end - self.t_start)
+        for key, kind, step in self._count_keys():
+            n = span / step + 1
+            if n > LIMITS[kind]:
+                size = self.cost().bytes_per.get(kind, 0) * n
+                memory = f", ~{_bytes(size)} in memory" if size else ""
+                self._refuse(key, step, f"a step giving at most {LIMITS[kind]:,} {kind} over the "
+                                        f"{span:.6g} d span (this one gives {_count(n)}{memory}); lengthen "
+                                        f"{key} or shorten the span")
+        culprits = {kind: (key, step) for key, kind, step in self._count_keys()}
+        self._check_time(culprits)
+        self._check_memory(culprits)
+
+    def _check_time(self, culprits):
+        limit, estimate, counts = self["limits.time"], self.estimate()["time_s"], self.counts()
+        if estimate <= limit:
+            return
+        kind = max(counts, key=lambda k: counts[k] * self._step_cost(k))
+        key, step = culprits[kind]
+        self._refuse(key, step, f"a run the estimate finishes within limits.time = {_duration(limit)}: "
+                                f"{_count(counts[kind])} {kind} at ~{self._step_cost(kind) * 1e6:.3g} us "
+                                f"each (measured for {self.kind}) is ~{_duration(estimate)}; lengthen {key}, "
+                                "shorten the span, or raise limits.time")
+
+    def _check_memory(self, culprits):
+        limit, estimate = self["limits.memory"] or physical_memory() / 2, self.estimate()["memory_bytes"]
+        if estimate <= limit:
+            return
+        cost, counts = self.cost(), self.counts()
+        kind = max(cost.bytes_per, key=lambda k: counts.get(k, 0) * cost.bytes_per[k])
+        if kind not in culprits or counts[kind] * cost.bytes_per[kind] < cost.base_bytes:
+            self._refuse("limits.memory", limit, f"at least the ~{_bytes(cost.base_bytes)} any run of "
+                                                 f"{self.kind} takes (measured)")
+        key, step = culprits[kind]
+        self._refuse(key, step, f"a run the estimate holds within limits.memory = {_bytes(limit)}: "
+                                f"{_count(counts[kind])} {kind} at ~{_bytes(cost.bytes_per[kind])} each "
+                                f"(measured for {self.kind}) is ~{_bytes(estimate)}; lengthen {key}, shorten "
+                                "the span, or raise limits.memory")
+
+    def _refuse(self, key, value, accepted):
+        raise ScenarioError(key, _lookup(self.data, key, Key()) if _has(self.data, key) else value, accepted)
 
     def _check_cycles(self):
-        """Refuse rates (and GM over distance^3) that would make the run follow more than MAX_CYCLES cycles."""
+        """Refuse rates (and GM over distance^3) that would make the run follow over MAX_CYCLES cycles."""
         span = abs(self.t_end - self.t_start)
         rates = [(key, float(np.linalg.norm(self.values[key])), "") for key, spec in self.schema.items()
                  if spec.unit == "rad/d" and self.values[key] is not None]
+        moments = self.values.get("body.moments")
+        if moments is not None and np.all(np.abs(moments) > 0):
+            a, b, c = (float(m) for m in moments)
+            euler = max(abs(b - c) / abs(a), abs(c - a) / abs(b), abs(a - b) / abs(c))   # Euler's equations
+            rates += [("body.moments", rate * euler,
+                       f" (the body-frame rate |{key}| x {euler:.3g}, Euler's equations)")
+                      for key, rate, _ in list(rates) if key.startswith("body.") and euler > 1]
         distance = next((key for key in DISTANCE_KEYS if key in self.values), None)
         if "orbit.gm" in self.values and distance:
             torque_rate = math.sqrt(3 * self.values["orbit.gm"] / self.values[distance] ** 3)
-            rates.append((distance, torque_rate, f" (sqrt(3 orbit.gm/{distance}^3) = {torque_rate:.3g} rad/d)"))
+            rates.append((distance, torque_rate,
+                          f" (sqrt(3 orbit.gm/{distance}^3) = {torque_rate:.3g} rad/d)"))
         for key, rate, how in rates:
             cycles = rate * span / (2 * math.pi)
             if cycles > MAX_CYCLES:
-                raise ScenarioError(key, _lookup(self.data, key, Key()) if _has(self.data, key) else rate,
-                                    f"a value giving at most {MAX_CYCLES:.0e} cycles over the {span:.6g} d span "
-                                    f"(this one gives {cycles:.3g}{how}); change {key} or shorten the span")
+                self._refuse(key, rate, f"a value giving at most {MAX_CYCLES:.0e} cycles over the {span:.6g} "
+                                        f"d span (this one gives {cycles:.3g}{how}); change {key} or shorten "
+                                        "the span")
 
 
 # The library names an argument it cannot use (errors.InputError); the scenario key that sets it:
-ARGUMENT_KEYS = {"method": "integrator.method", "step": "integrator.step", "free_flow": "integrator.free_flow",
+ARGUMENT_KEYS = {"method": "integrator.method", "step": "integrator.step",
+                 "free_flow": "integrator.free_flow",
                  "source": "orbit.source", "bodies": "orbit.bodies", "radius": "orbit.radius", "a": "orbit.a",
                  "e": "orbit.e", "f": "orbit.f", "beta": "orbit.beta", "t_out": "span"}
 
@@ -270,6 +383,16 @@ def scenario_errors(scenario):
         options = scenario.data.get("integrator", {})
         key = f"integrator.{exc.name}" if exc.name in options else ARGUMENT_KEYS.get(exc.name, exc.name)
         raise ScenarioError(key, exc.given, exc.accepted) from None
+    except EphemerisRangeError as exc:
+        (first, last) = scenario.bounds
+        asked_first, asked_last = exc.requested if isinstance(exc.requested, tuple) else (first, last)
+        margin = max(first - asked_first, asked_last - last, 0.0)
+        low, high = exc.span[0] + margin, exc.span[1] - margin
+        fits = (f"a span from {_iso(low)} to {_iso(high)} TDB fits" if high > low else "no span fits")
+        around = (f"the run samples the orbit {margin:.3g} d beyond each end of its span, so "
+                  if margin else "")
+        raise EphemerisRangeError(exc.source, exc.requested, exc.span,
+                                  note=f"{exc.note}; {around}{fits}") from None
 
 
 def check_depth(data, where, limit=MAX_DEPTH):
@@ -278,11 +401,19 @@ def check_depth(data, where, limit=MAX_DEPTH):
     while stack:
         node, depth, name = stack.pop()
         if depth > limit:
-            raise ScenarioError(name or where, "(nested deeper)", f"tables and arrays nested at most {limit} deep")
+            raise ScenarioError(name or where, "(nested deeper)",
+                                f"tables and arrays nested at most {limit} deep")
         if isinstance(node, dict):
             stack.extend((v, depth + 1, f"{name}.{k}" if name else str(k)) for k, v in node.items())
         elif isinstance(node, list):
             stack.extend((v, depth + 1, name) for v in node)
+
+
+def _iso(t_tdb_d):
+    """TDB days from J2000 as an ISO date and time to the minute."""
+    from .schema import tdb_days_to_time
+
+    return tdb_days_to_time(t_tdb_d).isot[:16]
 
 
 def _bytes(n):
@@ -290,6 +421,22 @@ def _bytes(n):
         if n < 1000 or unit == "TB":
             return f"{n:.3g} {unit}"
         n /= 1000
+
+
+def _count(n):
+    return f"{n:,.0f}" if n < 1e15 else f"{n:.3g}"
+
+
+def _duration(seconds):
+    for unit, size in (("d", 86400), ("h", 3600), ("min", 60)):
+        if seconds >= size:
+            return f"{seconds / size:.3g} {unit}"
+    return f"{seconds:.3g} s"
+
+
+def physical_memory():
+    """Bytes of memory the machine has (POSIX sysconf)."""
+    return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
 
 
 def backward_kinds():
@@ -310,7 +457,8 @@ def taylor_kinds():
 def _toml_datetime_text(key, value):
     """An unquoted TOML date/datetime as ISO text; a time zone makes no sense for TDB."""
     if getattr(value, "tzinfo", None) is not None:
-        raise ScenarioError(key, value.isoformat(), "a TDB time without a time-zone offset, e.g. 2000-01-01T12:00:00")
+        raise ScenarioError(key, value.isoformat(),
+                            "a TDB time without a time-zone offset, e.g. 2000-01-01T12:00:00")
     return value.isoformat()
 
 
@@ -369,10 +517,19 @@ def load_scenario(path, overrides=()):
     are ``key=value`` strings."""
     from .catalogue import resolve
 
+    if isinstance(path, bytes) or not isinstance(path, (str, os.PathLike)):
+        raise ScenarioError("scenario", path, "a path to a scenario .toml file (a str or os.PathLike) or a "
+                                              "built-in scene's name")
+    if isinstance(overrides, (str, bytes)) or not isinstance(overrides, (list, tuple)) or not all(
+            isinstance(item, str) for item in overrides):
+        raise ScenarioError("--set", overrides, "a list of 'key=value' strings, e.g. ['span.end=10 d']")
     path = resolve(path)
-    if not path.is_file() or not _is_utf8(str(path)):
+    if not _is_utf8(str(path)) or not path.is_file():
         raise ScenarioError("scenario", str(path), "an existing .toml file with a UTF-8 name, or the name of a "
                                                    "built-in scene (see `spinorbit list`)")
+    if path.stat().st_size > MAX_FILE_BYTES:
+        raise ScenarioError("scenario", str(path), f"a scenario file of at most {MAX_FILE_BYTES:,} bytes "
+                                                   f"({path.stat().st_size:,} given)")
     raw = path.read_bytes()
     try:
         text = raw.decode("utf-8")

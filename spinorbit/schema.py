@@ -19,12 +19,12 @@ REQUIRED = object()
 MAX_TEXT = 10_000              # characters in a string value
 EPS = float(np.finfo(float).eps)
 # Plausible ranges scenes share, in internal units: Key(**GM, help=...).
-GM = dict(unit="km3/d2", positive=True, max=1e22)        # up to ~10 solar masses
-DISTANCE = dict(unit="km", min=1.0, max=1e12)            # 1 km to ~7000 au
-RATE = dict(unit="rad/d", min=-1e3, max=1e3)             # orbital rates (Phobos: 20 rad/d)
-SPIN = dict(unit="rad/d", min=-1e6, max=1e6)             # spin rates, up to ~160 000 turns a day
-ANGLE = dict(unit="rad", min=-2 * math.pi, max=2 * math.pi)
-SAMPLE_STEP = dict(unit="d", positive=True, max=10.0, count="orbit samples")
+GM = {"unit": "km3/d2", "positive": True, "max": 1e22}   # up to ~10 solar masses
+DISTANCE = {"unit": "km", "min": 1.0, "max": 1e12}       # 1 km to ~7000 au
+RATE = {"unit": "rad/d", "min": -1e3, "max": 1e3}        # orbital rates (Phobos: 20 rad/d)
+SPIN = {"unit": "rad/d", "min": -1e6, "max": 1e6}        # spin rates, up to ~160 000 turns a day
+ANGLE = {"unit": "rad", "min": -2 * math.pi, "max": 2 * math.pi}
+SAMPLE_STEP = {"unit": "d", "positive": True, "max": 10.0, "count": "orbit samples"}
 
 
 @dataclass(frozen=True)
@@ -123,7 +123,8 @@ def to_float(key, value, unit):
     if isinstance(value, (int, float)):
         if unit:
             example = value if len(str(value)) <= 20 else 1.0
-            raise ScenarioError(key, value, f"a quantity with a unit convertible to '{unit}', e.g. \"{example} {unit}\"")
+            raise ScenarioError(key, value,
+                                f"a quantity with a unit convertible to '{unit}', e.g. \"{example} {unit}\"")
         return finite_float(key, value)
     example = f'"1.0 {unit}"' if unit else "1.0"
     with warnings.catch_warnings():
@@ -135,7 +136,8 @@ def to_float(key, value, unit):
         if not quantity.isscalar:
             raise ScenarioError(key, value, f"a single quantity such as {example}")
         try:
-            return float(quantity.to_value(unit or u.dimensionless_unscaled, equivalencies=u.dimensionless_angles() if unit and "rad" in unit else []))
+            angles = u.dimensionless_angles() if unit and "rad" in unit else []
+            return float(quantity.to_value(unit or u.dimensionless_unscaled, equivalencies=angles))
         except (u.UnitsError, TypeError, ValueError):
             raise ScenarioError(key, value, f"units convertible to '{unit or 'dimensionless'}'") from None
         except (ArithmeticError, Warning):
@@ -160,8 +162,8 @@ def checked_float(key, value, spec):
 
 
 def dotted_items(table, prefix="", is_table=None):
-    """(dotted key, value) of every leaf of a nested dict (a TOML table, a summary): {"a": {"b": 1}} -> ("a.b", 1);
-    a dict for which ``is_table(dict)`` is true is a leaf."""
+    """(dotted key, value) of every leaf of a nested dict (a TOML table, a summary):
+    {"a": {"b": 1}} -> ("a.b", 1); a dict for which ``is_table(dict)`` is true is a leaf."""
     for name, value in table.items():
         key = f"{prefix}{name}"
         if isinstance(value, dict) and not (is_table and is_table(value)):

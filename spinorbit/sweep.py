@@ -1,10 +1,12 @@
 """Parameter sweeps and ensembles on Dask (a local cluster by default).
 
-``spinorbit sweep SCENE.toml --vary body.moments.0=0.5,0.6 --vary span.end="10 d","20 d"``
-runs the Cartesian product of the values, one run directory per member
-(``OUT/000/``, ``OUT/001/`` ...), and collects every member's comparison and
-run metrics into ``OUT/sweep.json`` and ``OUT/sweep.csv``.  Each member writes
-its own files as it finishes, so nothing done is lost if the sweep stops.
+``spinorbit sweep SCENE.toml --vary integrator.rtol=1e-8,1e-10 --vary span.end="10 d","20 d"``
+runs the Cartesian product of the values (at most ``MAX_MEMBERS``), one run directory
+per member (``OUT/000/``, ``OUT/001/`` ...), and collects every member's comparison and
+run metrics into ``OUT/sweep.json`` and ``OUT/sweep.csv``.  ``OUT`` is a run directory
+(spinorbit.rundir): a previous sweep is replaced whole, files spinorbit did not write are
+refused (or kept, with ``force``).  Each member writes its own files as it finishes, so
+nothing done is lost if the sweep stops (it is kept in ``OUT`` or ``OUT.failed``).
 
 ``scheduler``: "local" (dask.distributed LocalCluster, one process per core),
 "synchronous" (in this process, for debugging), or a scheduler address
@@ -12,9 +14,13 @@ its own files as it finishes, so nothing done is lost if the sweep stops.
 """
 import itertools
 import json
+import math
 from pathlib import Path
 
 from .errors import ScenarioError
+
+MAX_MEMBERS = 10_000            # a grid's members: each is a run and a directory
+CONNECT_TIMEOUT_S = 10          # waiting for a scheduler at an address
 
 
 def parse_vary(text):
@@ -22,6 +28,9 @@ def parse_vary(text):
     if "=" not in text:
         raise ScenarioError("--vary", text, "key=value1,value2,... e.g. span.end=10 d,20 d")
     key, values = (s.strip() for s in text.split("=", 1))
+    if not key:
+        raise ScenarioError("--vary", text, "key=value1,value2,... with a dotted key, e.g. "
+                                            "span.end=10 d,20 d")
     items = [v.strip() for v in _split_top_level(values) if v.strip()]
     if not items:
         raise ScenarioError(f"--vary {key}", values, "at least one value")
@@ -29,44 +38,60 @@ def parse_vary(text):
 
 
 def members(grid):
-    """Cartesian product of {key: [values]} as lists of ``key=value`` overrides."""
+    """Cartesian product of {key: [values]} as lists of ``key=value`` overrides (at most MAX_MEMBERS)."""
+    count = math.prod(len(values) for values in grid.values())
+    if count > MAX_MEMBERS:
+        raise ScenarioError("--vary", " ".join(f"{k}=({len(v)} values)" for k, v in grid.items()),
+                            f"a grid of at most {MAX_MEMBERS:,} members (this one has {count:,}); "
+                            "split the sweep into several")
     keys = list(grid)
     return [[f"{k}={v}" for k, v in zip(keys, combo)] for combo in itertools.product(*grid.values())]
 
 
-def run_member(scenario_path, overrides, out_dir):
-    """Run one member and write its run directory; return a flat record (never raises)."""
+def run_member(scenario_path, overrides, staged, out_dir):
+    """Run one member and write its run directory whole into ``staged`` (it will be ``out_dir``); return a
+    flat record (never raises on bad input or a failed write)."""
     from .errors import SpinorbitError
     from .reports import write_run
     from .results import run_scenario
-    from .rundir import RunDirectory
+    from .rundir import write_whole
 
     record = {"overrides": overrides, "out": str(out_dir)}
     try:
         result = run_scenario(scenario_path, overrides)
-        with RunDirectory(out_dir) as run_dir:
-            run_dir.commit(lambda d: write_run(result, d))
-        record.update(status="ok", verdict=result.summary["verdict"]["result"], **_flat_metrics(result.summary))
+        write_whole(staged, lambda d: write_run(result, d))
+        record.update(status="ok", verdict=result.summary["verdict"]["result"],
+                      **_flat_metrics(result.summary))
     except SpinorbitError as exc:
         record.update(status="failed", error=str(exc))
+    except OSError as exc:
+        record.update(status="failed", error=f"could not write {staged}: {exc.strerror or exc}")
     return record
 
 
-def run_sweep(scenario_path, grid, out_dir, scheduler="local", base_overrides=()):
-    """Run every member of ``grid`` on Dask; return the list of records (also written to disk)."""
+def run_sweep(scenario_path, grid, out_dir, scheduler="local", base_overrides=(), force=False):
+    """Run every member of ``grid`` on Dask into the run directory ``out_dir`` (spinorbit.rundir: each member
+    in ``NNN/`` as it finishes, the tables at the end, swapped in whole; a stopped sweep keeps what
+    finished); return the list of records."""
     import dask
 
+    from .rundir import RunDirectory
     from .scenarios import load_scenario
 
-    load_scenario(scenario_path, base_overrides)          # fail fast on a bad base scene
+    load_scenario(scenario_path, base_overrides)          # fail fast on a bad base scene, a grid too big,
+    runs = members(grid)                                  # or a key the scene lacks
+    load_scenario(scenario_path, [*base_overrides, *(f"{key}={values[0]}" for key, values in grid.items())])
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    jobs = [dask.delayed(run_member)(str(scenario_path), [*base_overrides, *m], out / f"{i:03d}")
-            for i, m in enumerate(members(grid))]
-    with _scheduler(scheduler) as compute:
-        records = list(compute(*jobs))
-    (out / "sweep.json").write_text(json.dumps(records, indent=2) + "\n")
-    _write_csv(records, out / "sweep.csv")
+    with RunDirectory(out, force=force) as run_dir:
+        staged = run_dir.stage()
+        jobs = [dask.delayed(run_member)(str(scenario_path), [*base_overrides, *m], staged / f"{i:03d}",
+                                         run_dir.out / f"{i:03d}")
+                for i, m in enumerate(runs)]
+        with _scheduler(scheduler) as compute:
+            records = list(compute(*jobs))
+        (staged / "sweep.json").write_text(json.dumps(records, indent=2) + "\n")
+        _write_csv(records, staged / "sweep.csv")
+        run_dir.commit()
     return records
 
 
@@ -87,9 +112,15 @@ class _scheduler:
             self.cluster = LocalCluster(threads_per_worker=1, processes=True, dashboard_address=None)
             self.client = Client(self.cluster)
         elif self.name.startswith(("tcp://", "tls://", "ucx://")):
-            self.client = Client(self.name)
+            try:
+                self.client = Client(self.name, timeout=CONNECT_TIMEOUT_S)
+            except (OSError, ValueError, TypeError) as exc:
+                reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+                raise ScenarioError("--scheduler", self.name, f"a Dask scheduler that answers within "
+                                    f"{CONNECT_TIMEOUT_S} s ({reason})") from None
         else:
-            raise ScenarioError("--scheduler", self.name, "'local', 'synchronous' or a scheduler address tcp://host:port")
+            raise ScenarioError("--scheduler", self.name,
+                                "'local', 'synchronous' or a scheduler address tcp://host:port")
         return lambda *jobs: self.client.gather(self.client.compute(list(jobs)))
 
     def __exit__(self, *exc):

@@ -5,6 +5,7 @@ import shutil
 
 import numpy as np
 import pytest
+from jplephem.daf import DAF
 from jplephem.spk import SPK
 
 from spinorbit.cli import main
@@ -79,3 +80,49 @@ def test_a_bad_kernel_through_the_command_line(tmp_path, capsys):
                  "--set", 'span.end="4 d"', "--set", "model.level=1"])
     err = capsys.readouterr().err
     assert code == 2 and len(err.splitlines()) == 1 and err.startswith("error: orbit.source: got "), err
+
+
+def without_the_moon(path):
+    """A copy of DE421 whose Moon segment (301) is relabelled as body 3010, so the kernel holds no Moon."""
+    shutil.copy(DE421, path)
+    with open(path, "r+b") as f:
+        daf = DAF(f)
+        for record_number, n_summaries, data in list(daf.summary_records()):
+            data = bytearray(data)
+            for i in range(int(n_summaries)):
+                at = daf.summary_control_struct.size + i * daf.summary_step
+                values = list(daf.summary_struct.unpack(data[at:at + daf.summary_length]))
+                if values[2] == 301:                     # (start, end, target, center, frame, type, ...)
+                    values[2] = 3010
+                    data[at:at + daf.summary_length] = daf.summary_struct.pack(*values)
+            daf.write_record(record_number, bytes(data))
+    return path
+
+
+FITS = "a span from 1899-07-30T00:00 to 2200-01-31T00:00 TDB fits"
+
+
+def test_a_kernel_without_the_moon_is_refused_on_orbit_source(tmp_path, capsys):
+    path = without_the_moon(tmp_path / "no_moon.bsp")
+    code = main(["run", "scenarios/moon_libration.toml", "--out", str(tmp_path / "out"),
+                 "--set", f'orbit.source="{path}"', "--set", 'span.start="2000-01-01T12:00:00"',
+                 "--set", 'span.end="4 d"', "--set", "model.level=1"])
+    err = capsys.readouterr().err.strip()
+    assert code == 2 and len(err.splitlines()) == 1, err
+    assert err.startswith(f"error: orbit.source: got '{path}'") and "a kernel holding moon" in err
+
+
+@pytest.mark.parametrize("start, end, says", [
+    ("1899-07-29T00:00:00", "10 d", FITS),
+    ("2200-01-20T00:00:00", "2200-02-02T00:00:00", FITS),
+    ("1899-08-29T00:00:00", "2100-01-01T00:00:00", "one of them must hold the whole span"),
+])
+def test_spans_at_the_edges_of_de421_say_what_fits(tmp_path, capsys, start, end, says):
+    """DE421 is the .bsp (1899-07-29 to 2053-10-09) or the de421 package's arrays (1899-12-04 to 2200-02-03):
+    the refusal quotes both and the span that fits once the orbit's 1-d margin is taken."""
+    code = main(["--quiet", "run", "scenarios/moon_libration.toml", "--out", str(tmp_path / "out"),
+                 "--set", f'span.start="{start}"', "--set", f'span.end="{end}"', "--set", "model.level=1",
+                 "--set", "output.plots=false"])
+    err = capsys.readouterr().err.strip()
+    assert code == 2 and len(err.splitlines()) == 1 and says in err, err
+    assert "its .bsp to 19639.5, the de421 package's arrays from -36552.5" in err

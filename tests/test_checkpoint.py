@@ -1,6 +1,7 @@
 """Checkpointed fixed-step runs: a run interrupted and resumed gives the states, and the run directory,
 of one that was not, bit for bit; a checkpoint of another run is refused."""
 import dataclasses
+import errno
 import json
 from pathlib import Path
 
@@ -8,7 +9,7 @@ import numpy as np
 import pytest
 
 from spinorbit.bodies import earth
-from spinorbit.checkpoint import Checkpoint
+from spinorbit.checkpoint import Checkpoint, _content_hash, run_fingerprint
 from spinorbit.cli import main
 from spinorbit.errors import ScenarioError
 from spinorbit.integrators import rk8
@@ -17,6 +18,7 @@ from spinorbit.models.figure import Figure
 from spinorbit.models.rotators import Rigid
 from spinorbit.models.system import System
 from spinorbit.simulate import simulate
+from tests.second_user import OTHER, chown_other, needs_root
 
 T_OUT = np.arange(0.0, 31.0)         # 31 outputs, one per chunk (integrators.base.output_chunks)
 STEP = 0.5
@@ -99,7 +101,7 @@ def test_interrupted_run_resumes_bit_identical(system, reference, tmp_path, monk
 
 @pytest.mark.parametrize("change, named", [("step", "step"), ("start", "initial time or state"),
                                            ("settings", "scenario settings"), ("params", "model parameters"),
-                                           ("figures", "equations, model parameters")])
+                                           ("figures", "spinorbit source code, equations, model parameters")])
 def test_checkpoint_of_another_run_is_refused(system, tmp_path, change, named):
     path = tmp_path / "run.npz"
     run(system, Checkpoint(path, every_s=0.0, settings={"a": 1}), T_OUT[:3])
@@ -145,4 +147,128 @@ def test_resumed_cli_run_writes_the_uninterrupted_run(uninterrupted, tmp_path, m
 def test_resume_with_no_checkpoint_says_so(tmp_path, capsys):
     assert main(["--quiet", "run", str(SCENE), *SHORT, "--set", "span.end=2 d", "--out", str(tmp_path / "r"),
                  "--resume"]) == 0
-    assert f"no checkpoint at {tmp_path / 'r.checkpoint.npz'}: starting from the beginning" in capsys.readouterr().err
+    said = f"no checkpoint at {tmp_path / 'r.checkpoint.npz'}: starting from the beginning"
+    assert said in capsys.readouterr().err
+
+
+# --- issue 27: a checkpoint is validated like input, and a failing save never loses a finished run ---
+
+def saved_checkpoint(system, path):
+    """A real checkpoint of the first 3 outputs: (fingerprint, outputs) as stored."""
+    run(system, Checkpoint(path, every_s=0.0), T_OUT[:3])
+    with np.load(path) as data:
+        return str(data["fingerprint"]), data["outputs"], str(data["sha256"])
+
+
+def rewrite(path, **arrays):
+    with open(path, "wb") as f:
+        np.savez(f, **arrays)
+
+
+def damage(kind, path, fingerprint, outputs, digest):
+    if kind == "zero bytes":
+        path.write_bytes(b"")
+    elif kind == "truncated":
+        path.write_bytes(path.read_bytes()[:200])
+    elif kind == "integers":
+        ints = outputs.astype(np.int64)
+        rewrite(path, outputs=ints, fingerprint=fingerprint, sha256=_content_hash(fingerprint, ints))
+    elif kind == "wrong shape":
+        wide = np.hstack([outputs, outputs])
+        rewrite(path, outputs=wide, fingerprint=fingerprint, sha256=_content_hash(fingerprint, wide))
+    elif kind == "edited states":
+        edited = outputs.copy()
+        edited[1, 8] += 1.0                      # the Moon's position, 1 km: a valid npz, hash unchanged
+        rewrite(path, outputs=edited, fingerprint=fingerprint, sha256=digest)
+    elif kind == "NaN rows":
+        nan = outputs.copy()
+        nan[1:] = np.nan
+        rewrite(path, outputs=nan, fingerprint=fingerprint, sha256=_content_hash(fingerprint, nan))
+    elif kind == "malformed fingerprint":
+        rewrite(path, outputs=outputs, fingerprint="[1, 2", sha256=_content_hash("[1, 2", outputs))
+    elif kind == "fingerprint missing a part":
+        partial = json.dumps({k: v for k, v in json.loads(fingerprint).items() if k != "rhs"})
+        rewrite(path, outputs=outputs, fingerprint=partial, sha256=_content_hash(partial, outputs))
+    elif kind == "written without a hash":
+        rewrite(path, outputs=outputs, fingerprint=fingerprint)
+    elif kind == "a link":
+        target = path.with_name("elsewhere.npz")
+        path.rename(target)
+        path.symlink_to(target)
+
+
+@pytest.mark.parametrize("kind, says", [
+    ("zero bytes", "a readable checkpoint"), ("truncated", "a readable checkpoint"),
+    ("integers", "float64"), ("wrong shape", "of 20 states (it holds (3, 40))"),
+    ("edited states", "does not match its sha256"),
+    ("NaN rows", "finite states"), ("malformed fingerprint", "fingerprint"),
+    ("fingerprint missing a part", "fingerprint"), ("written without a hash", "a checkpoint spinorbit wrote"),
+    ("a link", "a regular file"),
+])
+def test_a_bad_checkpoint_is_refused_in_one_line_and_never_resumed(system, tmp_path, kind, says):
+    path = tmp_path / "run.npz"
+    damage(kind, path, *saved_checkpoint(system, path))
+    with pytest.raises(ScenarioError) as info:
+        run(system, Checkpoint(path, resume=True), T_OUT[:3])
+    message = str(info.value)
+    assert message.startswith(f"--resume: got '{path}'") and says in message and "\n" not in message, message
+    assert message.endswith("run without --resume to start afresh")
+
+
+@needs_root
+def test_a_checkpoint_of_another_user_is_refused(system, tmp_path):
+    path = tmp_path / "run.npz"
+    saved_checkpoint(system, path)
+    chown_other(path)
+    with pytest.raises(ScenarioError, match=f"a checkpoint of your own \\(it belongs to uid {OTHER}\\)"):
+        run(system, Checkpoint(path, resume=True), T_OUT[:6])
+
+
+def test_more_outputs_than_the_run_has_are_refused(system, tmp_path):
+    path = tmp_path / "run.npz"
+    run(system, Checkpoint(path, every_s=0.0), T_OUT[:6])
+    fingerprint = run_fingerprint(system.rhs, system.params, 0.0, system.y0, T_OUT[:6], STEP, None)
+    fingerprint["outputs"] = [3, system.y0.size]                # the same run asked for 3 outputs
+    with pytest.raises(ScenarioError, match="at most 3 rows"):
+        Checkpoint(path, resume=True).load(fingerprint)
+
+
+def test_a_failing_save_at_the_end_keeps_the_finished_run(system, reference, tmp_path, monkeypatch, capsys):
+    """Disk full (or a name too long) when the finished run saves its checkpoint: the states are returned."""
+    def full(self, fingerprint, outputs):
+        raise OSError(errno.ENOSPC, "No space left on device")
+    monkeypatch.setattr(Checkpoint, "save", full)
+    states = run(system, Checkpoint(tmp_path / ("x" * 300 + ".npz")))
+    assert np.array_equal(states, reference)
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "could not save" in err[0] and "No space left on device" in err[0]
+
+
+def test_discard_removes_only_this_runs_files(system, tmp_path):
+    """The checkpoint of run[1] and its parts: removed when the run is whole; run1's is not touched."""
+    (tmp_path / "run1.checkpoint.npz").write_bytes(b"run1's")
+    (tmp_path / "run1.checkpoint-tides_off.npz").write_bytes(b"run1's part")
+    main_checkpoint = Checkpoint(tmp_path / "run[1].checkpoint.npz", every_s=0.0)
+    for checkpoint in (main_checkpoint, main_checkpoint.part("tides_off")):
+        run(system, checkpoint, T_OUT[:3])
+    main_checkpoint.discard()
+    left = sorted(q.name for q in tmp_path.iterdir())
+    assert left == ["run1.checkpoint-tides_off.npz", "run1.checkpoint.npz"]
+
+
+def test_an_edited_checkpoint_through_the_command_line(tmp_path, capsys, monkeypatch):
+    """Interrupted, then hand-edited (NaN rows, its hash recomputed or not): --resume refuses, exit 2."""
+    out = tmp_path / "run"
+    with monkeypatch.context() as patch:
+        interrupt_after(patch, 6, KeyboardInterrupt)
+        assert main(["--quiet", "run", str(SCENE), *SHORT, "--out", str(out)]) == 130
+    path = tmp_path / "run.checkpoint.npz"
+    with np.load(path) as data:
+        fingerprint, outputs = str(data["fingerprint"]), data["outputs"].copy()
+    outputs[-1] = np.nan
+    rewrite(path, outputs=outputs, fingerprint=fingerprint, sha256=_content_hash(fingerprint, outputs))
+    capsys.readouterr()
+    assert main(["--quiet", "run", str(SCENE), *SHORT, "--out", str(out), "--resume"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("error: --resume: got ") and "finite states" in err[0]
+    assert not out.exists() and path.exists()

@@ -70,8 +70,8 @@ def test_spherical_core_carry_equals_linear_solution():
     from spinorbit.bodies import de421_orientation
     from spinorbit.integrators import integrate
     from spinorbit.layout import Layout
-    from spinorbit.models.start import core_rhs
     from spinorbit.models.ode import Ode
+    from spinorbit.models.start import core_rhs
 
     coefficients, (start, end) = de421_orientation.series(), de421_orientation.span()
     length = (end - start) / coefficients.shape[0]

@@ -6,11 +6,11 @@ import sys
 import time
 from pathlib import Path
 
+import astropy.units as u
 import numpy as np
 import pytest
 from astropy.table import QTable
 from astropy.time import Time
-import astropy.units as u
 
 from spinorbit import plots
 from spinorbit.reports import painter, write_ecsv

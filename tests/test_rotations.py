@@ -4,10 +4,25 @@ import math
 import numpy as np
 import pytest
 
-from spinorbit.rotations import (cross3, diag3, dot3, euler313_from_matrix, euler313_from_quat,
-                                 mat_t_vec3, matrix_from_euler313,
-                                 matrix_from_quat, matvec3, omega_body_from_euler313_rates, put, quat_angle,
-                                 quat_from_euler313, quat_from_matrix, quat_multiply, quat_rate, solve3)
+from spinorbit.rotations import (
+    cross3,
+    diag3,
+    dot3,
+    euler313_from_matrix,
+    euler313_from_quat,
+    mat_t_vec3,
+    matrix_from_euler313,
+    matrix_from_quat,
+    matvec3,
+    omega_body_from_euler313_rates,
+    put,
+    quat_angle,
+    quat_from_euler313,
+    quat_from_matrix,
+    quat_multiply,
+    quat_rate,
+    solve3,
+)
 from tests.units import arcsec, mas
 
 RNG = np.random.default_rng(7)

@@ -18,11 +18,13 @@ import numpy as np
 
 from ..errors import InputError, IntegrationError
 from ..layout import Layout
-from ..linker import link, template
+from ..linker import free, link, template
 from ..progress import progress
 from ..rotations import put
 from . import dop853_tableau as dop853
 from .base import Integrator, Solution, normalised, output_chunks
+
+rhs = free("rhs")    # bound by link()
 
 
 @template("rhs")
@@ -239,16 +241,19 @@ class _Run:
                     _uninterrupted(self.advance)
                     advance_to(self.t)
                     if checkpoint is not None and time.monotonic() - last_save >= checkpoint.every_s:
-                        checkpoint.save(fingerprint, self.y_out[:self.done])
-                        saved, last_save = self.done, time.monotonic()
+                        if checkpoint.keep(fingerprint, self.y_out[:self.done]):
+                            saved = self.done
+                        last_save = time.monotonic()
                 if checkpoint is not None and self.done > saved:     # whole: a scene's next run may be interrupted
-                    checkpoint.save(fingerprint, self.y_out[:self.done])
-                    saved = self.done
+                    if checkpoint.keep(fingerprint, self.y_out[:self.done]):
+                        saved = self.done
             except BaseException:
-                if checkpoint is not None and self.done > saved:
-                    checkpoint.save(fingerprint, self.y_out[:self.done])
-                    print(f"checkpoint: {self.done} of {self.t_out.size} outputs in {checkpoint.path} "
-                          "(continue with --resume)", file=sys.stderr)
+                if checkpoint is not None and self.done > 0:
+                    if self.done > saved and checkpoint.keep(fingerprint, self.y_out[:self.done]):
+                        saved = self.done
+                    if saved:
+                        print(f"checkpoint: {saved} of {self.t_out.size} outputs in {checkpoint.path} "
+                              "(continue with --resume)", file=sys.stderr)
                 raise
 
     def fingerprint(self, checkpoint):

@@ -4,6 +4,7 @@ These are the yardstick everything else is checked against; their cost per
 step is dominated by Python call overhead (one compiled rhs call per stage).
 """
 import time
+from typing import ClassVar
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -17,7 +18,7 @@ class ScipyIVP(Integrator):
 
     kind = "adaptive"
     scipy_method = "DOP853"
-    options = {"rtol": 1e-12, "atol": 1e-14, "max_step": np.inf}
+    options: ClassVar[dict] = {"rtol": 1e-12, "atol": 1e-14, "max_step": np.inf}
 
     def solve(self, system, t_out):
         t_out = self._check_times(system, t_out)
@@ -34,15 +35,21 @@ class ScipyIVP(Integrator):
                 last_finite[:2] = t, y
             return dy
 
-        fun(system.t0, system.y0)          # compile outside the timed region
+        if not np.all(np.isfinite(fun(system.t0, system.y0))):   # (also compiles outside the timed region)
+            err = IntegrationError(f"{self.name}: the right-hand side is not finite at the start", system.t0,
+                                   system.y0, "Check the initial state and the model's parameters.")
+            err.partial = Solution(np.empty(0), np.empty((0, system.y0.size)), self.name, 1, None, 0.0,
+                                   dict(self.settings))
+            raise err                      # scipy's first step would be NaN and never shrink below its floor
         nfev[0] = 0
         start = time.perf_counter()
         sol = solve_ivp(fun, (system.t0, t_out[-1]), system.y0, method=self.scipy_method,
                         t_eval=t_out, rtol=self.settings["rtol"], atol=self.settings["atol"],
                         max_step=self.settings["max_step"])
         wall = time.perf_counter() - start
-        y = sol.y.T
-        partial = Solution(sol.t, normalised(system, y), self.name, nfev[0], None, wall, dict(self.settings),
+        t = np.asarray(sol.t, dtype=float)                # lists when it failed before the first output
+        y = np.asarray(sol.y, dtype=float).reshape(system.y0.size, t.size).T
+        partial = Solution(t, normalised(system, y), self.name, nfev[0], None, wall, dict(self.settings),
                            system.layout)               # solve_ivp does not report its steps
         if sol.status != 0:
             t_fail, y_fail, nan = last_finite
@@ -64,10 +71,10 @@ class DOP853(ScipyIVP):
 class Radau(ScipyIVP):
     """Radau IIA implicit Runge-Kutta (order 5), adaptive; for stiff problems."""
     name, order, scipy_method = "radau", 5, "Radau"
-    options = {"rtol": 1e-10, "atol": 1e-12, "max_step": np.inf}
+    options: ClassVar[dict] = {"rtol": 1e-10, "atol": 1e-12, "max_step": np.inf}
 
 
 class RK45(ScipyIVP):
     """Dormand-Prince 5(4), adaptive."""
     name, order, scipy_method = "rk45", 5, "RK45"
-    options = {"rtol": 1e-9, "atol": 1e-12, "max_step": np.inf}
+    options: ClassVar[dict] = {"rtol": 1e-9, "atol": 1e-12, "max_step": np.inf}

@@ -48,10 +48,12 @@ import numpy as np
 from numba import njit
 
 from ..errors import InputError, IntegrationError
-from ..linker import link, template
+from ..linker import free, link, template
 from ..progress import progress
 from ..rotations import put
 from .base import Integrator, Solution, output_chunks
+
+torque = free("torque")    # bound by link()
 
 FREE_FLOWS = ("symmetric", "axes")
 

@@ -22,9 +22,9 @@ from numba import njit
 from ..bodies import de421_orientation
 from ..bodies.moon import de421
 from ..constants import J2000_JD
+from ..layout import Layout
 from ..rotations import cross3, dot3, quat_from_matrix
 from .gyroscopic import figure_axis_third_order, tidal_tensor
-from ..layout import Layout
 from .ode import Ode
 
 CORE_STEP_D = 0.25          # half the RK4 step carrying DE421's core

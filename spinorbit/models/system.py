@@ -16,9 +16,9 @@ import functools
 
 import numpy as np
 
+from ..layout import Layout
 from ..linker import link_source
 from .generate import angular_momentum_source, as_array, energy_source, rhs_source, torque_source
-from ..layout import Layout
 from .rotators import Gyroscopic, Rigid
 
 

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from ..constants import J2000_JD
-from ..errors import EphemerisRangeError, InputError
+from ..errors import EphemerisRangeError, InputError, tdb_dates
 
 EPHEMERIDES_DIR = Path(__file__).resolve().parents[2] / "ephemerides"
 
@@ -56,7 +56,8 @@ def _open_spk(spk_class, path):
     short = [seg for seg in spk.segments if seg.end_i * 8 > size]     # DAF addresses are 8-byte words
     if short or not spk.segments:
         spk.close()
-        detail = f"segment of body {short[0].target} ends at byte {short[0].end_i * 8}" if short else "no segments"
+        detail = (f"segment of body {short[0].target} ends at byte {short[0].end_i * 8}" if short
+                  else "no segments")
         raise InputError("source", str(path), f"{accepted}; this file is truncated or empty "
                                                         f"({size} bytes, {detail})")
     return spk
@@ -89,7 +90,10 @@ class JPLKernel:
         for code in NAIF.get(name, ()):
             if code == 0 or code in self._parent:
                 return code
-        raise InputError("body", name, f"one of {sorted(n for n in NAIF if self._has(n))}")
+        held = sorted(n for n in NAIF if self._has(n))
+        if name not in NAIF:                     # a name no kernel has
+            raise InputError("body", name, f"one of {held}")
+        raise InputError("source", str(self.path), f"a kernel holding {name} (this one holds {held})")
 
     def _has(self, name):
         return any(c == 0 or c in self._parent for c in NAIF[name])
@@ -142,7 +146,7 @@ class JPLKernel:
     def check_span(self, t_start, t_end):
         """Raise EphemerisRangeError unless [t_start, t_end] (TDB days) lies in the kernel's span."""
         if not (self.span[0] <= t_start and t_end <= self.span[1]):
-            raise EphemerisRangeError(self.name, (t_start, t_end), self.span)
+            raise EphemerisRangeError(self.name, (float(t_start), float(t_end)), self.span)
 
 
 class DE421Arrays:
@@ -198,7 +202,12 @@ def open_ephemeris(source, t_start, t_end):
     ``de421`` package arrays; any other name is a .bsp (see :func:`kernel_path`).
     """
     kernel = JPLKernel(kernel_path(source))
-    if source == "de421" and not (kernel.span[0] <= t_start and t_end <= kernel.span[1]):
-        kernel = DE421Arrays()
-    kernel.check_span(t_start, t_end)
-    return kernel
+    if source != "de421" or kernel.span[0] <= t_start and t_end <= kernel.span[1]:
+        kernel.check_span(t_start, t_end)
+        return kernel
+    arrays = DE421Arrays()
+    if not (arrays.span[0] <= t_start and t_end <= arrays.span[1]):
+        raise EphemerisRangeError("de421", (t_start, t_end), (kernel.span[0], arrays.span[1]),
+                                  note=f" (its .bsp to {tdb_dates([kernel.span[1]])}, the de421 package's arrays "
+                                       f"from {tdb_dates([arrays.span[0]])}: one of them must hold the whole span)")
+    return arrays

@@ -1,0 +1,99 @@
+"""The per-item costs behind the up-front estimate (spinorbit.scenarios.COSTS), measured, beside the estimate.
+
+    python benchmarks/bench_costs.py [--only KIND ...]
+
+Each case runs a scene (its own settings: error estimate, plots) twice through the command line, in
+fresh processes with warm kernel caches,
+at two sizes of one count (integrator steps, output rows, orbit samples), and takes the slope:
+seconds per integrator step from the wall time, bytes per row or sample from the peak resident
+memory (VmHWM of the process image).  Printed beside each: what ``scenarios.COSTS`` holds and the estimate it
+gives for the larger run against the measured one.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from spinorbit.scenarios import load_scenario
+
+CHILD = """
+import json, sys, time
+from spinorbit.cli import main
+start = time.perf_counter()
+code = main(sys.argv[1:])
+peak = next(int(line.split()[1]) * 1024 for line in open("/proc/self/status") if line.startswith("VmHWM"))
+print(json.dumps({"code": code, "wall_s": time.perf_counter() - start, "peak_bytes": peak}))
+"""
+QUIET = []                     # the scenes' own settings (error estimate, plots): what a user's run costs
+# (kind, count, scenario, common overrides, the two sizes as overrides)
+CASES = [
+    ("coupled_conservation", "integrator steps", "scenarios/stress/coupled_conservation.toml",
+     ["span.end=100 d", "span.step=1 d"], ["integrator.step=0.05 d", "integrator.step=0.004 d"]),
+    ("earth_moon_coupled", "integrator steps", "scenarios/earth_moon_coupled.toml",
+     ['span.start="2000-01-01T12:00:00"', "span.end=400 d", "span.step=4 d"],
+     ["integrator.step=0.5 d", "integrator.step=0.04 d"]),
+    ("moon_libration", "integrator steps", "scenarios/moon_libration.toml",
+     ['span.start="2000-01-01T12:00:00"', "span.end=4000 d", "span.step=40 d"],
+     ["integrator.step=2 d", "integrator.step=0.1 d"]),
+    ("stress_mercury", "integrator steps", "scenarios/stress/mercury_3_2.toml",
+     ["span.end=2 yr", "span.step=1 d"],
+     ["integrator.step=0.5 d", "integrator.step=0.002 d"]),
+    ("moon_libration", "orbit samples", "scenarios/moon_libration.toml",
+     ['span.start="2000-01-01T12:00:00"', "span.end=2000 d", "span.step=20 d"],
+     ["orbit.step=0.1 d", "orbit.step=0.01 d"]),
+    ("earth_precession_nutation", "orbit samples", "scenarios/earth_precession_nutation.toml",
+     ['span.start="2000-01-01T12:00:00"', "span.end=2000 d", "span.step=20 d"],
+     ["orbit.sample_step=0.5 d", "orbit.sample_step=0.05 d"]),
+    ("p93_planar_libration", "output rows", "scenarios/p93_bounded.toml", ["span.end=2000 d"],
+     ["span.step=0.1 d", "span.step=0.01 d"]),
+    ("free_body", "output rows", "scenarios/free_body.toml", ["span.end=2000 d"],
+     ["span.step=0.1 d", "span.step=0.01 d"]),
+]
+
+
+def measure(scenario, sets, out):
+    argv = ["--quiet", "run", scenario, "--out", str(out), "--force"]
+    for assignment in QUIET + sets:
+        argv += ["--set", assignment]
+    done = subprocess.run([sys.executable, "-c", CHILD, *argv], cwd=ROOT, capture_output=True, text=True,
+                          env={**os.environ, "PYTHONPATH": str(ROOT)}, check=False)
+    if done.returncode != 0 or not done.stdout.strip():
+        raise RuntimeError(f"{scenario} {sets}: {done.stderr.strip()[-500:]}")
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--only", nargs="*", help="scene kinds to measure")
+    args = parser.parse_args()
+    print("| kind | count | measured | in COSTS | estimate vs measured, larger run |")
+    print("|---|---|---|---|---|")
+    with tempfile.TemporaryDirectory() as tmp:
+        for kind, what, scenario, common, sizes in CASES:
+            if args.only and kind not in args.only:
+                continue
+            runs, counts = [], []
+            for size in sizes:
+                measure(scenario, common + [size], Path(tmp) / "warm")      # compile and cache first
+                runs.append(measure(scenario, common + [size], Path(tmp) / "out"))
+                counts.append(load_scenario(ROOT / scenario, QUIET + common + [size]).counts()[what])
+            field, unit = ("wall_s", "s") if what == "integrator steps" else ("peak_bytes", "B")
+            slope = (runs[1][field] - runs[0][field]) / (counts[1] - counts[0])
+            loaded = load_scenario(ROOT / scenario, QUIET + common + [sizes[1]])
+            costs = loaded.cost()
+            held = costs.step_s if what == "integrator steps" else costs.bytes_per[what]
+            estimate = loaded.estimate()["time_s" if field == "wall_s" else "memory_bytes"]
+            print(f"| {kind} | {what} | {slope:.3g} {unit} | {held:.3g} {unit} | "
+                  f"{estimate:.3g} vs {runs[1][field]:.3g} {unit} ({counts[1]:,.0f} {what}) |", flush=True)
+            time.sleep(0.1)
+
+
+if __name__ == "__main__":
+    main()
