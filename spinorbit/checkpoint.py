@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import ScenarioError
-from .linker import fingerprint
+from .linker import fingerprint, python_function
 
 WHAT_DIFFERS = {"settings": "scenario settings", "source": "spinorbit source code", "rhs": "equations",
                 "start": "initial time or state", "output_times": "output times", "step": "step",
@@ -154,7 +154,7 @@ def run_fingerprint(rhs, params, t0, y0, t_out, step, checkpoint):
     settings = None if checkpoint is None else checkpoint.settings
     return {"settings": _sha(json.dumps(settings, sort_keys=True, default=str).encode()),
             "source": fingerprint(rhs),
-            "rhs": _sha(f"{rhs.py_func.__module__}.{rhs.py_func.__qualname__}".encode()),
+            "rhs": _sha(f"{python_function(rhs).__module__}.{python_function(rhs).__qualname__}".encode()),
             "start": _sha(np.float64(t0).tobytes(), y0.tobytes()),
             "output_times": _sha(t_out.tobytes()),
             "step": _sha(np.float64(step).tobytes()),

@@ -37,6 +37,8 @@ import threading
 import types
 from pathlib import Path
 
+import numba
+
 from . import cache
 
 PACKAGE_DIR = Path(__file__).resolve().parents[1]
@@ -118,19 +120,27 @@ def reached(function):
     return sources
 
 
+def python_function(kernel):
+    """The Python function a compiled kernel runs (the function itself under NUMBA_DISABLE_JIT), or None
+    when ``kernel`` is not one."""
+    if hasattr(kernel, "py_func"):
+        return kernel.py_func
+    return kernel if numba.config.DISABLE_JIT and isinstance(kernel, types.FunctionType) else None
+
+
 _LOCK = threading.RLock()
 
 
 @functools.cache
 def _link(fn, bindings):
-    reach = [fingerprint(fn)] + [fingerprint(value) for _, value in bindings if hasattr(value, "py_func")]
+    reach = [fingerprint(fn)] + [fingerprint(value) for _, value in bindings if python_function(value)]
     return _load(fn.__name__, _module_source(fn, dict(bindings), reach))
 
 
 @functools.cache
 def _link_generated(name, source, bindings):
     fn = types.SimpleNamespace(__name__=name, __module__=__name__, source=source)
-    reach = [fingerprint(value) for _, value in bindings if hasattr(value, "py_func")]
+    reach = [fingerprint(value) for _, value in bindings if python_function(value)]
     return _load(name, _module_source(fn, dict(bindings), reach))
 
 
@@ -243,7 +253,7 @@ def _import_line(value, name, home):
 
 
 def _function_import(value, name):
-    py_func = getattr(value, "py_func", None)
+    py_func = python_function(value)
     if py_func is None:
         raise TypeError(f"link: {name} must be a compiled (numba) function or a constant, got {value!r}")
     module, attr = py_func.__module__, py_func.__name__

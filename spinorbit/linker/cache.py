@@ -173,6 +173,8 @@ def kernel(function):
     """``@kernel`` in a generated module: ``njit(nogil=True)`` with its compiled code cached, checked,
     in the private cache (numba's ``Dispatcher.enable_caching`` with :class:`CheckedCache`)."""
     dispatcher = njit(nogil=True)(function)
+    if not hasattr(dispatcher, "py_func"):          # NUMBA_DISABLE_JIT: the plain function, nothing to cache
+        return dispatcher
     dispatcher._cache = CheckedCache(dispatcher.py_func)
     return dispatcher
 

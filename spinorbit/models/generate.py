@@ -8,6 +8,7 @@ pieces write on; :func:`source` is what comes of it.
 """
 import numpy as np
 
+from ..linker import python_function
 from ..rotations import mat_t_vec3, matvec3
 
 
@@ -31,8 +32,9 @@ class Code:
 
     def bind(self, kernel, name=None):
         """A compiled kernel the function calls: its local name."""
-        for candidate in ([name] if name else [kernel.py_func.__name__,
-                                               f"{kernel.py_func.__module__.rsplit('.', 1)[-1]}_{kernel.py_func.__name__}"]):
+        function = python_function(kernel)
+        for candidate in ([name] if name else [function.__name__,
+                                               f"{function.__module__.rsplit('.', 1)[-1]}_{function.__name__}"]):
             if candidate not in self._locals and self.bindings.setdefault(candidate, kernel) is kernel:
                 return candidate
         raise ValueError(f"two kernels named {candidate!r}")
