@@ -20,7 +20,6 @@ from pathlib import Path
 
 from .errors import IntegrationError, SpinorbitError
 
-SCENARIO_DIR = Path("scenarios")
 EXIT_VERDICT_FAIL = 4
 FORCE_HELP = ("write into an --out holding entries spinorbit did not write: they are kept, except files of "
               "the names the run writes, which it overwrites")
@@ -33,7 +32,7 @@ def main(argv=None):
     parser.add_argument("--quiet", action="store_true", help="no progress bars on stderr")
     sub = parser.add_subparsers(dest="command", required=True)
     run = sub.add_parser("run", help="run a scenario and write a run directory")
-    run.add_argument("scenario", help="path to a scenario .toml file")
+    run.add_argument("scenario", help="a scenario .toml file, or a built-in scene's name (spinorbit list)")
     run.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
                      help="override a scenario key by dotted path (repeatable)")
     run.add_argument("--out", help="run directory (default runs/<scenario name>)")
@@ -60,8 +59,10 @@ def main(argv=None):
     bench.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE")
     bench.add_argument("--out", help="output directory (default runs/<scenario name>-bench)")
     bench.add_argument("--force", action="store_true", help=FORCE_HELP)
-    listing = sub.add_parser("list", help="list the scenarios in a folder")
-    listing.add_argument("folder", nargs="?", default=str(SCENARIO_DIR))
+    listing = sub.add_parser("list", help="list the built-in scenes, or the scenarios in a folder")
+    listing.add_argument("folder", nargs="?", help="a folder of scenario files (default: the built-in scenes)")
+    show = sub.add_parser("show", help="every key a scene reads: its value, default, unit, range and meaning")
+    show.add_argument("scenario", help="a scenario .toml file, or a built-in scene's name")
     cache = sub.add_parser("cache", help="where the compiled-kernel cache is and how big; 'clear' empties it")
     cache.add_argument("action", nargs="?", choices=["show", "clear"], default="show")
     args = parser.parse_args(argv)
@@ -77,7 +78,9 @@ def main(argv=None):
             return _bench(args)
         if args.command == "cache":
             return _cache(args.action)
-        return _list(Path(args.folder))
+        if args.command == "show":
+            return _show(args.scenario)
+        return _list(args.folder)
     except IntegrationError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 3
@@ -139,7 +142,8 @@ def _run(args):
     print(verdict["headline"])
     if verdict.get("note"):
         print(f"  ({verdict['note']})")
-    print(f"wrote {out}/ (summary.json, timeseries.ecsv, report.md)")
+    plots = sorted(p.name for p in out.glob("*.png"))
+    print(f"wrote {out}/ (summary.json, timeseries.ecsv, report.md{''.join(', ' + name for name in plots)})")
     for key, value in result.summary.get("comparison", {}).items():
         print(f"  {key} = {value:.6g}" if isinstance(value, float) else f"  {key} = {value}")
     for key, reason in result.summary.get("not_measured", {}).items():
@@ -214,11 +218,25 @@ def _cache(action):
     return 0
 
 
+def _show(scene):
+    from .scenarios import key_table
+
+    print("\n".join(key_table(scene)))
+    return 0
+
+
 def _list(folder):
-    """One line per scenario file under ``folder``: only regular files are opened (a FIFO, a device or a
-    link to one is listed as such, never read), and at most MAX_LISTED_BYTES of each."""
+    """One line per scenario file under ``folder`` (None: the built-in scenes, by the name ``run`` takes):
+    only regular files are opened (a FIFO, a device or a link to one is listed as such, never read), and at
+    most MAX_LISTED_BYTES of each."""
     import tomllib
 
+    from . import catalogue
+
+    if folder is None:
+        folder, builtin = catalogue.folder(), True
+    else:
+        folder, builtin = Path(folder), False
     files = sorted(_toml_files(folder))
     if not files:
         print(f"no scenarios in {_printable(folder)}/")
@@ -233,7 +251,9 @@ def _list(folder):
         scene = scene if isinstance(scene, dict) else {}
         kind, title = (" ".join(str(scene.get(key, default)).split())
                        for key, default in (("kind", "?"), ("title", "")))
-        print(f"{_printable(path.relative_to(folder)):48s} {kind[:28]:28s} {title[:80]}")
+        name = path.relative_to(folder)
+        name = name.with_suffix("").as_posix() if builtin else _printable(name)
+        print(f"{name:48s} {kind[:28]:28s} {title[:80]}")
     return 0
 
 

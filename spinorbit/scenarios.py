@@ -84,15 +84,16 @@ COSTS = {
 DEFAULT_COST = Cost(step_s=3e-5)             # the rigid-body scenes
 ADAPTIVE_STEP_S = 2e-4         # scipy's adaptive methods: Python between the stages of each step
 COMMON_SCHEMA = {
-    "scene.kind": Key(type=str),
-    "scene.title": Key(type=str, default=""),
-    "scene.description": Key(type=str, default=""),
+    "scene.kind": Key(type=str, help="what the scene runs (spinorbit.scenes.SCENES)"),
+    "scene.title": Key(type=str, default="", help="one line for reports and `spinorbit list`"),
+    "scene.description": Key(type=str, default="", help="free text, copied to the report"),
     "span.start": Key(type=str, help="ISO time, TDB"),
     "span.end": Key(type=str, help="ISO time (TDB) or a duration such as '100 yr'"),
     "span.step": Key(unit="d", positive=True, count="output rows", help="output cadence"),
-    "integrator.method": Key(type=str, default="dop853"),
-    "integrator.estimate_error": Key(type=bool, default=True),
-    "output.plots": Key(type=bool, default=True),
+    "integrator.method": Key(type=str, default="dop853", help="spinorbit.integrators.METHODS"),
+    "integrator.estimate_error": Key(type=bool, default=True,
+                                     help="rerun at half the step (or a tenth the tolerance) and report the difference"),
+    "output.plots": Key(type=bool, default=True, help="draw the scene's figures (PNG)"),
     "limits.time": Key(unit="s", positive=True, default=3600.0, max=3.2e7,
                        help="longest run the up-front estimate lets through (e.g. '10 h')"),
     "limits.memory": Key(unit="byte", positive=True, default=None, max=1e15,
@@ -566,17 +567,14 @@ def key_table(scene):
     """Markdown-like lines: every key of ``scene``'s kind (its file's value, the default, unit, range, meaning),
     the [integrator] options, and the kind's docstring's first line; what ``spinorbit show`` prints."""
     import math
-    import tomllib
 
-    from .catalogue import resolve
     from .integrators import METHODS, get_method
     from .scenes import scene_module
 
-    path = resolve(scene)
-    data = tomllib.loads(path.read_text(encoding="utf-8"))
-    kind = data.get("scene", {}).get("kind")
+    scenario = load_scenario(scene)
+    path, kind = scenario.path, scenario["scene.kind"]
     module = scene_module(kind)
-    given = dict(dotted_items(data))
+    given = dict(dotted_items(scenario.data))
     method = given.get("integrator.method", COMMON_SCHEMA["integrator.method"].default)
     options = get_method(method).options if method in METHODS else {}
     lines = [f"{path.stem} (kind {kind}): {(module.__doc__ or '').strip().splitlines()[0]}", "",

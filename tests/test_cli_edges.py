@@ -11,12 +11,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 from numba import njit
-from spinorbit.dynamics import SpinSystem
 
 from spinorbit import run_scenario, sweep
 from spinorbit.cli import main
 from spinorbit.errors import IntegrationError, ScenarioError
 from spinorbit.integrators import integrate
+from spinorbit.layout import Layout
+from spinorbit.models.ode import Ode
 
 ROOT = Path(__file__).parents[1]
 FREE_BODY = ROOT / "scenarios" / "free_body.toml"
@@ -130,7 +131,8 @@ def _not_finite_after_start(t, y, p):
 def test_scipy_failing_before_its_first_output_is_an_integration_error(rhs):
     """Not finite at the start (scipy's first step would be NaN and loop for ever), or just after it (scipy
     stops with no output, and returns its outputs as empty lists)."""
-    system = SpinSystem(rhs, (np.ones(3),), 0.0, np.array([1.0, 0, 0, 0, 0, 0, 1.0]), np.ones(3))
+    layout = Layout([("body.q", 4, "quaternion", ""), ("body.omega", 3, "vector", "rad/d")])
+    system = Ode(rhs, (np.ones(3),), 0.0, np.array([1.0, 0, 0, 0, 0, 0, 1.0]), layout)
     with pytest.raises(IntegrationError) as info, np.errstate(divide="ignore", invalid="ignore"):
         integrate(system, np.array([0.0, 1.0, 2.0]), "dop853")
     assert info.value.partial.t.size == 0 and info.value.partial.y.shape == (0, 7)

@@ -11,22 +11,22 @@ import types
 from pathlib import Path
 
 import pytest
-from spinorbit.moon import moon_rhs
 
 from spinorbit import linker
-from spinorbit.integrators import rk8
+from spinorbit.integrators import rk8, splitting
+from spinorbit.models.interactions import point_mass
 from tests.second_user import OTHER, as_user, chown_other, needs_root, shared_dir
 
 ROOT = Path(__file__).parents[1]
-# A rigid body without torque, linked from a template: Euler's equations in closed form,
-# omega' = ((B - C) wy wz / A, (C - A) wz wx / B, (A - B) wx wy / C).
+# A rigid body without torque, its rhs generated and linked (with its torque, not called): Euler's
+# equations in closed form, omega' = ((B - C) wy wz / A, (C - A) wz wx / B, (A - B) wx wy / C).
 LINK = """
 import sys
 import numpy as np
-from spinorbit import dynamics
-rhs = dynamics.make_rigid_body_rhs(dynamics._no_torque)
-y = np.array([1.0, 0, 0, 0, 0.1, 0.2, 0.3])
-print(rhs(0.0, y, (np.array([1.0, 2.0, 3.0]),))[4:].tolist(), sum(rhs.stats.cache_hits.values()))
+from spinorbit.models.assemblies.idealised import free_body
+system = free_body(np.array([1.0, 2.0, 3.0]), np.array([1.0, 0, 0, 0]), np.array([0.1, 0.2, 0.3]))
+rhs = system.rhs
+print(rhs(0.0, system.y0, system.params)[4:].tolist(), sum(rhs.stats.cache_hits.values()))
 print(any("kernels" in p for p in sys.path))
 """
 EULER = [(2 - 3) * 0.2 * 0.3 / 1, (3 - 1) * 0.3 * 0.1 / 2, (1 - 2) * 0.1 * 0.2 / 3]
@@ -50,7 +50,7 @@ def linked(cache):
     return eval(values), int(hits), done.stdout.splitlines()[1] == "True", done.stderr.strip().splitlines()
 
 
-def generated(cache, name="rigid_body_rhs"):
+def generated(cache, name="rhs"):
     (path,) = (cache / "kernels").glob(f"spinorbit_{name}_*.py")
     return path
 
@@ -103,8 +103,8 @@ def test_a_module_planted_in_the_cache_never_shadows_another(cache, tmp_path):
 @pytest.mark.parametrize("damage", ["truncated data", "garbage index", "a pickle that runs code"])
 def test_a_damaged_numba_cache_file_is_never_unpickled_but_compiled_again(cache, tmp_path, damage):
     numba_dir = cache / "kernels" / "numba"
-    (index,) = numba_dir.glob("spinorbit_rigid_body_rhs_*.nbi")
-    (data,) = numba_dir.glob("spinorbit_rigid_body_rhs_*.nbc")
+    (index,) = numba_dir.glob("spinorbit_rhs_*.nbi")
+    (data,) = numba_dir.glob("spinorbit_rhs_*.nbc")
     marker = tmp_path / "ran"
     if damage == "truncated data":
         data.write_bytes(data.read_bytes()[:-100])
@@ -117,7 +117,7 @@ def test_a_damaged_numba_cache_file_is_never_unpickled_but_compiled_again(cache,
         index.write_bytes(pickle.dumps("0.68.1") + pickle.dumps(Runs()))
     omega, hits, _, err = linked(cache)
     assert not marker.exists() and omega == pytest.approx(EULER, rel=1e-15) and hits == 0
-    assert len(err) == 1 and "numba's cache entry of rigid_body_rhs" in err[0] and "compiled again" in err[0]
+    assert len(err) == 1 and "numba's cache entry of rhs" in err[0] and "compiled again" in err[0]
     assert linked(cache)[1:] == (1, False, [])             # saved again, loaded by the next process
 
 
@@ -158,7 +158,7 @@ def test_a_cache_made_by_another_user_is_refused_and_nothing_in_it_runs(tmp_path
             os.chmod(folder, 0o755)
         return str(cache)
     as_user(plant)
-    for name in ("spinorbit_rigid_body_rhs_0123456789abcdef0123.py", "sortedcontainers.py"):
+    for name in ("spinorbit_rhs_0123456789abcdef0123.py", "sortedcontainers.py"):
         (cache / "kernels" / name).write_text(f"open({str(marker)!r}, 'w').close()\n")
         chown_other(cache / "kernels" / name)
     assert f"{cache} belongs to uid {OTHER}" in refusal(cache)
@@ -191,7 +191,6 @@ def test_no_fallback_into_a_shared_temporary_directory(tmp_path):
 def test_a_cache_with_one_second_timestamps_loads_what_it_just_wrote(tmp_path, monkeypatch):
     """Two modules written within one second into a folder whose mtime does not change: both load (they
     are loaded by path, not found by an import finder that caches the folder's listing)."""
-    from spinorbit import dynamics
     from spinorbit.linker import cache
 
     monkeypatch.setenv("SPINORBIT_CACHE_DIR", str(tmp_path / "cache"))
@@ -205,8 +204,8 @@ def test_a_cache_with_one_second_timestamps_loads_what_it_just_wrote(tmp_path, m
         os.utime(path.parent, ns=(before, before))
     monkeypatch.setattr(cache, "_write_atomically", coarse)
     try:
-        for fn in (dynamics.rigid_body_rhs, dynamics.figure_torque):
-            text = linker._module_source(fn, {name: dynamics._no_torque for name in fn.free_names}, ["test"])
+        for fn in (rk8.rk_step, splitting.split_loop):
+            text = linker._module_source(fn, {name: point_mass.torque for name in fn.free_names}, ["test"])
             name = f"spinorbit_test_{fn.__name__}_{os.getpid()}"
             assert callable(getattr(cache.load_module(name, text), fn.__name__))
             sys.modules.pop(name)
@@ -217,21 +216,21 @@ def test_a_cache_with_one_second_timestamps_loads_what_it_just_wrote(tmp_path, m
 def test_cache_show_and_clear(cache):
     show = subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache"], capture_output=True, text=True,
                           check=False, env=environment(cache))
-    assert show.returncode == 0 and f"{cache}/: 1 generated kernel modules, 2 compiled files" in show.stdout
+    assert show.returncode == 0 and f"{cache}/: 2 generated kernel modules, 2 compiled files" in show.stdout
     cleared = subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache", "clear"], capture_output=True,
                              text=True, check=False, env=environment(cache))
-    assert cleared.returncode == 0 and "removed 3 files" in cleared.stdout
+    assert cleared.returncode == 0 and "removed 4 files" in cleared.stdout
     assert [p.name for p in (cache / "kernels").iterdir()] == ["numba"]
     assert not list((cache / "kernels" / "numba").iterdir())
     assert linked(cache)[1] == 0                            # compiled afresh
 
 
 def test_kernels_reach_only_what_they_use():
-    """The lunar model's rhs reaches its own module, the rotations it calls and the constants it imports by
-    name, not the modules no kernel uses (editing one of those leaves every kernel warm)."""
-    reached = linker.reached(moon_rhs)
-    assert {"spinorbit.moon", "spinorbit.rotations"} <= set(reached)
-    assert not {"spinorbit.verdict", "spinorbit.scenarios", "spinorbit.moon_vs_de421"} & set(reached)
+    """An interaction's kernel reaches its own module and the rotations it calls, not the modules no kernel
+    uses (editing one of those leaves every kernel warm)."""
+    reached = linker.reached(point_mass.torque)
+    assert {"spinorbit.models.interactions.point_mass", "spinorbit.rotations"} <= set(reached)
+    assert not {"spinorbit.verdict", "spinorbit.scenarios", "spinorbit.models.system"} & set(reached)
     assert set(linker.reached(rk8.rk_step)) == {"spinorbit.integrators.rk8", "spinorbit.rotations"}
 
 

@@ -42,6 +42,8 @@ def build_system(scenario, source):
         system = moon(scenario["model.level"], orbits, tuple(extra), scenario["model.tides"], pole, t0,
                       moon_de421(t0, level.core))
     except InputError as exc:
+        if exc.name != "terms":
+            raise
         raise ScenarioError("model.terms", extra, exc.accepted) from None
     system.meta["source"] = source
     return system, orbits
