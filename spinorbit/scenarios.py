@@ -387,11 +387,11 @@ def scenario_errors(scenario):
     except EphemerisRangeError as exc:
         (first, last) = scenario.bounds
         asked_first, asked_last = exc.requested if isinstance(exc.requested, tuple) else (first, last)
-        margin = max(first - asked_first, asked_last - last, 0.0)
-        low, high = exc.span[0] + margin, exc.span[1] - margin
+        before, after = max(first - asked_first, 0.0), max(asked_last - last, 0.0)
+        low, high = exc.span[0] + before, exc.span[1] - after
         fits = (f"a span from {_iso(low)} to {_iso(high)} TDB fits" if high > low else "no span fits")
-        around = (f"the run samples the orbit {margin:.3g} d beyond each end of its span, so "
-                  if margin else "")
+        around = (f"the run samples the orbit {before:.3g} d before its span and {after:.3g} d after it, so "
+                  if before or after else "")
         raise EphemerisRangeError(exc.source, exc.requested, exc.span,
                                   note=f"{exc.note}; {around}{fits}") from None
 

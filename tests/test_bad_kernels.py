@@ -99,7 +99,6 @@ def without_the_moon(path):
     return path
 
 
-FITS = "a span from 1899-07-30T00:00 to 2200-01-31T00:00 TDB fits"
 
 
 def test_a_kernel_without_the_moon_is_refused_on_orbit_source(tmp_path, capsys):
@@ -113,8 +112,8 @@ def test_a_kernel_without_the_moon_is_refused_on_orbit_source(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("start, end, says", [
-    ("1899-07-29T00:00:00", "10 d", FITS),
-    ("2200-01-20T00:00:00", "2200-02-02T00:00:00", FITS),
+    ("1899-07-29T00:00:00", "10 d", "a span from 1899-07-30T00:00 to "),
+    ("2200-01-20T00:00:00", "2200-02-02T00:00:00", "to 2200-01-31T00:00 TDB fits"),
     ("1899-08-29T00:00:00", "2100-01-01T00:00:00", "one of them must hold the whole span"),
 ])
 def test_spans_at_the_edges_of_de421_say_what_fits(tmp_path, capsys, start, end, says):
@@ -125,4 +124,4 @@ def test_spans_at_the_edges_of_de421_say_what_fits(tmp_path, capsys, start, end,
                  "--set", "output.plots=false"])
     err = capsys.readouterr().err.strip()
     assert code == 2 and len(err.splitlines()) == 1 and says in err, err
-    assert "its .bsp to 19639.5, the de421 package's arrays from -36552.5" in err
+    assert "its .bsp to 2053-10-09, the de421 package's arrays from 1899-12-04" in err

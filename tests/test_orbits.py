@@ -56,7 +56,7 @@ def test_de421_arrays_match_bsp(de421, target, center):
 
 def test_de421_beyond_the_bsp_uses_the_arrays():
     assert open_ephemeris("de421", 0.0, 30000.0).span[1] == pytest.approx(73079.5)  # 2200-01
-    with pytest.raises(EphemerisRangeError, match="covers 1899-12-04 to 2200-02-01 TDB; asked for 2000-01-01 to "
+    with pytest.raises(EphemerisRangeError, match="covers 1899-07-29 to 2200-02-01 TDB .*; asked for 2000-01-01 to "
                                                   "2219-01-13.*'de440'.*'rebound'"):
         open_ephemeris("de421", 0.0, 80000.0)
 

@@ -142,8 +142,8 @@ def test_taylor_is_refused_by_a_scene_that_reads_an_ephemeris():
 
 def test_heyoka_caches_under_spinorbits_cache_directory():
     """heyoka's on-disk cache lives beside spinorbit's compiled kernels, private to the user."""
-    from spinorbit.linker import cache_dir
+    from spinorbit.linker.cache import kernels_dir
 
     path = Path(heyoka().llvm_state.get_diskcache_path())
-    assert path == cache_dir().parent / "heyoka" and heyoka().llvm_state.get_diskcache_enabled()
+    assert path == kernels_dir().parent / "heyoka" and heyoka().llvm_state.get_diskcache_enabled()
     assert path.stat().st_mode & 0o077 == 0

@@ -31,9 +31,9 @@ def heyoka():
     directory of another user's, or one others may read or write, is not used: every build compiles)."""
     import heyoka as hy
 
-    from ..linker import cache_dir
+    from ..linker.cache import kernels_dir
 
-    path = cache_dir().parent / "heyoka"
+    path = kernels_dir().parent / "heyoka"
     path.mkdir(mode=0o700, exist_ok=True)
     status = path.stat()
     private = status.st_uid == os.getuid() and not status.st_mode & 0o077
