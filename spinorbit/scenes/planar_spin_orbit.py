@@ -1,9 +1,9 @@
-"""Planar spin-orbit coupling on a Kepler ellipse (Euler ch. 16 P93-P94 with an eccentric orbit), for the stress
-scenes: two realisations share the initial conditions, the full 3-D rigid body (``rigid_body_system``,
-spinorbit.models.assemblies.idealised, quaternion + omega) on a ``KeplerOrbit``, and the one-angle model
-(spinorbit.models.planar), used where many trajectories share one orbit (Lyapunov maps: ``planar_lyapunov``, with
-analysis.lyapunov).  Times in days, angles in rad; the orbit has periapsis on the inertial x axis and mean anomaly
-0 at ``t0``.
+"""Planar spin-orbit coupling on a Kepler ellipse (Euler ch. 16 P93-P94 with an eccentric orbit), for
+the stress scenes: two realisations share the initial conditions, the full 3-D rigid body
+(``rigid_body_system``, spinorbit.models.assemblies.idealised, quaternion + omega) on a ``KeplerOrbit``,
+and the one-angle model (spinorbit.models.planar), used where many trajectories share one orbit
+(Lyapunov maps: ``planar_lyapunov``, with analysis.lyapunov).  Times in days, angles in rad; the orbit
+has periapsis on the inertial x axis and mean anomaly 0 at ``t0``.
 """
 import math
 
@@ -11,11 +11,11 @@ import numpy as np
 
 from ..analysis.lyapunov import benettin, compiled_flow, displaced, scipy_flow, system_flow
 from ..integrators.rk8 import fixed_step
-from ..simulate import simulate
 from ..models.assemblies.idealised import under_point_masses
 from ..models.planar import anomaly_and_distance, planar_rhs
 from ..orbits.analytic import KeplerOrbit
 from ..rotations import matrix_from_quat
+from ..simulate import simulate
 
 
 def kepler_orbit(gm, a, e, t0):
@@ -25,7 +25,8 @@ def kepler_orbit(gm, a, e, t0):
 
 
 def rigid_body_system(moments, orbit, t0, theta0, theta_dot0):
-    """Full 3-D rigid body turning about C (= inertial z) at theta_dot0 with A at angle theta0 from periapsis."""
+    """Full 3-D rigid body turning about C (= inertial z) at theta_dot0 with A at angle theta0 from
+    periapsis."""
     q0 = np.array([math.cos(theta0 / 2), 0.0, 0.0, math.sin(theta0 / 2)])
     return under_point_masses(moments, orbit, q0, [0.0, 0.0, theta_dot0], t0, "planar spin-orbit")
 
@@ -53,7 +54,8 @@ def forcing_coefficients(e, k_max=8, samples=4096):
 def planar_lyapunov(p, theta0, rate0, t0, period, orbits, steps, d0, method="rk8"):
     """Running exponents (orbits, n_starts) in 1/T for starts theta0, rate0 (rad, rad/d): all starts and
     neighbours in one vector of planar_rhs copies; ``method`` "rk8" (``steps`` per period) or "dop853"."""
-    theta0, rate0 = np.broadcast_arrays(np.atleast_1d(theta0).astype(float), np.atleast_1d(rate0).astype(float))
+    theta0, rate0 = np.broadcast_arrays(np.atleast_1d(theta0).astype(float),
+                                        np.atleast_1d(rate0).astype(float))
     scale = np.array([1.0, p[0]])
     advance = (compiled_flow(planar_rhs, p, t0, period, period / steps) if method == "rk8"
                else scipy_flow(planar_rhs, p, t0, period))
@@ -68,8 +70,9 @@ def rigid_body_lyapunov(system, period, orbits, steps, d0):
 
 
 def planar_vs_rigid_body(moments, orbit, p, t0, period, start):
-    """(max |theta_planar - theta_3D| (rad) over 5 orbits, the 3-D SpinSystem) from start = (theta - f, theta'/n)
-    at periapsis: the planar model against the 3-D body of ``moments`` kept in the plane."""
+    """(max |theta_planar - theta_3D| (rad) over 5 orbits, the 3-D SpinSystem) from
+    start = (theta - f, theta'/n) at periapsis: the planar model against the 3-D body of ``moments`` kept
+    in the plane."""
     n = p[0]
     t = t0 + np.linspace(0.0, 5 * period, 501)
     system = rigid_body_system(moments, orbit, t0, start[0], start[1] * n)

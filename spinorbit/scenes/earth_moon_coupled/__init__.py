@@ -1,13 +1,14 @@
 """The Earth-Moon system integrated as one, orbit and spin coupled both ways, against DE421.
 
 One state holds the geocentric Moon's orbit, the Moon's mantle and core and the Earth's spin (gyroscopic);
-every interaction acts with its reaction; the Sun, the planets and the Earth-Moon barycentre come from DE421
-(spinorbit.models.assemblies.earth_moon), or with ``orbit.source = "rebound"`` from a REBOUND N-body run started
-from DE421 a day before the span (for epochs no ephemeris covers).  Started from DE421's state at span.start (the
-Moon's orbit, orientation, rates and core), the Earth on its forced motion about the IAU 2006/2000A pole at the
-Earth rotation angle's rate; nothing fitted.  Compared with DE421 (compare.py): the Moon's direction and range,
-the lunar pole and longitude; the Earth's axis against the CIP (reported, not judged: DE421 turned its Earth by
-IAU 1976 precession, which the CIP leaves by 99 mas over the century).
+every interaction acts with its reaction; the Sun, the planets and the Earth-Moon barycentre come from
+DE421 (spinorbit.models.assemblies.earth_moon), or with ``orbit.source = "rebound"`` from a REBOUND N-body
+run started from DE421 a day before the span (for epochs no ephemeris covers).  Started from DE421's state
+at span.start (the Moon's orbit, orientation, rates and core), the Earth on its forced motion about the
+IAU 2006/2000A pole at the Earth rotation angle's rate; nothing fitted.  Compared with DE421 (compare.py):
+the Moon's direction and range, the lunar pole and longitude; the Earth's axis against the CIP (reported,
+not judged: DE421 turned its Earth by IAU 1976 precession, which the CIP leaves by 99 mas over the
+century).
 
 ``compare.tides_off``: the same run again without the Earth's tides; the difference gives the Moon's tidal
 secular acceleration (n_dot, "/cy^2) and recession (mm/yr), judged against lunar laser ranging (Williams &
@@ -25,18 +26,21 @@ from .. import common
 
 OFF_BY_DEFAULT = ()
 SCHEMA = {
-    **{f"model.{name}": Key(type=bool, default=name not in OFF_BY_DEFAULT, help=text) for name, text in SWITCHES.items()},
+    **{f"model.{name}": Key(type=bool, default=name not in OFF_BY_DEFAULT, help=text)
+       for name, text in SWITCHES.items()},
     "orbit.source": Key(type=str, default="de421",
-                        help="the Sun, planets and Earth-Moon barycentre: 'de421', 'de440' (or a .bsp), or 'rebound' "
-                             "(a REBOUND run from DE421's state)"),
+                        help="the Sun, planets and Earth-Moon barycentre: 'de421', 'de440' (or a .bsp), "
+                             "or 'rebound' (a REBOUND run from DE421's state)"),
     "orbit.step": Key(unit="d", default=1.0, min=0.0625, max=4.0,
                       help="sampling step of the Sun, planets and Earth-Moon barycentre"),
-    "compare.tides_off": Key(type=bool, default=False,
-                             help="also run without the Earth's tides: the Moon's tidal secular acceleration"),
+    "compare.tides_off": Key(
+        type=bool, default=False,
+        help="also run without the Earth's tides: the Moon's tidal secular acceleration"),
 }
 LLR = "Williams & Boggs 2016 (lunar laser ranging): -25.8\"/cy^2 and 38.3 mm/yr, within +-1"
-TARGETS = ("the same equations as DE421, started from its state: 1\" and 2 km is 5-10x what the integration "
-           "and the orbit sampling leave (benchmarks/RESULTS.md), 0.1\" the lunar pole's DE421-DE440 spread")
+TARGETS = ("the same equations as DE421, started from its state: 1\" and 2 km is 5-10x what the "
+           "integration and the orbit sampling leave (benchmarks/RESULTS.md), 0.1\" the lunar pole's "
+           "DE421-DE440 spread")
 MIN_TIDAL_SPAN_D = 100 * 365.25 - 1.0
 
 
@@ -51,11 +55,11 @@ def verdict(scenario, comparison):
                          min_span_d=MIN_TIDAL_SPAN_D),
                    Check("recession", "tidal_recession_mm_per_yr", 1.0, " mm/yr", LLR, expected=38.3,
                          min_span_d=MIN_TIDAL_SPAN_D)]
-    earth_axis = ("the Earth's axis against IAU 2006/2000A's CIP is reported, not judged: DE421 turned its Earth by "
-                  "IAU 1976 precession, and this Earth is a rigid body (no non-rigid nutation), so it runs ~90 mas "
-                  "from the CIP over a century")
-    return Verdict("DE421 and lunar laser ranging" if scenario["compare.tides_off"] else "DE421", tuple(checks),
-                   earth_axis)
+    earth_axis = ("the Earth's axis against IAU 2006/2000A's CIP is reported, not judged: DE421 turned its "
+                  "Earth by IAU 1976 precession, and this Earth is a rigid body (no non-rigid nutation), so "
+                  "it runs ~90 mas from the CIP over a century")
+    return Verdict("DE421 and lunar laser ranging" if scenario["compare.tides_off"] else "DE421",
+                   tuple(checks), earth_axis)
 
 
 def start_epoch(scenario):
@@ -106,23 +110,27 @@ def run(scenario):
     axis = model.figure_axes("earth", t, solution.y)
     axis_error = vs.earth_axis_error(t, axis)
     comparison, not_measured = vs.metrics(t, direction, distance, lunar, axis_error)
-    summary = {"comparison": comparison, "not_measured": not_measured, "run": point, "reference": reference,
-               "model": {"switches": list(switches), "start_tdb_d": model.t0},
-               "external_bodies": {"source": external.source, "step_d": external.step, "wall_s": sampled}}
+    summary = {"comparison": comparison, "not_measured": not_measured, "run": point,
+               "reference": reference, "model": {"switches": list(switches), "start_tdb_d": model.t0},
+               "external_bodies": {"source": external.source, "step_d": external.step,
+                                   "wall_s": sampled}}
     if scenario["compare.tides_off"]:
         if "earth_tides" not in switches:
             raise ScenarioError("compare.tides_off", True, "false when model.earth_tides is false")
         without = system(scenario, external, tuple(s for s in switches if s != "earth_tides"))
         other, point_off = common.simulate_scenario(scenario, without, t, "tides_off")
-        tidal = vs.tidal_acceleration(t, solution.part("moon.r"), other.part("moon.r"), other.part("moon.v"))
+        tidal = vs.tidal_acceleration(t, solution.part("moon.r"), other.part("moon.r"),
+                                      other.part("moon.v"))
         summary["comparison"].update({f"tidal_{name}": value for name, value in tidal.items()})
         summary["run_tides_off"] = point_off
     errors = {"direction": direction, "range": distance, "pole": pole, "longitude": longitude,
               "earth_axis": axis_error}
     table = vs.table(t, solution.part("moon.r"), mats, errors, axis)
     year = common.decimal_year(t)
-    figures = {"moon_vs_de421": common.plot_series(
-        year, [table["moon_direction_error"].value, table["pole_error"].value, table["longitude_error"].value],
-        "year (TDB)", "error [arcsec]", ["Moon direction", "lunar pole", "libration longitude"]),
-        "moon_range_vs_de421": common.plot_series(year, [distance * 1e3], "year (TDB)", "range error [m]", ["range"])}
+    in_arcsec = [table[name].value for name in ("moon_direction_error", "pole_error", "longitude_error")]
+    figures = {
+        "moon_vs_de421": common.plot_series(year, in_arcsec, "year (TDB)", "error [arcsec]",
+                                            ["Moon direction", "lunar pole", "libration longitude"]),
+        "moon_range_vs_de421": common.plot_series(year, [distance * 1e3], "year (TDB)", "range error [m]",
+                                                  ["range"])}
     return common.result(scenario, table, summary, figures, solution)

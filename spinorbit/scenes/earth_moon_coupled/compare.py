@@ -13,7 +13,8 @@ MAS = ARCSEC / 1000.0
 
 
 def covered(t):
-    """The outputs DE421 has data at (its lunar series, 1899-12-04 to 2200-02-01 TDB; its orbits reach as far)."""
+    """The outputs DE421 has data at (its lunar series, 1899-12-04 to 2200-02-01 TDB; its orbits reach as
+    far)."""
     from ...bodies.de421_orientation import span
 
     first, last = span()
@@ -27,8 +28,8 @@ def orbit_errors(t, r):
 
     direction, distance, inside = np.full(len(t), np.nan), np.full(len(t), np.nan), covered(t)
     if inside.any():
-        de421, _ = open_ephemeris("de421", t[inside].min(), t[inside].max()).relative_states("moon", "earth",
-                                                                                            t[inside])
+        ephemeris = open_ephemeris("de421", t[inside].min(), t[inside].max())
+        de421, _ = ephemeris.relative_states("moon", "earth", t[inside])
         direction[inside] = vector_angle(r[inside], de421)
         distance[inside] = np.linalg.norm(r[inside], axis=1) - np.linalg.norm(de421, axis=1)
     return direction, distance
@@ -48,9 +49,11 @@ def metrics(t, direction, distance, lunar, earth_axis):
     if not inside.any():
         from ...errors import tdb_dates
 
-        why = f"DE421's lunar series covers 1899-12-04 to 2200-02-01 TDB; the span is {tdb_dates((t[0], t[-1]))}"
+        why = ("DE421's lunar series covers 1899-12-04 to 2200-02-01 TDB; "
+               f"the span is {tdb_dates((t[0], t[-1]))}")
         names = [f"{m}_error_{s}_{u}" for m, u in (("moon_direction", "arcsec"), ("moon_range", "km"),
-                                                   ("pole", "arcsec"), ("longitude", "arcsec")) for s in ("max", "rms")]
+                                                   ("pole", "arcsec"), ("longitude", "arcsec"))
+                 for s in ("max", "rms")]
         return ({"earth_axis_vs_cip_max_mas": float(earth_axis.max() / MAS),
                  "earth_axis_vs_cip_rms_mas": float(np.sqrt(np.mean(earth_axis ** 2)) / MAS)},
                 {f"comparison.{name}": why for name in names})
@@ -66,8 +69,8 @@ def metrics(t, direction, distance, lunar, earth_axis):
 
 
 def tidal_acceleration(t, r_on, r_off, v_off):
-    """The Moon's secular acceleration from the Earth's tides: the geocentric Moon r (n, 3) of a run with them and
-    r, v of one without, at TDB days t.
+    """The Moon's secular acceleration from the Earth's tides: the geocentric Moon r (n, 3) of a run with
+    them and r, v of one without, at TDB days t.
 
     n_dot: the longitude difference dl (in the orbit plane) fitted by c0 + c1 T + n_dot T^2 / 2, T in
     centuries from the start.  Recession: the distance difference taken at the same phase of the Moon (the
@@ -106,8 +109,9 @@ def lunar_errors(t, q):
 
 
 def table(t, r, mats, errors, earth_axis):
-    """The run's table: the geocentric Moon (km, ICRF) and its errors, the JPL angles (rad) and the lunar pole
-    and longitude errors, the Earth's axis (ICRF) and its angle from the CIP.  errors: {name: array} in rad/km."""
+    """The run's table: the geocentric Moon (km, ICRF) and its errors, the JPL angles (rad) and the lunar
+    pole and longitude errors, the Earth's axis (ICRF) and its angle from the CIP.  errors: {name: array} in
+    rad/km."""
     import astropy.units as u
     from astropy.table import QTable
 

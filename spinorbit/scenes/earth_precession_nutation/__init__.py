@@ -1,10 +1,10 @@
 """The Earth's precession and nutation (Euler ch. 16 P91/P96) against IAU 2006/2000A (ERFA).
 
-A rigid oblate Earth (spinorbit.models.assemblies.earth, H_d from IAU 2006) under the Moon's and Sun's torques
-(DE421, or Euler's circles), started on the IAU pole with forced initial conditions (start.py); the CIP X, Y,
-the fitted precession rate and nutation terms, Euler's P96 rate N cos n (§846) beside them (compare.py).  The
-rigid-minus-IAU nutation is the non-rigid response, not an error: ``earth.nonrigid`` applies it (nonrigid.py;
-REN-2000 and VLBI's observed pole beside).
+A rigid oblate Earth (spinorbit.models.assemblies.earth, H_d from IAU 2006) under the Moon's and Sun's
+torques (DE421, or Euler's circles), started on the IAU pole with forced initial conditions (start.py);
+the CIP X, Y, the fitted precession rate and nutation terms, Euler's P96 rate N cos n (§846) beside them
+(compare.py).  The rigid-minus-IAU nutation is the non-rigid response, not an error: ``earth.nonrigid``
+applies it (nonrigid.py; REN-2000 and VLBI's observed pole beside).
 """
 import numpy as np
 
@@ -19,7 +19,8 @@ from .. import common
 SCHEMA = {
     "earth.model": Key(type=str, default="gyroscopic", choices=("full", "gyroscopic")),
     "earth.dynamical_ellipticity": Key(unit="", default=earth.H_D, positive=True, max=0.5, help="(C - A)/C"),
-    "earth.b_minus_a_over_c": Key(unit="", default=0.0, min=0.0, max=0.5, help="triaxiality (full model only)"),
+    "earth.b_minus_a_over_c": Key(unit="", default=0.0, min=0.0, max=0.5,
+                                  help="triaxiality (full model only)"),
     "earth.forced_start": Key(type=bool, default=True, help="Oppolzer terms in the initial omega"),
     "earth.start_pole": Key(type=str, default="iau", choices=("iau", "iau_mean_plus_rigid_nutation"),
                             help="initial axis: the IAU pole, or its mean pole + the rigid model's nutation"),
@@ -29,19 +30,23 @@ SCHEMA = {
     "earth.geodesic_nutation": Key(type=bool, default=False, help="the geodesic precession's annual term"),
     "earth.nonrigid": Key(type=bool, default=False, help="the rigid nutation times earth.transfer_function"),
     "earth.transfer_function": Key(type=str, default="mhb2000", choices=tuple(MODELS)),
-    "orbit.source": Key(type=str, default="de421", help="'de421', 'de440' (or a .bsp), 'rebound', or 'circular'"),
-    "orbit.planets": Key(type=bool, default=False, help="add the direct torques of the planets (Mercury to Saturn)"),
+    "orbit.source": Key(type=str, default="de421",
+                        help="'de421', 'de440' (or a .bsp), 'rebound', or 'circular'"),
+    "orbit.planets": Key(type=bool, default=False,
+                         help="add the direct torques of the planets (Mercury to Saturn)"),
     "orbit.sample_step": Key(**SAMPLE_STEP, default=0.25),
     "comparison.gyroscopic_step": Key(unit="d", default=1.0, positive=True, count="integrator steps",
                                       help="rk8 step of the gyroscopic run compared with the full model"),
-    "comparison.free_nutation_span": Key(unit="d", default=610.0, positive=True, max=1e6, help="for the Euler period"),
+    "comparison.free_nutation_span": Key(unit="d", default=610.0, positive=True, max=1e6,
+                                         help="for the Euler period"),
 }
 
 _RIGID_VS_IAU = ("IAU 2000A is a non-rigid Earth (MHB2000): its 18.6-yr nutation differs from a rigid one's "
                  "(REN-2000 -17.2805\") by 74 mas in dpsi, 23 in deps; targets X <= 40, Y <= 25 mas rms")
 _NONRIGID_VS_IAU = "IAU 2000A is REN-2000 times MHB2000's transfer function, the layer's default: 1 mas rms"
-_RATE = ("H_d is IAU 2006's, so the rate matches IAU 2006 to the torques left out (planets +0.031\"/cy, J4 +0.0026, "
-         "MHB2000's nonlinear -0.021) and to the first-order scale factor H_d came with (-0.004), RESULTS.md")
+_RATE = ("H_d is IAU 2006's, so the rate matches IAU 2006 to the torques left out (planets +0.031\"/cy, "
+         "J4 +0.0026, MHB2000's nonlinear -0.021) and to the first-order scale factor H_d came with "
+         "(-0.004), RESULTS.md")
 
 
 def verdict(scenario, comparison):
@@ -58,11 +63,13 @@ def verdict(scenario, comparison):
             "(IERS Conventions 2010); " + _RATE, expected=earth.GEODESIC_PRECESSION_ARCSEC_CY,
             min_span_d=RATE_MIN_SPAN_D),), "X, Y drift by the omitted geodesic precession: not compared")
     if scenario["earth.nonrigid"]:
-        checks = [Check(f"{axis} rms", f"{axis.lower()}_rms_mas", 1.0, " mas", _NONRIGID_VS_IAU) for axis in "XY"]
+        checks = [Check(f"{axis} rms", f"{axis.lower()}_rms_mas", 1.0, " mas", _NONRIGID_VS_IAU)
+                  for axis in "XY"]
     else:
         checks = [Check(f"{axis} rms", f"{axis.lower()}_rms_mas", limit, " mas", _RIGID_VS_IAU)
                   for axis, limit in (("X", 40.0), ("Y", 25.0))]
-    checks.append(Check("ψ rate − IAU", "psi_rate_minus_iau_arcsec_cy", 0.05, "″/cy", _RATE, min_span_d=RATE_MIN_SPAN_D))
+    checks.append(Check("ψ rate − IAU", "psi_rate_minus_iau_arcsec_cy", 0.05, "″/cy", _RATE,
+                        min_span_d=RATE_MIN_SPAN_D))
     if scenario["earth.model"] == "full":
         checks.append(Check("full − gyroscopic", "full_minus_gyroscopic_max_mas", 1.0, " mas",
                             "the gyroscopic figure axis is exact to second order in 1/Omega: the rest is the "
@@ -98,16 +105,18 @@ def run(scenario):
         t, dx, dy, nutation, iau, "non-rigid model" if nonrigid else "rigid model")
     if scenario["earth.model"] == "full":
         comparison.update(full_checks(scenario, system, z0, t, z))
-        figures["full_minus_gyroscopic"] = plots.full_minus_gyroscopic(t, comparison.pop("_full_minus_gyro_mas"))
+        figures["full_minus_gyroscopic"] = plots.full_minus_gyroscopic(
+            t, comparison.pop("_full_minus_gyro_mas"))
     model = vs.model_summary(moments, orbits, geodesic, scenario["earth.j2_rate"], scenario["earth.j4"])
-    summary = {"not_measured": not_measured, "comparison": comparison, "run": point, "reference": iau.provenance,
-               "model": model, **(nr.summaries(t, z_rigid, z, iau, dx, dy, **nonrigid) if nonrigid else {})}
+    summary = {"not_measured": not_measured, "comparison": comparison, "run": point,
+               "reference": iau.provenance, "model": model,
+               **(nr.summaries(t, z_rigid, z, iau, dx, dy, **nonrigid) if nonrigid else {})}
     return common.result(scenario, table, summary, figures, solution)
 
 
 def full_checks(scenario, system, pole, t, z_full):
-    """The full model against its gyroscopic twin on the same orbits and start, and the free nutation it started
-    (a dense run over ``comparison.free_nutation_span``)."""
+    """The full model against its gyroscopic twin on the same orbits and start, and the free nutation it
+    started (a dense run over ``comparison.free_nutation_span``)."""
     from ...simulate import simulate
     from . import compare as vs
     from .start import earth_system, orbits, started

@@ -1,5 +1,5 @@
-"""An Earth run against IAU 2006/2000A (ERFA): the residuals, the fitted precession and nutation, the full model's
-own checks, and the output table (the non-rigid layer and its references: nonrigid.py).
+"""An Earth run against IAU 2006/2000A (ERFA): the residuals, the fitted precession and nutation, the full
+model's own checks, and the output table (the non-rigid layer and its references: nonrigid.py).
 
 Edge module (astropy, ERFA through references.erfa_pole); the Earth scene declares, this compares.
 """
@@ -11,12 +11,14 @@ from ...bodies import earth
 from ...constants import ARCSEC, JULIAN_CENTURY_D, MAS
 from ...references import arguments, erfa_pole
 
+
 def model_summary(moments, orbits, geodesic_arcsec_cy, j2_rate, j4):
     """The model's settings as the summary reports them."""
     error = getattr(orbits, "max_relative_error", None)
     return {"moments_over_C": (moments / moments[2]).tolist(), "bodies": list(orbits.names),
             "geodesic_precession_arcsec_cy": -geodesic_arcsec_cy if geodesic_arcsec_cy else 0.0,    # not -0.0
-            "j2_rate_per_cy": earth.J2_RATE_PER_CY if j2_rate else 0.0, "j4": j4, "spin_rate_rad_d": earth.ERA_RATE_RAD_D,
+            "j2_rate_per_cy": earth.J2_RATE_PER_CY if j2_rate else 0.0, "j4": j4,
+            "spin_rate_rad_d": earth.ERA_RATE_RAD_D,
             "orbit_interpolation_max_relative_error": None if error is None else error.tolist()}
 
 
@@ -31,14 +33,17 @@ def precession_nutation(t, z, iau):
     """(comparison, not_measured, nutation) on DE421: the fitted precession rate and main nutation terms
     against IAU 2006/2000A, and the model's nutation about its own mean pole (rad)."""
     offsets = erfa_pole.about_mean_pole(t, z)
-    fitted, not_measured, mean = compare_with_iau(t, offsets, (iau["dpsi_rad"], iau["deps_rad"]), arguments.named(
-        t, erfa_pole.NUTATION_ARGUMENTS), erfa_pole.IAU2000A_MAIN_ARCSEC)
+    fitted, not_measured, mean = compare_with_iau(
+        t, offsets, (iau["dpsi_rad"], iau["deps_rad"]), arguments.named(t, erfa_pole.NUTATION_ARGUMENTS),
+        erfa_pole.IAU2000A_MAIN_ARCSEC)
     rate = fitted.pop("psi_rate_minus_iau_arcsec_cy")            # None over a short span, with why
-    comparison = dict(psi_rate_minus_iau_arcsec_cy=rate, psi_A_rate_arcsec_cy=None if rate is None else
-                      erfa_pole.PSI_A_RATE_ARCSEC_CY + rate, psi_A_rate_iau2006_arcsec_cy=erfa_pole.PSI_A_RATE_ARCSEC_CY,
+    comparison = dict(psi_rate_minus_iau_arcsec_cy=rate,
+                      psi_A_rate_arcsec_cy=None if rate is None else erfa_pole.PSI_A_RATE_ARCSEC_CY + rate,
+                      psi_A_rate_iau2006_arcsec_cy=erfa_pole.PSI_A_RATE_ARCSEC_CY,
                       **fitted)
     if rate is None:
-        not_measured["comparison.psi_A_rate_arcsec_cy"] = not_measured["comparison.psi_rate_minus_iau_arcsec_cy"]
+        not_measured["comparison.psi_A_rate_arcsec_cy"] = (
+            not_measured["comparison.psi_rate_minus_iau_arcsec_cy"])
     nutation = {"psi_mean": iau["psi_bar_rad"] + mean[0], "eps_mean": iau["eps_a_rad"] + mean[1],
                 "dpsi": offsets[0] - mean[0], "deps": offsets[1] - mean[1]}
     return comparison, not_measured, nutation
@@ -65,7 +70,8 @@ def table(t, z, dx, dy, nutation):
     from ...schema import tdb_days_to_time
 
     columns = {"time": tdb_days_to_time(t), "cip_x": (z[:, 0] * u.rad).to(u.arcsec),
-               "cip_y": (z[:, 1] * u.rad).to(u.arcsec), "cip_x_minus_erfa": dx * u.mas, "cip_y_minus_erfa": dy * u.mas}
+               "cip_y": (z[:, 1] * u.rad).to(u.arcsec), "cip_x_minus_erfa": dx * u.mas,
+               "cip_y_minus_erfa": dy * u.mas}
     if nutation:
         columns.update({name: (nutation[key] * u.rad).to(unit) for name, key, unit in (
             ("precession_longitude", "psi_mean", u.arcsec), ("obliquity", "eps_mean", u.deg),

@@ -1,6 +1,7 @@
-"""The Earth scene's System and its start: the rigid Earth (spinorbit.models.assemblies.earth) driven by DE421 or
-Euler's circles, started on the IAU 2006/2000A pole (ERFA) with forced initial conditions, or on the IAU mean pole
-plus the rigid model's own nutation there (found by a first gyroscopic run fitted on IAU 2000A's arguments)."""
+"""The Earth scene's System and its start: the rigid Earth (spinorbit.models.assemblies.earth) driven by
+DE421 or Euler's circles, started on the IAU 2006/2000A pole (ERFA) with forced initial conditions, or on
+the IAU mean pole plus the rigid model's own nutation there (found by a first gyroscopic run fitted on
+IAU 2000A's arguments)."""
 import math
 
 import numpy as np
@@ -9,7 +10,8 @@ from ...bodies import earth
 from ...errors import ScenarioError
 from ...references import euler_p96
 
-PLANETS = ("mercury", "venus", "mars", "jupiter", "saturn")  # direct torques; Uranus, Neptune: GM/r^3 ~1e-3 of Jupiter's
+# direct torques; Uranus, Neptune: GM/r^3 ~1e-3 of Jupiter's
+PLANETS = ("mercury", "venus", "mars", "jupiter", "saturn")
 RIGID_START_STEP_D = 2.0              # rk8 step of the first gyroscopic run (converged: RESULTS.md)
 
 
@@ -29,36 +31,43 @@ def orbits(scenario):
 def check(scenario):
     """Settings that cannot go together, refused on the key that sets them."""
     if scenario["earth.nonrigid"] and scenario["orbit.source"] == "circular":
-        raise ScenarioError("earth.nonrigid", True, 'false with orbit.source = "circular" (the non-rigid '
-                                                    'response is applied on the luni-solar arguments of DE421)')
+        raise ScenarioError("earth.nonrigid", True,
+                            'false with orbit.source = "circular" (the non-rigid '
+                            'response is applied on the luni-solar arguments of DE421)')
     for key in ("earth.j4", "earth.geodesic_nutation"):
         if scenario[key] and scenario["earth.model"] != "gyroscopic":
-            raise ScenarioError(key, True, 'false with earth.model = "full" (it acts in the gyroscopic model)')
+            raise ScenarioError(key, True,
+                                'false with earth.model = "full" (it acts in the gyroscopic model)')
 
 
 def ecliptic_pole(tilt):
-    """The pole the geodesic precession turns about: the J2000 ecliptic's, or that of Euler's tilted circles."""
+    """The pole the geodesic precession turns about: the J2000 ecliptic's, or that of Euler's tilted
+    circles."""
     from ...references import erfa_pole
 
-    return erfa_pole.ecliptic_pole_j2000() if tilt is None else np.array([0.0, -math.sin(tilt), math.cos(tilt)])
+    return (erfa_pole.ecliptic_pole_j2000() if tilt is None
+            else np.array([0.0, -math.sin(tilt), math.cos(tilt)]))
 
 
 def earth_system(scenario, source, model, t0):
-    """The rigid Earth of the scenario on ``source`` (orbit source, tilt), rotator ``model``, not yet started."""
+    """The rigid Earth of the scenario on ``source`` (orbit source, tilt), rotator ``model``, not yet
+    started."""
     from ...models.assemblies.earth import rigid_earth
 
     orbit, tilt = source
     pole = ecliptic_pole(tilt) if scenario["earth.geodesic_precession"] else None
-    return rigid_earth(orbit, model, scenario["earth.dynamical_ellipticity"], scenario["earth.b_minus_a_over_c"],
-                       scenario["earth.j2_rate"], scenario["earth.j4"], pole, scenario["earth.geodesic_nutation"], t0)
+    return rigid_earth(orbit, model, scenario["earth.dynamical_ellipticity"],
+                       scenario["earth.b_minus_a_over_c"], scenario["earth.j2_rate"], scenario["earth.j4"],
+                       pole, scenario["earth.geodesic_nutation"], t0)
 
 
 def started(system, t0, pole, forced=True):
-    """``system`` with the Earth's figure axis at ``pole`` at t0 spinning at the Earth rotation angle's rate (its
-    body x axis toward the A axis, longitude -14.93 deg, for a triaxial Earth)."""
+    """``system`` with the Earth's figure axis at ``pole`` at t0 spinning at the Earth rotation angle's rate
+    (its body x axis toward the A axis, longitude -14.93 deg, for a triaxial Earth)."""
     from ...models.start import on_pole
 
-    system.y0 = system.layout.pack(on_pole(system, "earth", t0, pole, earth.ERA_RATE_RAD_D, a_axis(t0, pole), forced))
+    state = on_pole(system, "earth", t0, pole, earth.ERA_RATE_RAD_D, a_axis(t0, pole), forced)
+    system.y0 = system.layout.pack(state)
     return system
 
 
@@ -78,7 +87,8 @@ def build(scenario, t):
 
 
 def rigid_start(scenario, source, t0, pole, t):
-    """IAU mean pole at t0 plus the rigid nutation there: the IAU pole + (rigid - IAU) fitted periodic terms."""
+    """IAU mean pole at t0 plus the rigid nutation there: the IAU pole + (rigid - IAU) fitted periodic
+    terms."""
     from ...analysis.precession import fit_pole, periodic_part
     from ...references import arguments, erfa_pole
     from ...simulate import simulate
@@ -87,7 +97,8 @@ def rigid_start(scenario, source, t0, pole, t):
     run, _ = simulate(gyro, t, "rk8", {"step": RIGID_START_STEP_D}, estimate_error=False, label="rigid start")
     z, iau = gyro.figure_axes("earth", t, run.y), erfa_pole.IauPole()(t)
     terms = arguments.named(t, erfa_pole.NUTATION_ARGUMENTS)
-    at_t0 = {name: phase[0] for name, (phase, _) in arguments.named([t0], erfa_pole.NUTATION_ARGUMENTS).items()}
+    at_t0 = {name: phase[0]
+             for name, (phase, _) in arguments.named([t0], erfa_pole.NUTATION_ARGUMENTS).items()}
     model = fit_pole(t, *erfa_pole.about_mean_pole(t, z), terms, separate=False)     # only their sum is used
     ref = fit_pole(t, iau["dpsi_rad"], iau["deps_rad"], terms, separate=False)
     psi0, eps0 = (v[0] for v in erfa_pole.pole_angles(np.array([t0]), pole[None]))

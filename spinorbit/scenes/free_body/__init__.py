@@ -26,14 +26,16 @@ SCHEMA = {
 
 VERDICT = Verdict("Euler's closed form", (
     Check("attitude", "attitude_max_error_vs_closed_form_rad", 1e-10, " rad",
-          "dop853 at rtol 1e-13 over 100 periods: rounding and tolerance floor ~1e-11 rad (benchmarks/RESULTS.md)"),
+          "dop853 at rtol 1e-13 over 100 periods: rounding and tolerance floor ~1e-11 rad "
+          "(benchmarks/RESULTS.md)"),
     Check("ω relative", "omega_max_rel_error_vs_closed_form", 1e-10, "",
           "same floor, relative to |omega0|"),
 ))
 
 
 def build(scenario):
-    """For ``spinorbit bench``: (system, output times, error(solution) = max attitude error vs closed form, rad)."""
+    """For ``spinorbit bench``: (system, output times, error(solution) = max attitude error vs closed
+    form, rad)."""
     from ...theory import FreeRigidBody
 
     moments, omega0 = scenario["body.moments"], scenario["body.omega0"]
@@ -76,8 +78,10 @@ def run(scenario):
     table["attitude_error"] = attitude_err * common.u().arcsec
     figures = {
         "omega": common.plot_omega(solution),
-        "error_vs_closed_form": common.plot_series(solution.t - scenario.t_start, attitude_err,
-                                                   "days from start", "attitude error vs closed form [arcsec]"),
+        "error_vs_closed_form": common.plot_series(
+            solution.t - scenario.t_start, attitude_err,
+            "days from start", "attitude error vs closed form [arcsec]"),
     }
-    summary = {"comparison": comparison, "run": point, "invariants": invariant_drift(moments, solution.quaternion, solution.omega)}
+    invariants = invariant_drift(moments, solution.quaternion, solution.omega)
+    summary = {"comparison": comparison, "run": point, "invariants": invariants}
     return common.result(scenario, table, summary, figures, solution)

@@ -1,15 +1,17 @@
 """The Moon's physical libration, integrated from DE421's state and compared with DE421.
 
-The Moon starts from DE421's state at span.start (or, outside DE421's lunar series, at its nearest epoch, and
-is integrated out: model.py) and turns under the interactions of its level (spinorbit.models.assemblies.moon;
-Euler ch. 16 P91, §815) driven by the chosen orbit source.  Nothing is fitted.  Outputs: the JPL angles and their
-residuals against DE421 where it has data (pole = tilt of the body z axis, longitude = rotation about it), the
-physical librations and the sub-Earth point, the main longitude terms beside Eckhardt's (compare.py).
+The Moon starts from DE421's state at span.start (or, outside DE421's lunar series, at its nearest epoch,
+and is integrated out: model.py) and turns under the interactions of its level
+(spinorbit.models.assemblies.moon; Euler ch. 16 P91, §815) driven by the chosen orbit source.  Nothing is
+fitted.  Outputs: the JPL angles and their residuals against DE421 where it has data (pole = tilt of the
+body z axis, longitude = rotation about it), the physical librations and the sub-Earth point, the main
+longitude terms beside Eckhardt's (compare.py).
 
 Verdict: max pole and longitude error against DE421 at the level's target (TOLERANCES); level 1 is held
-to level 2's and fails it.  Driven by REBOUND the run fails too (REBOUND's lunar orbit drifts from DE421's,
-3" in 10 yr, and the libration follows it): no tolerance is fitted to that drift; the note says what to expect
-and names the accurate REBOUND path; ``compare.source`` reports the DE421-driven difference beside it.
+to level 2's and fails it.  Driven by REBOUND the run fails too (REBOUND's lunar orbit drifts from
+DE421's, 3" in 10 yr, and the libration follows it): no tolerance is fitted to that drift; the note says
+what to expect and names the accurate REBOUND path; ``compare.source`` reports the DE421-driven
+difference beside it.
 """
 import numpy as np
 
@@ -21,10 +23,11 @@ from .. import common
 
 # Targets (max over the run, arcsec) against DE421 per level: (pole, longitude, source).
 _RIGID = ("project target for level 2 (pole 12\", longitude 2\"): a rigid Moon lacks DE421's fluid core "
-          "and tidal/rotational distortion, which move the pole by arcseconds (benchmarks/RESULTS.md, level-3 ablations)")
+          "and tidal/rotational distortion, which move the pole by arcseconds (benchmarks/RESULTS.md, "
+          "level-3 ablations)")
 _DE421_MODEL = ("project target for level 3 (pole 0.1\", longitude 0.01\"): the same equations as DE421 "
-                "(Folkner et al. 2014), so only what they leave open remains; 0.1\" is about the spread between "
-                "JPL's DE421 and DE440 lunar orientations")
+                "(Folkner et al. 2014), so only what they leave open remains; 0.1\" is about the spread "
+                "between JPL's DE421 and DE440 lunar orientations")
 TOLERANCES = {1: (12.0, 2.0, _RIGID), 2: (12.0, 2.0, _RIGID), 3: (0.1, 0.01, _DE421_MODEL),
               4: (0.1, 0.01, _DE421_MODEL)}
 
@@ -35,8 +38,8 @@ def verdict(scenario, comparison):
     pole, lon, why = TOLERANCES.get(level, TOLERANCES[3])
     notes = []
     if level == 1:
-        notes.append("Euler's degree-2 Moon is held to the level-2 target; the Moon's degree-3 field it lacks "
-                     "is what level 2 adds")
+        notes.append("Euler's degree-2 Moon is held to the level-2 target; the Moon's degree-3 field it "
+                     "lacks is what level 2 adds")
     if source != "de421":
         from .compare import SOURCE_NOTES
         notes.append(SOURCE_NOTES.get(source, f"orbits from {source}: the libration follows that orbit's "
@@ -47,18 +50,24 @@ def verdict(scenario, comparison):
 
 
 SCHEMA = {
-    "model.level": Key(type=int, default=3, min=1, max=4, help="1..4: spinorbit.models.assemblies.moon.LEVELS"),
+    "model.level": Key(type=int, default=3, min=1, max=4,
+                       help="1..4: spinorbit.models.assemblies.moon.LEVELS"),
     "model.tides": Key(type=bool, default=True, help="tidal/rotational distortion at levels 3-4"),
     "model.terms": Key(type=list, default=[], help="terms added to the level's, e.g. [\"sun_j2\"]"),
-    "model.start": Key(type=str, default="", help="ISO TDB epoch of DE421's state the Moon starts from (default: "
-                                                   "span.start; clamped into DE421's lunar series)"),
+    "model.start": Key(type=str, default="",
+                       help="ISO TDB epoch of DE421's state the Moon starts from (default: "
+                            "span.start; clamped into DE421's lunar series)"),
     "orbit.source": Key(type=str, default="de421", help="'de421', a .bsp name, or 'rebound'"),
-    "orbit.step": Key(**SAMPLE_STEP, default=0.5, help="orbit sampling step (0.5 d: 5.5e-4 km off DE421, RESULTS.md)"),
-    "compare.source": Key(type=str, default="", help="also run driven by this source and report the difference"),
-    "report.error_vs_runtime": Key(type=bool, default=False, help="rk8 steps and dop853 tolerances vs a converged run"),
+    "orbit.step": Key(**SAMPLE_STEP, default=0.5,
+                      help="orbit sampling step (0.5 d: 5.5e-4 km off DE421, RESULTS.md)"),
+    "compare.source": Key(type=str, default="",
+                          help="also run driven by this source and report the difference"),
+    "report.error_vs_runtime": Key(type=bool, default=False,
+                                   help="rk8 steps and dop853 tolerances vs a converged run"),
 }
 
-BACKWARD = True        # the DE lunar integrations run both ways from their epoch: a span may end before it starts
+# the DE lunar integrations run both ways from their epoch: a span may end before it starts
+BACKWARD = True
 
 ZOOM_D = 730.5                      # days
 
@@ -78,14 +87,16 @@ def run(scenario):
     de421, covered, comparison, not_measured = vs.against_de421(t, mats)
     lib = eckhardt.physical_librations(t, mats, orbits.positions(t)[:, 0])
     terms, refused = eckhardt.fit_longitude_terms(t, lib["tau"] / ARCSEC, FREE_LIBRATION_LONGITUDE_PERIOD_D)
-    if de421 is not None:                     # DE421's own librations fitted alike: where Eckhardt's series differs
+    if de421 is not None:           # DE421's own librations fitted alike: where Eckhardt's series differs
         vs.beside_de421(terms, eckhardt.fit_longitude_terms(t[covered], eckhardt.physical_librations(
             t[covered], de421["icrf_to_body"], orbits.positions(t[covered])[:, 0])["tau"] / ARCSEC,
             FREE_LIBRATION_LONGITUDE_PERIOD_D)[0])
-    summary = {"not_measured": {**not_measured, **{f"longitude_terms.{k}": why for k, why in refused.items()}},
+    refused_terms = {f"longitude_terms.{k}": why for k, why in refused.items()}
+    summary = {"not_measured": {**not_measured, **refused_terms},
                "comparison": comparison, "run": point, "reference": de421.provenance if de421 else None,
                "model": {"level": level, "name": LEVELS[level].name, "start_tdb_d": system.t0,
-                         "degree": 4 if "harmonics" in system.meta["terms"] else 2, "core": LEVELS[level].core,
+                         "degree": 4 if "harmonics" in system.meta["terms"] else 2,
+                         "core": LEVELS[level].core,
                          "tides": bool(system.meta["tides"]), "bodies": list(orbits.names),
                          "terms": list(system.meta["terms"])},
                "orbits": vs.orbit_summary(scenario["orbit.source"], scenario["orbit.step"], orbits),
@@ -98,7 +109,8 @@ def run(scenario):
     if other:
         pole, lon = difference_driven_by(scenario, other, mats, t_out)
         summary["comparison"].update(vs.driven_by_metrics(other, pole, lon))
-        figures[f"difference_vs_{other}_driven"] = plots.driven_by(t, pole, lon, scenario["orbit.source"], other)
+        figures[f"difference_vs_{other}_driven"] = plots.driven_by(t, pole, lon, scenario["orbit.source"],
+                                                                   other)
     if scenario["report.error_vs_runtime"] and de421 is not None:
         summary["error_vs_runtime"] = vs.error_vs_runtime(system, t_out[covered], de421["icrf_to_body"])
         figures["error_vs_runtime"] = plots.plot_error_vs_cost(summary["error_vs_runtime"], [
@@ -107,9 +119,9 @@ def run(scenario):
 
 
 def build(scenario):
-    """For ``spinorbit bench``: (system, output times, attitude error vs a converged rk8 run at 0.5 d, rad)."""
+    """For ``spinorbit bench``: (system, output times, attitude error vs a converged rk8 run at 0.5 d,
+    rad)."""
     from ...analysis.ladder import converged_error
-
     from .model import build_system
 
     system, _ = build_system(scenario, scenario["orbit.source"])

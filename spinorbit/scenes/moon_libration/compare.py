@@ -15,8 +15,8 @@ SOURCE_NOTES = {"rebound": (
     "orbits from rebound: expect no better than REBOUND's lunar orbit, which lacks the figures and tides and "
     "drifts from DE421's (the Moon's direction 0.3\" in 1 yr, 3\" in 10 yr, 23\" and 41 km over 1969-2019; "
     "the longitude follows it: 19.8\"); for DE421's accuracy from REBOUND's bodies run "
-    "scenarios/earth_moon_coupled_rebound.toml (the Moon integrated with the coupled forces: longitude 0.019\", "
-    "pole 0.0034\" over 1969-2019)")}
+    "scenarios/earth_moon_coupled_rebound.toml (the Moon integrated with the coupled forces: "
+    "longitude 0.019\", pole 0.0034\" over 1969-2019)")}
 
 
 def against_de421(t, mats):
@@ -24,8 +24,8 @@ def against_de421(t, mats):
     the comparison's metrics, {metric: why not measured}): outside DE421's span nothing is compared."""
     from ...analysis.librations import residual_metrics
     from ...bodies.de421_orientation import span
-    from ...references.moon_de421 import Orientation
     from ...errors import tdb_dates
+    from ...references.moon_de421 import Orientation
 
     first, last = span()
     covered = (t >= first) & (t <= last)
@@ -53,7 +53,8 @@ def table(solution, mats, de421, covered, lib):
     arcsec = lambda x: x / ARCSEC * u.arcsec
     residuals = np.full((len(angles), 5), np.nan)             # pole, longitude, phi, theta, psi
     if de421 is not None:
-        residuals[covered, :2] = np.transpose(pole_and_longitude_difference(mats[covered], de421["icrf_to_body"]))
+        difference = pole_and_longitude_difference(mats[covered], de421["icrf_to_body"])
+        residuals[covered, :2] = np.transpose(difference)
         residuals[covered, 2:] = (angles[covered] - de421["angles_rad"] + np.pi) % (2 * np.pi) - np.pi
     for i, name in enumerate(("phi", "theta", "psi")):
         table[name] = angles[:, i] * u.rad
@@ -74,19 +75,22 @@ def error_vs_runtime(system, t_out, de421_mats):
     from ...simulate import simulate
 
     converged = icrf_to_body(simulate(system, t_out, *CONVERGED, estimate_error=False)[0].quaternion)
-    errors = {"error_vs_converged_arcsec": attitude_error(converged), "error_vs_de421_arcsec": attitude_error(de421_mats)}
+    errors = {"error_vs_converged_arcsec": attitude_error(converged),
+              "error_vs_de421_arcsec": attitude_error(de421_mats)}
     return work_precision(system, t_out, LADDER, lambda sol: {k: f(sol) / ARCSEC for k, f in errors.items()})
 
 
 def beside_de421(terms, de421_terms):
-    """Put DE421's own fitted coefficient (``de421_arcsec``) beside each term's fit: where the model and DE421
-    agree and Eckhardt's published series (1981, fitted to older data) differs, the difference is Eckhardt's."""
+    """Put DE421's own fitted coefficient (``de421_arcsec``) beside each term's fit: where the model and
+    DE421 agree and Eckhardt's published series (1981, fitted to older data) differs, the difference is
+    Eckhardt's."""
     for part in ("main", "other"):
         for row, other in zip(terms[part], de421_terms[part]):
             row["de421_arcsec"] = other["fitted_arcsec"]
-    terms["note"] = ("fitted_arcsec: the model's tau fitted on Eckhardt's arguments; de421_arcsec: DE421's own tau "
-                     "fitted alike; where the two agree and published_arcsec (Eckhardt 1981, Meeus ch. 53) differs, "
-                     "e.g. the 18.6-yr term's 0.8\", the difference is the older series', not the integration's")
+    terms["note"] = ("fitted_arcsec: the model's tau fitted on Eckhardt's arguments; de421_arcsec: DE421's "
+                     "own tau fitted alike; where the two agree and published_arcsec (Eckhardt 1981, "
+                     "Meeus ch. 53) differs, e.g. the 18.6-yr term's 0.8\", the difference is the older "
+                     "series', not the integration's")
 
 
 def orbit_summary(source, step_d, orbits):

@@ -20,12 +20,15 @@ SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A <= B <= C, any unit"),
     "orbit.gm": Key(**GM, help="GM of the centre of forces"),
     "orbit.radius": Key(**DISTANCE, help="distance s of F"),
-    "force.direction": Key(unit="", size=3, direction=True, help="direction of F in body principal axes"),
+    "force.direction": Key(unit="", size=3, direction=True,
+                           help="direction of F in body principal axes"),
 }
 
 VERDICT = Verdict("Euler's first motion (§821-823)", (
-    Check("axis", "axis_error_arcsec", 1e-3, "″", "omega(t)/t turns by O(t): ~1e-4 of the 1e-4 d first step"),
-    Check("rate relative", "rate_rel_error", 1e-9, "", "omega(t)/t = d gamma'/dt + O(t^2) for a body at rest"),
+    Check("axis", "axis_error_arcsec", 1e-3, "″",
+          "omega(t)/t turns by O(t): ~1e-4 of the 1e-4 d first step"),
+    Check("rate relative", "rate_rel_error", 1e-9, "",
+          "omega(t)/t = d gamma'/dt + O(t^2) for a body at rest"),
 ))
 
 
@@ -39,7 +42,8 @@ def run(scenario):
     # F fixed (rate 0) at u: a circle point (cos a, sin a cos i, sin a sin i).
     orbit = CircularOrbits(("F",), [gm], [s], [0.0], phase=[math.acos(u[0])],
                            inclination=[math.atan2(u[2], u[1])])
-    system = under_point_masses(body.moments, orbit, [1.0, 0, 0, 0], np.zeros(3), scenario.t_start, "body at rest")
+    system = under_point_masses(body.moments, orbit, [1.0, 0, 0, 0], np.zeros(3), scenario.t_start,
+                                "body at rest")
     t = scenario.output_times()
     solution, point = common.simulate_scenario(scenario, system, t)
 
@@ -54,7 +58,8 @@ def run(scenario):
         "rate_integrated_rad_per_d2": float(np.linalg.norm(w1) / dt1),
         "rate_rel_error": float(abs(np.linalg.norm(w1) / dt1 / rate - 1)),
         # atan2 of |a x b| and a.b: acos(a.b) floors at sqrt(2 eps) = 0.003" near zero
-        "axis_error_arcsec": float(math.atan2(np.linalg.norm(np.cross(axis_num, axis)), axis_num @ axis) / ARCSEC),
+        "axis_error_arcsec": float(
+            math.atan2(np.linalg.norm(np.cross(axis_num, axis)), axis_num @ axis) / ARCSEC),
         "first_step_d": float(dt1),
     }
     table = common.attitude_table(solution)

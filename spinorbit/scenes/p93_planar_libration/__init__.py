@@ -23,7 +23,8 @@ SCHEMA = {
     "orbit.gm": Key(**GM, help="GM of the centre of forces"),
     "orbit.radius": Key(**DISTANCE, help="distance s of F"),
     "orbit.rate": Key(**RATE, help="angular speed delta of F"),
-    "libration.energy_over_n": Key(unit="", min=-1.0, max=1e6, help="Euler's constant C in units of n: -1, 0, 1 or > 1"),
+    "libration.energy_over_n": Key(unit="", min=-1.0, max=1e6,
+                                   help="Euler's constant C in units of n: -1, 0, 1 or > 1"),
 }
 
 _ZETA = "dop853 at rtol 1e-12 over 200 d: ~1e-4\" (tests/test_idealised_scenes.py)"
@@ -77,16 +78,19 @@ def run(scenario):
     comparison = {"case": theory.case, "n_rad2_per_d2": n, "energy_over_n": theory.energy / n}
     not_measured = {}
     if theory.case == "separatrix":
-        # Euler's t = ln tan(45 deg + zeta/2)/sqrt(2n); the separatrix is unstable, so compare while zeta < 80 deg.
+        # Euler's t = ln tan(45 deg + zeta/2)/sqrt(2n); the separatrix is unstable, so compare while
+        # zeta < 80 deg.
         keep = zeta_num < math.radians(80)
-        comparison["zeta_error_max_arcsec_below_80deg"] = float(np.abs(zeta_num - zeta_cf)[keep].max() / ARCSEC)
+        comparison["zeta_error_max_arcsec_below_80deg"] = float(
+            np.abs(zeta_num - zeta_cf)[keep].max() / ARCSEC)
         for deg in (30, 60, 80):
             reached = crossing_times(dt, zeta_num, math.radians(deg))
             comparison[f"time_to_{deg}deg_d"] = float(reached[0]) if reached.size else None
             if not reached.size:
                 not_measured[f"comparison.time_to_{deg}deg_d"] = (
                     f"not measured: zeta does not reach {deg} deg within the {dt[-1]:.6g} d span; "
-                    f"Euler's time is {theory.separatrix_time(math.radians(deg)):.6g} d, so lengthen span.end")
+                    f"Euler's time is {theory.separatrix_time(math.radians(deg)):.6g} d, "
+                    "so lengthen span.end")
             comparison[f"time_to_{deg}deg_euler_d"] = float(theory.separatrix_time(math.radians(deg)))
     else:
         comparison["zeta_error_max_arcsec"] = float(np.abs(zeta_num - zeta_cf).max() / ARCSEC)
@@ -95,8 +99,8 @@ def run(scenario):
         comparison["period_closed_form_d"] = float(theory.period)
         comparison["period_measured_d"] = float(np.mean(np.diff(ups))) if ups.size > 1 else None
         if ups.size < 2:
-            not_measured["comparison.period_measured_d"] = _too_short(dt[-1], ups.size, "upward zero crossings of zeta",
-                                                                      theory.period)
+            not_measured["comparison.period_measured_d"] = _too_short(
+                dt[-1], ups.size, "upward zero crossings of zeta", theory.period)
         comparison["max_digression_closed_form_deg"] = math.degrees(theory.max_digression)
         comparison["max_digression_measured_deg"] = float(np.degrees(np.abs(zeta_num).max()))
         comparison["return_time_small_oscillation_euler_d"] = theory.small_oscillation_return_time()
@@ -107,18 +111,18 @@ def run(scenario):
         comparison["half_turn_time_closed_form_d"] = float(theory.period)
         comparison["half_turn_time_measured_d"] = float(np.mean(np.diff(passes))) if passes.size > 1 else None
         if passes.size < 2:
-            not_measured["comparison.half_turn_time_measured_d"] = _too_short(dt[-1], passes.size,
-                                                                              "passes of zeta through 90 deg + k 180 deg",
-                                                                              theory.period)
+            not_measured["comparison.half_turn_time_measured_d"] = _too_short(
+                dt[-1], passes.size, "passes of zeta through 90 deg + k 180 deg", theory.period)
     if theory.case == "equilibrium":
         comparison["max_digression_measured_arcsec"] = float(np.abs(zeta_num).max() / ARCSEC)
 
     table = common.attitude_table(solution)
     table["zeta"] = zeta_num * common.u().rad
     table["zeta_closed_form"] = zeta_cf * common.u().rad
-    figures = {"zeta": common.plot_series(dt, np.degrees([zeta_num, zeta_cf]), "days from start", "zeta = AF [deg]",
-                                          ["integrated (3-D rigid body)", "closed form"])}
-    summary = {"comparison": comparison, "run": point, **({"not_measured": not_measured} if not_measured else {})}
+    figures = {"zeta": common.plot_series(dt, np.degrees([zeta_num, zeta_cf]), "days from start",
+                                          "zeta = AF [deg]", ["integrated (3-D rigid body)", "closed form"])}
+    summary = {"comparison": comparison, "run": point,
+               **({"not_measured": not_measured} if not_measured else {})}
     return common.result(scenario, table, summary, figures, solution)
 
 

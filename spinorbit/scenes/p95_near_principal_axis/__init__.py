@@ -27,7 +27,8 @@ SCHEMA = {
     "body.pole_angle": Key(**ANGLE, default=0.0, help="rho = angle BAO"),
     "orbit.gm": Key(**GM, help="GM of the centre of forces"),
     "orbit.radius": Key(**DISTANCE, help="distance s of F"),
-    "force.direction": Key(unit="", size=3, direction=True, help="(cos AF, cos BF, cos CF) in Euler's axes A (= our z), B, C"),
+    "force.direction": Key(unit="", size=3, direction=True,
+                           help="(cos AF, cos BF, cos CF) in Euler's axes A (= our z), B, C"),
 }
 
 VERDICT = Verdict("Euler's pole rates (§843a)", (
@@ -44,15 +45,18 @@ def run(scenario):
     body = common.rigid_body(scenario)
     cc, aa = body.moments[0], body.moments[2]
     if abs(body.moments[1] - cc) > 1e-12 * aa:
-        raise ScenarioError("body.moments", body.moments.tolist(), "a symmetric body [cc, cc, aa] (§841: bb = cc)")
+        raise ScenarioError("body.moments", body.moments.tolist(),
+                            "a symmetric body [cc, cc, aa] (§841: bb = cc)")
     gamma, alpha, rho = scenario["body.spin"], scenario["body.pole_offset"], scenario["body.pole_angle"]
     gm, s = scenario["orbit.gm"], scenario["orbit.radius"]
     u_euler = scenario["force.direction"] / np.linalg.norm(scenario["force.direction"])
     u = np.array([u_euler[1], u_euler[2], u_euler[0]])          # our (x, y, z) = Euler's (B, C, A)
     orbit = CircularOrbits(("F",), [gm], [s], [0.0], phase=[math.acos(u[0])],
                            inclination=[math.atan2(u[2], u[1])])
-    omega0 = gamma * np.array([math.sin(alpha) * math.cos(rho), math.sin(alpha) * math.sin(rho), math.cos(alpha)])
-    system = under_point_masses(body.moments, orbit, [1.0, 0, 0, 0], omega0, scenario.t_start, "near principal axis")
+    omega0 = gamma * np.array([math.sin(alpha) * math.cos(rho), math.sin(alpha) * math.sin(rho),
+                               math.cos(alpha)])
+    system = under_point_masses(body.moments, orbit, [1.0, 0, 0, 0], omega0, scenario.t_start,
+                                "near principal axis")
     t = scenario.output_times()
     solution, point = common.simulate_scenario(scenario, system, t)
 
@@ -74,7 +78,7 @@ def run(scenario):
         "spin_rel_change": float(abs(np.linalg.norm(solution.omega[-1]) / gamma - 1)),
     }
     table = common.attitude_table(solution)
-    figures = {"pole": common.plot_series(dt, np.array([shift[:, 0], predicted[:, 0], shift[:, 1], predicted[:, 1]]),
-                                          "days from start", "pole shift [rad]",
+    shifts = np.array([shift[:, 0], predicted[:, 0], shift[:, 1], predicted[:, 1]])
+    figures = {"pole": common.plot_series(dt, shifts, "days from start", "pole shift [rad]",
                                           ["xi integrated", "xi §843a", "eta integrated", "eta §843a"])}
     return common.result(scenario, table, {"comparison": comparison, "run": point}, figures, solution)

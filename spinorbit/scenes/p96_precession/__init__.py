@@ -19,10 +19,10 @@ import numpy as np
 from ...constants import ARCSEC
 from ...errors import ResonanceError, ScenarioError
 from ...models.assemblies.idealised import under_point_masses
-from ...rotations import matrix_from_quat
 from ...schema import ANGLE, DISTANCE, GM, RATE, SPIN, Key
 from ...verdict import Check, Verdict
 from .. import common
+from .angles import fit_angles
 
 TAYLOR = True          # every term a function of the state and the time: heyoka's Taylor integrator takes it
 SCHEMA = {
@@ -34,7 +34,8 @@ SCHEMA = {
     "orbit.rate": Key(**RATE, help="angular speed delta of F"),
 }
 
-_SECOND_ORDER = "Euler's theory is first order in N/delta and drops eps aa/cc - eps; 2e-3 covers the remainder"
+_SECOND_ORDER = ("Euler's theory is first order in N/delta and drops eps aa/cc - eps; "
+                 "2e-3 covers the remainder")
 
 
 def verdict(scenario, comparison):
@@ -52,31 +53,6 @@ def verdict(scenario, comparison):
               versus="xza_2phi_amplitude_gyroscopic_arcsec", relative=True)))
 
 
-def figure_axis(solution):
-    """Unit vectors (n, 3) of the body's z axis in inertial axes."""
-    return np.array([matrix_from_quat(q)[:, 2] for q in solution.quaternion])
-
-
-def figure_axis_angles(solution):
-    """ZA = p and unwrapped XZA = lambda (rad) of the body's z axis."""
-    axis = figure_axis(solution)
-    return np.arccos(np.clip(axis[:, 2], -1, 1)), np.unwrap(np.arctan2(axis[:, 1], axis[:, 0]))
-
-
-def fit_angles(solution, t0, delta, eps_f, resonant=False):
-    """(dt, ZA, XZA, XZA's and ZA's least-squares coefficients), angles in rad, dt in days from t0, phi =
-    XZA - delta dt: XZA on [1, dt, sin 2phi, cos 2phi, *more], ZA on [1, cos 2phi, sin 2phi, *more], more =
-    the free nutation (cos eps_f dt, sin eps_f dt) or, ``resonant``, §849's growth (dt cos 2phi, dt sin 2phi)."""
-    dt = solution.t - t0
-    p, lam = figure_axis_angles(solution)
-    phi = lam - delta * dt
-    c2, s2, one = np.cos(2 * phi), np.sin(2 * phi), np.ones_like(dt)
-    more = [dt * c2, dt * s2] if resonant else [np.cos(eps_f * dt), np.sin(eps_f * dt)]
-    fit = [np.linalg.lstsq(np.column_stack(cols), y, rcond=None)[0]
-           for y, cols in ((lam, [one, dt, s2, c2, *more]), (p, [one, c2, s2, *more]))]
-    return dt, p, lam, *fit
-
-
 def run(scenario):
     from ...orbits.analytic import CircularOrbits
     from ...theory import SymmetricPrecession, p96_initial_state, precession_constant
@@ -84,7 +60,8 @@ def run(scenario):
     body = common.rigid_body(scenario)
     cc, aa = body.moments[0], body.moments[2]
     if not (abs(body.moments[1] - cc) <= 1e-12 * aa and aa > cc):
-        raise ScenarioError("body.moments", body.moments.tolist(), "a symmetric oblate body [cc, cc, aa] with aa > cc")
+        raise ScenarioError("body.moments", body.moments.tolist(),
+                            "a symmetric oblate body [cc, cc, aa] with aa > cc")
     eps, n = scenario["body.spin"], scenario["body.obliquity"]
     gm, s, delta = scenario["orbit.gm"], scenario["orbit.radius"], scenario["orbit.rate"]
     t0 = scenario.t_start
@@ -103,13 +80,15 @@ def run(scenario):
     t = scenario.output_times()
     solution, point = common.simulate_scenario(scenario, system, t)
 
-    dt, p, lam, lam_fit, p_fit = fit_angles(solution, t0, delta, true.eps_f, resonant=resonance is not None)
+    dt, p, lam, lam_fit, p_fit = fit_angles(solution, t0, delta, true.eps_f,
+                                            resonant=resonance is not None)
     if resonance is None:
-        comparison.update({"resonance_detected": False,
-                           "precession_rate_measured_arcsec_per_d": float(-lam_fit[1] / ARCSEC),
-                           "za_2phi_half_range_measured_arcsec": float(abs(p_fit[1]) / ARCSEC),
-                           "xza_2phi_amplitude_measured_arcsec": float(abs(lam_fit[2]) / ARCSEC),
-                           "diurnal_nutation_measured_arcsec": float(math.hypot(p_fit[3], p_fit[4]) / ARCSEC)})
+        comparison.update({
+            "resonance_detected": False,
+            "precession_rate_measured_arcsec_per_d": float(-lam_fit[1] / ARCSEC),
+            "za_2phi_half_range_measured_arcsec": float(abs(p_fit[1]) / ARCSEC),
+            "xza_2phi_amplitude_measured_arcsec": float(abs(lam_fit[2]) / ARCSEC),
+            "diurnal_nutation_measured_arcsec": float(math.hypot(p_fit[3], p_fit[4]) / ARCSEC)})
         for name, model in (("euler", euler), ("gyroscopic", true)):
             comparison.update({
                 f"precession_rate_{name}_arcsec_per_d": model.precession_rate / ARCSEC,
@@ -132,7 +111,8 @@ def run(scenario):
     table["XZA"] = lam * common.u().rad
     figures = {"ZA": common.plot_series(dt, np.degrees(p), "days from start", "ZA [deg]"),
                "XZA": common.plot_series(dt, np.degrees(lam), "days from start", "XZA [deg]")}
-    summary = {"comparison": comparison, "run": point, **({"not_measured": not_measured} if not_measured else {})}
+    summary = {"comparison": comparison, "run": point,
+               **({"not_measured": not_measured} if not_measured else {})}
     return common.result(scenario, table, summary, figures, solution)
 
 

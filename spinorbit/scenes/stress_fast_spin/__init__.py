@@ -20,22 +20,22 @@ import math
 
 import numpy as np
 
-from ...analysis.ladder import cheapest, work_precision
-from ...errors import ScenarioError
-from ...integrators import METHODS, get_method
-from ...simulate import simulate
+from ...analysis.ladder import work_precision
 from ...models.assemblies.idealised import under_point_masses
 from ...rotations import quat_angle
 from ...schema import ANGLE, SPIN, Key
+from ...simulate import simulate
 from ...verdict import Check, Verdict
 from .. import common
-from ..p96_precession import figure_axis, fit_angles
+from ..p96_precession.angles import figure_axis, fit_angles
+from .runs import label, options, winner
 
 
 def verdict(scenario, comparison):
     """Converged runs agree, and every full-span run's precession rate matches P96's N cos n."""
     return Verdict("a converged suzuki4 run; P96's N cos n", (
-        Check("converged runs agree", "reference_agreement_axis_rad", scenario["stress.reference_agreement_max"],
+        Check("converged runs agree", "reference_agreement_axis_rad",
+              scenario["stress.reference_agreement_max"],
               " rad", "stress.reference_agreement_max: the figure axis of two converged runs"),
         Check("rate vs P96", "precession_rate_rel_error_max", scenario["stress.rate_rel_tol"], "",
               "P96 is first order in N/delta = 1e-3 (stress.rate_rel_tol)")))
@@ -47,28 +47,14 @@ SCHEMA = {
     "body.obliquity": Key(**ANGLE, help="angle n of the figure axis from the orbit pole"),
     "stress.spin_over_orbit": Key(unit="", default=1e5, help="eps/delta"),
     "stress.precession_over_orbit": Key(unit="", default=1e-3, help="N/delta (sets GM/s^3)"),
-    "stress.runs": Key(type=list, help="[{method, <its options, e.g. step (d) or rtol, atol>, span_fraction}]"),
+    "stress.runs": Key(type=list,
+                       help="[{method, <its options, e.g. step (d) or rtol, atol>, span_fraction}]"),
     "stress.reference": Key(type=list, help="[{method, <its options>}]: the converged run"),
     "stress.rate_rel_tol": Key(unit="", default=1e-3, help="pass: |rate/closed form - 1| for full-span runs"),
-    "stress.reference_agreement_max": Key(unit="", default=1e-9,
-                                          help="pass: figure-axis difference, reference vs best other run, rad"),
+    "stress.reference_agreement_max": Key(
+        unit="", default=1e-9, help="pass: figure-axis difference, reference vs best other run, rad"),
 }
 RADIUS = 1.0          # F's distance (length unit arbitrary: only GM/s^3 enters)
-
-
-def options(run, key="stress.runs"):
-    """(method, integrator options, span fraction) of one run table: the method's own option names."""
-    method = run.get("method") if isinstance(run, dict) else None
-    accepted = get_method(method).options if method in METHODS else {}
-    if not accepted or set(run) - {"method", "span_fraction"} - set(accepted):
-        raise ScenarioError(key, run, f"tables {{method = <one of {sorted(METHODS)}>, <that method's options "
-                                      f"{sorted(accepted) or ''}, e.g. step = <days>>, span_fraction = <0-1>}}")
-    opts = {k: float(v) for k, v in run.items() if k in accepted}
-    return method, opts, float(run.get("span_fraction", 1.0))
-
-
-def label(method, opts):
-    return f"{method} " + ", ".join(f"{k}={v:.3g}" for k, v in opts.items() if k != "atol")
 
 
 def build_system(scenario):
@@ -99,7 +85,8 @@ def precession_rate(solution, t0, delta, eps_f):
 
 def run(scenario):
     system, theory, delta = build_system(scenario)
-    t, t0, span, closed_form = scenario.output_times(), scenario.t_start, scenario.t_end - scenario.t_start, theory.precession_rate
+    t, t0, span = scenario.output_times(), scenario.t_start, scenario.t_end - scenario.t_start
+    closed_form = theory.precession_rate
     ref_method, ref_opts, _ = options(scenario["stress.reference"][0], "stress.reference")
     reference = simulate(system, t, ref_method, ref_opts, estimate_error=False)[0]
     ref_axis, reference_rate = figure_axis(reference), precession_rate(reference, t0, delta, theory.eps_f)
@@ -110,8 +97,10 @@ def run(scenario):
 
         def errors(sol):
             rate = precession_rate(sol, t0, delta, theory.eps_f) if full else math.nan
-            return {"error_vs_converged_rad": float(quat_angle(sol.quaternion, reference.quaternion[keep]).max()),
-                    "axis_error_vs_converged_rad": float(np.linalg.norm(figure_axis(sol) - ref_axis[keep], axis=1).max()),
+            attitude_error = quat_angle(sol.quaternion, reference.quaternion[keep])
+            axis_error = np.linalg.norm(figure_axis(sol) - ref_axis[keep], axis=1)
+            return {"error_vs_converged_rad": float(attitude_error.max()),
+                    "axis_error_vs_converged_rad": float(axis_error.max()),
                     "precession_rate_rel_error": rate / closed_form - 1,
                     "precession_rate_rel_diff_vs_converged": rate / reference_rate - 1}
 
@@ -123,10 +112,10 @@ def run(scenario):
     agreement = min(r["axis_error_vs_converged_rad"] for r in full_rows)
     rate_errors = [abs(r["precession_rate_rel_error"]) for r in full_rows]
     comparison = {
-        "checks": "fast spinner (eps/delta = stress.spin_over_orbit) on a slow circle: per integrator cost and max "
-                  "attitude error vs a converged run, and the fitted precession rate vs P96's N cos n cc/aa; passes "
-                  "if the reference agrees with the best run to stress.reference_agreement_max and every full-span "
-                  "rate is within stress.rate_rel_tol",
+        "checks": "fast spinner (eps/delta = stress.spin_over_orbit) on a slow circle: per integrator cost "
+                  "and max attitude error vs a converged run, and the fitted precession rate vs P96's "
+                  "N cos n cc/aa; passes if the reference agrees with the best run to "
+                  "stress.reference_agreement_max and every full-span rate is within stress.rate_rel_tol",
         "spin_over_orbit": scenario["stress.spin_over_orbit"],
         "precession_rate_closed_form_rad_per_d": closed_form,
         "precession_rate_reference_rel_error": reference_rate / closed_form - 1,
@@ -136,15 +125,9 @@ def run(scenario):
         "precession_rate_rel_error_max": max(rate_errors),
         "winner_axis_error": winner(full_rows, "axis_error_vs_converged_rad", (1e-6, 1e-8, 1e-10)),
         "winner_attitude_error": winner(full_rows, "error_vs_converged_rad", (1e-4, 1e-6, 1e-7)),
-        "passed": bool(agreement < scenario["stress.reference_agreement_max"] and not any("failed" in r for r in rows)
+        "passed": bool(agreement < scenario["stress.reference_agreement_max"]
+                       and not any("failed" in r for r in rows)
                        and max(rate_errors) < scenario["stress.rate_rel_tol"]),
     }
     return common.result(scenario, None, {"comparison": comparison, "details": {"runs": rows},
                                           "run": {"method": ",".join(r["run"] for r in rows)}}, {}, None)
-
-
-def winner(rows, key, levels):
-    """The cheapest full-span run at each error level (``key`` <= level), as text."""
-    best = [(level, cheapest(rows, key, level)) for level in levels]
-    return "; ".join(f"<= {level:.0e} rad: {r['run']} ({r['wall_s']:.3g} s)" for level, r in best if r) or \
-        "no run below 1e-6 rad"

@@ -28,6 +28,7 @@ from ...schema import DISTANCE, GM, Key
 from ...verdict import Check, Verdict
 from .. import common
 from ..planar_spin_orbit import kepler_orbit, planar_lyapunov, planar_vs_rigid_body, rigid_body_lyapunov
+from .maps import lyapunov_map
 
 
 def verdict(scenario, comparison):
@@ -49,31 +50,24 @@ SCHEMA = {
     "orbit.e": Key(unit="", min=0.0, max=0.99, help="eccentricity"),
     "lyapunov.start": Key(unit="", size=2, help="nominal start at periapsis: theta - f (rad), theta'/n"),
     "lyapunov.orbits": Key(type=int, default=1000, help="length of the shorter nominal run, orbital periods"),
-    "lyapunov.regular_orbits": Key(type=int, default=2000, help="length of the regular check run, orbital periods"),
+    "lyapunov.regular_orbits": Key(type=int, default=2000,
+                                   help="length of the regular check run, orbital periods"),
     "lyapunov.orbits_3d": Key(type=int, default=300, help="length of the 3-D run, orbital periods"),
     "lyapunov.steps_per_orbit": Key(type=int, default=128, help="rk8 steps per orbital period"),
     "lyapunov.d0": Key(unit="", default=1e-8, help="separation after each renormalisation"),
-    "lyapunov.ensemble": Key(type=int, default=16, help="starts around the nominal one (1e-3 rad apart in theta)"),
-    "lyapunov.max_sigma": Key(unit="", default=4.0, help="pass: ensemble means agree within this many standard errors"),
+    "lyapunov.ensemble": Key(type=int, default=16,
+                             help="starts around the nominal one (1e-3 rad apart in theta)"),
+    "lyapunov.max_sigma": Key(unit="", default=4.0,
+                              help="pass: ensemble means agree within this many standard errors"),
     "lyapunov.regular_gamma": Key(unit="", default=0.01, help="(B - A)/C of the regular check orbit"),
-    "lyapunov.regular_max": Key(unit="", default=0.01, help="pass: regular exponent after regular_orbits below this, 1/T"),
-    "lyapunov.chaotic_min": Key(unit="", default=0.2, help="chaotic above this, 1/T (map; nominal must exceed it)"),
+    "lyapunov.regular_max": Key(unit="", default=0.01,
+                                help="pass: regular exponent after regular_orbits below this, 1/T"),
+    "lyapunov.chaotic_min": Key(unit="", default=0.2,
+                                help="chaotic above this, 1/T (map; nominal must exceed it)"),
     "map.grid": Key(unit="", size=2, default=np.array([36.0, 36.0]), help="points in theta - f and theta'/n"),
     "map.rate_range": Key(unit="", size=2, default=np.array([0.0, 3.0]), help="theta'/n range"),
     "map.orbits": Key(type=int, default=200, help="length of each map run, orbital periods"),
 }
-
-
-def lyapunov_map(scenario, p, period):
-    """(theta grid, rate/n grid, exponent (n_rate, n_theta) in 1/T) at periapsis after map.orbits periods."""
-    n_theta, n_rate = (int(v) for v in scenario["map.grid"])
-    theta = (np.arange(n_theta) + 0.5) * math.pi / n_theta
-    lo, hi = scenario["map.rate_range"]
-    rate = lo + (np.arange(n_rate) + 0.5) * (hi - lo) / n_rate
-    th, rt = np.meshgrid(theta, rate)
-    running = planar_lyapunov(p, th.ravel(), rt.ravel() * p[0], scenario.t_start, period, scenario["map.orbits"],
-                              scenario["lyapunov.steps_per_orbit"] // 2, scenario["lyapunov.d0"])
-    return theta, rate, running[-1].reshape(th.shape)
 
 
 def run(scenario):
@@ -84,7 +78,8 @@ def run(scenario):
     gm, a, e = scenario["orbit.gm"], scenario["orbit.a"], scenario["orbit.e"]
     t0, n, start = scenario.t_start, math.sqrt(gm / a**3), scenario["lyapunov.start"]
     period, orbit, p = 2 * math.pi / n, kepler_orbit(gm, a, e, t0), planar_params(n, e, t0, gamma)
-    orbits, steps, d0 = scenario["lyapunov.orbits"], scenario["lyapunov.steps_per_orbit"], scenario["lyapunov.d0"]
+    orbits, steps = scenario["lyapunov.orbits"], scenario["lyapunov.steps_per_orbit"]
+    d0 = scenario["lyapunov.d0"]
 
     planar_error, system = planar_vs_rigid_body(moments, orbit, p, t0, period, start)
     regular_orbits = scenario["lyapunov.regular_orbits"]
@@ -101,12 +96,13 @@ def run(scenario):
     sigmas = {f"{a}_vs_{b}": abs(nominal[a][0] - nominal[b][0]) / math.hypot(nominal[a][1], nominal[b][1])
               for a, b in (("rk8_T", "rk8_2T"), ("rk8_T", "dop853_T"))}
     decay = float(regular[-1] / regular[regular_orbits // 2 - 1])     # ln(t)/t: ~0.5 from T to 2T; chaos: ~1
-    chaotic = exponent > scenario["lyapunov.chaotic_min"]
+    chaotic_min = scenario["lyapunov.chaotic_min"]
+    chaotic = exponent > chaotic_min
     comparison = {
-        "checks": "maximal Lyapunov exponent (Benettin two-trajectory renormalisation every orbit, 1/T): regular "
-                  "orbit below lyapunov.regular_max and decaying; the ensemble mean around the nominal Hyperion start "
-                  "positive and equal within lyapunov.max_sigma standard errors over T and 2T (rk8) and with dop853; "
-                  "3-D exponent; planar model vs 3-D body",
+        "checks": "maximal Lyapunov exponent (Benettin two-trajectory renormalisation every orbit, 1/T): "
+                  "regular orbit below lyapunov.regular_max and decaying; the ensemble mean around the "
+                  "nominal Hyperion start positive and equal within lyapunov.max_sigma standard errors over "
+                  "T and 2T (rk8) and with dop853; 3-D exponent; planar model vs 3-D body",
         "b_minus_a_over_c": gamma,
         "orbital_period_d": period,
         "lyapunov_regular_per_T": float(regular[-1]),
@@ -119,19 +115,21 @@ def run(scenario):
         "lyapunov_3d_per_T": float(tilted[-1]),
         "lyapunov_3d_half_run_per_T": float(tilted[tilted.size // 2 - 1]),
         "chaotic_fraction_of_map": float(chaotic.mean()),
-        "chaotic_fraction_above_half_threshold": float(np.mean(exponent > scenario["lyapunov.chaotic_min"] / 2)),
-        "chaotic_fraction_above_twice_threshold": float(np.mean(exponent > 2 * scenario["lyapunov.chaotic_min"])),
-        "map_exponent_median_regular_per_T": float(np.median(exponent[~chaotic])) if (~chaotic).any() else math.nan,
-        "map_exponent_median_chaotic_per_T": float(np.median(exponent[chaotic])) if chaotic.any() else math.nan,
+        "chaotic_fraction_above_half_threshold": float(np.mean(exponent > chaotic_min / 2)),
+        "chaotic_fraction_above_twice_threshold": float(np.mean(exponent > 2 * chaotic_min)),
+        "map_exponent_median_regular_per_T":
+            float(np.median(exponent[~chaotic])) if (~chaotic).any() else math.nan,
+        "map_exponent_median_chaotic_per_T":
+            float(np.median(exponent[chaotic])) if chaotic.any() else math.nan,
         "planar_vs_3d_theta_max_rad_5_orbits": planar_error,
         "passed": bool(regular[-1] < scenario["lyapunov.regular_max"] and decay < 0.75
-                       and min(v[0] for v in nominal.values()) > scenario["lyapunov.chaotic_min"]
+                       and min(v[0] for v in nominal.values()) > chaotic_min
                        and max(sigmas.values()) < scenario["lyapunov.max_sigma"] and planar_error < 1e-8),
     }
     details = {"map": {"theta_minus_f_rad": theta, "rate_over_n": rate, "exponent_per_T": exponent},
                "method": "Benettin et al. (1980): two trajectories, renormalised to d0 every orbital period"}
     shown = min(regular.size, long_run.shape[0])
-    figures = {"lyapunov_map": plots.plot_lyapunov_map(theta, rate, exponent, scenario["lyapunov.chaotic_min"]),
+    figures = {"lyapunov_map": plots.plot_lyapunov_map(theta, rate, exponent, chaotic_min),
                "lyapunov_running": common.plot_series(
                    np.arange(1, shown + 1), [regular[:shown], long_run[:shown, 0]], "orbital periods",
                    "running exponent [1/T]", ["regular (small (B-A)/C)", "Hyperion nominal"], logy=True)}

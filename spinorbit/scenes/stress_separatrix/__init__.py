@@ -27,8 +27,8 @@ def verdict(scenario, comparison):
     """Side of the separatrix and time to 90 deg against §826, every method and offset."""
     return Verdict("§826 closed form", (
         Check("time to 90°", "time_rel_error_max", scenario["stress.time_rel_tol"], "",
-              "stress.time_rel_tol: the closed-form time is exact; the margin covers the integrators' error, "
-              "amplified near the separatrix (up to 4e-6 measured, benchmarks/RESULTS.md)"),
+              "stress.time_rel_tol: the closed-form time is exact; the margin covers the integrators' "
+              "error, amplified near the separatrix (up to 4e-6 measured, benchmarks/RESULTS.md)"),
         Check("side and time", "passed", source="each run on the closed form's side of the separatrix")))
 
 SCHEMA = {
@@ -57,7 +57,8 @@ def _setup(scenario, offset):
 
 
 def time_to_90(theory):
-    """Closed-form time from zeta = 0 to the top: K/sqrt(2n) (bounded) or K(m)/sqrt(C + n) (circulation), §826."""
+    """Closed-form time from zeta = 0 to the top: K/sqrt(2n) (bounded) or K(m)/sqrt(C + n)
+    (circulation), §826."""
     return theory.period / 4 if theory.case == "bounded" else theory.period / 2
 
 
@@ -74,13 +75,15 @@ def measure(solution, t0, delta):
 
 
 def build(scenario):
-    """For ``spinorbit bench``: the run just below the separatrix, error = attitude vs the closed form, rad."""
+    """For ``spinorbit bench``: the run just below the separatrix, error = attitude vs the closed form,
+    rad."""
     system, theory, delta = _setup(scenario, scenario["stress.offsets"][0])
     t = scenario.output_times()
     zeta_exact = theory.zeta(t - scenario.t_start)
 
     def error(solution):
-        return float(np.abs(zeta_from_solution(solution, delta * (solution.t - scenario.t_start)) - zeta_exact).max())
+        zeta = zeta_from_solution(solution, delta * (solution.t - scenario.t_start))
+        return float(np.abs(zeta - zeta_exact).max())
 
     return system, t, error
 
@@ -97,12 +100,14 @@ def run(scenario):
 
         def measured(solution):
             case, took = measure(solution, scenario.t_start, delta)
-            return {"case_closed_form": theory.case, "case_measured": case, "time_to_90deg_closed_form_d": expected,
+            return {"case_closed_form": theory.case, "case_measured": case,
+                    "time_to_90deg_closed_form_d": expected,
                     "time_to_90deg_measured_d": took, "time_rel_error": took / expected - 1}
 
-        for row in work_precision(system, t, settings(scenario["stress.methods"], step=0.01, rtol=1e-13, atol=1e-15),
-                                  measured):
-            passed &= row.get("case_measured") == theory.case and abs(row["time_rel_error"]) < scenario["stress.time_rel_tol"]
+        methods = settings(scenario["stress.methods"], step=0.01, rtol=1e-13, atol=1e-15)
+        for row in work_precision(system, t, methods, measured):
+            passed &= (row.get("case_measured") == theory.case
+                       and abs(row["time_rel_error"]) < scenario["stress.time_rel_tol"])
             rows[f"{offset:+g}/{row['method']}"] = row
     comparison = {"checks": "side of the P93 separatrix and time to approach 90 deg vs §826 closed form, "
                             f"C = n(1 +- 1e-9); passes within {scenario['stress.time_rel_tol']:g} relative",
