@@ -21,7 +21,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from spinorbit.scenarios import load_scenario
+from spinorbit.scenarios import load_scenario  # noqa: E402 (after the checkout is put on sys.path)
 
 CHILD = """
 import json, sys, time

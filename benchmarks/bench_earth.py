@@ -64,7 +64,8 @@ def numpy_rhs(model, system, orbits):
     def quat_rate(q, w_inertial):
         w, x, y, z = q
         a, b, c = w_inertial
-        return 0.5 * np.array([-a * x - b * y - c * z, a * w + b * z - c * y, b * w + c * x - a * z, c * w + a * y - b * x])
+        return 0.5 * np.array([-a * x - b * y - c * z, a * w + b * z - c * y,
+                               b * w + c * x - a * z, c * w + a * y - b * x])
 
     if model == "gyroscopic":
         def rhs(t, spin):
@@ -154,7 +155,8 @@ def plot(rows):
         for method in dict.fromkeys(r["method"] for r in rows if r["model"] == model):
             pts = [(r["wall_s_per_century"], max(r["error_mas"], 1e-7)) for r in rows
                    if r["model"] == model and r["method"] == method]
-            marker = "s--" if method.startswith("scipy") else ("^-" if model == "full" and "rk8" not in method else "o-")
+            splitting = model == "full" and "rk8" not in method
+            marker = "s--" if method.startswith("scipy") else ("^-" if splitting else "o-")
             ax.loglog(*zip(*pts), marker, label=f"{model}, {method}")
     ax.set_xlabel("wall time per simulated century [s] (one core)")
     ax.set_ylabel("max figure-axis error [mas]")

@@ -117,7 +117,8 @@ def numpy_rows(years, converged_10):
 
 
 def table(rows, title):
-    lines = [f"**{title}**", "", "| method | options | wall [s] | rhs calls | error vs converged [\"] | error vs DE421 [\"] |",
+    lines = [f"**{title}**", "",
+             "| method | options | wall [s] | rhs calls | error vs converged [\"] | error vs DE421 [\"] |",
              "|---|---|---|---|---|---|"]
     for r in rows:
         opts = ", ".join(f"{k}={v:g}" for k, v in r["options"].items())

@@ -36,9 +36,12 @@ def main():
     _loop(rhs, params, y, 1)
     compile_numba = time.perf_counter() - start
     assert np.allclose(rhs(0.3, y, params), models.numpy_rhs(0.3, y), rtol=1e-12, atol=1e-14)
-    rows.append(("numba rhs, compiled loop (as the integrators call it)", rate(lambda n: _loop(rhs, params, y, n), 2_000_000)))
-    rows.append(("numba rhs, called from Python", rate(lambda n: [rhs(1e-6 * i, y, params) for i in range(n)], 200_000)))
-    rows.append(("pure NumPy rhs, called from Python", rate(lambda n: [models.numpy_rhs(1e-6 * i, y) for i in range(n)], 50_000)))
+    rows.append(("numba rhs, compiled loop (as the integrators call it)",
+                 rate(lambda n: _loop(rhs, params, y, n), 2_000_000)))
+    rows.append(("numba rhs, called from Python",
+                 rate(lambda n: [rhs(1e-6 * i, y, params) for i in range(n)], 200_000)))
+    rows.append(("pure NumPy rhs, called from Python",
+                 rate(lambda n: [models.numpy_rhs(1e-6 * i, y) for i in range(n)], 50_000)))
     compile_heyoka = None
     try:
         import heyoka as hy
@@ -50,8 +53,10 @@ def main():
         assert np.allclose(cf(y, time=0.3), models.numpy_rhs(0.3, y), rtol=1e-12, atol=1e-14)
         batch = np.repeat(y[:, None], 100_000, axis=1)
         times = np.linspace(0, 0.1, 100_000)
-        rows.append(("heyoka cfunc, batch of 1e5 states (SIMD)", rate(lambda n: [cf(batch, time=times) for _ in range(n // 100_000)], 2_000_000)))
-        rows.append(("heyoka cfunc, one state per call from Python", rate(lambda n: [cf(y, time=1e-6 * i) for i in range(n)], 100_000)))
+        rows.append(("heyoka cfunc, batch of 1e5 states (SIMD)",
+                     rate(lambda n: [cf(batch, time=times) for _ in range(n // 100_000)], 2_000_000)))
+        rows.append(("heyoka cfunc, one state per call from Python",
+                     rate(lambda n: [cf(y, time=1e-6 * i) for i in range(n)], 100_000)))
     except ImportError:
         rows.append(("heyoka (not installed)", float("nan")))
     print("| right-hand side | evaluations / s |")

@@ -24,9 +24,9 @@ from spinorbit.analysis.transfer import forms, mhb2000_table
 from spinorbit.analysis.transfer.models import IERS1996, MHB2000, MHB2000_MODES
 from spinorbit.bodies.earth import H_D
 from spinorbit.constants import JULIAN_CENTURY_D, MAS
-from spinorbit.scenes.earth_precession_nutation.nonrigid import TABLE_TERMS, nonrigid_pole, ren2000_scaled
 from spinorbit.references import arguments, erfa_pole, vlbi_pole
 from spinorbit.results import run_scenario
+from spinorbit.scenes.earth_precession_nutation.nonrigid import TABLE_TERMS, nonrigid_pole, ren2000_scaled
 
 SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"
 QUIET = ["integrator.estimate_error=false", "output.plots=false"]

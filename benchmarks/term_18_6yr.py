@@ -113,7 +113,8 @@ def main():
               "non-rigid": erfa_pole.about_mean_pole(
                   t, earth_nonrigid.nonrigid_pole(t, rigid, "iers1996", H_D, True)),
               "IAU 2000A": (iau["dpsi_rad"], iau["deps_rad"])}
-    print("| design | series | dpsi in (sin) | dpsi out (cos) | deps in (cos) | deps out (sin) |\n|---|---|---|---|---|---|")
+    print("| design | series | dpsi in (sin) | dpsi out (cos) | deps in (cos) | deps out (sin) |")
+    print("|---|---|---|---|---|---|")
     for degree, poisson in ((2, False), (3, False), (2, True)):
         parts = {}
         for name, (dpsi, deps) in series.items():
@@ -144,7 +145,8 @@ def main():
     torque_share, sin_share = (a_psi * f * EPS_A_RATE / OM_RATE for f in shares)
     for label, shift in (("as DE421 has it", 0.0), (f"its {along / ARCSEC:.3f}\" along the equinox taken out", -along)):
         ps, pc, ec, es = first_order_term(shift)
-        print(f"first-order torque, lunar orbit {label}: dpsi {ps:.3f} sin, {pc:.3f} cos; deps {ec:.3f} cos, {es:.3f} sin")
+        print(f"first-order torque, lunar orbit {label}: dpsi {ps:.3f} sin, {pc:.3f} cos; "
+              f"deps {ec:.3f} cos, {es:.3f} sin")
         if shift == 0.0:
             lead = node_lead()      # -17.2" sin(Om + lead) has cos Om coefficient (sin coefficient) x lead
             print(f"DE421's lunar node leads Om by {lead / ARCSEC:.2f}\" (1950-2050): {ps * lead:+.3f} mas in dpsi out "

@@ -91,8 +91,8 @@ COMMON_SCHEMA = {
     "span.end": Key(type=str, help="ISO time (TDB) or a duration such as '100 yr'"),
     "span.step": Key(unit="d", positive=True, count="output rows", help="output cadence"),
     "integrator.method": Key(type=str, default="dop853", help="spinorbit.integrators.METHODS"),
-    "integrator.estimate_error": Key(type=bool, default=True,
-                                     help="rerun at half the step (or a tenth the tolerance) and report the difference"),
+    "integrator.estimate_error": Key(type=bool, default=True, help="rerun at half the step (or a tenth the "
+                                                                   "tolerance) and report the difference"),
     "output.plots": Key(type=bool, default=True, help="draw the scene's figures (PNG)"),
     "limits.time": Key(unit="s", positive=True, default=3600.0, max=3.2e7,
                        help="longest run the up-front estimate lets through (e.g. '10 h')"),

@@ -3,7 +3,8 @@
 A scene declares ``VERDICT``, a ``Verdict``, or a function ``verdict(scenario, comparison)
 -> Verdict`` when the question depends on the scenario's settings (or, for P96, on whether
 the run met the resonance), naming the reference, and ``Check``s on keys of
-``summary["comparison"]`` with a tolerance in the metric's unit and its source.  ``evaluate`` turns it into ``summary["verdict"]``:
+``summary["comparison"]`` with a tolerance in the metric's unit and its source.  ``evaluate`` turns it into
+``summary["verdict"]``:
 
     {"result": "pass" | "fail" | "not-compared", "reference": ..., "checks": [...], "headline": ...}
 

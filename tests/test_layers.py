@@ -135,9 +135,6 @@ def test_no_import_cycle_between_rooms():
 
 SCENE_MODULES = sorted(p for p in (PACKAGE / "scenes").rglob("*.py") if "__pycache__" not in p.parts)
 MAX_SCENE_LINES, MAX_LINE_CHARS = 150, 110
-# Scene modules with lines over 110 characters, being rewritten (issue 22).  Strict: a module fixed and still
-# listed fails, so that the list only shrinks.
-LONG_LINES_PENDING = {"stress_mercury/__init__.py"}
 
 
 def scene_id(path):
@@ -151,20 +148,12 @@ def test_scene_modules_are_thin(path):
     assert len(path.read_text().splitlines()) <= MAX_SCENE_LINES
 
 
-PENDING = pytest.mark.xfail(strict=True, reason="issue 22: lines over 110 characters, being rewritten")
-
-
-@pytest.mark.parametrize("path", [pytest.param(p, marks=PENDING) if scene_id(p) in LONG_LINES_PENDING else p
-                                  for p in SCENE_MODULES], ids=scene_id)
+@pytest.mark.parametrize("path", SCENE_MODULES, ids=scene_id)
 def test_scene_lines_are_at_most_110_characters(path):
-    """Issue 22: a scene module is read, not scrolled: no line over 110 characters."""
+    """A scene module is read, not scrolled: no line over 110 characters."""
     lines = enumerate(path.read_text().splitlines(), 1)
     long = [f"{k}: {len(line)}" for k, line in lines if len(line) > MAX_LINE_CHARS]
     assert not long, f"lines over {MAX_LINE_CHARS} characters (line: length): {', '.join(long)}"
-
-
-def test_the_pending_list_names_scene_modules():
-    assert LONG_LINES_PENDING <= {scene_id(p) for p in SCENE_MODULES}
 
 
 # --- compiled right-hand sides -------------------------------------------------------------------------

@@ -26,7 +26,8 @@ def test_saddle_gives_its_eigenvalue_and_a_rotation_gives_zero():
     saddle = benettin(compiled_flow(saddle_and_rotation, np.array([0.5, 0.0]), 0.0, 1.0, 0.05), pairs, d0, k,
                       [1.0, 1.0])
     assert np.all(np.abs(saddle[-1] - (0.5 - math.log(math.sqrt(2)) / k)) < 1e-6)
-    rotation = benettin(scipy_flow(saddle_and_rotation, np.array([0.0, 2.0]), 0.0, 1.0, atol=1e-22), pairs, d0, 50, [1.0, 1.0])
+    flow = scipy_flow(saddle_and_rotation, np.array([0.0, 2.0]), 0.0, 1.0, atol=1e-22)
+    rotation = benettin(flow, pairs, d0, 50, [1.0, 1.0])
     assert np.all(np.abs(rotation[-1]) < 1e-6)
     mean, stderr = ensemble_mean(np.array([1.0, 2.0, 3.0]))
     assert mean == 2.0 and abs(stderr - 1 / math.sqrt(3)) < 1e-15

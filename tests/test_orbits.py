@@ -62,7 +62,8 @@ def test_de421_beyond_the_bsp_uses_the_arrays():
 
 
 def test_out_of_span_raises_with_the_span(de421):
-    with pytest.raises(EphemerisRangeError, match="covers 1899-07-29 00:00 to 2053-10-09 00:00 TDB; asked for 2053-10-09 12:00"):
+    with pytest.raises(EphemerisRangeError,
+                       match="covers 1899-07-29 00:00 to 2053-10-09 00:00 TDB; asked for 2053-10-09 12:00"):
         de421.relative_states("moon", "earth", [19640.0])
     orbits = sample_orbits("de421", "moon", ("earth",), 0.0, 10.0)
     with pytest.raises(EphemerisRangeError, match="covers 2000-01-01 to 2000-01-11 TDB; asked for 2000-01-12"):

@@ -136,8 +136,8 @@ def test_geodetic_precession_of_a_satellite_orbit_is_three_halves_gm_n_over_c2_a
     at a fixed heliocentric radius the correction also weakens the solar tide (by 3.00 GM_sun/(c^2 a_E) of
     the Newtonian regression (3/4)(n_E^2/n_sat) cos i, as measured here: +2.1 mas/yr, 11 %, at the Moon's
     distance; an ephemeris absorbs it in its fitted n_E), so the orbit is a compact one, 10 000 km
-    (n_E / n_sat = 3e-4, ~0.01 mas/yr): bound 0.05 mas/yr.  The averages over 32 x 32 phases are exact to rounding for these circular
-    orbits (the inclination rate comes out ~1e-9 mas/yr; bound 1e-4 mas/yr)."""
+    (n_E / n_sat = 3e-4, ~0.01 mas/yr): bound 0.05 mas/yr.  The averages over 32 x 32 phases are exact to
+    rounding for these circular orbits (the inclination rate comes out ~1e-9 mas/yr; bound 1e-4 mas/yr)."""
     c, au = c_km_d(), header()["AU"]
     gm_sun, gm_total = gm_km3_d2("sun"), gm_km3_d2("sun") + gm_km3_d2("earth") + gm_km3_d2("moon")
     closed = 1.5 * gm_sun / (c**2 * au) * math.sqrt(gm_total / au**3)

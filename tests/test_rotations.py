@@ -72,8 +72,10 @@ def test_quat_rate_integrates_a_steady_spin():
     q = np.array([1.0, 0, 0, 0])
     for _ in range(n):                                              # RK4
         h = t / n
-        k1 = quat_rate(q, w); k2 = quat_rate(q + h / 2 * k1, w)
-        k3 = quat_rate(q + h / 2 * k2, w); k4 = quat_rate(q + h * k3, w)
+        k1 = quat_rate(q, w)
+        k2 = quat_rate(q + h / 2 * k1, w)
+        k3 = quat_rate(q + h / 2 * k2, w)
+        k4 = quat_rate(q + h * k3, w)
         q = q + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
     expected = np.array([math.cos(0.5), 0, 0, math.sin(0.5)])
     assert quat_angle(q / np.linalg.norm(q), expected) < 1e-6 * arcsec

@@ -66,7 +66,8 @@ def test_long_run_invariants():
 def test_failed_run_writes_partial_output(tmp_path, capsys):
     """rk8 stopped by max_steps: exit 3, summary.json with status 'failed', the outputs computed so far kept."""
     text = FREE_BODY.read_text()
-    text = re.sub(r'method = "dop853"\nrtol = .*\natol = .*\n', 'method = "rk8"\nstep = "0.1 d"\nmax_steps = 100\n', text)
+    text = re.sub(r'method = "dop853"\nrtol = .*\natol = .*\n', 'method = "rk8"\nstep = "0.1 d"\nmax_steps = 100\n',
+                  text)
     scenario = tmp_path / "stopped.toml"
     scenario.write_text(text)
     out = tmp_path / "run"

@@ -159,7 +159,8 @@ def test_planar_libration_rejects_b_below_a():
 
 def _forced_ode(n, freq, alpha, beta, t):
     def rhs(tt, y):
-        return [y[1], -freq**2 * alpha * math.sin(freq * tt) - n * (1 + beta * math.cos(freq * tt)) * math.sin(2 * y[0])]
+        forcing = -freq**2 * alpha * math.sin(freq * tt)
+        return [y[1], forcing - n * (1 + beta * math.cos(freq * tt)) * math.sin(2 * y[0])]
     z0 = theory.forced_libration_initial_rate(n, freq, alpha, beta)
     return solve_ivp(rhs, (0, t[-1]), [0.0, z0], t_eval=t, rtol=1e-12, atol=1e-15, method="DOP853").y[0]
 

@@ -44,7 +44,8 @@ def test_expected_versus_boolean_and_span():
 
 def test_headline_names_figure_tolerance_reference_and_span():
     verdict = evaluate(SPEC, {"pole_arcsec": 0.0036, "lon_arcsec": 0.0005}, 100.0, "moon_libration", "1900–2050")
-    assert verdict["headline"] == "moon_libration: pass — pole 0.0036″ ≤ 0.1″, longitude 0.0005″ ≤ 0.01″ vs DE421 (1900–2050)"
+    assert verdict["headline"] == ("moon_libration: pass — pole 0.0036″ ≤ 0.1″, longitude 0.0005″ ≤ 0.01″ "
+                                   "vs DE421 (1900–2050)")
 
 
 def test_every_shipped_scene_declares_its_comparison():
@@ -60,7 +61,8 @@ def test_the_rebound_driven_moon_fails_and_names_the_accurate_rebound_path():
     benchmarks/RESULTS.md) fails against level 3's targets; its note says what to expect and names the coupled
     scene on REBOUND's bodies, which exists and takes them from REBOUND."""
     spec = spec_of(load_scenario(SCENARIOS / "moon_libration_rebound.toml"))
-    assert evaluate(spec, {"pole_error_max_arcsec": 0.33, "longitude_error_max_arcsec": 19.8}, 18262.5)["result"] == "fail"
+    figures = {"pole_error_max_arcsec": 0.33, "longitude_error_max_arcsec": 19.8}
+    assert evaluate(spec, figures, 18262.5)["result"] == "fail"
     coupled = SCENARIOS / "earth_moon_coupled_rebound.toml"
     assert "23\" and 41 km over 1969-2019" in spec.note and coupled.name in spec.note
     assert load_scenario(coupled)["orbit.source"] == "rebound"

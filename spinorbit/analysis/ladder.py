@@ -66,6 +66,7 @@ def settings(methods, **options):
 
 
 def cheapest(rows, error, level, cost="wall_s"):
-    """The row of least ``cost`` among those whose ``error`` is at most ``level`` (failed rows skipped); None if none."""
+    """The row of least ``cost`` among those whose ``error`` is at most ``level`` (failed rows skipped); None
+    if none."""
     within = [r for r in rows if "failed" not in r and r[error] <= level]
     return min(within, key=lambda r: r[cost]) if within else None

@@ -98,7 +98,8 @@ class Integrator:
                              "a 1-d array of finite times running away from t0 in one direction (forward or backward)")
         if not self.supports(system):
             raise InputError("method", self.name,
-                                f"a method that supports system '{system.name}' (this one needs a rigid body with an external torque)")
+                                f"a method that supports system '{system.name}' (this one needs a rigid body "
+                                "with an external torque)")
         return np.ascontiguousarray(t_out)        # one compiled loop whatever the caller's layout
 
 

@@ -79,5 +79,6 @@ def fit_longitude_terms(t_tdb_d, tau_arcsec, free_period_d):
                         2 * np.pi / free_period_d)}, degree=1, origin_d=t.mean())
     rows = beside_published(fit)
     amplitude = None if fit.sin[free] is None else float(np.hypot(fit.sin[free], fit.cos[free]))
-    return ({"main": rows[:MAIN], "other": rows[MAIN:], f"free_libration_{free_period_d:.0f}d_amplitude_arcsec": amplitude},
+    return ({"main": rows[:MAIN], "other": rows[MAIN:],
+             f"free_libration_{free_period_d:.0f}d_amplitude_arcsec": amplitude},
             fit.refused)

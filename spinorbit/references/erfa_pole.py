@@ -14,7 +14,8 @@ from .base import Comparable
 PSI_A_RATE_ARCSEC_CY = 5038.481507       # IAU 2006 precession in longitude psi_A, fixed J2000 ecliptic
 EPS0_ARCSEC = 84381.406                  # IAU 2006 obliquity at J2000
 
-# Main IAU 2000A luni-solar nutation terms (IERS Conventions 2010, Table 5.3a): name -> (dpsi sin, deps cos) arcsec at J2000.
+# Main IAU 2000A luni-solar nutation terms (IERS Conventions 2010, Table 5.3a): name -> (dpsi sin, deps cos),
+# arcsec at J2000.
 IAU2000A_MAIN_ARCSEC = {"18.6 yr": (-17.2064161, 9.2052331), "0.5 yr": (-1.3170906, 0.5730336),
                         "13.66 d": (-0.2276413, 0.0978459)}
 

@@ -115,4 +115,5 @@ class PointMass(Interaction):
 
     def energy(self, code):
         rows, gm = code.rows(self.figure, self.attractors)
-        return f"{code.bind(energy, 'point_mass_energy')}({code.rot(self.figure)}, {code.inertia(self.figure)}, {rows}, {gm})"
+        kernel = code.bind(energy, "point_mass_energy")
+        return f"{kernel}({code.rot(self.figure)}, {code.inertia(self.figure)}, {rows}, {gm})"

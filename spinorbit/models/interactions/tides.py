@@ -94,7 +94,9 @@ def band_gradient(r, s, pole, band):
     rq = 5.0 * (r[0] * q0 + r[1] * q1 + r[2] * q2) / r2
     scale = 1.0 / (r2 * r2 * math.sqrt(r2) * s2 * s2 * math.sqrt(s2))
     out = np.empty(3)
-    out[0], out[1], out[2] = (2.0 * q0 - rq * r[0]) * scale, (2.0 * q1 - rq * r[1]) * scale, (2.0 * q2 - rq * r[2]) * scale
+    out[0] = (2.0 * q0 - rq * r[0]) * scale
+    out[1] = (2.0 * q1 - rq * r[1]) * scale
+    out[2] = (2.0 * q2 - rq * r[2]) * scale
     return out
 
 
@@ -162,6 +164,7 @@ class Tides(Interaction):
         r, v = code.relative(self.body, self.felt_by), code.relative_velocity(self.body, self.felt_by)
         r_sun, v_sun = code.relative(self.body, self.sun), code.relative_velocity(self.body, self.sun)
         tide = code.local("tide")
-        code.line(f"{tide} = {code.bind(acceleration, 'tide_acceleration')}({r}, {v}, {r_sun}, {v_sun}, {code.spin(self.body)}, {p})")
+        kernel = code.bind(acceleration, "tide_acceleration")
+        code.line(f"{tide} = {kernel}({r}, {v}, {r_sun}, {v_sun}, {code.spin(self.body)}, {p})")
         motion.add_relative_acceleration(code, tide)
         code.add_torque(self.body, f"{code.bind(reaction, 'tide_reaction')}({r}, {tide}, {p})", "inertial")
