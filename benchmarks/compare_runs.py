@@ -12,7 +12,7 @@ import math
 import sys
 from pathlib import Path
 
-SKIPPED = ("wall", "provenance", "created", "version", "path", "elapsed", "python", "host", "command")
+SKIPPED = ("wall", "provenance", "created", "version", "path", "elapsed", "python", "host", "command", "compile")
 
 
 def numbers(tree, prefix=""):
