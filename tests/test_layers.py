@@ -11,7 +11,7 @@ LAYERS = {
     "constants": 0, "errors": 0, "rotations": 0, "linker": 0, "progress": 0,
     "bodies": 1, "orbits": 1,
     "dynamics": 2, "integrators": 2, "theory": 2, "moon": 2, "earth": 2, "nonrigid": 2, "terms": 2, "coupled": 2, "relativity": 2, "earth_moon": 2,
-    "simulate": 3, "analysis": 2,
+    "simulate": 3, "analysis": 2, "models": 2,
 }
 EDGE = 9          # scenarios, scenes, references, results, reports, cli, bench, sweep, __init__
 EDGE_ONLY_LIBRARIES = {"astropy", "matplotlib", "dask", "distributed", "erfa", "skyfield"}

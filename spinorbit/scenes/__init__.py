@@ -24,6 +24,7 @@ SCENES = {
     "stress_fast_spin": "spinorbit.scenes.stress_fast_spin",
     "coupled_conservation": "spinorbit.scenes.coupled_conservation",
     "earth_moon_coupled": "spinorbit.scenes.earth_moon_coupled",
+    "earth_deep_time": "spinorbit.scenes.earth_deep_time",
 }
 
 

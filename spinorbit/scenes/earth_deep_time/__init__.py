@@ -1,0 +1,115 @@
+"""The Earth's obliquity and precession over millions of years, on an orbit the solar system's own motion gives.
+
+The orbit: the Sun, the planets and the Earth-Moon barycentre integrated by REBOUND (WHFast, the Sun's GR, the
+Moon as the barycentre's orbit-averaged quadrupole) from DE421's state at J2000, once per set of orbit keys and
+kept in the cache (spinorbit.orbits.solution).  The spin: the averaged precession equations of an oblate Earth
+under the Sun and the orbit-averaged Moon, geodesic precession, and tidal dissipation moving the Moon out, slowing
+the Earth and tilting its axis (spinorbit.models.deep_time), started on IAU 2006's mean pole at J2000, the
+precession constant set by IAU 2006's precession rate (or by its H_d).  ``model.Td`` and ``model.Ed`` scale
+today's tidal dissipation and dynamical ellipticity, as in snvec (Zeebe & Lourens 2022).
+
+Out: La2004's quantities every span.step (t_kyr, e, obliquity, varpi_bar, e sin varpi_bar, the general
+precession), compared with ERFA's long-term precession over the first 2 kyr and with La2004 (inso) over 1 Myr,
+10 Myr and the span up to 50 Myr, La93's tidal variants beside it; the nominal model (Td = Ed = 1) is judged.
+"""
+import math
+import time
+
+from ...errors import ScenarioError
+from ...schema import Key
+from ...verdict import Check, Verdict
+from .. import common
+
+BACKWARD = True
+MAX_SPAN_D = 100 * 365250000.0
+SCHEMA = {
+    "orbit.ephemeris": Key(type=str, default="de421", choices=("de421", "de440"),
+                           help="the JPL ephemeris whose J2000 state starts the solar system"),
+    "orbit.step": Key(unit="d", default=5.0, min=1.0, max=8.0,
+                      help="WHFast step (5 d: the orbit within 4e-7 in e of 2.5 d's over 1 Myr)"),
+    "orbit.output": Key(unit="d", default=36525.0, min=365.0, max=182625.0,
+                        help="cadence of the orbital solution, a whole number of steps (at most 500 yr)"),
+    "orbit.moon": Key(type=str, default="ring", choices=("ring", "static_ring", "none"),
+                      help="the Moon as the barycentre's quadrupole: measured against the Moon as a body, the "
+                           "first-order ring, or none"),
+    "orbit.relativity": Key(type=bool, default=True, help="the Sun's GR on the orbits"),
+    "orbit.file": Key(type=str, default="", help="an orbital solution file (default: the cache's)"),
+    "model.Td": Key(unit="", default=1.0, min=0.0, max=2.0,
+                    help="tidal dissipation, factor of today's (38.30 mm/yr lunar recession); 0 to 2"),
+    "model.Ed": Key(unit="", default=1.0, min=0.98, max=1.02,
+                    help="dynamical ellipticity, factor of today's; 0.98 to 1.02"),
+    "model.precession": Key(type=str, default="iau2006_rate", choices=("iau2006_rate", "iau2006_hd"),
+                            help="the precession constant from IAU 2006's rate in longitude, or from its H_d"),
+    "model.tidal_tilt": Key(type=bool, default=True, help="the tides' own obliquity rate (+2.4 mas/cy, Williams "
+                                                          "1994)"),
+}
+ISSUE = "issue 24's target"
+VCW = "Vondrak et al. 2011's model is good to a few arcsec over the historical period; issue 24's target"
+
+
+def verdict(scenario, comparison):
+    """ERFA over the first 2 kyr; La2004 over 1 and 10 Myr, for the nominal model only (a variant is compared,
+    not judged)."""
+    checks = [Check("obliquity vs ERFA", "erfa_obliquity_max_arcsec", 1.0, "″", VCW),
+              Check("mean equator vs ERFA", "erfa_equator_max_arcsec", 5.0, "″", VCW)]
+    nominal = scenario["model.Td"] == 1.0 and scenario["model.Ed"] == 1.0 and scenario["orbit.moon"] == "ring"
+    if nominal:
+        for window, targets in (("1myr", (("obliquity_max_deg", 0.005, "°"),
+                                          ("climatic_precession_vector_max", 5e-4, ""))),
+                                ("10myr", (("eccentricity_max", 0.002, ""), ("obliquity_max_deg", 0.05, "°"),
+                                           ("climatic_precession_vector_max", 2e-3, "")))):
+            span = float(window.removesuffix("myr")) * 365250000.0
+            checks += [Check(f"{name.removesuffix('_max_deg').removesuffix('_max')} vs La2004 ({window})",
+                             f"la2004_{name}_{window}", tol, unit, ISSUE, min_span_d=span - 1.0)
+                       for name, tol, unit in targets]
+    note = "" if nominal else "a variant of the nominal model: compared with La2004, not judged"
+    return Verdict("ERFA long-term precession; La2004", tuple(checks), note)
+
+
+def check_span(scenario):
+    if abs(scenario.t_start) > 1e-6:
+        raise ScenarioError("span.start", scenario["span.start"], "J2000, '2000-01-01T12:00:00' (the solar system "
+                            "starts from DE421's state and the axis from IAU 2006's pole there)")
+    if abs(scenario.t_end) > MAX_SPAN_D:
+        raise ScenarioError("span.end", scenario["span.end"], "at most 100 Myr either way of J2000 (the tidal law "
+                            "and the averaged Moon are not vouched for beyond; La2004's files stop at -101 Myr)")
+    if scenario["integrator.method"] != "rk8":
+        raise ScenarioError("integrator.method", scenario["integrator.method"], "rk8 (the compiled fixed step)")
+    step = scenario.integrator_options().get("step", DEFAULT_STEP_D)
+    if step > 1000 * 365.25:
+        raise ScenarioError("integrator.step", step, "at most 1 kyr (26 steps a precession cycle)")
+
+
+DEFAULT_STEP_D = 36525.0
+
+
+def run(scenario):
+    from ...models import deep_time
+    from ...plots import deep_time as plot_deep_time
+    from ...plots import deep_time_spectra
+    from . import compare
+
+    check_span(scenario)
+    started = time.perf_counter()
+    orbit = compare.orbital_solution(scenario, f"{scenario.name}: orbital solution")
+    orbit_wall = time.perf_counter() - started
+    model = compare.spin_model(scenario, orbit)
+    states, point = common.fixed_step_run(scenario, deep_time.rhs, model.params, model.y0, DEFAULT_STEP_D,
+                                          scenario.checkpoint, scenario.name)
+    t = scenario.output_times()
+    q = compare.quantities(t, states, orbit, model)
+    erfa, erfa_provenance = compare.erfa_metrics(scenario, orbit, model)
+    laskar, not_measured, la2004_provenance, la2004 = compare.laskar_metrics(t, q)
+    summary = {"comparison": {**erfa, **laskar}, "run": point, "model": model.description,
+               "orbital_solution": {"file": str(orbit.path), "span_d": list(orbit.span),
+                                    "settings": orbit.record, **orbit.provenance, "wall_s_this_run": orbit_wall},
+               "reference": {"erfa": erfa_provenance, "la2004": la2004_provenance}}
+    if not_measured:
+        summary["not_measured"] = not_measured
+    series = {"obliquity_deg": [math.degrees(x) for x in q["obliquity"]], "climatic_precession": q["climatic_precession"]}
+    reference = None if la2004 is None else {k: v for k, v in la2004.items() if k != "t_kyr"}
+    x = q["t_kyr"] if la2004 is None else la2004["t_kyr"]
+    model_part = series if la2004 is None else {k: list(v)[:len(x)] for k, v in series.items()}
+    figures = {"obliquity_climatic_precession": plot_deep_time(x, model_part, reference, "La2004"),
+               "spectra": deep_time_spectra(x, model_part, reference, "La2004")}
+    return common.result(scenario, compare.table(t, q), summary, figures, None)
