@@ -12,7 +12,6 @@ Out: La2004's quantities every span.step (t_kyr, e, obliquity, varpi_bar, e sin 
 precession), compared with ERFA's long-term precession over the first 2 kyr and with La2004 (inso) over 1 Myr,
 10 Myr and the span up to 50 Myr, La93's tidal variants beside it; the nominal model (Td = Ed = 1) is judged.
 """
-import math
 import time
 
 from ...errors import ScenarioError
@@ -85,7 +84,7 @@ DEFAULT_STEP_D = 36525.0
 
 def run(scenario):
     from ...models import deep_time
-    from ...plots import deep_time as plot_deep_time
+    from ...plots import deep_time as deep_time_plot
     from ...plots import deep_time_spectra
     from . import compare
 
@@ -106,10 +105,7 @@ def run(scenario):
                "reference": {"erfa": erfa_provenance, "la2004": la2004_provenance}}
     if not_measured:
         summary["not_measured"] = not_measured
-    series = {"obliquity_deg": [math.degrees(x) for x in q["obliquity"]], "climatic_precession": q["climatic_precession"]}
-    reference = None if la2004 is None else {k: v for k, v in la2004.items() if k != "t_kyr"}
-    x = q["t_kyr"] if la2004 is None else la2004["t_kyr"]
-    model_part = series if la2004 is None else {k: list(v)[:len(x)] for k, v in series.items()}
-    figures = {"obliquity_climatic_precession": plot_deep_time(x, model_part, reference, "La2004"),
-               "spectra": deep_time_spectra(x, model_part, reference, "La2004")}
+    x, ours, reference = compare.figure_series(q, la2004)
+    figures = {"obliquity_climatic_precession": deep_time_plot(x, ours, reference, "La2004"),
+               "spectra": deep_time_spectra(x, ours, reference, "La2004")}
     return common.result(scenario, compare.table(t, q), summary, figures, None)

@@ -194,6 +194,14 @@ DIFFERENCES = ("eccentricity_max", "obliquity_max_deg", "climatic_precession_vec
                "perihelion_longitude_end_deg")
 
 
+def figure_series(q, la2004):
+    """(kyr, the model's obliquity (deg) and climatic precession, La2004's or None) over what La2004 covers."""
+    size = len(q["t_kyr"]) if la2004 is None else len(la2004["t_kyr"])
+    ours = {"obliquity_deg": np.degrees(q["obliquity"][:size]), "climatic_precession": q["climatic_precession"][:size]}
+    reference = None if la2004 is None else {k: v for k, v in la2004.items() if k != "t_kyr"}
+    return q["t_kyr"][:size], ours, reference
+
+
 def _differences(a, b, part):
     """Max differences of two solutions' values over ``part``: e, obliquity (deg), e exp(i varpi_bar); the
     varpi_bar difference at the window's end (deg)."""
