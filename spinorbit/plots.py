@@ -268,11 +268,11 @@ def _deep_time_spectra(fig, series, span, name):
             keep = period <= span / 2
             ax.loglog(*thinned(period[keep], amplitude[keep], log=True), lw=1.0 if i == 0 else 0.8,
                       ls="-" if i == 0 else "--", label="model" if i == 0 else name)
-        for text, period in MILANKOVITCH_KYR.items():
+        for k, (text, period) in enumerate(MILANKOVITCH_KYR.items()):
             if period <= span / 2:
                 ax.axvline(period, color="0.6", lw=0.6, ls=":")
                 ax.annotate(f"{text} kyr", (period, 1), xycoords=("data", "axes fraction"), fontsize=7,
-                            xytext=(2, -10), textcoords="offset points")
+                            xytext=(2, -10 - 9 * (k % 2)), textcoords="offset points")
         ax.set_ylabel(f"amplitude of {labels[key]}")
         ax.legend(fontsize=8, loc="lower right")
         ax.grid(alpha=0.3, which="both")

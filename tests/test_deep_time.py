@@ -237,3 +237,24 @@ def test_obliquity_at_j2000_is_iau_2006s_within_the_osculating_ecliptic(tmp_path
     model = compare.spin_model(scenario, orbit)
     assert model.description["obliquity_j2000_deg"] * deg == pytest.approx(84381.406 * arcsec, abs=0.5 * arcsec)
     assert model.description["psi_rate_j2000_arcsec_per_cy"] == pytest.approx(5038.481507, rel=1e-12)
+
+
+def test_orbit_interrupted_half_way_is_kept_and_continued_bit_for_bit(tmp_path, monkeypatch):
+    settings = solution.Settings(output_d=3650.0)
+    advance, calls = solution._Run.advance, []
+
+    def interrupted(run):
+        calls.append(1)
+        if len(calls) == 60:
+            raise KeyboardInterrupt
+        return advance(run)
+
+    monkeypatch.setattr(solution._Run, "advance", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        solution.solve(settings, -1000 * YEAR_D, 0.0, path=tmp_path / "a.npz")
+    kept = solution.OrbitalSolution.load(tmp_path / "a.npz", settings.record())
+    assert kept.span == (-59 * 3650.0, 0.0)
+    monkeypatch.setattr(solution._Run, "advance", advance)
+    continued = solution.solve(settings, -1000 * YEAR_D, 0.0, path=tmp_path / "a.npz")
+    fresh = solution.solve(settings, -1000 * YEAR_D, 0.0, path=tmp_path / "b.npz")
+    assert np.array_equal(continued.eccentricity_vector, fresh.eccentricity_vector)

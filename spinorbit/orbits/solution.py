@@ -120,11 +120,7 @@ class OrbitalSolution:
 
     def elements(self, rotation):
         """(e, varpi, i, Omega) rad, in the frame whose axes are the rows of ``rotation`` (ICRF -> frame)."""
-        n, ev = self.normal @ rotation.T, self.eccentricity_vector @ rotation.T
-        node = np.arctan2(n[:, 0], -n[:, 1])
-        incl = np.arctan2(np.hypot(n[:, 0], n[:, 1]), n[:, 2])
-        varpi = np.mod(node + _angle_from_node(ev, n, node), 2 * np.pi)
-        return self.eccentricity, varpi, incl, np.mod(node, 2 * np.pi)
+        return elements(self.normal, self.eccentricity_vector, rotation)
 
     def content_hash(self):
         digest = hashlib.sha256()
@@ -172,10 +168,16 @@ class OrbitalSolution:
         return solution
 
 
-def _angle_from_node(ev, n, node):
-    """Argument of perihelion: angle in the orbit plane from the ascending node to the eccentricity vector."""
+def elements(normal, eccentricity_vector, rotation):
+    """(e, varpi, i, Omega) rad of orbits given by their normals and eccentricity vectors (k, 3, ICRF), in the
+    frame whose axes are the rows of ``rotation``: varpi = Omega + omega, the longitude of perihelion measured
+    along the frame's plane to the node, then along the orbit."""
+    n, ev = normal @ rotation.T, eccentricity_vector @ rotation.T
+    node = np.arctan2(n[:, 0], -n[:, 1])
     to_node = np.column_stack([np.cos(node), np.sin(node), np.zeros_like(node)])
-    return np.arctan2(np.sum(np.cross(to_node, ev) * n, axis=1), np.sum(to_node * ev, axis=1))
+    perihelion = np.arctan2(np.sum(np.cross(to_node, ev) * n, axis=1), np.sum(to_node * ev, axis=1))
+    incl = np.arctan2(np.hypot(n[:, 0], n[:, 1]), n[:, 2])
+    return (np.linalg.norm(ev, axis=1), np.mod(node + perihelion, 2 * np.pi), incl, np.mod(node, 2 * np.pi))
 
 
 def solve(settings, t_start, t_end, path=None, label="orbital solution"):
@@ -208,50 +210,51 @@ def solve(settings, t_start, t_end, path=None, label="orbital solution"):
 
 
 def _extend(solution, settings, record, lo, hi, path, label):
-    """Integrate each branch from where it stopped (or from the ephemeris at J2000) out to lo and hi."""
-    rows = {"backward": [], "forward": []}
+    """Integrate each branch from where it stopped (or from the ephemeris at J2000) out to lo and hi, writing the
+    file every SAVE_EVERY_S and when the run stops."""
+    sign = {"backward": -1.0, "forward": 1.0}
+    target = {"backward": lo, "forward": hi}
+    rows = {"backward": [], "forward": []}          # (t, normal, eccentricity vector, a) from J2000 outward
     ends = {} if solution is None else dict(solution.ends)
     if solution is not None:
-        split = np.searchsorted(solution.t_d, 0.0)
         table = np.column_stack([solution.t_d, solution.normal, solution.eccentricity_vector,
                                  solution.semi_major_axis_km])
-        rows["backward"], rows["forward"] = list(table[:split + 1][::-1]), list(table[split:])
-    provenance = dict(solution.provenance) if solution is not None else {"wall_s": 0.0}
-    started, saved = time.perf_counter(), time.perf_counter()
+        j2000 = int(np.searchsorted(solution.t_d, 0.0))
+        rows = {"backward": list(table[:j2000 + 1][::-1]), "forward": list(table[j2000:])}
+    earlier = 0.0 if solution is None else solution.provenance.get("wall_s", 0.0)
+    started = saved = time.perf_counter()
+
+    def todo(name):
+        return not rows[name] or sign[name] * (target[name] - rows[name][-1][0]) > 0
 
     def current():
-        back, fwd = np.array(rows["backward"])[::-1], np.array(rows["forward"])
-        table = np.concatenate([back, fwd[1:]]) if len(back) and len(fwd) else (back if len(back) else fwd)
-        wall = provenance["wall_s"] + time.perf_counter() - started
-        return OrbitalSolution(table[:, 0], table[:, 1:4], table[:, 4:7], table[:, 7], dict(ends), record,
-                               {**provenance, "wall_s": wall, **_describe(settings)})
+        table = np.array(rows["backward"][::-1] + rows["forward"][1 if rows["backward"] else 0:])
+        provenance = {"wall_s": earlier + time.perf_counter() - started, **_describe(settings)}
+        return OrbitalSolution(table[:, 0], table[:, 1:4], table[:, 4:7], table[:, 7], dict(ends), record, provenance)
 
-    todo = [(name, target) for name, target in (("backward", lo), ("forward", hi))
-            if not rows[name] or (rows[name][-1][0] > target if name == "backward" else rows[name][-1][0] < target)]
-    total = sum(abs(target - (rows[name][-1][0] if rows[name] else 0.0)) for name, target in todo)
+    total = sum(abs(target[n] - (rows[n][-1][0] if rows[n] else 0.0)) for n in rows if todo(n)) / 365250.0
     try:
-        with progress(label, 0.0, total / 365250.0, unit="kyr") as advance_to:
+        with progress(label, 0.0, total, unit="kyr") as advance_to:
             done = 0.0
-            for name, target in todo:
-                run = _Run(settings, ends.get(name), -1.0 if name == "backward" else 1.0)
+            for name in [n for n in rows if todo(n)]:
+                run = _Run(settings, ends.get(name), sign[name])
                 if not rows[name]:
                     rows[name].append(run.output())
                 first = rows[name][-1][0]
-                while (rows[name][-1][0] > target) if name == "backward" else (rows[name][-1][0] < target):
+                while todo(name):
                     rows[name].append(run.advance())
                     ends[name] = run.state()
-                    advance_to((done + abs(rows[name][-1][0] - first)) / 365250.0)
+                    advance_to(done + abs(rows[name][-1][0] - first) / 365250.0)
                     if time.perf_counter() - saved > SAVE_EVERY_S:
                         current().save(path)
                         saved = time.perf_counter()
-                done += abs(rows[name][-1][0] - first)
+                done += abs(rows[name][-1][0] - first) / 365250.0
     except BaseException:
         if rows["backward"] or rows["forward"]:
             current().save(path)
             print(f"orbital solution so far saved in {path}; the next run continues from it", file=sys.stderr)
         raise
-    solution = current()
-    solution.save(path)
+    current().save(path)
     return OrbitalSolution.load(path, record)
 
 

@@ -92,15 +92,14 @@ def quantities(t, states, orbit, model):
 
     from ...bodies import moon
     from ...models import deep_time
+    from ...orbits.solution import elements
 
     normal, eccentricity_vector = deep_time.orbit_series(t, *model.params[:3])
     angles = deep_time.climate_angles(states[:, :3], normal, eccentricity_vector, model.spin_axis0, model.normal0)
-    e = np.linalg.norm(eccentricity_vector, axis=1)
-    ecliptic = erfa.ecm06(2451545.0, 0.0) @ normal.T               # the orbit's pole on the J2000 ecliptic
+    e, varpi, inclination, node = elements(normal, eccentricity_vector, erfa.ecm06(2451545.0, 0.0))
     return {"t_kyr": t / KYR_D, "eccentricity": e, **angles,
             "climatic_precession": e * np.sin(angles["perihelion_longitude"]),
-            "inclination": np.arccos(np.clip(ecliptic[2], -1, 1)),
-            "node": np.mod(np.arctan2(ecliptic[0], -ecliptic[1]), 2 * np.pi),
+            "perihelion_longitude_j2000": varpi, "inclination": inclination, "node": node,
             "lunar_distance": states[:, 3] * moon.MEAN_DISTANCE_KM, "length_of_day": 24.0 / states[:, 4]}
 
 
@@ -111,6 +110,7 @@ COLUMNS = {  # name: (unit, description)
     "perihelion_longitude": ("rad", "varpi_bar: longitude of perihelion from the moving equinox"),
     "climatic_precession": ("", "e sin(varpi_bar)"),
     "precession": ("rad", "psi: general precession in longitude from J2000 (varpi_bar = varpi + psi)"),
+    "perihelion_longitude_j2000": ("rad", "varpi: longitude of perihelion from the J2000 equinox and ecliptic"),
     "inclination": ("rad", "the orbit's inclination to the J2000 ecliptic (IAU 2006)"),
     "node": ("rad", "the orbit's ascending node on the J2000 ecliptic, from the J2000 equinox"),
     "lunar_distance": ("km", "the Moon's mean distance under tidal dissipation"),
