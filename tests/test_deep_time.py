@@ -213,7 +213,7 @@ def test_scene_without_inso_runs_and_says_not_compared(tmp_path, monkeypatch):
     ('span.end="-101 Myr"', "span.end"),
     ("model.Td=2.5", "model.Td"),
     ("model.Ed=1.05", "model.Ed"),
-    ('orbit.step="12 d"', "orbit.step"),
+    ('orbit.step="8 d"', "orbit.step"),
     ('orbit.output="36524 d"', "orbit.output"),
     ('integrator.step="2 kyr"', "integrator.step"),
     ('integrator.method="rk4"', "integrator.method"),

@@ -9,7 +9,6 @@ from ...constants import ARCSEC, DAY_S, JULIAN_CENTURY_D
 from ...errors import InputError, ScenarioError
 
 KYR_D = 365250.0
-MYR_D = 1000 * KYR_D
 WINDOWS_MYR = (1, 10)                 # the spans the issue sets targets over
 CHAOS_MYR = 50.0                      # La2004: "age calibrations of paleoclimatic data over 40 to 50 Myr"
 ERFA_SPAN_D = 2 * KYR_D
@@ -30,10 +29,10 @@ def orbital_solution(scenario, label):
     """The solution covering the span (and the first 2 kyr either way of J2000), from the cache or orbit.file."""
     from ...orbits import solution
 
-    reach = math.copysign(ERFA_SPAN_D, scenario.t_end)
+    end = math.copysign(max(abs(scenario.t_end), ERFA_SPAN_D), scenario.t_end)
     try:
-        return solution.solve(settings(scenario), scenario.t_start, scenario.t_end if abs(scenario.t_end) > ERFA_SPAN_D
-                              else reach, path=scenario["orbit.file"] or None, label=label)
+        return solution.solve(settings(scenario), scenario.t_start, end, path=scenario["orbit.file"] or None,
+                              label=label)
     except InputError as exc:
         raise ScenarioError(ORBIT_KEYS.get(exc.name, exc.name), exc.given, exc.accepted) from None
 
