@@ -258,3 +258,19 @@ def test_orbit_interrupted_half_way_is_kept_and_continued_bit_for_bit(tmp_path, 
     continued = solution.solve(settings, -1000 * YEAR_D, 0.0, path=tmp_path / "a.npz")
     fresh = solution.solve(settings, -1000 * YEAR_D, 0.0, path=tmp_path / "b.npz")
     assert np.array_equal(continued.eccentricity_vector, fresh.eccentricity_vector)
+
+
+def test_sweep_over_td_and_ed_computes_the_orbit_once(tmp_path, monkeypatch):
+    from spinorbit.sweep import run_sweep
+
+    extend, calls = solution._extend, []
+    monkeypatch.setattr(solution, "_extend", lambda *args: calls.append(1) or extend(*args))
+    records = run_sweep("scenarios/earth_deep_time.toml", {"model.Td": ["0", "1"], "model.Ed": ["0.999", "1"]},
+                        tmp_path / "sweep", scheduler="synchronous",
+                        base_overrides=[f'orbit.file="{tmp_path / "orbit.npz"}"', 'span.end="-5 kyr"',
+                                        "output.plots=false"])
+    assert [r["status"] for r in records] == ["ok"] * 4
+    assert len(calls) == 1
+    # Ed moves today's precession away from the observed one: ERFA's equator tells (Td barely, over 2 kyr)
+    equator = {tuple(r["overrides"][-2:]): r["erfa_equator_max_arcsec"] for r in records}
+    assert equator[("model.Td=1", "model.Ed=0.999")] > 10 * equator[("model.Td=1", "model.Ed=1")]
