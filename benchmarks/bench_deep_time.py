@@ -2,9 +2,9 @@
 
     python benchmarks/bench_deep_time.py moon      # the Moon as a body (IAS15) against the EMB's quadrupole
     python benchmarks/bench_deep_time.py factors   # each piece's part in the 1-Myr distance from La2004
-    python benchmarks/bench_deep_time.py ladder    # error against run time: the N-body's step, the spin's step
-    python benchmarks/bench_deep_time.py cost      # 1 Myr end to end, first time (empty cache) and cached
-    python benchmarks/bench_deep_time.py chaos [--myr 20]   # two solutions 1e-10 apart: the Lyapunov time
+    python benchmarks/bench_deep_time.py ladder    # error against run time: the N-body's and the spin's steps
+    python benchmarks/bench_deep_time.py cost      # 1 Myr end to end, first (empty cache) and cached
+    python benchmarks/bench_deep_time.py chaos [--myr 20]   # two solutions 1e-10 apart: their divergence
 
 Each prints Markdown for benchmarks/results_deep_time.md.  The N-body runs take minutes of CPU: run them with
 ``nice -n 10``; solutions go to spinorbit's cache (``SPINORBIT_CACHE_DIR``) and are reused.
@@ -29,15 +29,13 @@ ARCSEC = math.pi / 648000
 
 def moon(years=3000.0, every_d=1460.0):
     """The EMB's perihelion drift with the Moon as a body (IAS15, Earth and Moon from DE421, the Sun's GR;
-    with and without the Earth's J2) against WHFast with the EMB as a point mass, the static ring, the ring."""
-    from spinorbit.bodies import moon as moon_body
+    with and without the Earth's J2) against WHFast with the EMB a point mass, the static ring, the ring."""
+    from spinorbit.bodies import moon as luna
     from spinorbit.orbits import solution
-    from spinorbit.orbits.kernel import JPLKernel
 
     t = -np.arange(0.0, years * 365.25 + 1, every_d)
-    print(f"EMB perihelion drift against the Moon as a body over {years:g} yr (\"/kyr; the body's own effect is "
-          "the point mass's drift)\n\n| Moon on the EMB | Earth's J2 on the Moon | drift \"/kyr | share of the body's |")
-    print("|---|---|---|---|")
+    print(f"EMB perihelion drift against the Moon as a body over {years:g} yr\n\n| Moon on the EMB | "
+          "Earth's J2 on the Moon | drift ″/kyr | share of the body's effect |\n|---|---|---|---|")
     for j2 in (False, True):
         started = time.perf_counter()
         body = _moon_as_body(t, j2)
@@ -52,16 +50,24 @@ def moon(years=3000.0, every_d=1460.0):
         for kind, drift in drifts.items():
             share = (drifts["none"] - drift) / drifts["none"]
             print(f"| {kind} | {'yes' if j2 else 'no'} | {drift:+.2f} | {share:.3f} |")
-        print(f"| (IAS15 wall {wall:.0f} s) | | | |")
+        print(f"| (IAS15: {wall:.0f} s) | | | |")
+    ratio = _static_average() / luna.MEAN_DISTANCE_KM**2 / solution.lunar_ring_j2()
+    print(f"\nDE421's Moon 1901-2049, nu <rho^2 P2(cos gamma)> seen from the Sun: {ratio:.4f} of the static "
+          "ring")
+
+
+def _static_average():
+    """2 nu <rho^2 P2(cos gamma)> over DE421's Moon (rho) and Sun (gamma: the angle between them), km^2."""
+    from spinorbit.orbits import solution
+    from spinorbit.orbits.kernel import JPLKernel
+
     k = JPLKernel()
-    ts = np.arange(-36000.0, 18000.0, 0.0625)
-    rho = k.relative_states("moon", "earth", ts)[0]
-    sun = k.relative_states("sun", "earth_moon_barycenter", ts)[0]
+    t = np.arange(-36000.0, 18000.0, 0.0625)
+    rho = k.relative_states("moon", "earth", t)[0]
+    sun = k.relative_states("sun", "earth_moon_barycenter", t)[0]
     cos = np.sum(rho * sun, axis=1) / np.linalg.norm(rho, axis=1) / np.linalg.norm(sun, axis=1)
     gm_e, gm_m = solution.gm_km3_d2("earth"), solution.gm_km3_d2("moon")
-    static = 2 * gm_e * gm_m / (gm_e + gm_m) ** 2 * np.mean(np.sum(rho**2, axis=1) * (1.5 * cos**2 - 0.5))
-    print(f"\nDE421's Moon 1901-2049, <rho^2 P2(cos gamma)> seen from the Sun: {static / moon_body.MEAN_DISTANCE_KM**2 / solution.lunar_ring_j2():.4f}"
-          " of the static ring's (the lunar orbit's solar-tide shape); the rest of the body's share is dynamical.")
+    return 2 * gm_e * gm_m / (gm_e + gm_m) ** 2 * np.mean(np.sum(rho**2, axis=1) * (1.5 * cos**2 - 0.5))
 
 
 def _moon_as_body(t, earth_j2):
@@ -72,7 +78,8 @@ def _moon_as_body(t, earth_j2):
     from spinorbit.bodies.de421_header import gm_km3_d2, header
     from spinorbit.orbits.kernel import JPLKernel
 
-    names = ("sun", "mercury", "venus", "earth", "moon", "mars", "jupiter", "saturn", "uranus", "neptune", "pluto")
+    names = ("sun", "mercury", "venus", "earth", "moon", "mars", "jupiter", "saturn", "uranus", "neptune",
+             "pluto")
     k = JPLKernel()
     sim = rebound.Simulation()
     sim.G = 1.0
@@ -93,8 +100,9 @@ def _moon_as_body(t, earth_j2):
         sim.integrate(time_d, exact_finish_time=1)
         sun, earth, luna = (sim.particles[i] for i in (0, 3, 4))
         w = np.array([earth.m, luna.m]) / (earth.m + luna.m)
-        r = np.array([w[0] * getattr(earth, c) + w[1] * getattr(luna, c) - getattr(sun, c) for c in "xyz"])
-        v = np.array([w[0] * getattr(earth, c) + w[1] * getattr(luna, c) - getattr(sun, c) for c in ("vx", "vy", "vz")])
+        state = [w[0] * getattr(earth, c) + w[1] * getattr(luna, c) - getattr(sun, c)
+                 for c in ("x", "y", "z", "vx", "vy", "vz")]
+        r, v = np.array(state[:3]), np.array(state[3:])
         h = np.cross(r, v)
         normals.append(h / np.linalg.norm(h))
         eccentricity.append(np.cross(v, h) / (sun.m + earth.m + luna.m) - r / np.linalg.norm(r))
@@ -111,19 +119,23 @@ FACTORS = [("nominal: ring, GR, tidal tilt, IAU 2006 rate", []),
 
 
 def factors():
-    """The scene over 1 Myr with each piece changed, against La2004 (La93's tidal variants' spread beside it)."""
+    """The scene over 1 Myr with each piece changed, against La2004 (La93's spreads beside it)."""
     from spinorbit import run_scenario
 
     print("| 0 to -1 Myr | obliquity max ° | e e^(iϖ̄) max | e max | ϖ̄ at -1 Myr ° |\n|---|---|---|---|---|")
+    names = ("obliquity_max_deg", "climatic_precession_vector_max", "eccentricity_max",
+             "perihelion_longitude_end_deg")
+    formats = ("{:.4f}", "{:.1e}", "{:.1e}", "{:+.2f}")
+
+    def row(label, c, prefix):
+        cells = [f.format(c[f"{prefix}_{n}_1myr"]) for n, f in zip(names, formats)]
+        print(f"| {label} | {' | '.join(cells)} |")
+
     for label, overrides in FACTORS:
         c = run_scenario(ROOT / "scenarios/earth_deep_time.toml", overrides).summary["comparison"]
-        print(f"| {label} | {c['la2004_obliquity_max_deg_1myr']:.4f} | {c['la2004_climatic_precession_vector_max_1myr']:.1e}"
-              f" | {c['la2004_eccentricity_max_1myr']:.1e} | {c['la2004_perihelion_longitude_end_deg_1myr']:+.2f} |")
-    print(f"| La93 with tides - without (Laskar et al. 1993) | {c['la93_tides_obliquity_max_deg_1myr']:.4f} | "
-          f"{c['la93_tides_climatic_precession_vector_max_1myr']:.1e} | - | {c['la93_tides_perihelion_longitude_end_deg_1myr']:+.2f} |")
-    print(f"| La2004 - La93 with tides | {c['la2004_minus_la93_obliquity_max_deg_1myr']:.4f} | "
-          f"{c['la2004_minus_la93_climatic_precession_vector_max_1myr']:.1e} | {c['la2004_minus_la93_eccentricity_max_1myr']:.1e}"
-          f" | {c['la2004_minus_la93_perihelion_longitude_end_deg_1myr']:+.2f} |")
+        row(label, c, "la2004")
+    row("La93 with tides - without (Laskar et al. 1993)", c, "la93_tides")
+    row("La2004 - La93 with tides", c, "la2004_minus_la93")
 
 
 def ladder(span_kyr=200.0):
@@ -134,12 +146,9 @@ def ladder(span_kyr=200.0):
     from spinorbit.orbits import solution
     from spinorbit.scenes.earth_deep_time import compare
 
-    class Scenario(dict):
-        pass
-
     def spin(orbit, t, step):
-        scenario = Scenario({"model.precession": "iau2006_rate", "model.tidal_tilt": True, "orbit.moon": "ring",
-                             "orbit.output": orbit.t_d[1] - orbit.t_d[0], "model.Ed": 1.0, "model.Td": 1.0})
+        scenario = {"model.precession": "iau2006_rate", "model.tidal_tilt": True, "orbit.moon": "ring",
+                    "orbit.output": orbit.t_d[1] - orbit.t_d[0], "model.Ed": 1.0, "model.Td": 1.0}
         model = compare.spin_model(scenario, orbit)
         fixed_step(deep_time.rhs, model.params, 0.0, model.y0, t[:2], step)
         started = time.perf_counter()
@@ -147,7 +156,7 @@ def ladder(span_kyr=200.0):
         return compare.quantities(t, states, orbit, model), time.perf_counter() - started
 
     t = -np.arange(0.0, span_kyr * KYR_D + 1, KYR_D)
-    print(f"WHFast step against 1 d, over {span_kyr:g} kyr (the spin at 100 yr on each)\n\n"
+    print(f"WHFast step against 1 d, over {span_kyr:g} kyr (the spin run at 100 yr on each)\n\n"
           "| step d | N-body s/Myr | e vector max | obliquity max ″ | e e^(iϖ̄) max |\n|---|---|---|---|---|")
     runs = {}
     with tempfile.TemporaryDirectory() as folder:
@@ -156,19 +165,17 @@ def ladder(span_kyr=200.0):
             started = time.perf_counter()
             orbit = solution.solve(settings, t[-1], 0.0, path=Path(folder) / f"{step}.npz")
             runs[step] = (spin(orbit, t, 36500.0)[0], (time.perf_counter() - started) / span_kyr * 1000)
-        ref = runs[1.0][0]
-        for step, (q, cost) in runs.items():
-            if step == 1.0:
-                continue
-            vector = np.abs(q["eccentricity"] * np.exp(1j * q["perihelion_longitude"])
-                            - ref["eccentricity"] * np.exp(1j * ref["perihelion_longitude"]))
-            print(f"| {step:g} | {cost:.0f} | {np.abs(q['eccentricity'] - ref['eccentricity']).max():.1e} | "
-                  f"{np.abs(q['obliquity'] - ref['obliquity']).max() / ARCSEC:.3f} | {vector.max():.1e} |")
+    ref = runs.pop(1.0)[0]
+    for step, (q, cost) in runs.items():
+        vector = np.abs(q["eccentricity"] * np.exp(1j * q["perihelion_longitude"])
+                        - ref["eccentricity"] * np.exp(1j * ref["perihelion_longitude"]))
+        print(f"| {step:g} | {cost:.0f} | {np.abs(q['eccentricity'] - ref['eccentricity']).max():.1e} | "
+              f"{np.abs(q['obliquity'] - ref['obliquity']).max() / ARCSEC:.3f} | {vector.max():.1e} |")
     orbit = solution.solve(solution.Settings(), -1000 * KYR_D, 0.0)
     t = -np.arange(0.0, 1000 * KYR_D + 1, KYR_D)
     ref, _ = spin(orbit, t, 3652.5)
-    print("\nRK8 step of the spin against 10 yr, over 1 Myr\n\n| step yr | spin s/Myr | obliquity max ″ | ϖ̄ max ″ |\n"
-          "|---|---|---|---|")
+    print("\nRK8 step of the spin against 10 yr, over 1 Myr\n\n"
+          "| step yr | spin s/Myr | obliquity max ″ | ϖ̄ max ″ |\n|---|---|---|---|")
     for years in (2000, 1000, 500, 200, 100, 50):
         q, wall = spin(orbit, t, years * 365.25)
         dvarpi = np.angle(np.exp(1j * (q["perihelion_longitude"] - ref["perihelion_longitude"])))
@@ -178,45 +185,53 @@ def ladder(span_kyr=200.0):
 
 def cost():
     """``spinorbit run scenarios/earth_deep_time.toml`` with an empty cache (the N-body and the compilation
-    included), then again (the solution and kernels read from the cache)."""
+    included), then again (the solution and the kernels read from the cache)."""
     with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out:
         env = {**os.environ, "SPINORBIT_CACHE_DIR": cache, "NUMBA_CACHE_DIR": str(Path(cache) / "numba")}
+        command = [sys.executable, "-m", "spinorbit.cli", "run", "scenarios/earth_deep_time.toml", "--out",
+                   str(Path(out) / "run")]
+        print("| 1 Myr | whole command | N-body | spin |\n|---|---|---|---|")
         for label in ("first (empty cache)", "cached"):
             started = time.perf_counter()
-            subprocess.run([sys.executable, "-m", "spinorbit.cli", "run", "scenarios/earth_deep_time.toml", "--out",
-                            str(Path(out) / "run")], cwd=ROOT, env=env, check=True, stdout=subprocess.DEVNULL)
+            subprocess.run(command, cwd=ROOT, env=env, check=True, stdout=subprocess.DEVNULL)
             wall = time.perf_counter() - started
             summary = json.loads((Path(out) / "run" / "summary.json").read_text())
-            print(f"| 1 Myr, {label} | {wall:.1f} s | N-body {summary['orbital_solution']['wall_s_this_run']:.1f} s | "
-                  f"spin {summary['run']['wall_s']:.3f} s |")
+            print(f"| {label} | {wall:.1f} s | {summary['orbital_solution']['wall_s_this_run']:.1f} s | "
+                  f"{summary['run']['wall_s']:.3f} s |")
 
 
-def chaos(myr=20.0, displacement=1e-10):
-    """Two solutions, the second's EMB displaced by ``displacement`` of its heliocentric distance at J2000: their
-    distance in the EMB's eccentricity and inclination vectors (10-kyr means, to leave out the short periods
-    that the mean longitudes' slow drift apart dephases) and its e-folding time."""
+def chaos(myr=20.0, displacement=1e-10, window_kyr=10.0):
+    """Two solutions, the second's EMB displaced by ``displacement`` of its heliocentric distance at J2000:
+    their distance in the EMB's eccentricity vector and orbit normal, raw (osculating) and averaged over
+    ``window_kyr`` (the short periods out: the mean longitudes drift apart linearly, 1.5 x 1e-10 of the mean
+    motion, and dephase them), and the e-folding time of the averaged distance's growth."""
     from spinorbit.orbits import solution
 
-    runs = [solution.solve(solution.Settings(displacement=d), -myr * 1000 * KYR_D, 0.0) for d in (0.0, displacement)]
-    t = runs[0].t_d
-    size = round(10 * KYR_D / (t[1] - t[0]))
-    vectors = [np.column_stack([r.eccentricity_vector, r.normal]) for r in runs]
-    distance = np.linalg.norm(vectors[1] - vectors[0], axis=1)
+    runs = [solution.solve(solution.Settings(displacement=d), -myr * 1000 * KYR_D, 0.0)
+            for d in (0.0, displacement)]
+    t = runs[0].t_d[::-1]
+    vectors = [np.column_stack([r.eccentricity_vector, r.normal])[::-1] for r in runs]
+    size = round(window_kyr * KYR_D / abs(t[1] - t[0]))
     blocks = len(t) // size
-    mean_t = t[-blocks * size:].reshape(blocks, size).mean(axis=1) / KYR_D / 1000
-    mean_d = distance[-blocks * size:].reshape(blocks, size).mean(axis=1)
-    print("| Myr | distance (e vector, normal) |\n|---|---|")
-    for k in range(0, blocks, max(1, blocks // 20)):
-        print(f"| {mean_t[k]:.1f} | {mean_d[k]:.2e} |")
-    grows = mean_d > 100 * mean_d[-1]                      # beyond the start's linear phase
-    fit = np.polyfit(np.abs(mean_t[grows]), np.log(mean_d[grows]), 1) if grows.sum() > 5 else (np.nan,)
-    print(f"\ne-folding (Lyapunov) time from the exponential part: {1 / fit[0]:.2f} Myr (Laskar 1989: ~5 Myr)")
+    mean = [v[:blocks * size].reshape(blocks, size, 6).mean(axis=1) for v in vectors]
+    averaged = np.linalg.norm(mean[1] - mean[0], axis=1)
+    raw = np.linalg.norm(vectors[1] - vectors[0], axis=1)[:blocks * size].reshape(blocks, size).max(axis=1)
+    mid = t[:blocks * size].reshape(blocks, size).mean(axis=1) / KYR_D / 1000
+    print(f"| Myr | distance, {window_kyr:g}-kyr means | osculating, max over the window |\n|---|---|---|")
+    for k in np.linspace(0, blocks - 1, 21).astype(int):
+        print(f"| {mid[k]:.1f} | {averaged[k]:.2e} | {raw[k]:.2e} |")
+    late = np.abs(mid) >= myr / 2
+    slope = np.polyfit(np.abs(mid[late]), np.log(averaged[late]), 1)[0]
+    print(f"\ngrowth of the averaged distance over the last half: e-folding {1 / slope:.2f} Myr "
+          "(Laskar 1989: a Lyapunov time of ~5 Myr)")
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("part", choices=("moon", "factors", "ladder", "cost", "chaos"))
     parser.add_argument("--myr", type=float, default=20.0)
     args = parser.parse_args()
-    {"moon": moon, "factors": factors, "ladder": ladder, "cost": cost,
-     "chaos": lambda: chaos(args.myr)}[args.part]()
+    parts = {"moon": moon, "factors": factors, "ladder": ladder, "cost": cost,
+             "chaos": lambda: chaos(args.myr)}
+    parts[args.part]()

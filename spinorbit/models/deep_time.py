@@ -20,9 +20,10 @@ Tidal dissipation moves the Moon out and slows the Earth: a_m' = Td x 38.30 mm/y
 laser ranging today, Williams & Boggs 2016; the a^(-11/2) of a constant tidal lag, Goldreich 1966), and
 omega' = 51 n_m' (Lambeck 1980, as in Quinn et al. 1991, AJ 101, 2287, eq. 11: the lunar and solar tidal
 torques); the Earth's figure follows its rotation hydrostatically, E_d ~ omega^2 (Laskar et al. 2004), so
-alpha ~ omega.  The tides also tilt the axis away from n: d(eps)/dt = Td x 2.4 mas/cy today, ~ sin(eps) cos(eps)
-(Williams 1994, AJ 108, 711; IAU 2006's budget, Capitaine et al. 2003, Table 3) and, here, ~ a_m^-6 with the
-lunar tidal torque.  Td and Ed scale today's dissipation and dynamical ellipticity (snvec's keys).
+alpha ~ omega.  The tides also tilt the axis away from n: d(eps)/dt = Td x 2.4 mas/cy today,
+~ sin(eps) cos(eps) (Williams 1994, AJ 108, 711; IAU 2006's budget, Capitaine et al. 2003, Table 3) and,
+here, ~ a_m^-6 with the lunar tidal torque.  Td and Ed scale today's dissipation and dynamical ellipticity
+(snvec's keys).
 
 State y = (s_x, s_y, s_z, a_m/a_m0, omega/omega0); time TDB days from J2000; rates rad/day.  The orbit comes
 as samples of the normal and the eccentricity vector on a uniform grid, interpolated by cubic Lagrange
@@ -118,7 +119,8 @@ def constant_from_rate(psi_rate_rad_d, obliquity, geodesic):
 def constant_from_ellipticity(ellipticity, spin_rad_d, semi_major_axis_km, eccentricity):
     """alpha (rad/day) of the formula above from a dynamical ellipticity E_d = (C - A)/C and rotation rate."""
     n2 = GM_KM3_D2["sun"] / semi_major_axis_km**3
-    return 1.5 * ellipticity / spin_rad_d * n2 * ((1 - eccentricity**2) ** -1.5 + lunar_ratio(semi_major_axis_km))
+    solar = (1 - eccentricity**2) ** -1.5
+    return 1.5 * ellipticity / spin_rad_d * n2 * (solar + lunar_ratio(semi_major_axis_km))
 
 
 def implied_ellipticity(alpha, spin_rad_d, semi_major_axis_km, eccentricity):

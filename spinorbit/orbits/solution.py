@@ -1,21 +1,23 @@
-"""The Earth's orbit over millions of years: the solar system integrated by REBOUND from a JPL ephemeris's state at
-J2000, written once to a file with its provenance and reused by every run that needs a span it covers.
+"""The Earth's orbit over millions of years: the solar system integrated by REBOUND from a JPL ephemeris's
+state at J2000, written once to a file with its provenance and reused by every run needing a span it covers.
 
-Model: the Sun, Mercury to Neptune (system barycentres), Pluto and the Earth-Moon barycentre (EMB), DE421's GMs,
-integrated by WHFast (Wisdom & Holman 1991; Rein & Tamayo 2015) in Jacobi coordinates with 11th-order symplectic
-correctors; the Sun's relativity by REBOUNDx ``gr_potential`` (Nobili & Roxburgh 1986: the perihelion advance of
-1PN, not velocity-dependent, so the map stays symplectic); the Moon as the EMB's orbit-averaged quadrupole
-(``moon = "ring"``, REBOUNDx ``gravitational_harmonics`` on the EMB): the Earth and the Moon seen from afar are a
+Model: the Sun, Mercury to Neptune (system barycentres), Pluto and the Earth-Moon barycentre (EMB), DE421's
+GMs, integrated by WHFast (Wisdom & Holman 1991; Rein & Tamayo 2015) in Jacobi coordinates with 11th-order
+symplectic correctors; the Sun's relativity by REBOUNDx ``gr_potential`` (Nobili & Roxburgh 1986: 1PN's
+perihelion advance, not velocity-dependent, so the map stays symplectic); the Moon as the EMB's orbit-averaged
+quadrupole (REBOUNDx ``gravitational_harmonics`` on the EMB, its axis the EMB's orbit normal, reset at every
+output: the lunar orbit regresses about the ecliptic in 18.6 yr).  Seen from afar the Earth and the Moon are a
 ring of the Moon's orbit, J2 R^2 = nu <rho^2> / 2 (1 - 3/2 sin^2 i_m), nu = m_E m_M / (m_E + m_M)^2,
-<rho^2> = a_m^2 (1 + 3/2 e_m^2), its axis the EMB's orbit normal (the lunar orbit regresses about the ecliptic
-in 18.6 yr), reset at every output.  It advances the EMB's perihelion by ~0.08"/yr (GR: 0.04"/yr) and leaves its
-node alone.  ``moon = "none"``: the EMB a point mass.
+<rho^2> = a_m^2 (1 + 3/2 e_m^2) ("static_ring"), which advances the EMB's perihelion by ~0.08"/yr (GR:
+0.04"/yr) and leaves its node alone; "ring" (the default) takes MOON's measured share of it; "none": a point
+mass.
 
 Outputs every ``output_d`` (a multiple of the step, so that outputs fall on steps): the EMB's heliocentric
-osculating orbit normal and eccentricity vector (ICRF axes, the ephemeris's) and semi-major axis, TDB days from
-J2000, ascending.  The two branches (backward and forward from J2000) keep their last state, so a file is
-extended bit for bit; the file is written every ``SAVE_EVERY_S`` and when a run stops, and reloaded by the next.
+osculating orbit normal and eccentricity vector (ICRF axes, the ephemeris's) and semi-major axis, TDB days
+from J2000, ascending.  The two branches (backward and forward from J2000) keep their last state, so a file is
+extended bit for bit; it is written every ``SAVE_EVERY_S`` and when a run stops, and reloaded by the next.
 """
+import ast
 import fcntl
 import functools
 import hashlib
@@ -23,6 +25,7 @@ import inspect
 import json
 import os
 import sys
+import textwrap
 import time
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -36,14 +39,15 @@ from ..errors import InputError
 from ..linker import cache_dir
 from ..progress import progress
 
-BODIES = ("sun", "mercury", "venus", "earth_moon_barycenter", "mars", "jupiter", "saturn", "uranus", "neptune",
-          "pluto")
+BODIES = ("sun", "mercury", "venus", "earth_moon_barycenter", "mars", "jupiter", "saturn", "uranus",
+          "neptune", "pluto")
 SUN, EMB = 0, 3
 SAVE_EVERY_S = 30.0
 POLL_S = 5.0
 # The Moon's orbit-averaged quadrupole on the EMB, as a factor of the static ring's (``lunar_ring_j2``):
 # "ring" takes the lunar orbit's response to the solar tide into account, measured as the EMB's perihelion
-# drift of a run with the Moon as a body (IAS15, DE421's Moon, 3 kyr; benchmarks/deep_time_moon.py): 0.859.
+# drift of a run with the Moon as a body (IAS15, DE421's Moon, 3 kyr; benchmarks/bench_deep_time.py moon):
+# 0.859.
 # The static ring over DE421's Moon averages rho^2 P2(cos gamma) to 0.958 of it; the rest is dynamical.
 MOON = {"ring": 0.859, "static_ring": 1.0, "none": 0.0}
 
@@ -71,7 +75,8 @@ class Settings:
             raise InputError("output", self.output_d, f"a whole number of WHFast steps of {self.step_d:g} d")
 
     def record(self):
-        """The settings and everything else that decides the numbers (library versions, this module's source)."""
+        """The settings and everything else that decides the numbers (library versions, the integration's
+        code)."""
         import rebound
         import reboundx
 
@@ -85,10 +90,18 @@ class Settings:
 
 @functools.cache
 def integration_digest():
-    """Hash of the source of what computes the numbers (the run, the ring, the start), so that a changed
-    integration never reuses an old file."""
-    parts = (_Run, lunar_ring_j2, _ephemeris_states)
-    return hashlib.sha256("".join(inspect.getsource(part) for part in parts).encode()).hexdigest()[:16]
+    """Hash of the code that computes the numbers (the run, the ring, the start) as Python parses it, its
+    docstrings, comments and layout aside: a changed integration never reuses an old file."""
+    digest = hashlib.sha256()
+    for part in (_Run, lunar_ring_j2, _ephemeris_states):
+        tree = ast.parse(textwrap.dedent(inspect.getsource(part)))
+        for node in ast.walk(tree):
+            body = getattr(node, "body", None)
+            if isinstance(body, list) and body and isinstance(body[0], ast.Expr) and isinstance(
+                    getattr(body[0], "value", None), ast.Constant) and isinstance(body[0].value.value, str):
+                node.body = body[1:] or [ast.Pass()]
+        digest.update(ast.dump(tree).encode())
+    return digest.hexdigest()[:16]
 
 
 def cache_directory():
@@ -100,12 +113,14 @@ def cache_directory():
 
 class OrbitalSolution:
     """The EMB's heliocentric orbit at ``t_d`` (ascending TDB days from J2000): ``normal`` and
-    ``eccentricity_vector`` (k, 3) in ICRF axes, ``semi_major_axis_km`` (k,); ``ends``: {"backward", "forward"}:
-    (t, states (n_bodies, 6)) where each branch stopped; ``record``: the settings; ``provenance``."""
+    ``eccentricity_vector`` (k, 3) in ICRF axes, ``semi_major_axis_km`` (k,); ``ends``: {"backward",
+    "forward"}: (t, states (n_bodies, 6)) where each branch stopped; ``record``: the settings;
+    ``provenance``: how it was made."""
 
     def __init__(self, t_d, normal, eccentricity_vector, semi_major_axis_km, ends, record, provenance):
         self.t_d, self.normal, self.eccentricity_vector = t_d, normal, eccentricity_vector
-        self.semi_major_axis_km, self.ends, self.record, self.provenance = semi_major_axis_km, ends, record, provenance
+        self.semi_major_axis_km, self.ends = semi_major_axis_km, ends
+        self.record, self.provenance = record, provenance
 
     @property
     def span(self):
@@ -138,7 +153,8 @@ class OrbitalSolution:
         try:
             with open(tmp, "wb") as f:
                 np.savez(f, t_d=self.t_d, normal=self.normal, eccentricity_vector=self.eccentricity_vector,
-                         semi_major_axis_km=self.semi_major_axis_km, record=json.dumps(self.record, sort_keys=True),
+                         semi_major_axis_km=self.semi_major_axis_km,
+                         record=json.dumps(self.record, sort_keys=True),
                          provenance=json.dumps(provenance, sort_keys=True), **ends)
                 f.flush()
                 os.fsync(f.fileno())
@@ -148,15 +164,16 @@ class OrbitalSolution:
 
     @classmethod
     def load(cls, path, record):
-        """The solution in ``path``; InputError (one line) unless it was made with ``record`` and is intact."""
+        """The solution in ``path``; InputError (one line) unless it was made with ``record`` and is
+        intact."""
         accepted = "an orbital solution file written by spinorbit with these settings"
         try:
             with np.load(path, allow_pickle=False) as data:
                 stored, provenance = json.loads(str(data["record"])), json.loads(str(data["provenance"]))
                 ends = {name: (float(data[f"end_{name}_t"]), data[f"end_{name}_states"])
                         for name in ("backward", "forward") if f"end_{name}_t" in data}
-                solution = cls(data["t_d"], data["normal"], data["eccentricity_vector"], data["semi_major_axis_km"],
-                               ends, stored, provenance)
+                arrays = (data[k] for k in ("t_d", "normal", "eccentricity_vector", "semi_major_axis_km"))
+                solution = cls(*arrays, ends, stored, provenance)
         except (OSError, ValueError, KeyError, EOFError) as exc:
             raise InputError("orbit_file", str(path), f"{accepted} ({type(exc).__name__}: {exc})") from None
         differ = sorted(k for k in set(stored) | set(record) if stored.get(k) != record.get(k))
@@ -164,7 +181,7 @@ class OrbitalSolution:
             detail = ", ".join(f"{k} {stored.get(k)!r} (this run: {record.get(k)!r})" for k in differ)
             raise InputError("orbit_file", str(path), f"{accepted}; it differs in {detail}")
         if solution.content_hash() != provenance.get("content_sha256"):
-            raise InputError("orbit_file", str(path), f"{accepted}; its arrays do not match their recorded hash")
+            raise InputError("orbit_file", str(path), f"{accepted}; its arrays do not match their hash")
         return solution
 
 
@@ -181,12 +198,14 @@ def elements(normal, eccentricity_vector, rotation):
 
 
 def solve(settings, t_start, t_end, path=None, label="orbital solution"):
-    """The solution covering [t_start, t_end] TDB days (J2000 inside it): read from ``path`` (default: the cache
-    file of these settings) and extended as needed, computed when there is none.  One process at a time works
-    on a file (a lock); the others wait and read what it wrote."""
+    """The solution covering [t_start, t_end] TDB days (J2000 inside it): read from ``path`` (default: the
+    cache file of these settings) and extended as needed, computed when there is none.  One process at a time
+    works on a file (a lock); the others wait and read what it wrote."""
     settings.check()
     record = settings.record()
-    path = Path(path) if path is not None else cache_directory() / f"{settings.ephemeris}-{settings.key()}.npz"
+    if path is None:
+        path = cache_directory() / f"{settings.ephemeris}-{settings.key()}.npz"
+    path = Path(path)
     lo, hi = min(t_start, t_end, 0.0), max(t_start, t_end, 0.0)
     with open(path.with_name(path.name + ".lock"), "w") as lock:
         waiting = False
@@ -194,7 +213,7 @@ def solve(settings, t_start, t_end, path=None, label="orbital solution"):
             try:
                 fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
                 break
-            except BlockingIOError:          # another process is extending it: use what it has saved once enough
+            except BlockingIOError:          # another process is extending it: use its file once long enough
                 if path.exists() and (solution := OrbitalSolution.load(path, record)).covers(lo, hi):
                     solution.path = path
                     return solution
@@ -210,8 +229,8 @@ def solve(settings, t_start, t_end, path=None, label="orbital solution"):
 
 
 def _extend(solution, settings, record, lo, hi, path, label):
-    """Integrate each branch from where it stopped (or from the ephemeris at J2000) out to lo and hi, writing the
-    file every SAVE_EVERY_S and when the run stops."""
+    """Integrate each branch from where it stopped (or from the ephemeris at J2000) out to lo and hi, writing
+    the file every SAVE_EVERY_S and when the run stops."""
     sign = {"backward": -1.0, "forward": 1.0}
     target = {"backward": lo, "forward": hi}
     rows = {"backward": [], "forward": []}          # (t, normal, eccentricity vector, a) from J2000 outward
@@ -230,7 +249,8 @@ def _extend(solution, settings, record, lo, hi, path, label):
     def current():
         table = np.array(rows["backward"][::-1] + rows["forward"][1 if rows["backward"] else 0:])
         provenance = {"wall_s": earlier + time.perf_counter() - started, **_describe(settings)}
-        return OrbitalSolution(table[:, 0], table[:, 1:4], table[:, 4:7], table[:, 7], dict(ends), record, provenance)
+        return OrbitalSolution(table[:, 0], table[:, 1:4], table[:, 4:7], table[:, 7], dict(ends), record,
+                               provenance)
 
     total = sum(abs(target[n] - (rows[n][-1][0] if rows[n] else 0.0)) for n in rows if todo(n)) / 365250.0
     try:
@@ -260,8 +280,10 @@ def _extend(solution, settings, record, lo, hi, path, label):
 
 def _describe(settings):
     return {"integrator": f"REBOUND WHFast (Jacobi, corrector 11), step {settings.step_d:g} d",
-            "forces": "Newtonian point masses" + (", Sun's GR (REBOUNDx gr_potential)" if settings.relativity else "")
-            + (f", the Moon as the EMB's orbit-averaged quadrupole ({settings.moon}, REBOUNDx gravitational_harmonics)"
+            "forces": "Newtonian point masses"
+            + (", Sun's GR (REBOUNDx gr_potential)" if settings.relativity else "")
+            + (f", the Moon as the EMB's orbit-averaged quadrupole ({settings.moon}: "
+               f"{MOON[settings.moon]} of the static ring, REBOUNDx gravitational_harmonics)"
                if MOON[settings.moon] else ""),
             "bodies": ", ".join(BODIES), "start": f"{settings.ephemeris} barycentric states at J2000 (TDB)",
             "output": f"the EMB's heliocentric osculating orbit every {settings.output_d:g} d, ICRF axes"}
@@ -338,8 +360,8 @@ class _Run:
 
 
 def lunar_ring_j2():
-    """J2 (at R_eq = the Moon's mean distance) of the Earth-Moon pair averaged over the lunar orbit and its nodal
-    regression: nu (1 + 3/2 e_m^2)(1 - 3/2 sin^2 i_m) / 2, nu = m_E m_M / (m_E + m_M)^2."""
+    """J2 (at R_eq = the Moon's mean distance) of the Earth-Moon pair averaged over the lunar orbit and its
+    nodal regression: nu (1 + 3/2 e_m^2)(1 - 3/2 sin^2 i_m) / 2, nu = m_E m_M / (m_E + m_M)^2."""
     earth, moon_gm = gm_km3_d2("earth"), gm_km3_d2("moon")
     nu = earth * moon_gm / (earth + moon_gm) ** 2
     i = np.radians(moon.MEAN_INCLINATION_DEG)
@@ -352,7 +374,7 @@ def _ephemeris_states(settings):
     from .kernel import open_ephemeris
 
     kernel = open_ephemeris(settings.ephemeris, 0.0, 0.0)
-    states = np.array([np.concatenate([x[0] for x in kernel.relative_states(b, "solar_system_barycenter", [0.0])])
-                       for b in BODIES])
+    states = np.array([np.concatenate([x[0] for x in kernel.relative_states(body, "solar_system_barycenter",
+                                                                            [0.0])]) for body in BODIES])
     states[EMB, :3] += settings.displacement * (states[EMB, :3] - states[SUN, :3])
     return states

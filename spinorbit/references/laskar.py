@@ -8,8 +8,8 @@ La2004: 0 to -51 Myr (``INSOLN.LA2004.BTL.ASC``), to -101 Myr at 6 decimals (``.
 tides: 0 to -20 Myr and 0 to +10 Myr.  Fortran ``D`` exponents.
 """
 import functools
-import importlib.resources
-import io
+import importlib.util
+from pathlib import Path
 
 import numpy as np
 
@@ -28,25 +28,29 @@ SOLUTIONS = {
 }
 
 
+def _folder():
+    """inso's astrofiles folder, found without importing inso (which imports matplotlib), or None."""
+    spec = importlib.util.find_spec("inso")
+    return None if spec is None else Path(spec.submodule_search_locations[0]) / "astrofiles"
+
+
 def available():
     """None when ``inso`` is installed, else the reason it is not (for "not compared")."""
-    try:
-        import inso  # noqa: F401
-    except ImportError:
+    if _folder() is None:
         return "the inso package (La2004, La93) is not installed: pip install inso, or the [test] extra"
     return None
 
 
 def _read(name):
     """(t_kyr, e, eps, varpi_bar) of one file, ascending in t."""
-    text = (importlib.resources.files("inso") / "astrofiles" / name).read_text()
-    table = np.loadtxt(io.StringIO(text.replace("D", "E")))
+    table = np.array((_folder() / name).read_text().replace("D", "E").split(), dtype=float).reshape(-1, 4)
     return table[np.argsort(table[:, 0])]
 
 
 @functools.cache
 def table(solution):
-    """The whole solution (t_kyr, e, eps, varpi_bar) (k, 4), ascending, each kyr once (the longest file wins)."""
+    """The whole solution (t_kyr, e, eps, varpi_bar) (k, 4), ascending, each kyr once (the longer file's
+    rows replaced by the full-precision ones where both have them)."""
     files, _ = SOLUTIONS[solution]
     rows = {}
     for name in sorted(files, key=lambda f: "100" not in f):          # the 6-decimal file first, overwritten
@@ -78,7 +82,8 @@ class Insolation:
             raise InputError("t_out", f"{kyr.min():.6g} to {kyr.max():.6g} kyr",
                              f"whole kyr from J2000 inside {self.name}'s {self.span_kyr()} kyr")
         picked = rows[index]
-        values = {"eccentricity": picked[:, 1], "obliquity_rad": picked[:, 2], "perihelion_longitude_rad": picked[:, 3]}
+        values = {"eccentricity": picked[:, 1], "obliquity_rad": picked[:, 2],
+                  "perihelion_longitude_rad": picked[:, 3]}
         return Comparable(t, values, self.provenance())
 
     def provenance(self):
@@ -86,4 +91,4 @@ class Insolation:
 
         files, citation = SOLUTIONS[self.name]
         return {"name": self.name, "data": f"inso {version('inso')}: {', '.join(files)}",
-                "citation": citation, "span": f"{self.span_kyr()[0]:g} to {self.span_kyr()[1]:g} kyr from J2000"}
+                "citation": citation, "span": "{:g} to {:g} kyr from J2000".format(*self.span_kyr())}

@@ -15,8 +15,9 @@ SPAN_YR = 200_000.0
 
 
 class LongTermPrecession:
-    """A ``references.base.Reference`` with values ``equator_pole`` and ``ecliptic_pole`` (k, 3), unit vectors in
-    ICRS axes (``erfa.ltpb``'s third row; ``erfa.ltecm``'s third row), and ``obliquity_rad`` between them."""
+    """A ``references.base.Reference`` with values ``equator_pole`` and ``ecliptic_pole`` (k, 3), unit
+    vectors in ICRS axes (``erfa.ltpb``'s and ``erfa.ltecm``'s third rows), and ``obliquity_rad`` between
+    them."""
 
     name = "ERFA long-term precession (Vondrak et al. 2011)"
 
@@ -26,7 +27,8 @@ class LongTermPrecession:
         t = np.atleast_1d(np.asarray(t_tdb_d, dtype=float))
         epoch = 2000.0 + t / 365.25
         if np.abs(epoch - 2000.0).max() > SPAN_YR:
-            raise InputError("t_out", f"{(epoch.min() - 2000) / 1e3:.6g} to {(epoch.max() - 2000) / 1e3:.6g} kyr",
+            kyr = (epoch - 2000.0) / 1e3
+            raise InputError("t_out", f"{kyr.min():.6g} to {kyr.max():.6g} kyr",
                              f"times within +-{SPAN_YR / 1e3:g} kyr of J2000 (the model's span)")
         equator = np.array([erfa.ltpb(e)[2] for e in epoch])
         ecliptic = np.array([erfa.ltecm(e)[2] for e in epoch])

@@ -13,7 +13,8 @@ WINDOWS_MYR = (1, 10)                 # the spans the issue sets targets over
 CHAOS_MYR = 50.0                      # La2004: "age calibrations of paleoclimatic data over 40 to 50 Myr"
 ERFA_SPAN_D = 2 * KYR_D
 ERFA_STEP_D = 10 * 365.25
-ORBIT_KEYS = {"step": "orbit.step", "output": "orbit.output", "moon": "orbit.moon", "orbit_file": "orbit.file"}
+ORBIT_KEYS = {"step": "orbit.step", "output": "orbit.output", "moon": "orbit.moon",
+              "orbit_file": "orbit.file"}
 
 
 def settings(scenario):
@@ -26,7 +27,7 @@ def settings(scenario):
 
 
 def orbital_solution(scenario, label):
-    """The solution covering the span (and the first 2 kyr either way of J2000), from the cache or orbit.file."""
+    """The solution covering the span (and at least 2 kyr of it), from the cache or orbit.file."""
     from ...orbits import solution
 
     end = math.copysign(max(abs(scenario.t_end), ERFA_SPAN_D), scenario.t_end)
@@ -47,7 +48,7 @@ class SpinModel:
 
 
 def spin_model(scenario, orbit):
-    """The averaged spin equations' parameters on ``orbit``, the axis started on IAU 2006's mean pole at J2000."""
+    """The averaged spin equations' parameters on ``orbit``, the axis started on IAU 2006's mean pole."""
     import erfa
 
     from ...bodies import earth
@@ -73,15 +74,16 @@ def spin_model(scenario, orbit):
     params = deep_time.parameters(grid, orbit.t_d[0], scenario["orbit.output"], alpha0, e0, a_km, c_km_d,
                                   earth.ERA_RATE_RAD_D, ed=scenario["model.Ed"], td=scenario["model.Td"],
                                   tilt_rad_d=tilt, obliquity0=obliquity0)
+    alpha = alpha0 * scenario["model.Ed"]
     description = {
-        "precession_constant_arcsec_per_cy": alpha0 * scenario["model.Ed"] / per_cy,
+        "precession_constant_arcsec_per_cy": alpha / per_cy,
         "precession_constant_from": scenario["model.precession"],
-        "dynamical_ellipticity": deep_time.implied_ellipticity(alpha0 * scenario["model.Ed"], earth.ERA_RATE_RAD_D,
-                                                               a_km, e0),
-        "psi_rate_j2000_arcsec_per_cy": (alpha0 * scenario["model.Ed"] * math.cos(obliquity0) - geodesic) / per_cy,
+        "dynamical_ellipticity": deep_time.implied_ellipticity(alpha, earth.ERA_RATE_RAD_D, a_km, e0),
+        "psi_rate_j2000_arcsec_per_cy": (alpha * math.cos(obliquity0) - geodesic) / per_cy,
         "geodesic_arcsec_per_cy": geodesic / per_cy, "obliquity_j2000_deg": math.degrees(obliquity0),
         "tidal_obliquity_rate_arcsec_per_cy": tilt * scenario["model.Td"] / per_cy,
-        "moon_quadrupole_factor": MOON[scenario["orbit.moon"]], "Td": scenario["model.Td"], "Ed": scenario["model.Ed"]}
+        "moon_quadrupole_factor": MOON[scenario["orbit.moon"]], "Td": scenario["model.Td"],
+        "Ed": scenario["model.Ed"]}
     return SpinModel(params, deep_time.start_state(spin_axis0), spin_axis0, normal0, description)
 
 
@@ -94,7 +96,8 @@ def quantities(t, states, orbit, model):
     from ...orbits.solution import elements
 
     normal, eccentricity_vector = deep_time.orbit_series(t, *model.params[:3])
-    angles = deep_time.climate_angles(states[:, :3], normal, eccentricity_vector, model.spin_axis0, model.normal0)
+    angles = deep_time.climate_angles(states[:, :3], normal, eccentricity_vector, model.spin_axis0,
+                                      model.normal0)
     e, varpi, inclination, node = elements(normal, eccentricity_vector, erfa.ecm06(2451545.0, 0.0))
     return {"t_kyr": t / KYR_D, "eccentricity": e, **angles,
             "climatic_precession": e * np.sin(angles["perihelion_longitude"]),
@@ -109,7 +112,7 @@ COLUMNS = {  # name: (unit, description)
     "perihelion_longitude": ("rad", "varpi_bar: longitude of perihelion from the moving equinox"),
     "climatic_precession": ("", "e sin(varpi_bar)"),
     "precession": ("rad", "psi: general precession in longitude from J2000 (varpi_bar = varpi + psi)"),
-    "perihelion_longitude_j2000": ("rad", "varpi: longitude of perihelion from the J2000 equinox and ecliptic"),
+    "perihelion_longitude_j2000": ("rad", "varpi: longitude of perihelion from the J2000 equinox, ecliptic"),
     "inclination": ("rad", "the orbit's inclination to the J2000 ecliptic (IAU 2006)"),
     "node": ("rad", "the orbit's ascending node on the J2000 ecliptic, from the J2000 equinox"),
     "lunar_distance": ("km", "the Moon's mean distance under tidal dissipation"),
@@ -144,14 +147,15 @@ def erfa_metrics(scenario, orbit, model):
     reference = LongTermPrecession()(t)
     obliquity = np.arccos(np.clip(np.sum(states[:, :3] * normal, axis=1), -1, 1))
     equator = np.arccos(np.clip(np.sum(states[:, :3] * reference["equator_pole"], axis=1), -1, 1))
-    return ({"erfa_obliquity_max_arcsec": float(np.abs(obliquity - reference["obliquity_rad"]).max() / ARCSEC),
+    obliquity_error = np.abs(obliquity - reference["obliquity_rad"]).max()
+    return ({"erfa_obliquity_max_arcsec": float(obliquity_error / ARCSEC),
              "erfa_equator_max_arcsec": float(equator.max() / ARCSEC),
              "erfa_compared_kyr": float(reach / KYR_D)}, reference.provenance)
 
 
 def laskar_metrics(t, q):
-    """Against La2004 over each window and the span up to CHAOS_MYR, with La93's tidal variants' spread beside it
-    where La93 reaches: (metrics, not_measured, provenance, La2004's series at t or None)."""
+    """Against La2004 over each window and the span up to CHAOS_MYR, with La93's tidal variants' spread beside
+    it where La93 reaches: (metrics, not_measured, provenance, La2004's series at t or None)."""
     from ...references import laskar
 
     reason = laskar.available()
@@ -181,8 +185,9 @@ def laskar_metrics(t, q):
                                 _differences(solutions[a], solutions[b], slice(0, size)).items()})
     not_measured = {}
     if abs(kyr[-1]) > reach:
-        not_measured["comparison.la2004_span"] = (f"compared to {reach / 1000:g} Myr only: beyond, the solar system's "
-                                                  "chaos leaves any solution uncertain (La2004: 40 to 50 Myr)")
+        not_measured["comparison.la2004_span"] = (
+            f"compared to {reach / 1000:g} Myr only: beyond, the solar system's chaos leaves any solution "
+            "uncertain (La2004: 40 to 50 Myr)")
     la2004 = solutions["La2004"]
     reference = {"t_kyr": kyr[inside], "obliquity_deg": np.degrees(la2004["obliquity_rad"]),
                  "climatic_precession": la2004["eccentricity"] * np.sin(la2004["perihelion_longitude_rad"])}
@@ -194,9 +199,10 @@ DIFFERENCES = ("eccentricity_max", "obliquity_max_deg", "climatic_precession_vec
 
 
 def figure_series(q, la2004):
-    """(kyr, the model's obliquity (deg) and climatic precession, La2004's or None) over what La2004 covers."""
+    """(kyr, the model's obliquity (deg) and climatic precession, La2004's or None), where La2004 reaches."""
     size = len(q["t_kyr"]) if la2004 is None else len(la2004["t_kyr"])
-    ours = {"obliquity_deg": np.degrees(q["obliquity"][:size]), "climatic_precession": q["climatic_precession"][:size]}
+    ours = {"obliquity_deg": np.degrees(q["obliquity"][:size]),
+            "climatic_precession": q["climatic_precession"][:size]}
     reference = None if la2004 is None else {k: v for k, v in la2004.items() if k != "t_kyr"}
     return q["t_kyr"][:size], ours, reference
 
@@ -209,6 +215,7 @@ def _differences(a, b, part):
 
     end = np.angle(vector(a)[-1] / vector(b)[-1])
     return {"eccentricity_max": float(np.abs(a["eccentricity"][part] - b["eccentricity"][part]).max()),
-            "obliquity_max_deg": float(np.degrees(np.abs(a["obliquity_rad"][part] - b["obliquity_rad"][part]).max())),
+            "obliquity_max_deg": float(np.degrees(np.abs(a["obliquity_rad"][part]
+                                                         - b["obliquity_rad"][part]).max())),
             "climatic_precession_vector_max": float(np.abs(vector(a) - vector(b)).max()),
             "perihelion_longitude_end_deg": float(np.degrees(end))}
