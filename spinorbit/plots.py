@@ -243,26 +243,29 @@ def deep_time(t_kyr, model, reference, name):
                   "obliquity and climatic precession" + ("" if reference is None else f" ({name} dashed)"))
 
 
+DEEP_TIME_LABELS = {"obliquity_deg": "obliquity [deg]", "climatic_precession": "e sin(ϖ̄)",
+                    "eccentricity": "eccentricity"}
+
+
 def deep_time_spectra(t_kyr, model, reference, name):
-    """Amplitude spectra of the obliquity and the climatic precession (model, and the reference dashed), the
-    periods of MILANKOVITCH_KYR marked."""
+    """Amplitude spectra of the obliquity, the climatic precession and the eccentricity (model, and the
+    reference dashed), the periods of MILANKOVITCH_KYR marked."""
     from .analysis.spectrum import amplitude_spectrum
 
     series = {}
-    for key in ("obliquity_deg", "climatic_precession"):
+    for key in DEEP_TIME_LABELS:
         curves = [amplitude_spectrum(t_kyr, model[key])]
         if reference is not None:
             curves.append(amplitude_spectrum(t_kyr, reference[key]))
         series[key] = curves
     span = abs(t_kyr[-1] - t_kyr[0])
     draw = partial(_deep_time_spectra, series=series, span=span, name=name)
-    draw.figsize = (8, 6)
-    return titled(draw, "spectra of obliquity and climatic precession, the astronomical periods marked")
+    draw.figsize = (8, 8)
+    return titled(draw, "spectra, the astronomical periods marked")
 
 
 def _deep_time_spectra(fig, series, span, name):
-    axes = fig.subplots(2, 1, sharex=True)
-    labels = {"obliquity_deg": "obliquity [deg]", "climatic_precession": "e sin(ϖ̄)"}
+    axes = fig.subplots(len(series), 1, sharex=True)
     for ax, (key, curves) in zip(axes, series.items()):
         for i, (period, amplitude) in enumerate(curves):
             keep = period <= span / 2
@@ -273,7 +276,7 @@ def _deep_time_spectra(fig, series, span, name):
                 ax.axvline(period, color="0.6", lw=0.6, ls=":")
                 ax.annotate(f"{text} kyr", (period, 1), xycoords=("data", "axes fraction"), fontsize=7,
                             xytext=(2, -10 - 9 * (k % 2)), textcoords="offset points")
-        ax.set_ylabel(f"amplitude of {labels[key]}")
+        ax.set_ylabel(f"amplitude of {DEEP_TIME_LABELS[key]}")
         ax.legend(fontsize=8, loc="lower right")
         ax.grid(alpha=0.3, which="both")
         plain_log_labels(ax)

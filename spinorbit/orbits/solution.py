@@ -166,7 +166,7 @@ class OrbitalSolution:
     def load(cls, path, record):
         """The solution in ``path``; InputError (one line) unless it was made with ``record`` and is
         intact."""
-        accepted = "an orbital solution file written by spinorbit with these settings"
+        accepted = "an orbital solution file of these settings (delete it, or name another, to recompute)"
         try:
             with np.load(path, allow_pickle=False) as data:
                 stored, provenance = json.loads(str(data["record"])), json.loads(str(data["provenance"]))

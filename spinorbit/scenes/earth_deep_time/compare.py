@@ -190,7 +190,8 @@ def laskar_metrics(t, q):
             "uncertain (La2004: 40 to 50 Myr)")
     la2004 = solutions["La2004"]
     reference = {"t_kyr": kyr[inside], "obliquity_deg": np.degrees(la2004["obliquity_rad"]),
-                 "climatic_precession": la2004["eccentricity"] * np.sin(la2004["perihelion_longitude_rad"])}
+                 "climatic_precession": la2004["eccentricity"] * np.sin(la2004["perihelion_longitude_rad"]),
+                 "eccentricity": la2004["eccentricity"]}
     return metrics, not_measured, laskar.Insolation("La2004").provenance(), reference
 
 
@@ -202,7 +203,7 @@ def figure_series(q, la2004):
     """(kyr, the model's obliquity (deg) and climatic precession, La2004's or None), where La2004 reaches."""
     size = len(q["t_kyr"]) if la2004 is None else len(la2004["t_kyr"])
     ours = {"obliquity_deg": np.degrees(q["obliquity"][:size]),
-            "climatic_precession": q["climatic_precession"][:size]}
+            "climatic_precession": q["climatic_precession"][:size], "eccentricity": q["eccentricity"][:size]}
     reference = None if la2004 is None else {k: v for k, v in la2004.items() if k != "t_kyr"}
     return q["t_kyr"][:size], ours, reference
 
