@@ -285,7 +285,8 @@ def _describe(settings):
             + (f", the Moon as the EMB's orbit-averaged quadrupole ({settings.moon}: "
                f"{MOON[settings.moon]} of the static ring, REBOUNDx gravitational_harmonics)"
                if MOON[settings.moon] else ""),
-            "bodies": ", ".join(BODIES), "start": f"{settings.ephemeris} barycentric states at J2000 (TDB)",
+            "bodies": ", ".join(BODIES) + " (DE421's GMs)",
+            "start": f"{settings.ephemeris} barycentric states at J2000 (TDB)",
             "output": f"the EMB's heliocentric osculating orbit every {settings.output_d:g} d, ICRF axes"}
 
 
