@@ -67,9 +67,12 @@ COLUMNS = {
 
 
 def describe(table):
-    """Set each column's description from :data:`COLUMNS`; the names it lacks (empty when all are known)."""
+    """Set each column's description from :data:`COLUMNS` where the scene has not given its own; the names
+    described nowhere (empty when all are known)."""
     missing = []
     for name in table.colnames:
+        if table[name].info.description:
+            continue
         if name in COLUMNS:
             table[name].info.description = COLUMNS[name]
         else:

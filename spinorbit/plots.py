@@ -246,3 +246,59 @@ def _period_d(text):
     """Days in a period written "27.55 d" or "273 yr"."""
     value, unit = text.split()
     return float(value) * (365.25 if unit == "yr" else 1.0)
+
+
+# The astronomical periods of the climate record (kyr): obliquity, climatic precession, eccentricity.
+MILANKOVITCH_KYR = {"41": 41.0, "23": 23.0, "19": 19.0, "100": 100.0, "405": 405.0}
+
+
+def deep_time(t_kyr, model, reference, name):
+    """Obliquity (deg) and climatic precession e sin(varpi_bar) against kyr from J2000, the reference (e.g.
+    La2004) dashed over the model; ``model``/``reference`` = {"obliquity_deg": .., "climatic_precession": ..}
+    (``reference`` None: the model alone)."""
+    panels = [([model[key]] + ([] if reference is None else [reference[key]]),
+               ["model"] + ([] if reference is None else [name]), label)
+              for key, label in (("obliquity_deg", "obliquity [deg]"),
+                                 ("climatic_precession", "e sin(ϖ̄)"))]
+    return titled(plot_panels(t_kyr, panels, "kyr from J2000"),
+                  "obliquity and climatic precession" + ("" if reference is None else f" ({name} dashed)"))
+
+
+DEEP_TIME_LABELS = {"obliquity_deg": "obliquity [deg]", "climatic_precession": "e sin(ϖ̄)",
+                    "eccentricity": "eccentricity"}
+
+
+def deep_time_spectra(t_kyr, model, reference, name):
+    """Amplitude spectra of the obliquity, the climatic precession and the eccentricity (model, and the
+    reference dashed), the periods of MILANKOVITCH_KYR marked."""
+    from .analysis.spectrum import amplitude_spectrum
+
+    series = {}
+    for key in DEEP_TIME_LABELS:
+        curves = [amplitude_spectrum(t_kyr, model[key])]
+        if reference is not None:
+            curves.append(amplitude_spectrum(t_kyr, reference[key]))
+        series[key] = curves
+    span = abs(t_kyr[-1] - t_kyr[0])
+    draw = partial(_deep_time_spectra, series=series, span=span, name=name)
+    draw.figsize = (8, 8)
+    return titled(draw, "spectra, the astronomical periods marked")
+
+
+def _deep_time_spectra(fig, series, span, name):
+    axes = fig.subplots(len(series), 1, sharex=True)
+    for ax, (key, curves) in zip(axes, series.items()):
+        for i, (period, amplitude) in enumerate(curves):
+            keep = period <= span / 2
+            ax.loglog(*thinned(period[keep], amplitude[keep], log=True), lw=1.0 if i == 0 else 0.8,
+                      ls="-" if i == 0 else "--", label="model" if i == 0 else name)
+        for k, (text, period) in enumerate(MILANKOVITCH_KYR.items()):
+            if period <= span / 2:
+                ax.axvline(period, color="0.6", lw=0.6, ls=":")
+                ax.annotate(f"{text} kyr", (period, 1), xycoords=("data", "axes fraction"), fontsize=7,
+                            xytext=(2, -10 - 9 * (k % 2)), textcoords="offset points")
+        ax.set_ylabel(f"amplitude of {DEEP_TIME_LABELS[key]}")
+        ax.legend(fontsize=8, loc="lower right")
+        ax.grid(alpha=0.3, which="both")
+        plain_log_labels(ax)
+    axes[-1].set_xlabel("period [kyr]")

@@ -9,7 +9,8 @@ from spinorbit.results import run_scenario
 SHORT = {"free_body": ["span.end=20 d"], "p92_general": [], "p93_bounded": [], "p94_moonlike": [],
          "p95_symmetric": [], "p96_earthlike": [], "stress/mercury_3_2": [],
          "moon_libration": ["span.end=1900-03-01T00:00:00"], "earth_precession_nutation": ["span.end=1951-01-01"],
-         "earth_moon_coupled": ["span.end=1950-03-01T00:00:00"], "stress/coupled_conservation": ["span.end=60 d"]}
+         "earth_moon_coupled": ["span.end=1950-03-01T00:00:00"], "stress/coupled_conservation": ["span.end=60 d"],
+         "earth_deep_time": ["span.end=-10 kyr"]}
 
 
 @pytest.mark.parametrize("scene", sorted(SHORT))

@@ -21,6 +21,10 @@ B_MINUS_A_OVER_C = 1.904e-5              # 4 C22 / (C/MR^2), EGM2008 C22 = 1.574
 A_AXIS_LONGITUDE_DEG = -14.93            # longitude of the axis of least moment (EGM2008 C22, S22)
 ERA_RATE_RAD_D = 2 * math.pi * 1.00273781191135448   # Earth rotation angle rate, rad per UT1 day
 GEODESIC_PRECESSION_ARCSEC_CY = 1.919883  # rate of the dynamical frame w.r.t. GCRS, prograde
+# Tidal dissipation's own rate of the obliquity, ~ sin(eps) cos(eps): +2.4 mas/cy (Williams 1994, AJ 108,
+# 711; Capitaine et al. 2003, A&A 412, 567, Table 3 "tides (c)"): the tides tilt the axis away from the
+# ecliptic pole.
+TIDAL_OBLIQUITY_RATE_ARCSEC_CY = 0.0024
 
 
 def de421_tides():

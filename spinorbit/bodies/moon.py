@@ -66,3 +66,21 @@ def de421():
                 angles0_rad=np.array([h["PHI"], h["THT"], h["PSI"]]),
                 omega0_rad_d=np.array([h["OMEGAX"], h["OMEGAY"], h["OMEGAZ"]]),
                 omega_core0_rad_d=np.array([h["OMGCX"], h["OMGCY"], h["OMGCZ"]]))
+
+
+# The Moon's mean orbit about the Earth, for orbit-averaged torques and the Earth-Moon pair's quadrupole:
+# semi-major axis, eccentricity and inclination to the ecliptic (standard mean values; the averaged
+# torque factor below, 0.99242, is Kinoshita's 1977 (Celest. Mech. 15, 277) 0.9925194 to 1e-4).
+MEAN_DISTANCE_KM = 384399.0
+MEAN_ECCENTRICITY = 0.0549
+MEAN_INCLINATION_DEG = 5.145
+# Tidal recession of the Moon today, lunar laser ranging (Williams & Boggs 2016, Celest. Mech. Dyn. Astr.
+# 126, 89): 38.30 +- 0.09 mm/yr.
+RECESSION_KM_PER_YR = 38.30e-6
+
+
+def orbit_average_factor():
+    """(1 - e^2)^(-3/2) (1 - 3/2 sin^2 i) of the mean lunar orbit: the Moon's torque on an oblate body,
+    averaged over the orbit and its 18.6-yr nodal regression about the ecliptic (Kinoshita 1977)."""
+    e, i = MEAN_ECCENTRICITY, np.radians(MEAN_INCLINATION_DEG)
+    return (1 - e * e) ** -1.5 * (1 - 1.5 * np.sin(i) ** 2)

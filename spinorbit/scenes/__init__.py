@@ -25,6 +25,7 @@ SCENES = {
     "coupled_conservation": "spinorbit.scenes.coupled_conservation",
     "earth_moon_coupled": "spinorbit.scenes.earth_moon_coupled",
     "solar_system": "spinorbit.scenes.solar_system",
+    "earth_deep_time": "spinorbit.scenes.earth_deep_time",
 }
 
 

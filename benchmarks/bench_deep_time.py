@@ -1,0 +1,235 @@
+"""Deep time (issue 24): what the orbit's and the spin's pieces do, their cost, and the chaos, measured.
+
+    python benchmarks/bench_deep_time.py moon      # the Moon as a body (IAS15) against the EMB's quadrupole
+    python benchmarks/bench_deep_time.py factors   # each piece's part in the 1-Myr distance from La2004
+    python benchmarks/bench_deep_time.py ladder    # error against run time: the N-body's and the spin's steps
+    python benchmarks/bench_deep_time.py cost      # 1 Myr end to end, first (empty cache) and cached
+    python benchmarks/bench_deep_time.py chaos [--myr 20]   # two solutions 1e-10 apart: their divergence
+
+Each prints Markdown for benchmarks/results_deep_time.md.  The N-body runs take minutes of CPU: run them with
+``nice -n 10``; solutions go to spinorbit's cache (``SPINORBIT_CACHE_DIR``) and are reused.
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+KYR_D = 365250.0
+ARCSEC = math.pi / 648000
+
+
+def moon(years=3000.0, every_d=1460.0):
+    """The EMB's perihelion drift with the Moon as a body (IAS15, Earth and Moon from DE421, the Sun's GR;
+    with and without the Earth's J2) against WHFast with the EMB a point mass, the static ring, the ring."""
+    from spinorbit.bodies import moon as luna
+    from spinorbit.orbits import solution
+
+    t = -np.arange(0.0, years * 365.25 + 1, every_d)
+    print(f"EMB perihelion drift against the Moon as a body over {years:g} yr\n\n| Moon on the EMB | "
+          "Earth's J2 on the Moon | drift ″/kyr | share of the body's effect |\n|---|---|---|---|")
+    for j2 in (False, True):
+        started = time.perf_counter()
+        body = _moon_as_body(t, j2)
+        wall = time.perf_counter() - started
+        drifts = {}
+        for kind in ("none", "static_ring", "ring"):
+            orbit = solution.solve(solution.Settings(output_d=every_d, moon=kind), t[-1], 0.0)
+            index = np.searchsorted(orbit.t_d, t)
+            n, ev = orbit.normal[index], orbit.eccentricity_vector[index]
+            angle = np.arctan2(np.sum(np.cross(body[1], ev) * n, axis=1), np.sum(body[1] * ev, axis=1))
+            drifts[kind] = np.polyfit(-t / KYR_D, angle / ARCSEC, 1)[0]
+        for kind, drift in drifts.items():
+            share = (drifts["none"] - drift) / drifts["none"]
+            print(f"| {kind} | {'yes' if j2 else 'no'} | {drift:+.2f} | {share:.3f} |")
+        print(f"| (IAS15: {wall:.0f} s) | | | |")
+    ratio = _static_average() / luna.MEAN_DISTANCE_KM**2 / solution.lunar_ring_j2()
+    print(f"\nDE421's Moon 1901-2049, nu <rho^2 P2(cos gamma)> seen from the Sun: {ratio:.4f} of the static "
+          "ring")
+
+
+def _static_average():
+    """2 nu <rho^2 P2(cos gamma)> over DE421's Moon (rho) and Sun (gamma: the angle between them), km^2."""
+    from spinorbit.orbits import solution
+    from spinorbit.orbits.kernel import JPLKernel
+
+    k = JPLKernel()
+    t = np.arange(-36000.0, 18000.0, 0.0625)
+    rho = k.relative_states("moon", "earth", t)[0]
+    sun = k.relative_states("sun", "earth_moon_barycenter", t)[0]
+    cos = np.sum(rho * sun, axis=1) / np.linalg.norm(rho, axis=1) / np.linalg.norm(sun, axis=1)
+    gm_e, gm_m = solution.gm_km3_d2("earth"), solution.gm_km3_d2("moon")
+    return 2 * gm_e * gm_m / (gm_e + gm_m) ** 2 * np.mean(np.sum(rho**2, axis=1) * (1.5 * cos**2 - 0.5))
+
+
+def _moon_as_body(t, earth_j2):
+    """(normals, eccentricity vectors) of the EMB's heliocentric orbit at times t from IAS15 with the Moon."""
+    import rebound
+    import reboundx
+
+    from spinorbit.bodies.de421_header import gm_km3_d2, header
+    from spinorbit.orbits.kernel import JPLKernel
+
+    names = ("sun", "mercury", "venus", "earth", "moon", "mars", "jupiter", "saturn", "uranus", "neptune",
+             "pluto")
+    k = JPLKernel()
+    sim = rebound.Simulation()
+    sim.G = 1.0
+    for name in names:
+        p, v = k.relative_states(name, "solar_system_barycenter", [0.0])
+        sim.add(m=gm_km3_d2(name), x=p[0, 0], y=p[0, 1], z=p[0, 2], vx=v[0, 0], vy=v[0, 1], vz=v[0, 2])
+    sim.integrator = "ias15"
+    extras = reboundx.Extras(sim)
+    gr = extras.load_force("gr_potential")
+    extras.add_force(gr)
+    gr.params["c"] = header()["CLIGHT"] * 86400.0
+    if earth_j2:
+        harmonics = extras.load_force("gravitational_harmonics")
+        extras.add_force(harmonics)
+        sim.particles[3].params["J2"], sim.particles[3].params["R_eq"] = header()["J2E"], header()["RE"]
+    normals, eccentricity = [], []
+    for time_d in t:
+        sim.integrate(time_d, exact_finish_time=1)
+        sun, earth, luna = (sim.particles[i] for i in (0, 3, 4))
+        w = np.array([earth.m, luna.m]) / (earth.m + luna.m)
+        state = [w[0] * getattr(earth, c) + w[1] * getattr(luna, c) - getattr(sun, c)
+                 for c in ("x", "y", "z", "vx", "vy", "vz")]
+        r, v = np.array(state[:3]), np.array(state[3:])
+        h = np.cross(r, v)
+        normals.append(h / np.linalg.norm(h))
+        eccentricity.append(np.cross(v, h) / (sun.m + earth.m + luna.m) - r / np.linalg.norm(r))
+    return np.array(normals), np.array(eccentricity)
+
+
+FACTORS = [("nominal: ring, GR, tidal tilt, IAU 2006 rate", []),
+           ("no tidal tilt", ["model.tidal_tilt=false"]),
+           ("precession constant from IAU 2006's H_d", ['model.precession="iau2006_hd"']),
+           ("Td = 0 (no tides)", ["model.Td=0"]),
+           ("Moon: static ring", ['orbit.moon="static_ring"']),
+           ("Moon: none (the EMB a point mass)", ['orbit.moon="none"']),
+           ("no GR", ["orbit.relativity=false"])]
+
+
+def factors():
+    """The scene over 1 Myr with each piece changed, against La2004 (La93's spreads beside it)."""
+    from spinorbit import run_scenario
+
+    print("| 0 to -1 Myr | obliquity max ° | e e^(iϖ̄) max | e max | ϖ̄ at -1 Myr ° |\n|---|---|---|---|---|")
+    names = ("obliquity_max_deg", "climatic_precession_vector_max", "eccentricity_max",
+             "perihelion_longitude_end_deg")
+    formats = ("{:.4f}", "{:.1e}", "{:.1e}", "{:+.2f}")
+
+    def row(label, c, prefix):
+        cells = [f.format(c[f"{prefix}_{n}_1myr"]) for n, f in zip(names, formats)]
+        print(f"| {label} | {' | '.join(cells)} |")
+
+    for label, overrides in FACTORS:
+        c = run_scenario(ROOT / "scenarios/earth_deep_time.toml", overrides).summary["comparison"]
+        row(label, c, "la2004")
+    row("La93 with tides - without (Laskar et al. 1993)", c, "la93_tides")
+    row("La2004 - La93 with tides", c, "la2004_minus_la93")
+
+
+def ladder(span_kyr=200.0):
+    """Error against run time: WHFast steps against a 1-d run over ``span_kyr``, and RK8 steps of the spin
+    against a 10-yr run over 1 Myr (both on the nominal model)."""
+    from spinorbit.orbits import solution
+    from spinorbit.scenes.earth_deep_time import model as deep_time_model
+    from spinorbit.scenes.earth_deep_time import table
+    from spinorbit.simulate import simulate
+
+    def spin(orbit, t, step):
+        scenario = {"model.precession": "iau2006_rate", "model.tidal_tilt": True, "orbit.moon": "ring",
+                    "orbit.output": orbit.t_d[1] - orbit.t_d[0], "model.Ed": 1.0, "model.Td": 1.0}
+        model = deep_time_model.spin_model(scenario, orbit)
+        solution_, point = simulate(model.system, t, "rk8", {"step": step}, estimate_error=False)
+        return table.quantities(t, solution_.y, orbit, model), point["wall_s"]
+
+    t = -np.arange(0.0, span_kyr * KYR_D + 1, KYR_D)
+    print(f"WHFast step against 1 d, over {span_kyr:g} kyr (the spin run at 100 yr on each)\n\n"
+          "| step d | N-body s/Myr | e vector max | obliquity max ″ | e e^(iϖ̄) max |\n|---|---|---|---|---|")
+    runs = {}
+    with tempfile.TemporaryDirectory() as folder:
+        for step in (1.0, 2.5, 5.0, 8.0, 10.0):
+            settings = solution.Settings(step_d=step, output_d=36500.0 if step != 8.0 else 36400.0)
+            started = time.perf_counter()
+            orbit = solution.solve(settings, t[-1], 0.0, path=Path(folder) / f"{step}.npz")
+            runs[step] = (spin(orbit, t, 36500.0)[0], (time.perf_counter() - started) / span_kyr * 1000)
+    ref = runs.pop(1.0)[0]
+    for step, (q, cost) in runs.items():
+        vector = np.abs(q["eccentricity"] * np.exp(1j * q["perihelion_longitude"])
+                        - ref["eccentricity"] * np.exp(1j * ref["perihelion_longitude"]))
+        print(f"| {step:g} | {cost:.0f} | {np.abs(q['eccentricity'] - ref['eccentricity']).max():.1e} | "
+              f"{np.abs(q['obliquity'] - ref['obliquity']).max() / ARCSEC:.3f} | {vector.max():.1e} |")
+    orbit = solution.solve(solution.Settings(), -1000 * KYR_D, 0.0)
+    t = -np.arange(0.0, 1000 * KYR_D + 1, KYR_D)
+    ref, _ = spin(orbit, t, 3652.5)
+    print("\nRK8 step of the spin against 10 yr, over 1 Myr\n\n"
+          "| step yr | spin s/Myr | obliquity max ″ | ϖ̄ max ″ |\n|---|---|---|---|")
+    for years in (2000, 1000, 500, 200, 100, 50):
+        q, wall = spin(orbit, t, years * 365.25)
+        dvarpi = np.angle(np.exp(1j * (q["perihelion_longitude"] - ref["perihelion_longitude"])))
+        print(f"| {years} | {wall:.3f} | {np.abs(q['obliquity'] - ref['obliquity']).max() / ARCSEC:.2e} | "
+              f"{np.abs(dvarpi).max() / ARCSEC:.2e} |")
+
+
+def cost():
+    """``spinorbit run scenarios/earth_deep_time.toml`` with an empty cache (the N-body and the compilation
+    included), then again (the solution and the kernels read from the cache)."""
+    with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out:
+        env = {**os.environ, "SPINORBIT_CACHE_DIR": cache, "NUMBA_CACHE_DIR": str(Path(cache) / "numba")}
+        command = [sys.executable, "-m", "spinorbit.cli", "run", "scenarios/earth_deep_time.toml", "--out",
+                   str(Path(out) / "run")]
+        print("| 1 Myr | whole command | N-body | spin |\n|---|---|---|---|")
+        for label in ("first (empty cache)", "cached"):
+            started = time.perf_counter()
+            subprocess.run(command, cwd=ROOT, env=env, check=True, stdout=subprocess.DEVNULL)
+            wall = time.perf_counter() - started
+            summary = json.loads((Path(out) / "run" / "summary.json").read_text())
+            print(f"| {label} | {wall:.1f} s | {summary['orbital_solution']['wall_s_this_run']:.1f} s | "
+                  f"{summary['run']['wall_s']:.3f} s |")
+
+
+def chaos(myr=20.0, displacement=1e-10, window_kyr=10.0):
+    """Two solutions, the second's EMB displaced by ``displacement`` of its heliocentric distance at J2000:
+    their distance in the EMB's eccentricity vector and orbit normal, raw (osculating) and averaged over
+    ``window_kyr`` (the short periods out: the mean longitudes drift apart linearly, 1.5 x 1e-10 of the mean
+    motion, and dephase them), and the e-folding time of the averaged distance's growth."""
+    from spinorbit.orbits import solution
+
+    runs = [solution.solve(solution.Settings(displacement=d), -myr * 1000 * KYR_D, 0.0)
+            for d in (0.0, displacement)]
+    t = runs[0].t_d[::-1]
+    vectors = [np.column_stack([r.eccentricity_vector, r.normal])[::-1] for r in runs]
+    size = round(window_kyr * KYR_D / abs(t[1] - t[0]))
+    blocks = len(t) // size
+    mean = [v[:blocks * size].reshape(blocks, size, 6).mean(axis=1) for v in vectors]
+    averaged = np.linalg.norm(mean[1] - mean[0], axis=1)
+    raw = np.linalg.norm(vectors[1] - vectors[0], axis=1)[:blocks * size].reshape(blocks, size).max(axis=1)
+    mid = t[:blocks * size].reshape(blocks, size).mean(axis=1) / KYR_D / 1000
+    print(f"| Myr | distance, {window_kyr:g}-kyr means | osculating, max over the window |\n|---|---|---|")
+    for k in np.linspace(0, blocks - 1, 21).astype(int):
+        print(f"| {mid[k]:.1f} | {averaged[k]:.2e} | {raw[k]:.2e} |")
+    late = np.abs(mid) >= myr / 2
+    slope = np.polyfit(np.abs(mid[late]), np.log(averaged[late]), 1)[0]
+    print(f"\ngrowth of the averaged distance over the last half: e-folding {1 / slope:.2f} Myr "
+          "(Laskar 1989: a Lyapunov time of ~5 Myr)")
+
+
+if __name__ == "__main__":
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("part", choices=("moon", "factors", "ladder", "cost", "chaos"))
+    parser.add_argument("--myr", type=float, default=20.0)
+    args = parser.parse_args()
+    parts = {"moon": moon, "factors": factors, "ladder": ladder, "cost": cost,
+             "chaos": lambda: chaos(args.myr)}
+    parts[args.part]()

@@ -1,0 +1,116 @@
+"""The Earth's obliquity and precession over millions of years, on the orbit the solar system's own motion
+gives it.
+
+The orbit: the Sun, the planets and the Earth-Moon barycentre integrated by REBOUND (WHFast, the Sun's GR, the
+Moon as the barycentre's orbit-averaged quadrupole) from DE421's state at J2000, once per set of orbit keys
+and kept in the cache (spinorbit.orbits.solution).  The spin: the averaged precession equations of an oblate
+Earth under the Sun and the orbit-averaged Moon, geodesic precession, and tidal dissipation moving the Moon
+out, slowing the Earth and tilting its axis (spinorbit.models.deep_time), started on IAU 2006's mean pole at
+J2000, the precession constant set by IAU 2006's precession rate (or by its H_d).  ``model.Td`` and
+``model.Ed`` scale today's tidal dissipation and dynamical ellipticity, as in snvec (Zeebe & Lourens 2022).
+
+Out: La2004's quantities every span.step (t_kyr, e, obliquity, varpi_bar, e sin varpi_bar, the general
+precession), compared with ERFA's long-term precession over the first 2 kyr and with La2004 (inso) over
+1 Myr, 10 Myr and the span up to 50 Myr, La93's tidal variants beside it; the nominal physics is judged.
+"""
+import time
+
+from ...errors import ScenarioError
+from ...schema import Key
+from ...verdict import Check, Verdict
+from .. import common
+
+BACKWARD = True
+MAX_SPAN_D = 100 * 365250000.0
+# The physics La2004 is judged against (numerical keys, the ephemeris and the file may change).
+NOMINAL = {"model.Td": 1.0, "model.Ed": 1.0, "model.precession": "iau2006_rate", "model.tidal_tilt": True,
+           "orbit.moon": "ring", "orbit.relativity": True}
+SCHEMA = {
+    "orbit.ephemeris": Key(type=str, default="de421", choices=("de421", "de440"),
+                           help="the JPL ephemeris whose J2000 state starts the solar system"),
+    "orbit.step": Key(unit="d", default=5.0, min=1.0, max=5.0,
+                      help="WHFast step, 1 to 5 d (5 d: the e vector within 7e-8 of 1 d's over 200 kyr; 8 d "
+                           "meets a step resonance, 7e-5)"),
+    "orbit.output": Key(unit="d", default=36525.0, min=365.0, max=182625.0,
+                        help="cadence of the orbital solution, a whole number of steps (at most 500 yr)"),
+    "orbit.moon": Key(type=str, default="ring", choices=("ring", "static_ring", "none"),
+                      help="the Moon as the barycentre's quadrupole: measured against the Moon as a body, "
+                           "the first-order ring, or none"),
+    "orbit.relativity": Key(type=bool, default=True, help="the Sun's GR on the orbits"),
+    "orbit.file": Key(type=str, default="", help="an orbital solution file (default: the cache's)"),
+    "model.Td": Key(unit="", default=1.0, min=0.0, max=2.0,
+                    help="tidal dissipation, factor of today's (38.30 mm/yr lunar recession); 0 to 2"),
+    "model.Ed": Key(unit="", default=1.0, min=0.98, max=1.02,
+                    help="dynamical ellipticity, factor of today's; 0.98 to 1.02"),
+    "model.precession": Key(type=str, default="iau2006_rate", choices=("iau2006_rate", "iau2006_hd"),
+                            help="the precession constant from IAU 2006's rate in longitude, or its H_d"),
+    "model.tidal_tilt": Key(type=bool, default=True,
+                            help="the tides' own obliquity rate (+2.4 mas/cy, Williams 1994)"),
+}
+ISSUE = "issue 24's target"
+VCW = "Vondrak et al. 2011's model is good to a few arcsec over the historical period; issue 24's target"
+
+
+def verdict(scenario, comparison):
+    """ERFA over the first 2 kyr; La2004 over 1 and 10 Myr when the span covers them, for the nominal physics
+    only (a variant is compared with La2004, not judged)."""
+    checks = [Check("obliquity vs ERFA", "erfa_obliquity_max_arcsec", 1.0, "″", VCW),
+              Check("mean equator vs ERFA", "erfa_equator_max_arcsec", 5.0, "″", VCW)]
+    nominal = all(scenario[key] == value for key, value in NOMINAL.items())
+    if nominal:
+        for window, targets in (("1myr", (("obliquity_max_deg", 0.005, "°"),
+                                          ("climatic_precession_vector_max", 5e-4, ""))),
+                                ("10myr", (("eccentricity_max", 0.002, ""), ("obliquity_max_deg", 0.05, "°"),
+                                           ("climatic_precession_vector_max", 2e-3, "")))):
+            span = float(window.removesuffix("myr")) * 365250000.0
+            if abs(scenario.t_end - scenario.t_start) < span - 1.0:
+                continue                                    # a span shorter than the window: not asked
+            checks += [Check(f"{name.removesuffix('_max_deg').removesuffix('_max')} vs La2004 ({window})",
+                             f"la2004_{name}_{window}", tol, unit, ISSUE, min_span_d=span - 1.0)
+                       for name, tol, unit in targets]
+    note = "" if nominal else f"a variant of the nominal model ({NOMINAL}): compared with La2004, not judged"
+    return Verdict("ERFA long-term precession; La2004", tuple(checks), note)
+
+
+def check_span(scenario):
+    if abs(scenario.t_start) > 1e-6:
+        raise ScenarioError("span.start", scenario["span.start"], "J2000, '2000-01-01T12:00:00' (the solar "
+                            "system starts from DE421's state and the axis from IAU 2006's pole there)")
+    if abs(scenario.t_end) > MAX_SPAN_D:
+        raise ScenarioError("span.end", scenario["span.end"], "at most 100 Myr either way of J2000 (the "
+                            "tidal law and the averaged Moon are not vouched for beyond; La2004 stops at "
+                            "-101 Myr)")
+    if scenario["integrator.method"] != "rk8":
+        raise ScenarioError("integrator.method", scenario["integrator.method"],
+                            "rk8 (the compiled fixed step)")
+    step = scenario.integrator_options().get("step", 0.0)          # rk8's own default: 1 d
+    if step > 1000 * 365.25:
+        raise ScenarioError("integrator.step", step, "at most 1 kyr (26 steps a precession cycle)")
+
+
+def run(scenario):
+    from ...plots import deep_time as deep_time_plot
+    from ...plots import deep_time_spectra
+    from . import compare, model, table
+
+    check_span(scenario)
+    started = time.perf_counter()
+    orbit = model.orbital_solution(scenario, f"{scenario.name}: orbital solution")
+    orbit_wall = time.perf_counter() - started
+    spin = model.spin_model(scenario, orbit)
+    t = scenario.output_times()
+    solution, point = common.simulate_scenario(scenario, spin.system, t)
+    q = table.quantities(t, solution.y, orbit, spin)
+    erfa, erfa_provenance = compare.erfa_metrics(scenario, spin)
+    laskar, not_measured, la2004_provenance, la2004 = compare.laskar_metrics(t, q)
+    summary = {"comparison": {**erfa, **laskar}, "run": point, "model": spin.description,
+               "orbital_solution": {"file": str(orbit.path), "span_d": list(orbit.span),
+                                    "settings": orbit.record, **orbit.provenance,
+                                    "wall_s_this_run": orbit_wall},
+               "reference": {"erfa": erfa_provenance, "la2004": la2004_provenance}}
+    if not_measured:
+        summary["not_measured"] = not_measured
+    x, ours, reference = compare.figure_series(q, la2004)
+    figures = {"obliquity_climatic_precession": deep_time_plot(x, ours, reference, "La2004"),
+               "spectra": deep_time_spectra(x, ours, reference, "La2004")}
+    return common.result(scenario, table.table(t, q), summary, figures, solution)

@@ -1,0 +1,100 @@
+"""earth_deep_time's comparisons: ERFA's long-term precession over the first 2 kyr, La2004 over 1 Myr, 10 Myr
+and the span (up to the solar system's chaos), La93's tidal variants beside it."""
+import math
+
+import numpy as np
+
+from ...constants import ARCSEC
+from .model import ERFA_SPAN_D, KYR_D
+
+WINDOWS_MYR = (1, 10)                 # the spans the issue sets targets over
+CHAOS_MYR = 50.0                      # La2004: "age calibrations of paleoclimatic data over 40 to 50 Myr"
+ERFA_STEP_D = 10 * 365.25
+
+
+def erfa_metrics(scenario, model):
+    """Obliquity and mean equator against ERFA's long-term precession over the span's first 2 kyr (arcsec)."""
+    from ...references.long_term_precession import LongTermPrecession
+    from ...simulate import simulate
+
+    reach = min(ERFA_SPAN_D, abs(scenario.t_end))
+    t = math.copysign(1.0, scenario.t_end) * np.arange(ERFA_STEP_D, reach + 1.0, ERFA_STEP_D)
+    solution, _ = simulate(model.system, t, "rk8", {"step": ERFA_STEP_D}, estimate_error=False)
+    states = solution.y
+    normal, _ = model.system.orbit(t)
+    reference = LongTermPrecession()(t)
+    obliquity = np.arccos(np.clip(np.sum(states[:, :3] * normal, axis=1), -1, 1))
+    equator = np.arccos(np.clip(np.sum(states[:, :3] * reference["equator_pole"], axis=1), -1, 1))
+    obliquity_error = np.abs(obliquity - reference["obliquity_rad"]).max()
+    return ({"erfa_obliquity_max_arcsec": float(obliquity_error / ARCSEC),
+             "erfa_equator_max_arcsec": float(equator.max() / ARCSEC),
+             "erfa_compared_kyr": float(reach / KYR_D)}, reference.provenance)
+
+
+def laskar_metrics(t, q):
+    """Against La2004 over each window and the span up to CHAOS_MYR, with La93's tidal variants' spread beside
+    it where La93 reaches: (metrics, not_measured, provenance, La2004's series at t or None)."""
+    from ...references import laskar
+
+    reason = laskar.available()
+    kyr = t / KYR_D
+    if reason is None and not np.allclose(kyr, np.round(kyr), rtol=0, atol=1e-6):
+        reason = "outputs off La2004's whole-kyr grid: give span.step a whole number of kyr"
+    reach = min(abs(kyr[-1]), CHAOS_MYR * 1000)
+    windows = [*((f"{m}myr", m * 1000.0) for m in WINDOWS_MYR if reach >= m * 1000), ("span", reach)]
+    if reason is not None:
+        keys = [f"la2004_{name}_{w}" for w, _ in windows for name in DIFFERENCES]
+        return dict.fromkeys(keys), {f"comparison.{k}": f"not compared: {reason}" for k in keys}, None, None
+    inside = np.abs(kyr) <= reach + 1e-9
+    solutions = {"model": {"eccentricity": q["eccentricity"][inside], "obliquity_rad": q["obliquity"][inside],
+                           "perihelion_longitude_rad": q["perihelion_longitude"][inside]}}
+    for name in ("La2004", "La93_01", "La93_11"):
+        low, high = laskar.Insolation(name).span_kyr()
+        covered = inside & (kyr >= low) & (kyr <= high)
+        solutions[name] = laskar.Insolation(name)(t[covered]).values if covered.any() else None
+    metrics = {}
+    for prefix, a, b in (("la2004", "model", "La2004"), ("la93_tides", "La93_11", "La93_01"),
+                         ("la2004_minus_la93", "La2004", "La93_11")):
+        for window, limit in windows:
+            size = int(np.sum(np.abs(kyr[inside]) <= limit + 1e-9))
+            if solutions[a] is not None and solutions[b] is not None and min(
+                    len(solutions[a]["eccentricity"]), len(solutions[b]["eccentricity"])) >= size:
+                metrics.update({f"{prefix}_{k}_{window}": v for k, v in
+                                _differences(solutions[a], solutions[b], slice(0, size)).items()})
+    not_measured = {}
+    if abs(kyr[-1]) > reach:
+        not_measured["comparison.la2004_span"] = (
+            f"compared to {reach / 1000:g} Myr only: beyond, the solar system's chaos leaves any solution "
+            "uncertain (La2004: 40 to 50 Myr)")
+    la2004 = solutions["La2004"]
+    reference = {"t_kyr": kyr[inside], "obliquity_deg": np.degrees(la2004["obliquity_rad"]),
+                 "climatic_precession": la2004["eccentricity"] * np.sin(la2004["perihelion_longitude_rad"]),
+                 "eccentricity": la2004["eccentricity"]}
+    return metrics, not_measured, laskar.Insolation("La2004").provenance(), reference
+
+
+DIFFERENCES = ("eccentricity_max", "obliquity_max_deg", "climatic_precession_vector_max",
+               "perihelion_longitude_end_deg")
+
+
+def figure_series(q, la2004):
+    """(kyr, the model's obliquity (deg) and climatic precession, La2004's or None), where La2004 reaches."""
+    size = len(q["t_kyr"]) if la2004 is None else len(la2004["t_kyr"])
+    ours = {"obliquity_deg": np.degrees(q["obliquity"][:size]),
+            "climatic_precession": q["climatic_precession"][:size], "eccentricity": q["eccentricity"][:size]}
+    reference = None if la2004 is None else {k: v for k, v in la2004.items() if k != "t_kyr"}
+    return q["t_kyr"][:size], ours, reference
+
+
+def _differences(a, b, part):
+    """Max differences of two solutions' values over ``part``: e, obliquity (deg), e exp(i varpi_bar); the
+    varpi_bar difference at the window's end (deg)."""
+    def vector(x):
+        return x["eccentricity"][part] * np.exp(1j * x["perihelion_longitude_rad"][part])
+
+    end = np.angle(vector(a)[-1] / vector(b)[-1])
+    return {"eccentricity_max": float(np.abs(a["eccentricity"][part] - b["eccentricity"][part]).max()),
+            "obliquity_max_deg": float(np.degrees(np.abs(a["obliquity_rad"][part]
+                                                         - b["obliquity_rad"][part]).max())),
+            "climatic_precession_vector_max": float(np.abs(vector(a) - vector(b)).max()),
+            "perihelion_longitude_end_deg": float(np.degrees(end))}

@@ -1,0 +1,86 @@
+"""earth_deep_time's model: the orbital solution its orbit keys name, and the averaged spin equations on it,
+the axis started on IAU 2006's mean pole at J2000."""
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...constants import ARCSEC, DAY_S, JULIAN_CENTURY_D
+from ...errors import InputError, ScenarioError
+
+KYR_D = 365250.0
+ERFA_SPAN_D = 2 * KYR_D               # the orbit reaches at least this far: ERFA's comparison
+ORBIT_KEYS = {"step": "orbit.step", "output": "orbit.output", "moon": "orbit.moon",
+              "orbit_file": "orbit.file"}
+
+
+def settings(scenario):
+    """The orbital solution's Settings from the scenario's orbit keys."""
+    from ...orbits.solution import Settings
+
+    return Settings(ephemeris=scenario["orbit.ephemeris"], step_d=scenario["orbit.step"],
+                    output_d=scenario["orbit.output"], relativity=scenario["orbit.relativity"],
+                    moon=scenario["orbit.moon"])
+
+
+def orbital_solution(scenario, label):
+    """The solution covering the span (and at least 2 kyr of it), from the cache or orbit.file."""
+    from ...orbits import solution
+
+    end = math.copysign(max(abs(scenario.t_end), ERFA_SPAN_D), scenario.t_end)
+    try:
+        return solution.solve(settings(scenario), scenario.t_start, end, path=scenario["orbit.file"] or None,
+                              label=label)
+    except InputError as exc:
+        raise ScenarioError(ORBIT_KEYS.get(exc.name, exc.name), exc.given, exc.accepted) from None
+
+
+@dataclass
+class SpinModel:
+    """The averaged equations on the orbit (``system``, run through spinorbit.simulate), where they start
+    (the spin axis and the orbit normal at J2000) and a record of their constants."""
+
+    system: object
+    spin_axis0: np.ndarray
+    normal0: np.ndarray
+    description: dict
+
+
+def spin_model(scenario, orbit):
+    """The averaged spin equations' parameters on ``orbit``, the axis started on IAU 2006's mean pole."""
+    import erfa
+
+    from ...bodies import earth
+    from ...bodies.de421_header import header
+    from ...models import deep_time
+    from ...orbits.solution import MOON
+    from ...references.erfa_pole import PSI_A_RATE_ARCSEC_CY
+
+    grid = np.column_stack([orbit.normal, orbit.eccentricity_vector])
+    j2000 = int(np.searchsorted(orbit.t_d, 0.0))
+    normal0, e0 = orbit.normal[j2000], float(orbit.eccentricity[j2000])
+    spin_axis0 = erfa.pmat06(2451545.0, 0.0)[2]                 # the mean pole of J2000 in the GCRS
+    obliquity0 = math.acos(spin_axis0 @ normal0)
+    h = header()
+    a_km, c_km_d = h["AU"], h["CLIGHT"] * DAY_S
+    geodesic = deep_time.geodesic_rate(a_km, c_km_d) / (1 - e0**2)
+    per_cy = ARCSEC / JULIAN_CENTURY_D
+    if scenario["model.precession"] == "iau2006_rate":
+        alpha0 = deep_time.constant_from_rate(PSI_A_RATE_ARCSEC_CY * per_cy, obliquity0, geodesic)
+    else:
+        alpha0 = deep_time.constant_from_ellipticity(earth.H_D, earth.ERA_RATE_RAD_D, a_km, e0)
+    tilt = earth.TIDAL_OBLIQUITY_RATE_ARCSEC_CY * per_cy if scenario["model.tidal_tilt"] else 0.0
+    params = deep_time.parameters(grid, orbit.t_d[0], scenario["orbit.output"], alpha0, e0, a_km, c_km_d,
+                                  earth.ERA_RATE_RAD_D, ed=scenario["model.Ed"], td=scenario["model.Td"],
+                                  tilt_rad_d=tilt, obliquity0=obliquity0)
+    alpha = alpha0 * scenario["model.Ed"]
+    description = {
+        "precession_constant_arcsec_per_cy": alpha / per_cy,
+        "precession_constant_from": scenario["model.precession"],
+        "dynamical_ellipticity": deep_time.implied_ellipticity(alpha, earth.ERA_RATE_RAD_D, a_km, e0),
+        "psi_rate_j2000_arcsec_per_cy": (alpha * math.cos(obliquity0) - geodesic) / per_cy,
+        "geodesic_arcsec_per_cy": geodesic / per_cy, "obliquity_j2000_deg": math.degrees(obliquity0),
+        "tidal_obliquity_rate_arcsec_per_cy": tilt * scenario["model.Td"] / per_cy,
+        "moon_quadrupole_factor": MOON[scenario["orbit.moon"]], "Td": scenario["model.Td"],
+        "Ed": scenario["model.Ed"]}
+    return SpinModel(deep_time.AveragedSpin(params, spin_axis0), spin_axis0, normal0, description)
