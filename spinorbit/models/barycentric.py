@@ -19,6 +19,7 @@ from numba import njit
 
 from ..rotations import cross3, dot3, put
 from .distortion import taylor_back
+from .motion import relative_rows
 
 
 @njit(cache=True, nogil=True)
@@ -137,11 +138,7 @@ class Barycentric:
         return out
 
     def rows(self, code, a, others):
-        rows = code.local(f"rows_{a}")
-        code.line(f"{rows} = np.empty(({len(others)}, 3))")
-        for k, b in enumerate(others):
-            code.line(f"{code.bind(put)}({rows}[{k}], {code.relative(a, b)})")
-        return rows, code.param(f"gm_of_{'_'.join(others)}", np.array([self.gm(b) for b in others]))
+        return relative_rows(code, self, a, others)
 
     def point_mass_names(self):
         return list(self.names)

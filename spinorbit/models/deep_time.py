@@ -39,6 +39,7 @@ from ..constants import GM_KM3_D2, JULIAN_YEAR_D
 from ..errors import InputError
 from ..layout import Layout
 from ..rotations import cross3, dot3
+from .ode import Ode
 
 LAMBECK_SPIN_TIDE = 51.0          # omega' = 51 n_m' (Lambeck 1980; Quinn et al. 1991 eq. 11)
 # Indices into the model's constants (``parameters``).
@@ -151,24 +152,23 @@ def parameters(grid, t0, h, alpha0, eccentricity0, semi_major_axis_km, c_km_d, s
     return (np.ascontiguousarray(grid, dtype=float), float(t0), float(h), constants)
 
 
-class AveragedSpin:
-    """The averaged equations as a system the integrator door runs (spinorbit.simulate): ``rhs``, ``params``
-    (from ``parameters``), ``t0`` = J2000, ``y0`` and the state's ``layout``; ``orbit(t)`` gives the orbit's
-    normal and eccentricity vector at output times as the rhs sees them."""
+LAYOUT = Layout([("earth.spin", 3, "vector", "unit spin axis, inertial (GCRS) axes"),
+                 ("moon.distance", 1, "vector", "a_m / a_m0"),
+                 ("earth.rotation", 1, "vector", "omega / omega0")])
 
-    name = "earth_deep_time"
-    t0 = 0.0
-    layout = Layout([("earth.spin", 3, "vector", "unit spin axis, inertial (GCRS) axes"),
-                     ("moon.distance", 1, "vector", "a_m / a_m0"),
-                     ("earth.rotation", 1, "vector", "omega / omega0")])
 
-    def __init__(self, params, spin_axis):
-        self.rhs, self.params, self.y0 = rhs, params, start_state(spin_axis)
-        self.meta = {}
+class AveragedSpin(Ode):
+    """The averaged equations as the integrator door runs them (spinorbit.simulate), from J2000; ``orbit(t)``
+    gives the orbit's normal and eccentricity vector at output times as the rhs sees them."""
 
     def orbit(self, t):
         grid, t0, h, _ = self.params
         return orbit_series(t, grid, t0, h)
+
+
+def averaged_spin(params, spin_axis):
+    """The equations with ``params`` (from :func:`parameters`), started at J2000 on ``spin_axis``."""
+    return AveragedSpin(rhs, params, 0.0, start_state(spin_axis), LAYOUT, name="earth_deep_time")
 
 
 def start_state(spin_axis):

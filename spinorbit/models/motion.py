@@ -34,6 +34,16 @@ def stack_point_masses(ext, ext_v, ext_gm, keep, x_p, v_p, gm_p, x_s, v_s, gm_s)
     return x, w, mu
 
 
+def relative_rows(code, motion, a, others):
+    """Generated lines stacking the bodies ``others`` seen from ``a`` as rows (k, 3); (that variable, their GMs
+    as a parameter)."""
+    rows = code.local(f"rows_{a}")
+    code.line(f"{rows} = np.empty(({len(others)}, 3))")
+    for k, b in enumerate(others):
+        code.line(f"{code.bind(put)}({rows}[{k}], {code.relative(a, b)})")
+    return rows, code.param(f"gm_of_{'_'.join(others)}", np.array([motion.gm(b) for b in others], dtype=float))
+
+
 @dataclass(frozen=True)
 class Centred:
     """Body ``origin`` at the origin; ``externals`` (an OrbitSource: names, gm, kernel(t, data) -> (n, 3),
@@ -80,12 +90,7 @@ class Centred:
     def rows(self, code, a, others):
         if a == self.origin and others == tuple(self.externals.names):
             return "ext", code.param("external_gm", np.asarray(self.externals.gm, dtype=float))
-        rows = code.local(f"rows_{a}")
-        code.line(f"{rows} = np.empty(({len(others)}, 3))")
-        for k, b in enumerate(others):
-            code.line(f"{code.bind(put)}({rows}[{k}], {self.relative(code, a, b)})")
-        gm = np.array([self.gm(b) for b in others])
-        return rows, code.param(f"gm_of_{'_'.join(others)}", gm)
+        return relative_rows(code, self, a, others)
 
     def delayed(self, code, body, raiser, tau):
         """(position, velocity) of ``raiser`` seen from ``body`` (the origin) a time ``tau`` ago, from the source."""
@@ -195,11 +200,7 @@ class Pair:
         return out
 
     def rows(self, code, a, others):
-        rows = code.local(f"rows_{a}")
-        code.line(f"{rows} = np.empty(({len(others)}, 3))")
-        for k, b in enumerate(others):
-            code.line(f"{code.bind(put)}({rows}[{k}], {code.relative(a, b)})")
-        return rows, code.param(f"gm_of_{'_'.join(others)}", np.array([self.gm(b) for b in others]))
+        return relative_rows(code, self, a, others)
 
     def point_mass_names(self):
         """The point masses of :meth:`point_masses`, in order."""

@@ -13,7 +13,9 @@ import math
 import numpy as np
 from numba import njit
 
+from ..layout import Layout
 from ..orbits.analytic import eccentric_anomaly
+from .ode import Ode
 
 
 @njit(cache=True, nogil=True)
@@ -42,3 +44,7 @@ def planar_params(n, e, t0, gamma):
     return np.array([n, e, t0, 1.5 * gamma])
 
 
+def planar_ode(p, t0, theta, rate):
+    """One copy of the planar equation as the integrator door runs it, from (theta, theta') at t0."""
+    layout = Layout([("body.theta", 1, "vector", "rad"), ("body.rate", 1, "vector", "rad/d")])
+    return Ode(planar_rhs, p, float(t0), np.array([theta, rate], dtype=float), layout, name="planar")

@@ -10,9 +10,8 @@ import math
 import numpy as np
 
 from ..analysis.lyapunov import benettin, compiled_flow, displaced, scipy_flow, system_flow
-from ..integrators.rk8 import fixed_step
 from ..models.assemblies.idealised import under_point_masses
-from ..models.planar import anomaly_and_distance, planar_rhs
+from ..models.planar import anomaly_and_distance, planar_ode, planar_rhs
 from ..orbits.analytic import KeplerOrbit
 from ..rotations import matrix_from_quat
 from ..simulate import simulate
@@ -77,5 +76,6 @@ def planar_vs_rigid_body(moments, orbit, p, t0, period, start):
     t = t0 + np.linspace(0.0, 5 * period, 501)
     system = rigid_body_system(moments, orbit, t0, start[0], start[1] * n)
     body = simulate(system, t, "rk8", {"step": period / 512}, estimate_error=False)[0]
-    planar = fixed_step(planar_rhs, p, t0, [start[0], start[1] * n], t, period / 512)
+    planar = simulate(planar_ode(p, t0, start[0], start[1] * n), t, "rk8", {"step": period / 512},
+                      estimate_error=False)[0].y
     return float(np.abs(theta_from_quaternions(body.quaternion) - planar[:, 0]).max()), system

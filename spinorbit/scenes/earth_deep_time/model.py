@@ -83,4 +83,4 @@ def spin_model(scenario, orbit):
         "tidal_obliquity_rate_arcsec_per_cy": tilt * scenario["model.Td"] / per_cy,
         "moon_quadrupole_factor": MOON[scenario["orbit.moon"]], "Td": scenario["model.Td"],
         "Ed": scenario["model.Ed"]}
-    return SpinModel(deep_time.AveragedSpin(params, spin_axis0), spin_axis0, normal0, description)
+    return SpinModel(deep_time.averaged_spin(params, spin_axis0), spin_axis0, normal0, description)
