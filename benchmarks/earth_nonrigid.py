@@ -7,11 +7,9 @@ Prints Markdown:
 * CIP X, Y against IAU 2006/2000A for each transfer function, as the scene gives them, and with a line taken
   out (what the precession and obliquity rates left make);
 * the 24 main term parts: the non-rigid pole minus IAU 2000A for each transfer function;
-* the rigid run against REN-2000 (scaled by H_d / H_REN-2000, with the model's geodesic nutation), and with
-  the gyroscopic model's third-order figure-axis term added in closed form: each circular term c of celestial
-  frequency nu (cpsd) has the figure axis off L by ... + (nu / lam)^3 c, lam = |L| / (A Omega) = 1 / (1 - H)
-  (the series z = l - (l x l') / lam - l''_perp / lam^2 + (l x l''') / lam^3 solving dz/dt = lam Omega l x z),
-  beside the full model (daily spin resolved) minus the gyroscopic one over 2000-2010;
+* the rigid run against REN-2000 (scaled by H_d / H_REN-2000, with the model's geodesic nutation; the
+  gyroscopic model's figure axis carries its third-order term itself), beside the full model (daily spin
+  resolved) minus the gyroscopic one over 2000-2010;
 * the pole against VLBI's (IERS EOP 20 C04), with Lambert's FCN model and without;
 * the MHB2000 resonance form against its table.
 """
@@ -19,14 +17,13 @@ import numpy as np
 
 from spinorbit.analysis import nonrigid
 from spinorbit.analysis.precession import fit_pole, term_table
-from spinorbit.analysis.spans import resolvable
 from spinorbit.analysis.transfer import forms, mhb2000_table
 from spinorbit.analysis.transfer.models import IERS1996, MHB2000, MHB2000_MODES
 from spinorbit.bodies.earth import H_D
 from spinorbit.constants import JULIAN_CENTURY_D, MAS
 from spinorbit.references import arguments, erfa_pole, vlbi_pole
 from spinorbit.results import run_scenario
-from spinorbit.scenes.earth_precession_nutation.nonrigid import TABLE_TERMS, nonrigid_pole, ren2000_scaled
+from spinorbit.scenes.earth_precession_nutation.nonrigid import TABLE_TERMS, ren2000_scaled
 
 SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"
 QUIET = ["integrator.estimate_error=false", "output.plots=false"]
@@ -53,17 +50,6 @@ def detrended_rms(t, residual):
     big_t = t / JULIAN_CENTURY_D
     line = np.polyval(np.polyfit(big_t, residual, 1), big_t)
     return float(np.sqrt(np.mean((residual - line) ** 2)))
-
-
-def third_order(t, z):
-    """The rigid pole's nutation (dpsi, deps) about the IAU 2006 mean pole plus (nu / lam)^3 of each circular
-    term on the resolved luni-solar arguments (lam = 1 / (1 - H_d) cpsd)."""
-    (dpsi, deps), sin_eps = erfa_pole.about_mean_pole(t, z), np.sin(erfa_pole.mean_angles(t)[3])
-    phases, rates = arguments.phases(t, nonrigid.LUNISOLAR_ARGUMENTS)
-    keep = resolvable(rates, t[-1] - t[0])
-    amplitudes, nu, basis = nonrigid.circular_terms(t, dpsi * sin_eps, deps, phases[keep], rates[keep])
-    dz = basis @ ((nu * (1.0 - H_D)) ** 3 * amplitudes)
-    return dpsi + dz.real / sin_eps, deps + dz.imag
 
 
 def parts(t, series):
@@ -99,33 +85,25 @@ def print_cip(runs, rigid_summary, t, iau):
     print(f"| (rigid, layer off) | {c['x_rms_mas']:.2f} | {c['y_rms_mas']:.2f} | | | |")
 
 
-def print_terms(runs, t, z_rigid, iau):
-    """The parts of each transfer function's pole minus IAU 2000A, and MHB2000's on the rigid pole with the
-    gyroscopic model's third-order term added (third_order)."""
-    z_third = erfa_pole.from_mean_pole(t, *third_order(t, z_rigid))
-    third = parts(t, {"third": erfa_pole.about_mean_pole(t, nonrigid_pole(t, z_third, "mhb2000", H_D, True)),
-                      "iau": (iau["dpsi_rad"], iau["deps_rad"])})
+def print_terms(runs):
+    """The parts of each transfer function's pole minus IAU 2000A."""
     print("\n| term | part | rigid | IAU 2000A | " + " | ".join(f"{m} - IAU" for m in MODELS)
-          + " | mhb2000 + third order - IAU |\n|---|---|---|---|" + "---|" * (len(MODELS) + 1))
+          + " |\n|---|---|---|---|" + "---|" * len(MODELS))
     tables = {model: summary["nonrigid"]["terms_mas"] for model, (summary, _, _) in runs.items()}
     for term in TABLE_TERMS:
         for part in PARTS:
-            v, w = tables["mhb2000"][term][part], third[term][part]
+            v = tables["mhb2000"][term][part]
             diffs = " | ".join(f"{tables[m][term][part]['nonrigid'] - v['iau2000a']:+.3f}" for m in MODELS)
-            print(f"| {term} | {part} | {v['rigid']:.3f} | {v['iau2000a']:.3f} | {diffs} | "
-                  f"{w['third'] - w['iau']:+.3f} |")
+            print(f"| {term} | {part} | {v['rigid']:.3f} | {v['iau2000a']:.3f} | {diffs} |")
 
 
 def print_ren2000(t, z_rigid):
-    ren = parts(t, {"rigid": erfa_pole.about_mean_pole(t, z_rigid), "third": third_order(t, z_rigid),
-                    "ren": ren2000_scaled(t, H_D, True)})
-    print("\n| term | part | rigid | REN-2000 x H_d/H | rigid - REN | rigid + third order - REN |\n"
-          "|---|---|---|---|---|---|")
+    ren = parts(t, {"rigid": erfa_pole.about_mean_pole(t, z_rigid), "ren": ren2000_scaled(t, H_D, True)})
+    print("\n| term | part | rigid | REN-2000 x H_d/H | rigid - REN |\n|---|---|---|---|---|")
     for term in TABLE_TERMS:
         for part in PARTS:
             v = ren[term][part]
-            print(f"| {term} | {part} | {v['rigid']:.3f} | {v['ren']:.3f} | {v['rigid'] - v['ren']:+.3f} | "
-                  f"{v['third'] - v['ren']:+.3f} |")
+            print(f"| {term} | {part} | {v['rigid']:.3f} | {v['ren']:.3f} | {v['rigid'] - v['ren']:+.3f} |")
     main = ren["18.6 yr"]["dpsi_in"]
     ratio = main["rigid"] / (main["ren"] * mhb2000_table.RIGID_H / H_D)
     print(f"\n18.6-yr dpsi in phase: rigid / REN-2000 - 1 = {ratio - 1:.4e}, H_d / H_REN-2000 - 1 = "
@@ -182,7 +160,7 @@ def main():
     rigid_summary, t, z_rigid = century(None)
     iau = erfa_pole.IauPole()(t)
     print_cip(runs, rigid_summary, t, iau)
-    print_terms(runs, t, z_rigid, iau)
+    print_terms(runs)
     print_ren2000(t, z_rigid)
     print_vlbi(runs["mhb2000"][0])
     print_form()

@@ -76,10 +76,11 @@ _BUILT = {}
 
 
 class Taylor(Integrator):
-    """heyoka's adaptive Taylor integrator; options ``tolerance`` (relative per step) and ``compact_mode``
-    (None: compact for every System but a free body) and ``opt_level`` (LLVM's; 2 by default, which runs these
-    systems as fast as 3 and builds them a third quicker; 0 builds quickest and runs several times slower).  ``nfev`` counts the Taylor expansions of the equations,
-    one per step; ``compile_s`` is the time the last solve took to get its compiled integrator."""
+    """heyoka's adaptive Taylor integrator; options ``tolerance`` (relative per step), ``compact_mode`` (None:
+    compact for every System but a free body) and ``opt_level`` (LLVM's; 2 by default, which runs these systems
+    as fast as 3 and builds them a third quicker; 0 builds quickest and runs several times slower).  ``nfev``
+    counts the Taylor expansions of the equations, one per step; ``compile_s`` is the time the last solve took to
+    get its compiled integrator."""
 
     name, order, kind = "taylor", None, "adaptive"
     options = {"tolerance": 1e-15, "compact_mode": None, "opt_level": 2}
