@@ -19,7 +19,7 @@ from numba import njit
 
 from ..rotations import cross3, dot3, put
 from .distortion import taylor_back
-from .motion import relative_rows
+from .motion import PairRelatives
 
 
 @njit(cache=True, nogil=True)
@@ -74,7 +74,7 @@ def angular_momentum(y, gm):
 
 
 @dataclass(frozen=True)
-class Barycentric:
+class Barycentric(PairRelatives):
     """The free bodies ``free`` (names) with GMs ``gm_free`` (km^3/d^2), and the pair ``primary``, ``secondary``
     (GMs ``gm_primary``, ``gm_secondary``) about ``barycentre``: all in the state (module docstring)."""
 
@@ -122,23 +122,8 @@ class Barycentric:
     def _row(self, name):
         return self.names.index(name)
 
-    def relative(self, code, a, b):
-        if (a, b) == (self.primary, self.secondary):
-            return "r"
-        out = code.local(f"{a}_to_{b}")
-        code.line(f"{out} = -r" if (a, b) == (self.secondary, self.primary) else
-                  f"{out} = x_all[{self._row(b)}] - x_all[{self._row(a)}]")
-        return out
-
-    def relative_velocity(self, code, a, b):
-        if (a, b) == (self.primary, self.secondary):
-            return "v"
-        out = code.local(f"{a}_to_{b}_v")
-        code.line(f"{out} = w_all[{self._row(b)}] - w_all[{self._row(a)}]")
-        return out
-
-    def rows(self, code, a, others):
-        return relative_rows(code, self, a, others)
+    def _position(self, code, body, velocity=False):
+        return f"{'w_all' if velocity else 'x_all'}[{self._row(body)}]"
 
     def point_mass_names(self):
         return list(self.names)

@@ -122,8 +122,33 @@ class Centred:
         return self.externals.positions(t)[:, [self._row(b) for b in others]]
 
 
+class PairRelatives:
+    """Bodies seen from each other for a motion with a pair (primary, secondary) in the state, ``r`` and ``v``
+    from primary to secondary, and every body's place from ``_position(code, body, velocity)``."""
+
+    def relative(self, code, a, b):
+        if (a, b) == (self.primary, self.secondary):
+            return "r"
+        out = code.local(f"{a}_to_{b}")
+        if (a, b) == (self.secondary, self.primary):
+            code.line(f"{out} = -r")
+        else:
+            code.line(f"{out} = {self._position(code, b)} - {self._position(code, a)}")
+        return out
+
+    def relative_velocity(self, code, a, b):
+        if (a, b) == (self.primary, self.secondary):
+            return "v"
+        out = code.local(f"{a}_to_{b}_v")
+        code.line(f"{out} = {self._position(code, b, True)} - {self._position(code, a, True)}")
+        return out
+
+    def rows(self, code, a, others):
+        return relative_rows(code, self, a, others)
+
+
 @dataclass(frozen=True)
-class Pair:
+class Pair(PairRelatives):
     """``secondary`` integrated relative to ``primary`` (state ``<secondary>.r``, ``.v``), the two about their
     ``barycentre`` (a name among the externals, or None: at rest at the origin); ``externals``: a HermiteOrbits
     of barycentric states (or None); ``gm``: {primary: GM, secondary: GM} (km^3/d^2)."""
@@ -181,26 +206,6 @@ class Pair:
         if body in (self.primary, self.secondary):
             return self._place(code, body)[1 if velocity else 0]
         return f"{'ext_v' if velocity else 'ext'}[{self.externals.names.index(body)}]"
-
-    def relative(self, code, a, b):
-        if (a, b) == (self.primary, self.secondary):
-            return "r"
-        out = code.local(f"{a}_to_{b}")
-        if (a, b) == (self.secondary, self.primary):
-            code.line(f"{out} = -r")
-        else:
-            code.line(f"{out} = {self._position(code, b)} - {self._position(code, a)}")
-        return out
-
-    def relative_velocity(self, code, a, b):
-        if (a, b) == (self.primary, self.secondary):
-            return "v"
-        out = code.local(f"{a}_to_{b}_v")
-        code.line(f"{out} = {self._position(code, b, True)} - {self._position(code, a, True)}")
-        return out
-
-    def rows(self, code, a, others):
-        return relative_rows(code, self, a, others)
 
     def point_mass_names(self):
         """The point masses of :meth:`point_masses`, in order."""
