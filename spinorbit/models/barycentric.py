@@ -142,14 +142,7 @@ class Barycentric(PairRelatives):
             return
         total = code.param("gm_pair", self.gm_primary + self.gm_secondary)
         code.line(f"bary_acc[{len(self.free)}] += {force} / {total}")
-        if body == self.secondary:
-            code.line(f"rel_acc += {force} / {code.param('gm_secondary', self.gm_secondary)}")
-        else:
-            code.line(f"rel_acc -= {force} / {code.param('gm_primary', self.gm_primary)}")
-
-    def add_relative_acceleration(self, code, acceleration):
-        """An acceleration of the secondary relative to the primary (km/d^2), internal to the pair."""
-        code.line(f"rel_acc += {acceleration}")
+        super().add_force(code, body, force)
 
     def add_barycentric_accelerations(self, code, accelerations):
         """Accelerations (n, 3) of every body (rows of :meth:`point_masses`): the free bodies' and the pair's

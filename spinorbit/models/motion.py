@@ -123,8 +123,20 @@ class Centred:
 
 
 class PairRelatives:
-    """Bodies seen from each other for a motion with a pair (primary, secondary) in the state, ``r`` and ``v``
-    from primary to secondary, and every body's place from ``_position(code, body, velocity)``."""
+    """A motion with a pair (primary, secondary) in the state, ``r`` and ``v`` from primary to secondary and
+    ``rel_acc`` their relative acceleration: bodies seen from each other (every body's place from
+    ``_position(code, body, velocity)``) and forces on the pair's relative orbit."""
+
+    def add_force(self, code, body, force):
+        """A force on a body of the pair, as GM times acceleration (km^4/d^2): the relative orbit takes its share."""
+        if body == self.secondary:
+            code.line(f"rel_acc += {force} / {code.param('gm_secondary', self.gm_secondary)}")
+        else:
+            code.line(f"rel_acc -= {force} / {code.param('gm_primary', self.gm_primary)}")
+
+    def add_relative_acceleration(self, code, acceleration):
+        """An acceleration of the secondary relative to the primary (km/d^2), internal to the pair."""
+        code.line(f"rel_acc += {acceleration}")
 
     def relative(self, code, a, b):
         if (a, b) == (self.primary, self.secondary):
@@ -232,16 +244,6 @@ class Pair(PairRelatives):
                       f"{x_s}, {v_s}, {code.param('gm_secondary', self.gm_secondary)})")
             return names
         return code.once("point_masses", emit)
-
-    def add_force(self, code, body, force):
-        if body == self.secondary:
-            code.line(f"rel_acc += {force} / {code.param('gm_secondary', self.gm_secondary)}")
-        else:
-            code.line(f"rel_acc -= {force} / {code.param('gm_primary', self.gm_primary)}")
-
-    def add_relative_acceleration(self, code, acceleration):
-        """An acceleration of the secondary relative to the primary (km/d^2)."""
-        code.line(f"rel_acc += {acceleration}")
 
     def delayed(self, code, body, raiser, tau):
         """(position, velocity) of ``raiser`` seen from ``body`` a time ``tau`` ago, by Taylor expansion of the
