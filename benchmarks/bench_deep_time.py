@@ -151,7 +151,7 @@ def ladder(span_kyr=200.0):
                     "orbit.output": orbit.t_d[1] - orbit.t_d[0], "model.Ed": 1.0, "model.Td": 1.0}
         model = deep_time_model.spin_model(scenario, orbit)
         solution_, point = simulate(model.system, t, "rk8", {"step": step}, estimate_error=False)
-        return table.quantities(t, solution_.y, orbit, model), point["wall_s"]
+        return table.quantities(t, solution_.y, model), point["wall_s"]
 
     t = -np.arange(0.0, span_kyr * KYR_D + 1, KYR_D)
     print(f"WHFast step against 1 d, over {span_kyr:g} kyr (the spin run at 100 yr on each)\n\n"

@@ -19,9 +19,10 @@ from ...errors import ScenarioError
 from ...schema import Key
 from ...verdict import Check, Verdict
 from .. import common
+from .model import KYR_D, MYR_D
 
 BACKWARD = True
-MAX_SPAN_D = 100 * 365250000.0
+MAX_SPAN_D = 100 * MYR_D
 # The physics La2004 is judged against (numerical keys, the ephemeris and the file may change).
 NOMINAL = {"model.Td": 1.0, "model.Ed": 1.0, "model.precession": "iau2006_rate", "model.tidal_tilt": True,
            "orbit.moon": "ring", "orbit.relativity": True}
@@ -62,7 +63,7 @@ def verdict(scenario, comparison):
                                           ("climatic_precession_vector_max", 5e-4, ""))),
                                 ("10myr", (("eccentricity_max", 0.002, ""), ("obliquity_max_deg", 0.05, "°"),
                                            ("climatic_precession_vector_max", 2e-3, "")))):
-            span = float(window.removesuffix("myr")) * 365250000.0
+            span = float(window.removesuffix("myr")) * MYR_D
             if abs(scenario.t_end - scenario.t_start) < span - 1.0:
                 continue                                    # a span shorter than the window: not asked
             checks += [Check(f"{name.removesuffix('_max_deg').removesuffix('_max')} vs La2004 ({window})",
@@ -84,7 +85,7 @@ def check_span(scenario):
         raise ScenarioError("integrator.method", scenario["integrator.method"],
                             "rk8 (the compiled fixed step)")
     step = scenario.integrator_options().get("step", 0.0)          # rk8's own default: 1 d
-    if step > 1000 * 365.25:
+    if step > KYR_D:
         raise ScenarioError("integrator.step", step, "at most 1 kyr (26 steps a precession cycle)")
 
 
@@ -100,7 +101,7 @@ def run(scenario):
     spin = model.spin_model(scenario, orbit)
     t = scenario.output_times()
     solution, point = common.simulate_scenario(scenario, spin.system, t)
-    q = table.quantities(t, solution.y, orbit, spin)
+    q = table.quantities(t, solution.y, spin)
     erfa, erfa_provenance = compare.erfa_metrics(scenario, spin)
     laskar, not_measured, la2004_provenance, la2004 = compare.laskar_metrics(t, q)
     summary = {"comparison": {**erfa, **laskar}, "run": point, "model": spin.description,

@@ -4,12 +4,12 @@ import math
 
 import numpy as np
 
-from ...constants import ARCSEC
+from ...constants import ARCSEC, JULIAN_YEAR_D
 from .model import ERFA_SPAN_D, KYR_D
 
 WINDOWS_MYR = (1, 10)                 # the spans the issue sets targets over
 CHAOS_MYR = 50.0                      # La2004: "age calibrations of paleoclimatic data over 40 to 50 Myr"
-ERFA_STEP_D = 10 * 365.25
+ERFA_STEP_D = 10 * JULIAN_YEAR_D
 
 
 def erfa_metrics(scenario, model):

@@ -5,10 +5,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...constants import ARCSEC, DAY_S, JULIAN_CENTURY_D
+from ...constants import ARCSEC, DAY_S, JULIAN_CENTURY_D, JULIAN_YEAR_D
 from ...errors import InputError, ScenarioError
 
-KYR_D = 365250.0
+KYR_D = 1000 * JULIAN_YEAR_D
+MYR_D = 1000 * KYR_D
 ERFA_SPAN_D = 2 * KYR_D               # the orbit reaches at least this far: ERFA's comparison
 ORBIT_KEYS = {"step": "orbit.step", "output": "orbit.output", "moon": "orbit.moon",
               "orbit_file": "orbit.file"}

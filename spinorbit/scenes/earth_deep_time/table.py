@@ -5,7 +5,7 @@ import numpy as np
 from .model import KYR_D
 
 
-def quantities(t, states, orbit, model):
+def quantities(t, states, model):
     """La2004's quantities and the rest of the table at times t from the spin states and the orbit."""
     import erfa
 
