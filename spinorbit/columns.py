@@ -2,8 +2,9 @@
 
 Each scene builds its table (``timeseries.ecsv``, ``RunResult.table``) with unit-carrying columns;
 :func:`describe` sets each column's astropy ``description`` from :data:`COLUMNS`, which the ECSV header then
-carries.  A column a scene adds must be described here (tests/test_columns.py holds every scene to it); the
-README lists them.
+carries.  A column a scene adds is described here, or by the scene itself where its meaning is its own (deep
+time's La2004 quantities, whose ``obliquity`` is not the Earth scene's); tests/test_columns.py holds every scene
+to it, and the README lists them.
 """
 
 ATTITUDE = "the body's attitude quaternion, body -> inertial (ICRF), scalar first: "
