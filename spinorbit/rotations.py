@@ -142,12 +142,6 @@ def quat_from_matrix(m):
 
 
 @njit(cache=True)
-def rotate_to_body(q, v_inertial):
-    """Components in body axes of an inertial vector: R(q)^T v."""
-    return mat_t_vec3(matrix_from_quat(q), v_inertial)
-
-
-@njit(cache=True)
 def quat_rate(q, omega_body):
     """dq/dt for body angular velocity omega_body (rad per time unit)."""
     w, x, y, z = q[0], q[1], q[2], q[3]

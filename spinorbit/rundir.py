@@ -330,11 +330,6 @@ def foreign_entries(directory, key="--out"):
     return found
 
 
-def foreign_files(directory):
-    """Relative paths of the foreign entries of ``directory`` (see :func:`foreign_entries`)."""
-    return [rel for rel, _ in foreign_entries(directory)]
-
-
 def describe(entries, limit=3):
     """'a.txt (file), data (folder), ...' for a refusal."""
     text = ", ".join(f"{rel} ({kind})" for rel, kind in entries[:limit])

@@ -403,17 +403,6 @@ class SymmetricPrecession:
         return {"za_half_range": self.eps * abs(g) / (2 * self.delta),
                 "xza_amplitude": self.eps * abs(f) / (2 * self.delta * math.sin(self.n))}
 
-    def za(self, phi):
-        """ZA = n - eps G cos 2phi/(2 delta) (§847), rad."""
-        _, _, g = self.coefficients()
-        return self.n - self.eps * g / (2 * self.delta) * np.cos(2 * np.asarray(phi))
-
-    def xza(self, t, phi):
-        """XZA = m - N t cos n + eps (-F) sin 2phi/(2 delta sin n) (§847), rad."""
-        _, f, _ = self.coefficients()
-        return (self.m - self.precession_rate * np.asarray(t)
-                - self.eps * f / (2 * self.delta * math.sin(self.n)) * np.sin(2 * np.asarray(phi)))
-
     def secular(self):
         """§849 at eps = 2 delta: x = E + F cos 2phi + a phi sin 2phi, y = G sin 2phi + a phi cos 2phi.
 

@@ -22,7 +22,3 @@ def b_minus_a_over_c():
     """(B - A)/C of the whole planet from gravity and the obliquity's C/MR^2: 4 C22 / (C/MR^2)."""
     return 4.0 * C22 / C_MR2
 
-
-def b_minus_a_over_c_mantle():
-    """(B - A)/C_m of the librating shell: the whole planet's over C_m/C (which the libration gave)."""
-    return b_minus_a_over_c() / C_MANTLE_OVER_C

@@ -81,12 +81,6 @@ class RigidBody:
         return np.diag(self.moments)
 
     @property
-    def c_minus_a_over_b(self):
-        """Libration parameter beta = (C - A)/B."""
-        a, b, c = self.moments
-        return (c - a) / b
-
-    @property
     def b_minus_a_over_c(self):
         """Libration parameter gamma = (B - A)/C."""
         a, b, c = self.moments

@@ -8,7 +8,6 @@ equals reaction: a figure's torque is minus the moment of its pull on the attrac
 read the orbit's acceleration so far (the delayed tide); the others after.  ``energy(code)`` is its part of
 a closed System's energy, where it has one.
 """
-import numpy as np
 
 from ...errors import PhysicsError
 
@@ -35,6 +34,3 @@ def needs_forces(code, figure, attractors):
     """True when a force on ``figure``'s centre or on any of ``attractors`` changes the state."""
     return code.moves(figure) or any(code.moves(b) for b in attractors)
 
-
-def gm_array(values):
-    return np.asarray(values, dtype=float)
