@@ -48,7 +48,7 @@ def test_earth_pole_at_ten_dates_of_2027_is_within_1_mas_of_iau_2006_2000a():
 
 
 @pytest.mark.parametrize("times, accepted", [
-    (42, "astropy Time"), ("not a date", "astropy Time"), (None, "astropy Time"), ([], "astropy Time")])
+    (42, "format and scale"), ("not a date", "astropy Time"), (None, "astropy Time"), ([], "at least one date")])
 def test_times_that_are_not_dates_are_named(times, accepted):
     with pytest.raises(InputError) as err:
         spinorbit.moon_librations(times)
