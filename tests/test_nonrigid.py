@@ -224,6 +224,21 @@ def test_cip_against_iau_2006_2000a_over_a_decade(decade):
     assert c["x_rms_mas"] * mas < 2 * mas and c["y_rms_mas"] * mas < 2 * mas
 
 
+def test_each_printed_difference_is_the_difference_of_the_printed_values(decade):
+    """The summary's model - IAU of each main term is its model value minus its IAU value as printed beside it
+    (both fitted alike; the published coefficient is printed apart, under its own name)."""
+    c = decade[0]["comparison"]
+    differences = [key for key in c if key.endswith("_model_minus_iau_mas")]
+    assert len(differences) >= 4
+    for key in differences:
+        stem = key.removesuffix("_model_minus_iau_mas")
+        model, iau = c[f"{stem}_model_arcsec"], c[f"{stem}_iau2000a_arcsec"]
+        assert c[key] * mas == pytest.approx((model - iau) * 1000 * mas, abs=1e-9 * mas)
+    # the published coefficients, under their own name: IERS Conventions 2010 Table 5.3a (IAU 2000A)
+    assert c["nutation_0_5yr_dpsi_iau2000a_published_arcsec"] == -1.3170906
+    assert c["nutation_13_66d_deps_iau2000a_published_arcsec"] == 0.0978459
+
+
 # The gyroscopic model recovers the figure axis from L to second order in the nutation's frequency over the
 # spin; the third order, (nu / Omega)^3 of each circular term, is 0.09 mas at 13.66 d (dpsi in phase; the full
 # model with the daily spin, 2000-2010, differs from it by -0.092): bound 0.15 there, 0.1 mas elsewhere.

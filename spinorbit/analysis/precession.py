@@ -32,8 +32,10 @@ def compare_with_iau(t_tdb_d, model, reference, arguments, published):
     deps cos) arcsec}.
 
     Returns (comparison, not_measured, mean): the rate differences in longitude and obliquity ("/cy,
-    None under RATE_MIN_SPAN_D); for each published term the model's coefficients, the published ones
-    and model - reference (mas); in not_measured why a rate or term is not given (the span it needs);
+    None under RATE_MIN_SPAN_D); for each published term the model's coefficients, the reference's fitted
+    alike (``_iau2000a_arcsec``: the fit takes the term's unresolved partners, so it is not the printed
+    coefficient), the published ones (``_iau2000a_published_arcsec``) and model - reference (mas, the
+    difference of the first two); in not_measured why a rate or term is not given (the span it needs);
     and the model's mean pole minus the reference's, (dpsi, deps) rad at the times (the polynomials).
     """
     fits = fit_pole(t_tdb_d, *model, arguments)
@@ -51,7 +53,8 @@ def compare_with_iau(t_tdb_d, model, reference, arguments, published):
             continue
         for angle, trig, i, pub in (("dpsi", "sin", 0, psi_pub), ("deps", "cos", 1, eps_pub)):
             value, ref = getattr(fits[i], trig)[term] / ARCSEC, getattr(refs[i], trig)[term] / ARCSEC
-            comparison.update({f"{key}_{angle}_model_arcsec": value, f"{key}_{angle}_iau2000a_arcsec": pub,
+            comparison.update({f"{key}_{angle}_model_arcsec": value, f"{key}_{angle}_iau2000a_arcsec": ref,
+                               f"{key}_{angle}_iau2000a_published_arcsec": pub,
                                f"{key}_{angle}_model_minus_iau_mas": (value - ref) * 1000})
     return comparison, not_measured, tuple(mean_pole_offset(t_tdb_d, fit) for fit in fits)
 
