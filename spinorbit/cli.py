@@ -208,14 +208,27 @@ def _bench(args):
 
 def _cache(action):
     from .linker import cache
+    from .solutions import store
 
     if action == "clear":
         print(f"removed {cache.clear()} files from {cache.kernels_dir()}/")
+        print(f"removed {store.clear()} files from {store.directory()}/")
         return 0
     where, modules, compiled, size = cache.usage()
     print(f"{where}/: {modules} generated kernel modules, {compiled} compiled files, {size / 1e6:.3g} MB "
           f"({cache.ENVIRONMENT} moves it; `spinorbit cache clear` empties it)")
+    for line in _solution_lines(store.entries()):
+        print(line)
     return 0
+
+
+def _solution_lines(entries):
+    """One line per stored solution: the scene, its span (Julian years), its size, its file."""
+    lines = []
+    for path, scene, span, size in entries:
+        years = "unreadable" if span is None else "–".join(f"{2000.0 + t / 365.25:.2f}" for t in span)
+        lines.append(f"  solution {scene}: {years}, {size / 1e6:.3g} MB ({path.name})")
+    return lines
 
 
 def _show(scene):

@@ -4,6 +4,7 @@ Edge module (imports astropy): loads the scenario, runs its scene, and completes
 :class:`~spinorbit.run_result.RunResult` with the summary every run has (span, integrator,
 verdict, provenance; NaN turned into "not measured").
 """
+import functools
 import math
 import re
 
@@ -12,6 +13,7 @@ import numpy as np
 from .errors import IntegrationError, ScenarioError
 from .run_result import RunResult, attitude_table
 from .scenarios import Scenario, load_scenario, scenario_errors
+from .solutions import for_scenario
 
 
 def run_scenario(scenario, overrides=()):
@@ -40,6 +42,7 @@ def run_scenario(scenario, overrides=()):
                                   scenario.name, span_label(scenario), summary.get("not_measured"))
     summary["provenance"] = provenance(scenario)
     result.summary = summary
+    result.continuous = functools.partial(for_scenario, scenario)
     if result.table is not None:
         from .columns import describe
 

@@ -13,13 +13,26 @@ from .schema import tdb_days_to_time
 class RunResult:
     """``scenario``: the Scenario run; ``table``: QTable (``time`` column TDB + unit-carrying columns);
     ``summary``: JSON-ready dict whose metric keys carry their unit in the name;
-    ``figures``: name -> function(matplotlib Figure) drawing one plot."""
+    ``figures``: name -> function(matplotlib Figure) drawing one plot; ``states``: the integrator's states at
+    the outputs (integrators.base.Solution); ``continuous``: a function giving the run's continuous Solution
+    (set by results.run_scenario; see ``solution``)."""
 
     scenario: object
     table: object
     summary: dict
     figures: dict[str, Callable] = field(default_factory=dict)
-    solution: object = None
+    states: object = None
+    continuous: Callable | None = None
+
+    @property
+    def solution(self):
+        """The run's model over its span as a continuous Solution (spinorbit.solutions), from the solution
+        store: integrated on first use where the store lacks it; InputError for a scene not kept as one."""
+        from .errors import InputError
+
+        if self.continuous is None:
+            raise InputError("solution", self.scenario.kind, "a run of results.run_scenario")
+        return self.continuous()
 
 
 def attitude_table(solution):

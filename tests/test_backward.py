@@ -18,7 +18,7 @@ def test_moon_from_de421_epoch_backward_matches_de421():
     result = run_scenario(SCENARIOS / "moon_libration.toml",
                           ["span.start=1969-06-28T00:00:00", "span.end=1967-06-28T00:00:00", "output.plots=false",
                            "integrator.estimate_error=false"])
-    t = result.solution.t
+    t = result.states.t
     assert t[0] > t[-1]                                                    # outputs run backward
     c = result.summary["comparison"]
     assert c["pole_error_max_arcsec"] < 0.1                               # arcsec

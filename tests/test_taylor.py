@@ -113,8 +113,8 @@ def test_both_backends_agree_on_each_scene(name, tmp_path):
     own = run_scenario(SCENARIOS / f"{name}.toml", overrides)
     taylor = run_scenario(taylor_copy(name, tmp_path), overrides)
     assert own.summary["verdict"]["result"] == taylor.summary["verdict"]["result"] == "pass"
-    layout = own.solution.layout
-    difference = max(quat_angle(own.solution.y[:, q], taylor.solution.y[:, q]).max() for q in layout.quaternions)
+    layout = own.states.layout
+    difference = max(quat_angle(own.states.y[:, q], taylor.states.y[:, q]).max() for q in layout.quaternions)
     estimates = sum(run.summary["run"]["integration_error_attitude_arcsec"] for run in (own, taylor)) * 4.85e-6
     assert difference <= 3 * estimates + 1e-11
 

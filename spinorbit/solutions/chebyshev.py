@@ -1,0 +1,102 @@
+"""Piecewise Chebyshev series on a uniform grid of segments: what a continuous solution is made of.
+
+Segment k covers [origin + k L, origin + (k + 1) L]; on it each component is sum_j c_j T_j(x), x = 2 (t - mid) / L
+in [-1, 1] (the layout of SPICE's type-2 records, NAIF's SPK and PCK Required Reading).  A series of degree n is
+fitted by interpolation at the n + 1 Chebyshev points of the first kind, cos(pi (j + 1/2) / (n + 1)), where its
+error is near the best polynomial's (Trefethen, Approximation Theory and Approximation Practice, ch. 16); the
+points of the second kind, cos(pi j / n), lie between them and at the ends: the fit's error is measured there.
+"""
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError
+
+
+def first_kind(degree):
+    """The n + 1 interpolation points in [-1, 1], descending."""
+    return np.cos(np.pi * (np.arange(degree + 1) + 0.5) / (degree + 1))
+
+
+def second_kind(degree):
+    """The n + 1 points between and around the first kind's (the ends included), descending."""
+    return np.cos(np.pi * np.arange(degree + 1) / degree)
+
+
+def interpolating(values):
+    """Coefficients (..., n + 1) of the series through ``values`` (..., n + 1) at the first-kind points
+    (the discrete cosine transform of the samples)."""
+    n = values.shape[-1]
+    j = np.arange(n)
+    basis = np.cos(np.pi * np.outer(j, j + 0.5) / n) * (2.0 / n)
+    basis[0] /= 2.0
+    return values @ basis.T
+
+
+@dataclass
+class Segments:
+    """Segments ``first`` .. ``first + count - 1`` of length ``length_d`` on the grid from ``origin_d``;
+    ``coefficients`` (count, components, degree + 1)."""
+
+    origin_d: float
+    length_d: float
+    first: int
+    coefficients: np.ndarray
+
+    @property
+    def degree(self):
+        return self.coefficients.shape[2] - 1
+
+    @property
+    def span(self):
+        """(start, end) TDB days."""
+        return (self.origin_d + self.first * self.length_d,
+                self.origin_d + (self.first + len(self.coefficients)) * self.length_d)
+
+    def covers(self, t_start, t_end):
+        lo, hi = self.span
+        return lo <= min(t_start, t_end) and max(t_start, t_end) <= hi
+
+    def evaluate(self, t):
+        """Values (n, components) at TDB days ``t`` (n,); InputError outside the span (no extrapolation)."""
+        t = np.asarray(t, dtype=float)
+        if t.size and not self.covers(t.min(), t.max()):
+            raise InputError("t", f"{t.min():.6g}..{t.max():.6g} TDB days",
+                             f"times inside the solution's span {self.span[0]:.6g}..{self.span[1]:.6g}")
+        k = np.clip(np.floor((t - self.origin_d) / self.length_d).astype(int), self.first,
+                    self.first + len(self.coefficients) - 1)
+        mid = self.origin_d + (k + 0.5) * self.length_d
+        x = (2.0 * (t - mid) / self.length_d)[:, None]
+        c = self.coefficients[k - self.first]                     # (n, components, degree + 1)
+        b1, b2 = np.zeros(c.shape[:2]), np.zeros(c.shape[:2])     # Clenshaw's recurrence
+        for j in range(self.degree, 0, -1):
+            b1, b2 = 2.0 * x * b1 - b2 + c[:, :, j], b1
+        return x * b1 - b2 + c[:, :, 0]
+
+    def nodes(self, first, count):
+        """(interpolation times (count, n + 1), check times (count, n + 1)) of segments first..first+count-1."""
+        mids = self.origin_d + (np.arange(first, first + count) + 0.5) * self.length_d
+        half = self.length_d / 2.0
+        return mids[:, None] + half * first_kind(self.degree), mids[:, None] + half * second_kind(self.degree)
+
+    def joined(self, other):
+        """These segments and ``other`` (the same grid, adjacent before or after) as one."""
+        if (other.origin_d, other.length_d, other.degree) != (self.origin_d, self.length_d, self.degree):
+            raise InputError("segments", "another grid", "segments on the same grid and degree")
+        before, after = (other, self) if other.first < self.first else (self, other)
+        if before.first + len(before.coefficients) != after.first:
+            raise InputError("segments", f"from {other.first}", f"segments adjacent to {self.first}..")
+        return Segments(self.origin_d, self.length_d, before.first,
+                        np.concatenate([before.coefficients, after.coefficients]))
+
+
+def fitted(origin_d, length_d, first, values):
+    """Segments from ``values`` (count, components, degree + 1) at the first-kind points of each."""
+    return Segments(origin_d, length_d, first, interpolating(values))
+
+
+def grid_indices(origin_d, length_d, t_start, t_end):
+    """(first, count): the segments of the grid that cover [t_start, t_end]."""
+    lo = int(np.floor((min(t_start, t_end) - origin_d) / length_d + 1e-9))
+    hi = int(np.ceil((max(t_start, t_end) - origin_d) / length_d - 1e-9))
+    return lo, max(hi - lo, 1)

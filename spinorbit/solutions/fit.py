@@ -1,0 +1,95 @@
+"""An integration made continuous: a System run through the integrator door to the Chebyshev points of each
+segment (the integrator's dense output where they fall inside its steps), the series fitted there, and the
+fit's error measured against the integrator at the points between them.
+
+What is fitted: the whole state (every slice of the System's layout) and, for a body turned by its spin
+(a Gyroscopic rotator), its figure axis ``<body>.pole`` (System.figure_axes: the spin's direction plus the
+Oppolzer terms, a function of the state and the torque, so it is fitted, not rebuilt).
+"""
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..constants import ARCSEC
+from ..layout import Layout
+from ..rotations import quat_angle, vector_angle
+from ..simulate import simulate
+from .chebyshev import Segments, grid_indices, interpolating
+
+
+@dataclass(frozen=True)
+class Grid:
+    """Segments of ``length_d`` days, series of ``degree``, on the grid from ``origin_d`` (TDB days)."""
+
+    origin_d: float
+    length_d: float
+    degree: int
+
+
+@dataclass
+class Piece:
+    """A fitted stretch: ``segments``; ``layout`` of their components; ``ends``: {"start", "end"}: (t, state)
+    where the integration stopped at each end of the span; ``run``: simulate's point (wall time, rhs
+    evaluations, integration error estimate); ``fit_error``: the fit's measured error by kind."""
+
+    segments: Segments
+    layout: Layout
+    ends: dict
+    run: dict
+    fit_error: dict
+
+
+def poles(system):
+    """The bodies whose figure axis is fitted beside the state (those turned by a spin, no attitude)."""
+    return [s.name.split(".")[0] for s in system.layout.slices if s.name.endswith(".spin")]
+
+
+def fitted_layout(system):
+    """The state's layout and a ``<body>.pole`` slice (unit vector, inertial) for each of :func:`poles`."""
+    parts = [(s.name, s.stop - s.start, s.kind, s.unit) for s in system.layout.slices]
+    return Layout(parts + [(f"{body}.pole", 3, "vector", "") for body in poles(system)])
+
+
+def components(system, t, states):
+    """The fitted components (n, fitted size) of ``states`` (n, state size) at TDB days ``t``."""
+    extra = [system.figure_axes(body, t, states) for body in poles(system)]
+    return np.hstack([states, *extra]) if extra else np.asarray(states)
+
+
+def integrate(system, grid, t_start, t_end, method, options, label=None):
+    """The Piece covering [t_start, t_end] (rounded out to the grid) of ``system`` integrated from its t0
+    (inside the span, or at one of its ends) with ``method`` and ``options``."""
+    first, count = grid_indices(grid.origin_d, grid.length_d, t_start, t_end)
+    empty = Segments(grid.origin_d, grid.length_d, first, np.zeros((count, 0, grid.degree + 1)))
+    nodes, checks = empty.nodes(first, count)
+    t_out = np.concatenate([nodes.ravel(), checks.ravel()])
+    times, rows = np.unique(t_out, return_inverse=True)     # the segments' shared ends once
+    solution, run = simulate(system, times, method, options, estimate_error=True, label=label)
+    states = solution.y[rows]
+    values = components(system, t_out, states)
+    layout, n = fitted_layout(system), nodes.size
+    at_nodes = values[:n].reshape(count, grid.degree + 1, -1).transpose(0, 2, 1)
+    segments = Segments(grid.origin_d, grid.length_d, first, interpolating(at_nodes))
+    fit, truth = layout.normalise(segments.evaluate(t_out[n:])), values[n:]
+    lo, hi = n + int(np.argmin(t_out[n:])), n + int(np.argmax(t_out[n:]))
+    ends = {"start": (float(t_out[lo]), states[lo].copy()), "end": (float(t_out[hi]), states[hi].copy())}
+    return Piece(segments, layout, ends, run, errors(layout, fit, truth))
+
+
+def errors(layout, fit, truth):
+    """{fit_error_*: max difference} of fitted and integrated components by kind: attitudes (quaternions) and
+    directions (spins, poles) in arcsec, positions (``*.r``) in km, every other slice relative to its size."""
+    out = {}
+    for part in layout.slices:
+        a, b = fit[:, part.index], truth[:, part.index]
+        if part.kind == "quaternion":
+            key, value = "fit_error_attitude_arcsec", quat_angle(a, b).max() / ARCSEC
+        elif part.name.endswith((".spin", ".pole")):
+            key, value = "fit_error_direction_arcsec", vector_angle(a, b).max() / ARCSEC
+        elif part.name.endswith(".r"):
+            key, value = "fit_error_position_km", np.linalg.norm(a - b, axis=1).max()
+        else:
+            key = f"fit_error_{part.name.replace('.', '_')}_rel"
+            value = np.abs(a - b).max() / max(np.abs(b).max(), 1e-300)
+        out[key] = max(out.get(key, 0.0), float(value))
+    return out

@@ -1,0 +1,194 @@
+"""The solution store: every solution computed, kept in spinorbit's private cache and extended on demand.
+
+Where: ``<the kernel cache's private directory>/solutions`` (spinorbit.linker.cache: 0700, refused when
+another user could change it).  A solution is keyed by what decides its numbers: the scene, every key of the
+scenario but its span and its comparisons, and the code's version (spinorbit's version and a sha256 of the
+package's source: a changed integration never reuses an old file).  Each file is an npz read with
+``allow_pickle=False`` (nothing in it can run code) holding the series, the layout, the provenance, the states
+where the integration stopped, the record it was keyed by and a sha256 over every array; one that is not
+intact (truncated, tampered with, another model's) is refused in one line and computed again.  Files are
+written aside and renamed (atomic); a lock beside each makes one process at a time extend it, the others
+waiting and then reading what it wrote.
+
+A query outside the stored span extends the solution from its nearer end (forward from its end, backward
+from its start), the same System started at the state where the last run stopped.
+"""
+import fcntl
+import functools
+import hashlib
+import json
+import os
+import sys
+import time
+import zipfile
+from pathlib import Path
+
+import numpy as np
+
+from ..layout import Layout
+from ..linker import cache
+from .chebyshev import Segments
+from .solution import Solution
+
+LAYER_KEYS = ("span.", "scene.", "compare.", "comparison.", "report.", "earth.nonrigid", "earth.transfer_function",
+              "integrator.estimate_error")
+
+
+PLACE = {"directory": None}          # another directory (tests); None: the private cache's
+
+
+def directory():
+    """``<private cache>/solutions`` (created 0700)."""
+    path = PLACE["directory"] or cache.kernels_dir().parent / "solutions"
+    if not path.is_dir():
+        path.mkdir(mode=0o700, exist_ok=True)
+    return path
+
+
+@functools.cache
+def code_version():
+    """spinorbit's version and the sha256 (16 hex digits) of every Python file of the package."""
+    import spinorbit
+
+    package = Path(spinorbit.__file__).parent
+    digest = hashlib.sha256()
+    for path in sorted(package.rglob("*.py")):
+        digest.update(str(path.relative_to(package)).encode() + b"\0" + path.read_bytes())
+    return f"{spinorbit.__version__}+{digest.hexdigest()[:16]}"
+
+
+def record(scenario):
+    """What decides a solution's numbers: the scene kind, its model keys, the code's version."""
+    keys = {k: v.tolist() if hasattr(v, "tolist") else v for k, v in sorted(scenario.values.items())
+            if not k.startswith(LAYER_KEYS)}
+    return {"scene": scenario.kind, "keys": json.loads(json.dumps(keys, default=str)), "code": code_version()}
+
+
+def path_of(rec):
+    key = hashlib.sha256(json.dumps(rec, sort_keys=True).encode()).hexdigest()[:20]
+    return directory() / f"{rec['scene']}-{key}.npz"
+
+
+ARRAYS = ("coefficients", "grid", "layout", "provenance", "record", "end_start_t", "end_start_state",
+          "end_end_t", "end_end_state")
+
+
+def _arrays(solution, rec):
+    s = solution.segments
+    layout = [[p.name, p.stop - p.start, p.kind, p.unit] for p in solution.layout.slices]
+    return {"coefficients": s.coefficients, "grid": np.array([s.origin_d, s.length_d, s.first], dtype=float),
+            "layout": np.array(json.dumps(layout)), "provenance": np.array(json.dumps(solution.provenance)),
+            "record": np.array(json.dumps(rec, sort_keys=True)),
+            **{f"end_{name}_{part}": np.asarray(value, dtype=float) for name, (t, y) in solution.ends.items()
+               for part, value in (("t", t), ("state", y))}}
+
+
+def content_hash(arrays):
+    digest = hashlib.sha256()
+    for name in ARRAYS:
+        value = np.ascontiguousarray(arrays[name])
+        digest.update(name.encode() + str(value.dtype).encode() + str(value.shape).encode() + value.tobytes())
+    return digest.hexdigest()
+
+
+def save(solution, rec, path):
+    """Write atomically: aside in the same directory, fsync, rename over ``path``."""
+    arrays = _arrays(solution, rec)
+    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
+    try:
+        with open(tmp, "wb") as f:
+            np.savez(f, sha256=np.array(content_hash(arrays)), **arrays)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    finally:
+        tmp.unlink(missing_ok=True)
+
+
+class Refused(Exception):
+    """A store file that is not an intact solution of the record asked for."""
+
+
+def load(path, rec):
+    """The Solution in ``path``; Refused (saying why) unless it is intact and made with ``rec``."""
+    try:
+        with np.load(path, allow_pickle=False) as data:
+            arrays = {name: data[name] for name in ARRAYS}
+            stored_hash = str(data["sha256"])
+    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as exc:
+        raise Refused(f"not a readable solution file: {type(exc).__name__}: {exc}") from None
+    if content_hash(arrays) != stored_hash:
+        raise Refused("its arrays do not match their sha256")
+    if json.loads(str(arrays["record"])) != json.loads(json.dumps(rec, sort_keys=True)):
+        raise Refused("it was made with another model, keys or code version")
+    origin, length, first = arrays["grid"]
+    segments = Segments(float(origin), float(length), int(first), arrays["coefficients"])
+    layout = Layout([tuple(p) for p in json.loads(str(arrays["layout"]))])
+    ends = {name: (float(arrays[f"end_{name}_t"]), arrays[f"end_{name}_state"]) for name in ("start", "end")}
+    return Solution(segments, layout, json.loads(str(arrays["provenance"])), ends)
+
+
+def read(path, rec):
+    """The stored Solution, or None when there is none or it is refused (said in one line, then deleted)."""
+    if not path.exists():
+        return None
+    try:
+        return load(path, rec)
+    except Refused as exc:
+        cache.say(f"the stored solution {path} was refused ({exc}); computing it again")
+        path.unlink(missing_ok=True)
+        return None
+
+
+def solve(scenario, t_start, t_end, extend):
+    """The stored solution of ``scenario``'s model covering [t_start, t_end] TDB days; where the store lacks
+    part of it, ``extend(solution or None, t_start, t_end)`` computes the stretches (solutions.solve); one
+    process at a time extends a file (a lock), the others wait and read what it wrote."""
+    rec = record(scenario)
+    path = path_of(rec)
+    solution = read(path, rec)
+    if solution is not None and solution.covers(t_start, t_end):
+        solution.path = path
+        return solution
+    with open(path.with_name(path.name + ".lock"), "w") as lock:
+        try:
+            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            print(f"spinorbit: waiting for another process extending {path}", file=sys.stderr)
+            fcntl.flock(lock, fcntl.LOCK_EX)
+        solution = read(path, rec)
+        if solution is None or not solution.covers(t_start, t_end):
+            started = time.perf_counter()
+            solution = extend(solution, t_start, t_end)
+            solution.provenance["last_extension_wall_s"] = time.perf_counter() - started
+            save(solution, rec, path)
+    solution.path = path
+    return solution
+
+
+def entries():
+    """[(path, scene, (start, end) TDB days, bytes)] of the stored solutions (unreadable ones: span None)."""
+    out = []
+    for path in sorted(directory().glob("*.npz")):
+        try:
+            with np.load(path, allow_pickle=False) as data:
+                origin, length, first = data["grid"]
+                count = data["coefficients"].shape[0]
+                scene = json.loads(str(data["record"]))["scene"]
+            span = (origin + first * length, origin + (first + count) * length)
+        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+            scene, span = "unreadable", None
+        out.append((path, scene, span, path.stat().st_size))
+    return out
+
+
+def clear():
+    """Delete every stored solution (and its lock); return the number of files removed."""
+    removed = 0
+    for path in directory().iterdir():
+        if path.is_file() and not path.is_symlink() and (path.suffix in (".npz", ".lock")
+                                                          or ".tmp-" in path.name):
+            path.unlink()
+            removed += 1
+    return removed
+
