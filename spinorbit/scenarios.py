@@ -107,6 +107,8 @@ MIN_SPAN_D = 1e-6              # shortest span, days (0.0864 s)
 # (p93 at orbit.rate = 1000 rad/d: 3200 cycles in 45 s), so 2e5 cycles is about half an hour.
 MAX_CYCLES = 2e5
 DISTANCE_KEYS = ("orbit.radius", "orbit.f", "orbit.a")
+SPAN_END_ACCEPTED = ("an ISO date in TDB without a time zone (e.g. '2030-01-01' or '2030-01-01T12:00:00'), or a "
+                     "finite duration from span.start (e.g. '100 yr', '2 d', '2 days', '-1 Myr')")
 
 
 class Scenario:
@@ -118,6 +120,7 @@ class Scenario:
         self.name = self.path.stem if self.path else "scenario"
         self.checkpoint = None          # a checkpoint.Checkpoint when the command line runs it (--resume)
         self.extra_times = None         # TDB days the Python API asks for, besides the span's grid
+        self.notes = []                 # what loading changed and says (method_switch)
         from .scenes import scene_module  # the scene registry (lazy imports)
 
         check_depth(data, str(self.path) if self.path else "scenario")
@@ -255,7 +258,10 @@ class Scenario:
         try:
             end = parse_tdb_days("span.end", end_text)
         except ScenarioError:
-            end = start + checked_float("span.end", end_text, Key(unit="d"))
+            try:
+                end = start + checked_float("span.end", end_text, Key(unit="d"))
+            except ScenarioError:
+                raise ScenarioError("span.end", end_text, SPAN_END_ACCEPTED) from None
         if end < start and not getattr(self.module, "BACKWARD", False):
             raise ScenarioError("span.end", end_text, f"a time after span.start ({self['span.start']}); "
                                 f"scene kind '{self.kind}' runs forward only (backward runs: "
@@ -543,9 +549,16 @@ def load_scenario(path, overrides=()):
         raise ScenarioError(str(path), f"invalid TOML ({exc})", "a TOML file") from None
     except (ValueError, RecursionError) as exc:
         raise ScenarioError(str(path), _reason(exc), "a TOML file Python can read") from None
+    from .method_switch import option_names, switch_method
+
+    in_file = dict(data.get("integrator", {})) if isinstance(data.get("integrator"), dict) else {}
     for assignment in overrides:
         apply_override(data, assignment)
-    return Scenario(data, path)
+    notes = switch_method(data["integrator"], in_file, option_names(overrides)) \
+        if isinstance(data.get("integrator"), dict) else []
+    scenario = Scenario(data, path)
+    scenario.notes = notes
+    return scenario
 
 
 def _nearest(name, names):
@@ -564,8 +577,9 @@ def _reason(exc):
 
 
 def key_table(scene):
-    """Markdown-like lines: every key of ``scene``'s kind (its file's value, the default, unit, range, meaning),
-    the [integrator] options, and the kind's docstring's first line; what ``spinorbit show`` prints."""
+    """(heading, rows): the kind's docstring's first paragraph, and every key of ``scene``'s kind as a row of
+    texts, nothing cut (key, its file's value, the default, unit, range, meaning), the [integrator] options
+    among them; what ``spinorbit show`` prints."""
     import math
 
     from .integrators import METHODS, get_method
@@ -577,8 +591,8 @@ def key_table(scene):
     given = dict(dotted_items(scenario.data))
     method = given.get("integrator.method", COMMON_SCHEMA["integrator.method"].default)
     options = get_method(method).options if method in METHODS else {}
-    lines = [f"{path.stem} (kind {kind}): {(module.__doc__ or '').strip().splitlines()[0]}", "",
-             f"{'key':34} {'value in the file':24} {'default':22} {'unit':8} {'range':18} meaning"]
+    summary = " ".join((module.__doc__ or "").strip().split("\n\n")[0].split())
+    rows = [("key", "value in the file", "default", "unit", "range", "meaning")]
     for key, spec in {**COMMON_SCHEMA, **module.SCHEMA, **{f"integrator.{name}": spec for name, spec in
                                                            INTEGRATOR_OPTIONS.items() if name in options}}.items():
         name = key.removeprefix("integrator.")
@@ -590,6 +604,5 @@ def key_table(scene):
             span = f"{'>0' if spec.positive else f'{spec.min:g}'} .. {spec.max:g}"
         else:
             span = ""
-        value = repr(given[key]) if key in given else ""
-        lines.append(f"{key:34} {value[:24]:24} {default[:22]:22} {spec.unit or '':8} {span[:18]:18} {spec.help}")
-    return lines
+        rows.append((key, repr(given[key]) if key in given else "", default, spec.unit or "", span, spec.help))
+    return f"{path.stem} (kind {kind}): {summary}", rows

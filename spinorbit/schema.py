@@ -89,21 +89,24 @@ INTEGRATOR_OPTIONS = {
 }
 
 
+ISO_TDB = "an ISO date in TDB without a time zone, e.g. '2000-01-01' or '2000-01-01T12:00:00'"
+
+
 def parse_tdb_days(key, text):
     """ISO time string (TDB) -> days from J2000.0 TDB."""
     from astropy.time import Time
 
     if not isinstance(text, str) or not text[:1].isdigit() or "-" not in text[1:]:
-        raise ScenarioError(key, text, "an ISO time in TDB, e.g. '2000-01-01T12:00:00'")
+        raise ScenarioError(key, text, ISO_TDB)
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("error")          # e.g. ERFA's "dubious year": refuse, do not print
             t = Time(text, scale="tdb")
             days = (t.jd1 - J2000_JD) + t.jd2
     except (ValueError, TypeError, ArithmeticError, Warning):
-        raise ScenarioError(key, text, "an ISO time in TDB, e.g. '2000-01-01T12:00:00'") from None
+        raise ScenarioError(key, text, ISO_TDB) from None
     if not math.isfinite(days):
-        raise ScenarioError(key, text, "an ISO time in TDB, e.g. '2000-01-01T12:00:00'")
+        raise ScenarioError(key, text, ISO_TDB)
     return days
 
 
@@ -130,7 +133,7 @@ def to_float(key, value, unit):
     with warnings.catch_warnings():
         warnings.simplefilter("error")          # astropy's unit and overflow warnings: refuse, do not print
         try:
-            quantity = u.Quantity(value)
+            quantity = _quantity(value)
         except (TypeError, ValueError, ArithmeticError, LookupError, RecursionError, Warning):
             raise ScenarioError(key, value, f"a quantity such as {example}") from None
         if not quantity.isscalar:
@@ -142,6 +145,21 @@ def to_float(key, value, unit):
             raise ScenarioError(key, value, f"units convertible to '{unit or 'dimensionless'}'") from None
         except (ArithmeticError, Warning):
             raise ScenarioError(key, value, "a finite quantity (this one overflows)") from None
+
+
+def _quantity(text):
+    """astropy's Quantity of ``text``, a plural unit read as its singular ("2 days" is "2 day")."""
+    import re
+
+    import astropy.units as u
+
+    try:
+        return u.Quantity(text)
+    except ValueError:
+        singular = re.sub(r"\b([A-Za-z]{2,})s\b", r"\1", text)
+        if singular == text:
+            raise
+        return u.Quantity(singular)
 
 
 def finite_float(key, value):
