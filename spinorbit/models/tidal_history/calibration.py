@@ -1,0 +1,43 @@
+"""Today's tidal rates of the Earth-Moon equations, and the strength of a one-parameter tide (constant time
+lag, constant Q) that gives a recession rate: da/dt is linear in the strength, so the fit is exact."""
+import math
+
+import numpy as np
+
+from ...constants import DAY_S, JULIAN_CENTURY_D, JULIAN_YEAR_D
+from .equations import GM_EARTH, GM_MOON, GM_SUN, SUN_A, rhs
+from .response import STRENGTH, responses
+
+CM_PER_KM = 1e5
+
+
+def solar_day_h(rotation_rad_d, c):
+    """The length of the (mean solar) day in hours for rotation rates (rad/day): 2 pi / (Omega - n_sun)."""
+    n_sun = math.sqrt((c[GM_SUN] + c[GM_EARTH] + c[GM_MOON]) / c[SUN_A] ** 3)
+    return 24.0 * 2 * np.pi / (np.asarray(rotation_rad_d) - n_sun)
+
+
+def today_rates(c, response, y0):
+    """{recession_rate_cm_per_yr, length_of_day_rate_ms_per_cy, eccentricity_rate_per_gyr, solar_torque_share}
+    from the rhs at y0."""
+    dy = rhs(0.0, y0, (c, response))
+    lod_s = solar_day_h(y0[2], c) * 3600.0
+    n_sun = math.sqrt((c[GM_SUN] + c[GM_EARTH] + c[GM_MOON]) / c[SUN_A] ** 3)
+    return {"recession_rate_cm_per_yr": dy[0] * CM_PER_KM * JULIAN_YEAR_D,
+            "length_of_day_rate_ms_per_cy": -lod_s / (y0[2] - n_sun) * dy[2] * JULIAN_CENTURY_D * 1e3,
+            "eccentricity_rate_per_gyr": dy[1] / (2 * math.sqrt(y0[1])) * JULIAN_YEAR_D * 1e9,
+            "solar_share_of_spin_torque_z": dy[5] / (dy[4] + dy[5]) if dy[4] + dy[5] else 0.0}
+
+
+def calibrated(c, model, y0, recession_cm_per_yr):
+    """The response array of ``model`` (response.MODELS code) whose recession today is the one given."""
+    unit = responses(model, 1.0)
+    rate = today_rates(c, unit, y0)["recession_rate_cm_per_yr"]
+    out = unit.copy()
+    out[STRENGTH] = recession_cm_per_yr / rate
+    return out
+
+
+def time_lag_s(response, k2):
+    """The constant time lag (s) of a calibrated response for a Love number k2."""
+    return response[STRENGTH] / k2 * DAY_S

@@ -1,0 +1,68 @@
+"""earth_moon_history's quantities and metrics: the history's elements, periods and angular momentum at the
+output times; today's rates; the Moon's age (where the history stops at the Roche limit); each geological
+proxy's residual in its own sigma (spinorbit.references.lunar_proxies)."""
+import math
+
+import numpy as np
+
+from .model import GYR_D
+
+
+def quantities(history):
+    """The table's columns (see table.COLUMNS) of a History, in the table's units."""
+    from ...models.tidal_history import calibration, equations, milankovitch
+
+    c = history.constants
+    el = equations.elements(history.y, c)
+    n_sun = math.sqrt((c[equations.GM_SUN] + c[equations.GM_EARTH] + c[equations.GM_MOON])
+                      / c[equations.SUN_A] ** 3)
+    factor = milankovitch.luni_solar_factor(el["semi_major_axis"], el["eccentricity"], el["inclination"],
+                                            c[equations.GM_MOON], n_sun, c[equations.SUN_E2])
+    today = (el["rotation"][0], el["obliquity"][0], factor[0])
+    precession = milankovitch.precession_constant(el["rotation"], el["obliquity"], factor, today)
+    momentum = el["angular_momentum_z"]
+    return {"t_gyr": history.t / GYR_D, "semi_major_axis": el["semi_major_axis"],
+            "eccentricity": el["eccentricity"], "length_of_day": calibration.solar_day_h(el["rotation"], c),
+            "obliquity": np.degrees(el["obliquity"]), "lunar_inclination": np.degrees(el["inclination"]),
+            "precession_constant": precession, **milankovitch.periods_kyr(precession),
+            "angular_momentum_error": (momentum - momentum[0]) / abs(momentum[0])}
+
+
+def metrics(history, q):
+    """{metric: value} and {"comparison.<metric>": why not measured}."""
+    from ...models.tidal_history import calibration
+    from ...references.lunar_proxies import PROXIES
+
+    rates = calibration.today_rates(history.constants, history.response, history.y[0])
+    out = {"recession_rate_today_cm_per_yr": rates["recession_rate_cm_per_yr"],
+           "length_of_day_rate_today_ms_per_cy": rates["length_of_day_rate_ms_per_cy"],
+           "eccentricity_rate_today_per_gyr": rates["eccentricity_rate_per_gyr"],
+           "angular_momentum_relative_error_max": float(np.abs(q["angular_momentum_error"]).max()),
+           "obliquity_period_today_kyr": float(q["obliquity_period"][0]),
+           "precession_period_today_kyr": float(q["precession_period"][0]),
+           "moon_age_gyr": None if history.stop_t is None else -history.stop_t / GYR_D}
+    not_measured = {}
+    if history.stop_t is None:
+        not_measured["comparison.moon_age_gyr"] = ("the history reaches the span's end without the Moon "
+                                                   "at the Roche limit")
+    ages = -q["t_gyr"]
+    for proxy in PROXIES:
+        key = f"{proxy.name}_residual_sigma"
+        if proxy.age_gyr > ages[-1]:
+            out[f"{proxy.name}_residual"] = out[key] = None
+            not_measured[f"comparison.{key}"] = not_measured[f"comparison.{proxy.name}_residual"] = (
+                f"the history stops at {ages[-1]:.3f} Gyr, before the proxy's {proxy.age_gyr} Gyr")
+            continue
+        model_value = float(np.interp(proxy.age_gyr, ages, proxy_series(q, proxy.quantity)))
+        out[f"{proxy.name}_residual"] = model_value - proxy.value
+        out[key] = proxy.residual_sigma(model_value)
+        if out[key] is None:
+            not_measured[f"comparison.{key}"] = "the source's uncertainty could not be read here"
+    return out, not_measured
+
+
+def proxy_series(q, quantity):
+    """The model's series for a proxy's quantity."""
+    if quantity == "distance_ratio":
+        return q["semi_major_axis"] / q["semi_major_axis"][0]
+    return q[quantity]

@@ -1,0 +1,47 @@
+"""earth_moon_history's figure data: each model's series against age, the proxies as error bars, and a
+model's description for the summary."""
+import numpy as np
+
+
+def series(quantities):
+    """({model: age (Gyr before present)}, {model: {distance (Earth radii), length_of_day, periods...}})."""
+    from ...bodies import earth
+
+    ages = {name: -q["t_gyr"] for name, q in quantities.items()}
+    out = {name: {"distance": q["semi_major_axis"] / earth.EQUATORIAL_RADIUS_KM,
+                  **{k: q[k] for k in ("length_of_day", "precession_constant", "obliquity_period",
+                                       "precession_period")}}
+           for name, q in quantities.items()}
+    return ages, out
+
+
+def proxies():
+    """{"distance" | "length_of_day": [(age, value, below, above, label)]} in Earth radii and hours."""
+    from ...bodies import earth, moon
+    from ...references.lunar_proxies import PROXIES
+
+    scale = {"semi_major_axis": ("distance", 1.0 / earth.EQUATORIAL_RADIUS_KM),
+             "distance_ratio": ("distance", moon.MEAN_DISTANCE_KM / earth.EQUATORIAL_RADIUS_KM),
+             "length_of_day": ("length_of_day", 1.0)}
+    out = {"distance": [], "length_of_day": []}
+    for p in PROXIES:
+        if p.quantity not in scale:
+            continue
+        key, factor = scale[p.quantity]
+        below = None if p.sigma_below is None else p.sigma_below * factor
+        above = None if p.sigma_above is None else p.sigma_above * factor
+        out[key].append((p.age_gyr, p.value * factor, below, above, p.name.rsplit("_", 1)[0]))
+    return out
+
+
+def description(history):
+    """The tide's fitted parameter and the run's stop, for the summary."""
+    from ...models.tidal_history import response
+    from ...models.tidal_history.calibration import time_lag_s
+    from .model import LOVE_K2
+
+    strength = float(history.response[response.STRENGTH])
+    if history.response[response.MODEL] == response.CONSTANT_TIME_LAG:
+        return {"k2_time_lag_s": strength * 86400.0,
+                "time_lag_s_for_k2_0.30": time_lag_s(history.response, LOVE_K2)}
+    return {"k2_over_q": strength, "q_for_k2_0.30": LOVE_K2 / strength if strength else float(np.inf)}

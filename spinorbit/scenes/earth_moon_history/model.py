@@ -1,0 +1,120 @@
+"""earth_moon_history's model: today's Earth-Moon state, the tide its keys choose (calibrated to the recession
+rate), and the history run back through the integrator door until the span's end or the state the equations
+stop at (the Roche limit, or an unphysical state), with the reason."""
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ...constants import GM_KM3_D2, JULIAN_YEAR_D
+from ...errors import IntegrationError
+
+GYR_D = 1e9 * JULIAN_YEAR_D
+AU_KM = 1.495978707e8                  # IAU 2012 Resolution B2
+SUN_ECCENTRICITY = 0.0167086           # the Earth-Moon barycentre's, J2000 (Simon et al. 1994)
+OBLIQUITY_DEG = 23.4392911             # IAU 2006, J2000
+LOVE_K2 = 0.30                         # the solid Earth's degree-2 Love number, to quote a time lag
+STOP_REFINEMENT = 1000                 # outputs that bracket the stop inside one output step
+
+
+@dataclass
+class History:
+    """A history: output times (TDB d) and states up to where it stops, the equations' constants and tidal
+    response, the run's point (simulate), why it stopped ("" if it reached the span's end) and when."""
+
+    t: np.ndarray
+    y: np.ndarray
+    constants: np.ndarray
+    response: np.ndarray
+    point: dict
+    stop_reason: str = ""
+    stop_t: float | None = None
+    solution: object = None
+
+
+def constants(stop_radii):
+    from ...bodies import earth
+    from ...models.tidal_history import equations
+
+    radius = earth.EQUATORIAL_RADIUS_KM
+    return equations.constants(GM_KM3_D2["earth"], GM_KM3_D2["moon"], GM_KM3_D2["sun"], radius, earth.C_MR2,
+                               AU_KM, SUN_ECCENTRICITY, stop_radii * radius)
+
+
+def today(c):
+    """The state at J2000: the Moon's mean orbit (bodies.moon), the Earth's rotation, IAU 2006's obliquity."""
+    from ...bodies import earth, moon
+    from ...models.tidal_history import equations
+
+    return equations.state(c, moon.MEAN_DISTANCE_KM, moon.MEAN_ECCENTRICITY, earth.ERA_RATE_RAD_D,
+                           math.radians(OBLIQUITY_DEG), math.radians(moon.MEAN_INCLINATION_DEG))
+
+
+def tide(scenario, c, y0, model):
+    """The tidal response of ``model`` calibrated to tides.recession_rate (cm/yr)."""
+    from ...models.tidal_history import calibration, response
+
+    return calibration.calibrated(c, response.MODELS[model], y0, scenario["tides.recession_rate"])
+
+
+def run(scenario, model, part=None):
+    """The history of ``model`` over the scenario's output times (from J2000 back)."""
+    from ...models.tidal_history import equations
+    from .. import common
+
+    c = constants(scenario["moon.stop_distance"])
+    y0 = today(c)
+    system = equations.history(c, tide(scenario, c, y0, model), y0)
+    t = scenario.output_times()
+    try:
+        solution, point = common.simulate_scenario(scenario, system, t[1:], part)
+        reached = t.size
+    except IntegrationError as exc:            # the stop: the rates run away at the Roche limit
+        reached = 1 + exc.partial.t.size
+        if reached < 3:
+            raise
+        solution, point = common.simulate_scenario(scenario, system, t[1:reached],
+                                                   f"{part or model} to the stop")
+    y = np.vstack([y0, solution.y])
+    outside = [k for k in range(y.shape[0]) if equations.stop(y[k], c)]
+    if outside:                                 # frozen past the stop (the rhs is zero there)
+        reached = outside[0]
+    elif reached == t.size:
+        return History(t, y, c, system.params[1], point, solution=solution)
+    t, y = t[:reached], y[:reached]
+    stop_t, reason = _stop(system, t[-1], y[-1], 2 * t[-1] - t[-2], c)
+    return History(t, y, c, system.params[1], point, reason, stop_t, solution)
+
+
+def _stop(system, t_last, y_last, t_next, c, levels=2):
+    """(the time and the reason) the history stops between t_last and t_next, found to an output step over
+    STOP_REFINEMENT**levels.
+
+    The equations are zero outside their domain; an adaptive step cannot cross that edge where the rates run
+    away (the Moon at the Roche limit, ~a^-6.5), so there the run ends: the time is the last state reached,
+    and the reason the Roche limit when the Moon is within twice its distance."""
+    from ...models.tidal_history import equations
+    from ...simulate import simulate
+
+    fine = np.linspace(t_last, t_next, STOP_REFINEMENT + 1)
+    start = replace(system, t0=float(t_last), y0=np.asarray(y_last, dtype=float))
+    try:
+        solution, _ = simulate(start, fine[1:], "dop853", {"rtol": 1e-10, "atol": 1e-12}, False)
+    except IntegrationError as exc:
+        solution = exc.partial
+    times, states = [t_last, *solution.t], [np.asarray(y_last, dtype=float), *solution.y]
+    for k, (tk, yk) in enumerate(zip(times, states)):
+        if equations.stop(yk, c):
+            if levels > 1 and k > 0:
+                return _stop(system, times[k - 1], states[k - 1], tk, c, levels - 1)
+            return float(tk), equations.stop(yk, c)
+    if len(times) == fine.size:
+        return float(times[-1]), ""
+    if levels > 1:
+        return _stop(system, times[-1], states[-1], fine[len(times)], c, levels - 1)
+    a = states[-1][0]
+    if a < 2 * c[equations.STOP_A]:
+        at_limit = np.array(states[-1])
+        at_limit[0] = c[equations.STOP_A]
+        return float(times[-1]), equations.stop(at_limit, c)
+    return float(times[-1]), f"the integration could not go on (a = {a:.6g} km)"

@@ -1,0 +1,179 @@
+"""The Earth-Moon tidal history (spinorbit.models.tidal_history): the secular tidal sums against closed forms
+(the circular equatorial recession of a constant time lag and of a constant Q; Hut's 1981 eccentricity
+functions), the averaged recession against the direct tidal force of DE421's tide on DE421's Moon, and the
+angular momentum over the Moon's age for every tidal model."""
+import math
+
+import numpy as np
+import pytest
+
+from spinorbit.bodies import earth
+from spinorbit.constants import GM_KM3_D2, JULIAN_YEAR_D
+from spinorbit.models.tidal_history import calibration, equations, response, secular
+from spinorbit.simulate import simulate
+
+GM_E, GM_M = GM_KM3_D2["earth"], GM_KM3_D2["moon"]
+R = earth.EQUATORIAL_RADIUS_KM
+A = 384399.0
+SPIN = earth.ERA_RATE_RAD_D
+GYR_D = 1e9 * JULIAN_YEAR_D
+
+
+def constants(gm_sun=0.0, stop=2.89 * R):
+    return equations.constants(GM_E, GM_M, gm_sun, R, earth.C_MR2, 1.495978707e8, 0.0167086, stop)
+
+
+def rates(model, strength, e=0.0, obliquity=0.0, inclination=0.0, gm_sun=0.0, bands=(1.0, 1.0, 1.0)):
+    c = constants(gm_sun)
+    y = equations.state(c, A, e, SPIN, obliquity, inclination)
+    return equations.rhs(0.0, y, (c, response.responses(model, strength, bands))), c, y
+
+
+def mean_motion(a=A):
+    return math.sqrt((GM_E + GM_M) / a**3)
+
+
+def test_constant_time_lag_circular_equatorial_is_the_closed_form():
+    """da/dt = 6 k2 dt (Omega - n)(m/M)(R/a)^5 n a (the semi-diurnal bulge lagging by (Omega - n) dt), and the
+    spin loses the orbit's angular momentum: C dOmega/dt = -(m M/(M + m)) d sqrt(mu a)/dt."""
+    k2dt = 0.3 * 600.0 / 86400.0
+    dy, c, _ = rates("constant_time_lag", k2dt)
+    n = mean_motion()
+    expected = 6 * k2dt * (SPIN - n) * (GM_M / GM_E) * (R / A) ** 5 * n * A
+    assert dy[0] == pytest.approx(expected, rel=1e-12)
+    orbit_gain = GM_M / (GM_E + GM_M) * math.sqrt(GM_E + GM_M) * 0.5 / math.sqrt(A) * dy[0]
+    assert earth.C_MR2 * R**2 * dy[2] == pytest.approx(-orbit_gain, rel=1e-12)
+    assert abs(dy[1]) <= 1e-12 * abs(dy[0]) / A               # a circular orbit stays circular (to rounding)
+
+
+def test_constant_q_circular_equatorial_is_the_closed_form():
+    """da/dt = 3 (k2/Q)(m/M)(R/a)^5 n a (Goldreich 1966), whatever the spin above corotation."""
+    dy, _, _ = rates("constant_q", 0.0255)
+    n = mean_motion()
+    assert dy[0] == pytest.approx(3 * 0.0255 * (GM_M / GM_E) * (R / A) ** 5 * n * A, rel=1e-12)
+
+
+def hut(e2, ratio):
+    """Hut 1981 (A&A 99, 126, eqs. 9-11) for an aligned spin: (da/dt, de/dt over e, dOmega/dt) up to common
+    factors, exact in e; ratio = Omega/n."""
+    f1 = 1 + 31 / 2 * e2 + 255 / 8 * e2**2 + 185 / 16 * e2**3 + 25 / 64 * e2**4
+    f2 = 1 + 15 / 2 * e2 + 45 / 8 * e2**2 + 5 / 16 * e2**3
+    f3 = 1 + 15 / 4 * e2 + 15 / 8 * e2**2 + 5 / 64 * e2**3
+    f4 = 1 + 3 / 2 * e2 + 1 / 8 * e2**2
+    f5 = 1 + 3 * e2 + 3 / 8 * e2**2
+    s = 1 - e2
+    return (-6 / s**7.5 * (f1 - s**1.5 * f2 * ratio), -27 / s**6.5 * (f3 - 11 / 18 * s**1.5 * f4 * ratio),
+            1 / s**6 * (f2 - s**1.5 * f5 * ratio))
+
+
+@pytest.mark.parametrize("e", [0.01, 0.0549])
+def test_constant_time_lag_eccentricity_terms_are_hut(e):
+    """The sums carry Kaula's G_2pq to O(e^2): the e-dependence of da/dt and dOmega/dt, and de/dt against
+    da/dt, match Hut's closed forms to O(e^4) (the first neglected order: Hut's e^4 coefficients are at most
+    180, so 200 e^4 relative; and 20 e^2 on de/dt's, whose leading term is O(e^2))."""
+    k2dt = 0.0022
+    dy, _, _ = rates("constant_time_lag", k2dt, e=e)
+    dy0, _, _ = rates("constant_time_lag", k2dt)
+    ratio = SPIN / mean_motion(A)
+    da, de_over_e, dspin = hut(e * e, ratio)
+    da0, _, dspin0 = hut(0.0, ratio)
+    floor = 200 * e**4
+    assert dy[0] / dy0[0] == pytest.approx(da / da0, rel=floor)
+    assert dy[2] / dy0[2] == pytest.approx(dspin / dspin0, rel=floor)
+    de_dt = dy[1] / (2 * e)
+    assert de_dt / dy[0] == pytest.approx(e * de_over_e / (A * da), rel=20 * e**2)
+
+
+def test_the_dissipated_power_is_never_negative():
+    """Each term's power sigma W K(sigma) >= 0: the spin's energy loss covers the orbit's gain, over
+    inclinations, eccentricities and both sides of corotation."""
+    for model in ("constant_time_lag", "constant_q"):
+        resp = response.responses(model, 0.01)
+        for spin in (0.5, 1.5, 4.0):
+            for cos_i in np.linspace(-1, 1, 9):
+                n = 1.0
+                axial, _, power = secular.exchange(spin, n, 0.003, cos_i, resp)
+                assert -spin * axial - power >= -1e-15
+
+
+def test_angular_momentum_is_kept_over_the_moons_age():
+    """Every tidal model, 4.5 Gyr back (or to the Roche limit), through simulate(): the angular momentum along
+    the ecliptic normal with the solar share, X + Y + S, to rounding (issue 33's target: 1e-9)."""
+    c = constants(gm_sun=GM_KM3_D2["sun"])
+    y0 = equations.state(c, A, 0.0549, SPIN, math.radians(23.4393), math.radians(5.145))
+    t = -np.linspace(0.0, 4.5 * GYR_D, 451)[1:]
+    for name, code in response.MODELS.items():
+        system = equations.history(c, calibration.calibrated(c, code, y0, 3.830), y0)
+        try:
+            solution, _ = simulate(system, t, "dop853", {"rtol": 1e-10, "atol": 1e-12}, False)
+        except Exception as exc:                 # the stop at the Roche limit: the outputs reached
+            solution = exc.partial
+        assert solution.t.size > 50, name
+        total = equations.elements(solution.y, c)["angular_momentum_z"]
+        total0 = equations.elements(y0, c)["angular_momentum_z"][0]
+        assert np.abs(total / total0 - 1).max() <= 1e-9, name
+        assert abs(solution.y[-1, 5]) > 1e-3 * total0, name       # the solar share is there, and counted
+
+
+def test_averaged_recession_matches_de421s_tide_on_de421s_moon():
+    """DE421's tide (per band k2m and delay tau_m; Folkner et al. 2014 eq. 32, spinorbit's coupled model)
+    acting on DE421's Moon over a nodal cycle (18.6 yr, 0.05 d samples): the mean da/dt of the direct tidal
+    force, (2 a^2/mu) <v . a_tide>, against the averaged equations with the same per-band lags on the mean
+    orbit.  Tolerance 2%: the O(e^4) truncation (0.3%) and the mean orbit's e^2 and i standing for the
+    perturbed ones' means (the evection alone moves <e^2> by ~2%, e^2 terms ~7% of da/dt)."""
+    from spinorbit.bodies.earth import de421_tides
+    from spinorbit.models.interactions import tides
+    from spinorbit.orbits.kernel import open_ephemeris
+    from tests.test_earth_tides import P
+
+    t = np.arange(0.0, 18.6 * JULIAN_YEAR_D, 0.05)
+    r, v = open_ephemeris("de421", t[0], t[-1]).relative_states("moon", "earth", t)
+    pole = np.array([0.0, 0.0, 1.0])              # the mean equator of J2000 (GCRS z, within 0.1")
+    spin = SPIN * pole
+    mu = GM_E + GM_M
+    power = np.array([np.dot(v[k], tides.raised_by(r[k], r[k], v[k], P[1], P[0] + P[1], spin, P))
+                      for k in range(t.size)])
+    a_mean = 1.0 / np.mean(2.0 / np.linalg.norm(r, axis=1) - np.einsum("ij,ij->i", v, v) / mu)
+    direct = 2.0 * a_mean**2 / mu * power.mean()
+    love = de421_tides()
+    bands = tuple(love[m][0] * love[m][1] for m in range(3))
+    dy, _, _ = rates("constant_time_lag", 1.0, e=0.0549, obliquity=math.radians(23.4393),
+                     inclination=math.radians(5.145), bands=bands)
+    assert dy[0] == pytest.approx(direct, rel=0.02)
+
+
+# --- the scene ----------------------------------------------------------------------------------------
+
+
+def test_scene_holds_todays_rates_and_stops_at_the_roche_limit():
+    """The constant-Q history (k2/Q fitted to 3.830 cm/yr) reaches the Roche limit ~1.5 Gyr back, the
+    classical collision (Goldreich 1966; issue 33's "about 1.4-1.6 Ga"), and stops there with the reason;
+    today's Milankovitch periods are La2004's (41.0 and 23.7 kyr)."""
+    from spinorbit import run_scenario
+
+    result = run_scenario("scenarios/earth_moon_history.toml",
+                          ['tides.model="constant_q"', "compare.models=false", 'span.end="-2 Gyr"'])
+    summary = result.summary
+    c = summary["comparison"]
+    assert summary["verdict"]["result"] == "pass"
+    assert c["recession_rate_today_cm_per_yr"] == pytest.approx(3.830, abs=1e-9)
+    assert c["angular_momentum_relative_error_max"] <= 1e-9
+    assert 1.3 <= c["moon_age_gyr"] <= 1.7
+    assert "Roche" in summary["stop"]["reason"]
+    assert c["obliquity_period_today_kyr"] == pytest.approx(41.0, abs=0.05)
+    assert c["precession_period_today_kyr"] == pytest.approx(23.7, abs=0.05)
+    assert len(result.table) < 2001                                  # the table ends at the stop
+
+
+@pytest.mark.parametrize("override, key", [('tides.recession_rate="9 cm/yr"', "tides.recession_rate"),
+                                           ('span.start="2010-01-01T00:00:00"', "span.start"),
+                                           ('tides.model="ocean"', "tides.model"),
+                                           ('moon.stop_distance=1.0', "moon.stop_distance")])
+def test_scene_refuses_what_the_model_cannot_vouch_for(override, key):
+    from spinorbit import run_scenario
+    from spinorbit.errors import ScenarioError
+
+    with pytest.raises(ScenarioError) as info:
+        run_scenario("scenarios/earth_moon_history.toml", [override, "compare.models=false"])
+    assert info.value.key == key
+    assert "\n" not in str(info.value)
