@@ -91,8 +91,28 @@ def run_sweep(scenario_path, grid, out_dir, scheduler="local", base_overrides=()
             records = list(compute(*jobs))
         (staged / "sweep.json").write_text(json.dumps(records, indent=2) + "\n")
         _write_csv(records, staged / "sweep.csv")
+        _sweep_figures(scenario_path, base_overrides, records, staged)
         run_dir.commit()
     return records
+
+
+def _sweep_figures(scenario_path, overrides, records, staged):
+    """The scene's figures over its members, when its module has ``sweep_figures(tables) -> {name: draw}``
+    (e.g. a band over the members' curves), drawn into the sweep directory from the members' tables."""
+    from astropy.table import QTable
+
+    from .reports import write_plots
+    from .results import span_label
+    from .scenarios import load_scenario
+
+    scenario = load_scenario(scenario_path, overrides)
+    make = getattr(scenario.module, "sweep_figures", None)
+    tables = [QTable.read(staged / Path(r["out"]).name / "timeseries.ecsv", format="ascii.ecsv")
+              for r in records if r.get("status") == "ok"]
+    if make is None or len(tables) < 2:
+        return
+    write_plots(make(tables), {"scene": f"{scenario.name} (sweep of {len(tables)})",
+                               "span": {"years": span_label(scenario)}}, staged)
 
 
 class _scheduler:

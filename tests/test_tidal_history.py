@@ -177,3 +177,19 @@ def test_scene_refuses_what_the_model_cannot_vouch_for(override, key):
         run_scenario("scenarios/earth_moon_history.toml", [override, "compare.models=false"])
     assert info.value.key == key
     assert "\n" not in str(info.value)
+
+
+def test_sweep_draws_the_band_over_its_members(tmp_path):
+    """spinorbit sweep over the LLR rate's +-1 sigma (synchronous Dask): every member holds its fitted rate,
+    the Moon's age moves with the tide's strength (a stronger tide reaches the Earth sooner), and the band
+    figures are drawn into the sweep's directory."""
+    from spinorbit.sweep import run_sweep
+
+    out = tmp_path / "sweep"
+    records = run_sweep("scenarios/earth_moon_history.toml",
+                        {"tides.recession_rate": ['"3.822 cm/yr"', '"3.838 cm/yr"']}, out, "synchronous",
+                        ["compare.models=false", 'span.end="-1.5 Gyr"'])
+    assert [r["verdict"] for r in records] == ["pass", "pass"]
+    assert records[0]["moon_age_gyr"] > records[1]["moon_age_gyr"]
+    assert (out / "band_distance_length_of_day.png").stat().st_size > 0
+    assert (out / "band_milankovitch_periods.png").stat().st_size > 0

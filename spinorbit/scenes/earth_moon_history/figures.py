@@ -45,3 +45,24 @@ def description(history):
         return {"k2_time_lag_s": strength * 86400.0,
                 "time_lag_s_for_k2_0.30": time_lag_s(history.response, LOVE_K2)}
     return {"k2_over_q": strength, "q_for_k2_0.30": LOVE_K2 / strength if strength else float(np.inf)}
+
+
+BAND_KEYS = ("distance", "length_of_day", "precession_constant", "obliquity_period", "precession_period")
+
+
+def band(tables):
+    """({"age", key: (low, high)}, the first member's series) over the members' tables (a sweep's), on the
+    ages every member reaches (a member that stops earlier ends the band there)."""
+    members = []
+    for table in tables:
+        q = {name: np.asarray(getattr(table[name], "value", table[name]), dtype=float)
+             for name in ("t_gyr", "semi_major_axis", "length_of_day", "precession_constant",
+                          "obliquity_period", "precession_period")}
+        members.append(series({"member": q}))
+    reach = min(float(ages["member"][-1]) for ages, _ in members)
+    age = np.linspace(0.0, reach, 500)
+    out = {"age": age}
+    for key in BAND_KEYS:
+        curves = np.array([np.interp(age, ages["member"], s["member"][key]) for ages, s in members])
+        out[key] = (curves.min(axis=0), curves.max(axis=0))
+    return out, members[0]
