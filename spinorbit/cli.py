@@ -4,7 +4,8 @@
 ... vs <reference> (<span>)`` (spinorbit.verdict), then the comparison metrics.
 
 Exit codes: 0 the run finished (whatever its verdict); 2 bad input (one line
-``error: <key>: got ...; expected ...``); 3 the integration failed (what it has is
+``error: <key>: got ...; expected ...``, or ``error: <path>: <reason>`` for a file that cannot be read or
+written); 3 the integration failed (what it has is
 written); 4 with ``run --strict``, the run finished but its verdict is ``fail``;
 1 ``sweep`` with failed runs; 130 interrupted (Ctrl-C or SIGTERM; a checkpointed run can continue
 with ``run --resume``).
@@ -63,7 +64,8 @@ def main(argv=None):
     listing.add_argument("folder", nargs="?", help="a folder of scenario files (default: the built-in scenes)")
     show = sub.add_parser("show", help="every key a scene reads: its value, default, unit, range and meaning")
     show.add_argument("scenario", help="a scenario .toml file, or a built-in scene's name")
-    cache = sub.add_parser("cache", help="where the compiled-kernel cache is and how big; 'clear' empties it")
+    cache = sub.add_parser("cache", help="spinorbit's caches (compiled kernels, heyoka's, orbital solutions): "
+                                        "where and how big; 'clear' empties them")
     cache.add_argument("action", nargs="?", choices=["show", "clear"], default="show")
     args, extra = parser.parse_known_args(argv)
     if extra:
@@ -91,6 +93,10 @@ def main(argv=None):
         return 130
     except SpinorbitError as exc:
         print(f"error: {exc}", file=sys.stderr)
+        return 2
+    except OSError as exc:                     # a file the command could not read or write: one line
+        where = f"{_printable(exc.filename)}: " if exc.filename else ""
+        print(f"error: {where}{exc.strerror or exc}", file=sys.stderr)
         return 2
 
 
@@ -220,18 +226,17 @@ def _bench(args):
 
 
 def _cache(action):
+    from . import caches
     from .linker import cache
     from .solutions import store
 
     if action == "clear":
-        print(f"removed {cache.clear()} files from {cache.kernels_dir()}/")
-        print(f"removed {store.clear()} files from {store.directory()}/")
+        print("\n".join(caches.clear()))
         return 0
-    where, modules, compiled, size = cache.usage()
-    print(f"{where}/: {modules} generated kernel modules, {compiled} compiled files, {size / 1e6:.3g} MB "
-          f"({cache.ENVIRONMENT} moves it; `spinorbit cache clear` empties it)")
+    print("\n".join(caches.listing()))
     for line in _solution_lines(store.entries()):
         print(line)
+    print(f"({cache.ENVIRONMENT} moves them; `spinorbit cache clear` empties them)")
     return 0
 
 

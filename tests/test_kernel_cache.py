@@ -213,15 +213,32 @@ def test_a_cache_with_one_second_timestamps_loads_what_it_just_wrote(tmp_path, m
         cache.kernels_dir.cache_clear()
 
 
-def test_cache_show_and_clear(cache):
+def test_cache_lists_every_cache_and_clear_empties_them_all(cache):
+    (cache / "heyoka").mkdir(mode=0o700)
+    (cache / "heyoka" / "entry").write_bytes(b"x" * 1000)
+    solutions = cache / "orbital_solutions"
+    solutions.mkdir(mode=0o700)
+    (solutions / "de421-0123.npz").write_bytes(b"y" * 3000)
+    (solutions / ".de421-0123.npz.tmp-999999999").write_bytes(b"z" * 10)     # a killed save's leftover
     show = subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache"], capture_output=True, text=True,
                           check=False, env=environment(cache))
-    assert show.returncode == 0 and f"{cache}/: 2 generated kernel modules, 2 compiled files" in show.stdout
+    lines = show.stdout.splitlines()
+    assert show.returncode == 0 and len(lines) == 5, show.stdout + show.stderr
+    kernels = sum(p.stat().st_size for p in (cache / "kernels").rglob("*") if p.is_file())
+    assert lines[0].split()[:4] == ["compiled", "kernels", "4", "files"]
+    assert f"{kernels / 1e6:.3g} MB" in lines[0] and lines[0].endswith(f"{cache}/kernels/")
+    assert lines[1].startswith("heyoka's compiled integrators") and "1 files" in lines[1] and "0.001 MB" in lines[1]
+    assert lines[2].startswith("orbital solutions") and "2 files" in lines[2] and "0.00301 MB" in lines[2]
     cleared = subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache", "clear"], capture_output=True,
                              text=True, check=False, env=environment(cache))
-    assert cleared.returncode == 0 and "removed 4 files" in cleared.stdout
+    assert cleared.returncode == 0, cleared.stderr
+    assert cleared.stdout.splitlines() == [f"compiled kernels: removed 4 files from {cache}/kernels/",
+                                               f"heyoka's compiled integrators: removed 1 files from {cache}/heyoka/",
+                                               f"orbital solutions: removed 2 files from {solutions}/",
+                                               f"stored solutions: removed 0 files from {cache}/solutions/"]
     assert [p.name for p in (cache / "kernels").iterdir()] == ["numba"]
-    assert not list((cache / "kernels" / "numba").iterdir())
+    assert not list((cache / "kernels" / "numba").iterdir()) and not list((cache / "heyoka").iterdir())
+    assert [p.name for p in solutions.iterdir()] == ["de421-0123.npz.lock"]
     assert linked(cache)[1] == 0                            # compiled afresh
 
 

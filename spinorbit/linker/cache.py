@@ -73,6 +73,20 @@ def kernels_dir():
     return resolved / "kernels"
 
 
+def private_folder(name):
+    """``<the cache directory>/<name>``, created private (0700) beside the kernels and refused, under the same
+    rule, when it is not (another user's, writable by others, or not a directory)."""
+    folder = kernels_dir().parent / name
+    try:
+        if not os.path.lexists(folder):
+            os.mkdir(folder, 0o700)
+    except OSError as exc:
+        raise InputError(ENVIRONMENT, str(root()), f"a directory spinorbit can create for its caches ({folder}: "
+                                                   f"{exc.strerror}); set {ENVIRONMENT} to one") from None
+    _check_private(folder, root())
+    return folder
+
+
 def _check_private(folder, named):
     info = os.lstat(folder)
     mode = stat.S_IMODE(info.st_mode)
@@ -177,18 +191,6 @@ def kernel(function):
         return dispatcher
     dispatcher._cache = CheckedCache(dispatcher.py_func)
     return dispatcher
-
-
-def usage():
-    """(directory, number of generated modules, number of numba files, bytes in all)."""
-    folder = kernels_dir()
-    sizes = {"py": [], "numba": []}
-    for path, _, files in os.walk(folder):
-        for name in files:
-            full = Path(path) / name
-            kind = "py" if full.parent == folder and name.endswith(".py") else "numba"
-            sizes[kind].append(os.lstat(full).st_size)
-    return folder.parent, len(sizes["py"]), len(sizes["numba"]), sum(sizes["py"]) + sum(sizes["numba"])
 
 
 def clear():

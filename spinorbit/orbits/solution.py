@@ -16,6 +16,10 @@ Outputs every ``output_d`` (a multiple of the step, so that outputs fall on step
 osculating orbit normal and eccentricity vector (ICRF axes, the ephemeris's) and semi-major axis, TDB days
 from J2000, ascending.  The two branches (backward and forward from J2000) keep their last state, so a file is
 extended bit for bit; it is written every ``SAVE_EVERY_S`` and when a run stops, and reloaded by the next.
+
+A file is input like any other: opened only when it is a regular file, read without pickles, and used only when
+every array it holds (the outputs, the settings and the end states each branch continues from) matches the
+sha256 it carries; anything else is refused in one line.  Leftovers of a save that was killed are removed.
 """
 import ast
 import fcntl
@@ -24,9 +28,13 @@ import hashlib
 import inspect
 import json
 import os
+import re
+import stat
 import sys
 import textwrap
 import time
+import zipfile
+import zlib
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
@@ -36,12 +44,14 @@ from ..bodies import moon
 from ..bodies.de421_header import gm_km3_d2, header
 from ..constants import DAY_S
 from ..errors import InputError
+from ..files import open_regular, process_alive
 from ..linker import cache
 from ..progress import progress
 
 BODIES = ("sun", "mercury", "venus", "earth_moon_barycenter", "mars", "jupiter", "saturn", "uranus",
           "neptune", "pluto")
 SUN, EMB = 0, 3
+FORMAT = 2                      # the file's layout: every array covered by its hash
 SAVE_EVERY_S = 30.0
 POLL_S = 5.0
 # The Moon's orbit-averaged quadrupole on the EMB, as a factor of the static ring's (``lunar_ring_j2``):
@@ -80,7 +90,7 @@ class Settings:
         import rebound
         import reboundx
 
-        return {**asdict(self), "bodies": list(BODIES), "moon_j2": MOON[self.moon] * lunar_ring_j2(),
+        return {**asdict(self), "format": FORMAT, "bodies": list(BODIES), "moon_j2": MOON[self.moon] * lunar_ring_j2(),
                 "rebound": rebound.__version__,
                 "reboundx": reboundx.__version__, "integration_source": integration_digest()}
 
@@ -105,10 +115,8 @@ def integration_digest():
 
 
 def cache_directory():
-    """Where solutions are kept: ``<spinorbit's private cache>/orbital_solutions``."""
-    path = cache.kernels_dir().parent / "orbital_solutions"
-    path.mkdir(parents=True, exist_ok=True)
-    return path
+    """Where solutions are kept: ``<spinorbit's private cache>/orbital_solutions``, private as the kernels'."""
+    return cache.private_folder("orbital_solutions")
 
 
 class OrbitalSolution:
@@ -137,25 +145,25 @@ class OrbitalSolution:
         """(e, varpi, i, Omega) rad, in the frame whose axes are the rows of ``rotation`` (ICRF -> frame)."""
         return elements(self.normal, self.eccentricity_vector, rotation)
 
+    def arrays(self):
+        """{name: array} of everything the file holds but the provenance (which carries their hash)."""
+        ends = {f"end_{name}_{part}": value for name, (t, states) in self.ends.items()
+                for part, value in (("t", np.float64(t)), ("states", np.asarray(states)))}
+        return {"t_d": self.t_d, "normal": self.normal, "eccentricity_vector": self.eccentricity_vector,
+                "semi_major_axis_km": self.semi_major_axis_km,
+                "record": np.array(json.dumps(self.record, sort_keys=True)), **ends}
+
     def content_hash(self):
-        digest = hashlib.sha256()
-        for array in (self.t_d, self.normal, self.eccentricity_vector, self.semi_major_axis_km):
-            digest.update(np.ascontiguousarray(array).tobytes())
-        return digest.hexdigest()
+        return arrays_hash(self.arrays())
 
     def save(self, path):
         """Write atomically (aside, then renamed over ``path``)."""
         path = Path(path)
         provenance = {**self.provenance, "span_d": list(self.span), "content_sha256": self.content_hash()}
-        ends = {f"end_{name}_{part}": value for name, (t, states) in self.ends.items()
-                for part, value in (("t", np.float64(t)), ("states", states))}
         tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
         try:
             with open(tmp, "wb") as f:
-                np.savez(f, t_d=self.t_d, normal=self.normal, eccentricity_vector=self.eccentricity_vector,
-                         semi_major_axis_km=self.semi_major_axis_km,
-                         record=json.dumps(self.record, sort_keys=True),
-                         provenance=json.dumps(provenance, sort_keys=True), **ends)
+                np.savez(f, provenance=json.dumps(provenance, sort_keys=True), **self.arrays())
                 f.flush()
                 os.fsync(f.fileno())
             os.replace(tmp, path)
@@ -168,21 +176,36 @@ class OrbitalSolution:
         intact."""
         accepted = "an orbital solution file of these settings (delete it, or name another, to recompute)"
         try:
-            with np.load(path, allow_pickle=False) as data:
-                stored, provenance = json.loads(str(data["record"])), json.loads(str(data["provenance"]))
-                ends = {name: (float(data[f"end_{name}_t"]), data[f"end_{name}_states"])
-                        for name in ("backward", "forward") if f"end_{name}_t" in data}
-                arrays = (data[k] for k in ("t_d", "normal", "eccentricity_vector", "semi_major_axis_km"))
-                solution = cls(*arrays, ends, stored, provenance)
-        except (OSError, ValueError, KeyError, EOFError) as exc:
-            raise InputError("orbit_file", str(path), f"{accepted} ({type(exc).__name__}: {exc})") from None
+            with open_regular(path) as f, np.load(f, allow_pickle=False) as data:
+                held = {name: data[name] for name in data.files}
+            stored, provenance = json.loads(str(held["record"])), json.loads(str(held.pop("provenance")))
+            ends = {name: (float(held[f"end_{name}_t"]), held[f"end_{name}_states"])
+                    for name in ("backward", "forward") if f"end_{name}_t" in held}
+            arrays = (held[k] for k in ("t_d", "normal", "eccentricity_vector", "semi_major_axis_km"))
+            solution = cls(*arrays, ends, stored, provenance)
+        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile, zlib.error) as exc:
+            reason = (exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc).splitlines()[0]
+                      if str(exc) else type(exc).__name__)
+            raise InputError("orbit_file", str(path), f"{accepted} ({type(exc).__name__}: {reason})") from None
+        if not (isinstance(stored, dict) and isinstance(provenance, dict)):
+            raise InputError("orbit_file", str(path), f"{accepted}; its record is not one spinorbit wrote")
         differ = sorted(k for k in set(stored) | set(record) if stored.get(k) != record.get(k))
         if differ:
             detail = ", ".join(f"{k} {stored.get(k)!r} (this run: {record.get(k)!r})" for k in differ)
             raise InputError("orbit_file", str(path), f"{accepted}; it differs in {detail}")
-        if solution.content_hash() != provenance.get("content_sha256"):
+        if arrays_hash(held) != provenance.get("content_sha256") or set(held) != set(solution.arrays()):
             raise InputError("orbit_file", str(path), f"{accepted}; its arrays do not match their hash")
         return solution
+
+
+def arrays_hash(arrays):
+    """sha256 of named arrays: each name, dtype, shape and bytes, in the order of the names."""
+    digest = hashlib.sha256()
+    for name in sorted(arrays):
+        array = np.ascontiguousarray(arrays[name])
+        digest.update(f"{name}:{array.dtype.str}{array.shape}:".encode())
+        digest.update(array.tobytes())
+    return digest.hexdigest()
 
 
 def elements(normal, eccentricity_vector, rotation):
@@ -207,25 +230,53 @@ def solve(settings, t_start, t_end, path=None, label="orbital solution"):
         path = cache_directory() / f"{settings.ephemeris}-{settings.key()}.npz"
     path = Path(path)
     lo, hi = min(t_start, t_end, 0.0), max(t_start, t_end, 0.0)
-    with open(path.with_name(path.name + ".lock"), "w") as lock:
+    with _lock_file(path) as lock:
         waiting = False
         while True:
             try:
                 fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
                 break
             except BlockingIOError:          # another process is extending it: use its file once long enough
-                if path.exists() and (solution := OrbitalSolution.load(path, record)).covers(lo, hi):
+                if os.path.lexists(path) and (solution := OrbitalSolution.load(path, record)).covers(lo, hi):
                     solution.path = path
                     return solution
                 if not waiting:
                     print(f"waiting for another process computing {path}", file=sys.stderr)
                     waiting = True
                 time.sleep(POLL_S)
-        solution = OrbitalSolution.load(path, record) if path.exists() else None
+        remove_stale_leftovers(path)
+        solution = OrbitalSolution.load(path, record) if os.path.lexists(path) else None
         if solution is None or not solution.covers(lo, hi):
             solution = _extend(solution, settings, record, lo, hi, path, label)
     solution.path = path
     return solution
+
+
+def _lock_file(path):
+    """The lock beside ``path`` (``<name>.lock``), opened for writing if it is a regular file (or none yet): a
+    FIFO there never blocks, a missing folder is one line."""
+    try:
+        fd = os.open(path.with_name(path.name + ".lock"),
+                     os.O_WRONLY | os.O_CREAT | os.O_NONBLOCK | os.O_CLOEXEC, 0o600)
+    except OSError as exc:
+        raise InputError("orbit_file", str(path), f"a file in a folder you can write ({exc.strerror})") from None
+    if not stat.S_ISREG(os.fstat(fd).st_mode):
+        os.close(fd)
+        raise InputError("orbit_file", str(path), "a regular file beside a regular lock file (its .lock is not)")
+    return os.fdopen(fd, "w")
+
+
+def remove_stale_leftovers(path):
+    """Delete the ``.<name>.tmp-<pid>`` files a killed save left beside ``path`` (their process is gone);
+    return how many."""
+    pattern = re.compile(rf"\.{re.escape(path.name)}\.tmp-(\d+)")
+    removed = 0
+    for entry in os.scandir(path.parent):
+        match = pattern.fullmatch(entry.name)
+        if match and entry.is_file(follow_symlinks=False) and not process_alive(int(match.group(1))):
+            os.unlink(entry.path)
+            removed += 1
+    return removed
 
 
 def _extend(solution, settings, record, lo, hi, path, label):

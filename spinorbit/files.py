@@ -1,0 +1,43 @@
+"""Files spinorbit reads, opened only when they are regular files: a FIFO, a device or a socket (or a link to
+one) is refused without blocking, before anything is read from it."""
+import os
+import stat
+
+
+class NotRegular(OSError):
+    """A path that names something other than a regular file."""
+
+
+def open_regular(path, mode="rb"):
+    """``path`` opened for reading (binary ``rb`` or text ``r``), links followed, if it is a regular file;
+    NotRegular otherwise (an OSError, as a missing file is)."""
+    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)        # a FIFO opens without a writer
+    try:
+        info = os.fstat(fd)
+        if not stat.S_ISREG(info.st_mode):
+            raise NotRegular(0, f"not a regular file ({kind(info.st_mode)})", str(path))
+        os.set_blocking(fd, True)
+    except BaseException:
+        os.close(fd)
+        raise
+    return os.fdopen(fd, mode)
+
+
+def kind(mode):
+    """What a stat mode names, in words."""
+    for test, name in ((stat.S_ISDIR, "a directory"), (stat.S_ISFIFO, "a FIFO"), (stat.S_ISSOCK, "a socket"),
+                       (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device")):
+        if test(mode):
+            return name
+    return "not a file"
+
+
+def process_alive(pid):
+    """Whether a process of this id exists (another user's counts)."""
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
