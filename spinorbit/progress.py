@@ -1,12 +1,17 @@
-"""Progress of long runs on stderr: simulated time, rate and time left (tqdm).
+"""Progress of long runs on stderr: simulated time, rate and time left.
 
-A bar appears only after ``DELAY_S`` seconds and only when stderr is a
-terminal; ``spinorbit --quiet`` (or ``SPINORBIT_QUIET=1``) turns it off.
+On a terminal, a tqdm bar; elsewhere (a notebook's stderr, a log file, CI) one line at each tenth of the run
+or every ``LINE_EVERY_S`` seconds, whichever comes first.  Either appears only after ``DELAY_S`` seconds;
+``spinorbit --quiet`` (or ``SPINORBIT_QUIET=1``) turns both off.
 """
 import contextlib
 import os
+import sys
+import time
 
 DELAY_S = 2.0
+LINE_EVERY_S = 30.0           # a line at least this often when stderr is not a terminal
+LINE_EVERY_FRACTION = 0.1     # and at each tenth of the run
 
 
 def enabled():
@@ -15,9 +20,12 @@ def enabled():
 
 @contextlib.contextmanager
 def progress(description, start, end, unit="d"):
-    """A bar over [start, end] in ``unit``; yields ``advance_to(value)``.  No bar when description is None."""
+    """Progress over [start, end] in ``unit``; yields ``advance_to(value)``.  Nothing when description is None."""
     if description is None or not enabled():
         yield lambda value: None
+        return
+    if not _is_terminal(sys.stderr):
+        yield Lines(description, start, end, unit).advance_to
         return
     from tqdm import tqdm
 
@@ -29,3 +37,36 @@ def progress(description, start, end, unit="d"):
             bar.update(min(abs(value - start), total) - bar.n)
 
         yield advance_to
+
+
+def _is_terminal(stream):
+    try:
+        return stream.isatty()
+    except (AttributeError, ValueError):
+        return False
+
+
+class Lines:
+    """Line-wise progress for a stderr that is not a terminal: ``label: 30% (300/1000 d), 12 s, ~28 s left``."""
+
+    def __init__(self, description, start, end, unit, clock=time.monotonic, stream=None):
+        self.description, self.start, self.unit = description, start, unit
+        self.total = abs(end - start)
+        self.clock, self.stream = clock, stream
+        self.began = self.last_time = clock()
+        self.last_fraction = 0.0
+
+    def advance_to(self, value):
+        now = self.clock()
+        fraction = min(abs(value - self.start) / self.total, 1.0) if self.total > 0 else 1.0
+        if now - self.began < DELAY_S:             # the first line at the first tenth after the delay
+            self.last_fraction = fraction
+            return
+        tenth = int(fraction / LINE_EVERY_FRACTION + 1e-9)
+        if tenth <= int(self.last_fraction / LINE_EVERY_FRACTION + 1e-9) and now - self.last_time < LINE_EVERY_S:
+            return
+        self.last_fraction, self.last_time = fraction, now
+        elapsed = now - self.began
+        left = f", ~{elapsed * (1 - fraction) / fraction:.0f} s left" if 0 < fraction < 1 else ""
+        print(f"{self.description}: {100 * fraction:.0f}% ({fraction * self.total:.6g}/{self.total:.6g} "
+              f"{self.unit}), {elapsed:.0f} s{left}", file=self.stream or sys.stderr, flush=True)
