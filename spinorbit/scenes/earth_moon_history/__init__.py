@@ -41,9 +41,10 @@ LLR = "Williams & Boggs 2016 (LLR): 3.830 +- 0.008 cm/yr; the fit is exact (da/d
 EXACT = "a Runge-Kutta method keeps a linear invariant to rounding (issue 33's target: 1e-9)"
 PERIODS = ("Laskar et al. 2004 (La2004): p = 50.475838\"/yr, s3 = -18.85\"/yr, g5 = 4.257\"/yr give "
            "41.0 and 23.7 kyr; 0.05 kyr is their rounding")
-NOT_JUDGED = ("the Moon's age and the geological proxies are reported, not judged: the one-parameter tides are "
-              "the classical models that reach the Earth ~1.5 Ga, not at the Moon's age (4.425 +- 0.025 Ga, "
-              "Maurice et al. 2020); the resonant ocean tide (Farhat et al. 2022) is not in this model yet")
+NOT_JUDGED = ("the Moon's age and the geological proxies are reported, not judged: the one-parameter "
+              "tides are the classical models that reach the Earth ~1.5 Ga, not at the Moon's age "
+              "(4.425 +- 0.025 Ga, Maurice et al. 2020); the resonant ocean tide (Farhat et al. 2022) is not "
+              "in this model yet")
 
 
 def verdict(scenario, comparison):

@@ -21,7 +21,9 @@ def quantities(history):
     today = (el["rotation"][0], el["obliquity"][0], factor[0])
     precession = milankovitch.precession_constant(el["rotation"], el["obliquity"], factor, today)
     momentum = el["angular_momentum_z"]
-    return {"t_gyr": history.t / GYR_D, "semi_major_axis": el["semi_major_axis"],
+    laplace = laplace_radius(el["rotation"], c)
+    return {"laplace_radius_ratio": el["semi_major_axis"] / laplace,
+            "t_gyr": history.t / GYR_D, "semi_major_axis": el["semi_major_axis"],
             "eccentricity": el["eccentricity"], "length_of_day": calibration.solar_day_h(el["rotation"], c),
             "obliquity": np.degrees(el["obliquity"]), "lunar_inclination": np.degrees(el["inclination"]),
             "precession_constant": precession, **milankovitch.periods_kyr(precession),
@@ -40,8 +42,13 @@ def metrics(history, q):
            "angular_momentum_relative_error_max": float(np.abs(q["angular_momentum_error"]).max()),
            "obliquity_period_today_kyr": float(q["obliquity_period"][0]),
            "precession_period_today_kyr": float(q["precession_period"][0]),
-           "moon_age_gyr": None if history.stop_t is None else -history.stop_t / GYR_D}
+           "moon_age_gyr": None if history.stop_t is None else -history.stop_t / GYR_D,
+           "laplace_radius_reached_gyr": _first_age(q, q["laplace_radius_ratio"] < 1.0)}
+    if out["laplace_radius_reached_gyr"] is None and history.stop_t is not None:
+        out["laplace_radius_reached_gyr"] = float(-q["t_gyr"][-1])      # crossed after the last output
     not_measured = {}
+    if out["laplace_radius_reached_gyr"] is None:
+        not_measured["comparison.laplace_radius_reached_gyr"] = "the Moon stays beyond the Laplace radius"
     if history.stop_t is None:
         not_measured["comparison.moon_age_gyr"] = ("the history reaches the span's end without the Moon "
                                                    "at the Roche limit")
@@ -66,3 +73,22 @@ def proxy_series(q, quantity):
     if quantity == "distance_ratio":
         return q["semi_major_axis"] / q["semi_major_axis"][0]
     return q[quantity]
+
+
+def laplace_radius(rotation, c):
+    """The Laplace radius r_L (km; Tremaine, Touma & Namouni 2009, AJ 137, 3706: r_L^5 = J2 R^2 a_sun^3
+    (1 - e_sun^2)^(3/2) M_earth/M_sun), inside which the Moon's orbit precesses about the Earth's equator
+    rather than the ecliptic: where this model's averaging over the node about the ecliptic stops holding.
+    J2 follows the rotation hydrostatically (~ Omega^2) from today's."""
+    from ...bodies import earth
+    from ...models.tidal_history import equations
+
+    j2 = earth.J2 * (np.asarray(rotation) / earth.ERA_RATE_RAD_D) ** 2
+    return (j2 * c[equations.RADIUS] ** 2 * c[equations.SUN_A] ** 3 * (1 - c[equations.SUN_E2]) ** 1.5
+            * c[equations.GM_EARTH] / c[equations.GM_SUN]) ** 0.2
+
+
+def _first_age(q, mask):
+    """The first age (Gyr before present) where ``mask`` holds, None if it never does."""
+    where = np.flatnonzero(mask)
+    return None if where.size == 0 else float(-q["t_gyr"][where[0]])

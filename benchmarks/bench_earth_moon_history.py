@@ -1,0 +1,72 @@
+"""The Earth-Moon tidal history (issue 33): what each tidal model gives over the Moon's age, and the cost.
+
+    python benchmarks/bench_earth_moon_history.py numbers   # per model: today's rates, the Moon's age, the
+                                                            # angular momentum, every proxy's residual
+    python benchmarks/bench_earth_moon_history.py cost      # the scene end to end: first (empty numba and
+                                                            # kernel caches) and warm, both models
+
+Each prints Markdown for benchmarks/results_earth_moon_history.md.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+SCENE = ROOT / "scenarios" / "earth_moon_history.toml"
+
+
+def numbers():
+    from spinorbit import run_scenario
+    from spinorbit.references.lunar_proxies import PROXIES
+
+    print("| tidal model | fitted parameter | recession today cm/yr | LOD rate today ms/cy | de/dt today /Gyr "
+          "| Moon's age (Roche limit) Gyr | max abs(dL/L) over the history | integration error (a, rel) |\n"
+          "|---|---|---|---|---|---|---|---|")
+    residuals = {}
+    for model in ("constant_time_lag", "constant_q"):
+        summary = run_scenario(str(SCENE), [f'tides.model="{model}"', "compare.models=false"]).summary
+        c, m, run = summary["comparison"], summary["model"], summary["run"]
+        fitted = (f"k2 dt = {m['k2_time_lag_s']:.1f} s (dt = {m['time_lag_s_for_k2_0.30']:.0f} s at k2 = 0.30)"
+                  if "k2_time_lag_s" in m else f"k2/Q = {m['k2_over_q']:.5f} (Q = {m['q_for_k2_0.30']:.1f} at "
+                                                   "k2 = 0.30)")
+        print(f"| {model} | {fitted} | {c['recession_rate_today_cm_per_yr']:.4f} | "
+              f"{c['length_of_day_rate_today_ms_per_cy']:.3f} | {c['eccentricity_rate_today_per_gyr']:.4f} | "
+              f"{c['moon_age_gyr']:.4f} | {c['angular_momentum_relative_error_max']:.2g} | "
+              f"{run['integration_error_moon_semi_major_axis_rel']:.2g} |")
+        residuals[model] = c
+    print("\n| proxy | age Gyr | value | " + " | ".join(f"{m} residual (sigma)" for m in residuals)
+          + " |\n|---|---|---|" + "---|" * len(residuals))
+    for p in PROXIES:
+        cells = []
+        for c in residuals.values():
+            value, sigma = c.get(f"{p.name}_residual"), c.get(f"{p.name}_residual_sigma")
+            cells.append("history stopped before" if value is None else
+                         f"{value:+.4g} ({'no sigma' if sigma is None else f'{sigma:+.1f}'})")
+        print(f"| {p.name} | {p.age_gyr} | {p.value:g} | " + " | ".join(cells) + " |")
+
+
+def cost():
+    with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out:
+        env = {**os.environ, "NUMBA_CACHE_DIR": str(Path(cache) / "numba"),
+               "SPINORBIT_CACHE_DIR": str(Path(cache) / "spinorbit"), "SPINORBIT_QUIET": "1"}
+        print("| run | wall s (whole command) | the main history's integration s |\n|---|---|---|")
+        for label in ("first (empty caches)", "warm"):
+            started = time.perf_counter()
+            subprocess.run([sys.executable, "-m", "spinorbit.cli", "run", str(SCENE), "--out",
+                            str(Path(out) / "run"), "--force"], check=True, env=env, cwd=ROOT,
+                           stdout=subprocess.DEVNULL)
+            wall = time.perf_counter() - started
+            summary = json.loads((Path(out) / "run" / "summary.json").read_text())
+            print(f"| {label} | {wall:.1f} | {summary['run']['wall_s']:.3f} |")
+
+
+if __name__ == "__main__":
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("what", choices=("numbers", "cost"))
+    {"numbers": numbers, "cost": cost}[parser.parse_args().what]()
