@@ -193,3 +193,17 @@ def test_sweep_draws_the_band_over_its_members(tmp_path):
     assert records[0]["moon_age_gyr"] > records[1]["moon_age_gyr"]
     assert (out / "band_distance_length_of_day.png").stat().st_size > 0
     assert (out / "band_milankovitch_periods.png").stat().st_size > 0
+
+
+def test_an_unphysical_state_stops_the_equations_with_its_reason():
+    """Outside the equations' domain the rates are zero and ``stop`` names the edge crossed."""
+    c = constants()
+    y = equations.state(c, A, 0.05, SPIN, 0.4, 0.09)
+    assert equations.stop(y, c) == ""
+    cases = {0: (2.0 * R, "Roche"), 1: (1.2, "eccentricity"), 2: (-1.0, "rotation"),
+             3: (2.0 * y[3] / math.cos(0.4), "obliquity")}
+    for index, (value, word) in cases.items():
+        bad = y.copy()
+        bad[index] = value
+        assert word in equations.stop(bad, c)
+        assert not np.any(equations.rhs(0.0, bad, (c, response.responses("constant_q", 0.02))))
