@@ -122,6 +122,11 @@ def print_vlbi(summary):
         print(f"| {label} | {r['n']} | {r['model_minus_observed_x_rms_mas']:.3f} / "
               f"{r['model_minus_observed_y_rms_mas']:.3f} | {r['iau_minus_observed_x_rms_mas']:.3f} / "
               f"{r['iau_minus_observed_y_rms_mas']:.3f} |")
+    print("\n| decade | n | model - VLBI X / Y rms | IAU 2000A - VLBI X / Y rms |\n|---|---|---|---|")
+    for decade, r in vlbi["per_decade"].items():
+        print(f"| {decade} | {r['n']} | {r['model_minus_observed_x_rms_mas']:.3f} / "
+              f"{r['model_minus_observed_y_rms_mas']:.3f} | {r['iau_minus_observed_x_rms_mas']:.3f} / "
+              f"{r['iau_minus_observed_y_rms_mas']:.3f} |")
     size = vlbi["fcn_size_mas"]
     print(f"FCN (Lambert) over 1984-2013: X / Y rms {size['x_rms']:.3f} / {size['y_rms']:.3f} mas, at most "
           f"{size['max']:.3f} mas")

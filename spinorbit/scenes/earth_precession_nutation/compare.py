@@ -49,6 +49,17 @@ def precession_nutation(t, z, iau):
     return comparison, not_measured, nutation
 
 
+def tidal_tilt(t, z, on):
+    """The axes ``z`` (n, 3, GCRS) turned away from the ecliptic pole, from the first time on, at the rate of
+    the tides' own torque on the Earth's bulge, earth.TIDAL_OBLIQUITY_RATE_ARCSEC_CY (Williams 1994, AJ 108,
+    711; P03 Table 3, tides (c)), which a rigid Earth on DE421 lacks (``on``: else z as it is)."""
+    if not on:
+        return z
+    dpsi, deps = erfa_pole.about_mean_pole(t, z)
+    rate = earth.TIDAL_OBLIQUITY_RATE_ARCSEC_CY * ARCSEC / JULIAN_CENTURY_D
+    return erfa_pole.from_mean_pole(t, dpsi, deps + rate * (t - t[0]))
+
+
 def torque_rates(t, poles, positions, gm, h_d=earth.H_D):
     """(dpsi/dt, deps/dt), "/cy, of the Fukushima-Williams angles of the axes ``poles`` (n, 3, GCRS) under the
     point masses' torque alone, H_d (T z) x z / omega (the axes held where they are: the first-order rate);
@@ -90,3 +101,20 @@ def full_checks(z_full, z_gyroscopic, t_dense, omega_dense, moments):
 
 def rms(x):
     return float(np.sqrt(np.mean(np.square(x))))
+
+
+def full_model_checks(scenario, system, pole, t, z_full):
+    """The full model against its gyroscopic twin on the same orbits and start, and the free nutation it
+    started (a dense run over ``comparison.free_nutation_span``)."""
+    from ...simulate import simulate
+    from .start import earth_system, orbits, started
+
+    t0 = scenario.t_start
+    twin = started(earth_system(scenario, orbits(scenario), "gyroscopic", t0), t0, pole)
+    run, _ = simulate(twin, t, "rk8", {"step": scenario["comparison.gyroscopic_step"]}, estimate_error=False,
+                      label="gyroscopic twin")
+    t_dense = t0 + np.arange(0.0, min(scenario["comparison.free_nutation_span"], t[-1] - t0), 0.125)
+    dense, _ = simulate(system, t_dense, scenario["integrator.method"], scenario.integrator_options(),
+                        estimate_error=False, label="free nutation")
+    return full_checks(z_full, twin.figure_axes("earth", t, run.y), t_dense, dense.omega,
+                       system.bodies["earth"].figure.moments)

@@ -25,7 +25,9 @@ TABLE_TERMS = {"18.6 yr": (0, 0, 0, 0, 1), "9.3 yr": (0, 0, 0, 0, 2), "1 yr": (0
 
 def settings(scenario):
     """The non-rigid layer's settings from an Earth scene: transfer function, run's H_d, geodesic nutation."""
-    return {"model": scenario["earth.transfer_function"], "h_d": scenario["earth.dynamical_ellipticity"],
+    from .ellipticity import dynamical_ellipticity
+
+    return {"model": scenario["earth.transfer_function"], "h_d": dynamical_ellipticity(scenario)[0],
             "geodesic": scenario["earth.geodesic_nutation"] and scenario["earth.geodesic_precession"]}
 
 
