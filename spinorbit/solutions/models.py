@@ -32,7 +32,7 @@ class Kind:
 
 
 KINDS = {"moon_libration": Kind("moon_libration", Grid(0.0, 4.0, 13), J2000_ISO),
-         "earth_precession_nutation": Kind("earth_precession_nutation", Grid(0.0, 8.0, 12), None),
+         "earth_precession_nutation": Kind("earth_precession_nutation", Grid(0.0, 8.0, 14), None),
          "earth_moon_coupled": Kind("earth_moon_coupled", Grid(0.0, 4.0, 13), J2000_ISO)}
 
 

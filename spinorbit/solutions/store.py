@@ -140,11 +140,10 @@ def read(path, rec):
         return None
 
 
-def solve(scenario, t_start, t_end, extend):
-    """The stored solution of ``scenario``'s model covering [t_start, t_end] TDB days; where the store lacks
-    part of it, ``extend(solution or None, t_start, t_end)`` computes the stretches (solutions.solve); one
-    process at a time extends a file (a lock), the others wait and read what it wrote."""
-    rec = record(scenario)
+def solve(rec, t_start, t_end, extend):
+    """The stored solution keyed by ``rec`` (``record``) covering [t_start, t_end] TDB days; where the store
+    lacks part of it, ``extend(solution or None, t_start, t_end)`` computes the stretches (solutions.solve);
+    one process at a time extends a file (a lock), the others wait and read what it wrote."""
     path = path_of(rec)
     solution = read(path, rec)
     if solution is not None and solution.covers(t_start, t_end):

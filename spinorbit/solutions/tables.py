@@ -1,0 +1,44 @@
+"""A scene's output table at any dates, evaluated from its stored Solution with the scene's own comparison code
+(scenes.<kind>.compare): the columns a run would have given at those dates, without the run."""
+import numpy as np
+
+
+def moon(solution, t, source):
+    """The Moon scene's table (moon_libration.compare.table) at TDB days ``t``: the JPL angles, their
+    differences from DE421 where its series has data, the physical librations and the sub-Earth point."""
+    from ..analysis.librations import icrf_to_body
+    from ..references import eckhardt
+    from ..scenes.moon_libration import compare as vs
+
+    states = solution.states(t)
+    mats = icrf_to_body(states.quaternion)
+    de421, covered, _, _ = vs.against_de421(t, mats)
+    lib = eckhardt.physical_librations(t, mats, earth_from_moon(source, t))
+    return vs.table(states, mats, de421, covered, lib)
+
+
+def earth_moon(solution, t):
+    """The coupled scene's table (earth_moon_coupled.compare.table) at TDB days ``t``."""
+    from ..scenes.earth_moon_coupled import compare as vs
+
+    r, q = solution.part("moon.r", t), solution.part("moon.q", t)
+    direction, distance = vs.orbit_errors(t, r)
+    mats, _, pole, longitude, _ = vs.lunar_errors(t, q)
+    axis = solution.part("earth.pole", t)
+    errors = {"direction": direction, "range": distance, "pole": pole, "longitude": longitude,
+              "earth_axis": vs.earth_axis_error(t, axis)}
+    return vs.table(t, r, mats, errors, axis)
+
+
+def earth_from_moon(source, t):
+    """The Earth seen from the Moon (n, 3) km, ICRF, at TDB days ``t`` from orbit source ``source``: read from
+    the ephemeris at the dates where it is a JPL kernel, else sampled (orbits.sources)."""
+    from ..errors import InputError
+    from ..orbits import kernel
+    from ..orbits.sources import sample_orbits
+
+    try:
+        return kernel.open_ephemeris(source, t.min(), t.max()).relative_states("earth", "moon", t)[0]
+    except InputError:
+        orbits = sample_orbits(source, "moon", ("earth",), t.min() - 1.0, t.max() + 1.0)
+        return np.asarray(orbits.positions(t))[:, 0]
