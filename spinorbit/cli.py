@@ -67,6 +67,11 @@ def main(argv=None):
     cache = sub.add_parser("cache", help="spinorbit's caches (compiled kernels, heyoka's, orbital solutions): "
                                         "where and how big; 'clear' empties them")
     cache.add_argument("action", nargs="?", choices=["show", "clear"], default="show")
+    export = sub.add_parser("export", help="a scene's solution over its span as SPICE kernels (binary PCK + frame "
+                                           "kernel of each attitude, SPK of the integrated positions)")
+    export.add_argument("scenario", help="a scenario .toml file, or a built-in scene's name")
+    export.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE")
+    export.add_argument("--out", required=True, help="directory the kernels are written into")
     args, extra = parser.parse_known_args(argv)
     if extra:
         parser.error(f"unrecognized arguments: {' '.join(extra)}{_quote_hint(argv, extra)}")
@@ -84,6 +89,8 @@ def main(argv=None):
             return _cache(args.action)
         if args.command == "show":
             return _show(args.scenario)
+        if args.command == "export":
+            return _export(args)
         return _list(args.folder)
     except IntegrationError as exc:
         print(f"error: {exc}", file=sys.stderr)
@@ -237,6 +244,24 @@ def _cache(action):
     for line in _solution_lines(store.entries()):
         print(line)
     print(f"({cache.ENVIRONMENT} moves them; `spinorbit cache clear` empties them)")
+    return 0
+
+
+def _export(args):
+    """Solve the scenario's model over its span (from the solution store) and write its SPICE kernels."""
+    import time
+
+    from .scenarios import load_scenario
+    from .solutions import for_scenario
+
+    solution = for_scenario(load_scenario(args.scenario, args.overrides))
+    started = time.perf_counter()
+    written = solution.export(args.out)
+    wall = time.perf_counter() - started
+    for path in written["files"]:
+        print(f"wrote {path} ({os.path.getsize(path) / 1e6:.3g} MB)")
+    fit = ", ".join(f"{k} {v:.2g}" for k, v in {**solution.fit_error, **written["fit_error"]}.items())
+    print(f"{solution!r}\nwritten in {wall:.2f} s; fit errors: {fit}")
     return 0
 
 

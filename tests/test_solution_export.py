@@ -68,7 +68,6 @@ def test_the_moon_read_back_by_skyfield_matches_the_solution(moon_kernels):
     assert rotation_angle(read, expected).max() < 1 * uas + rounding
 
 
-@pytest.mark.slow
 def test_the_integrated_moons_position_read_back_by_spiceypy_matches_the_solution(place):
     solution = solutions.solve("earth_moon_coupled", [], 0.0, 40.0)
     written = solution.export(place / "out")
@@ -80,3 +79,13 @@ def test_the_integrated_moons_position_read_back_by_spiceypy_matches_the_solutio
         assert np.linalg.norm(read - solution.part("moon.r", t), axis=1).max() < 1e-6      # km: 1 mm
     finally:
         spiceypy.kclear()
+
+
+def test_spinorbit_export_writes_the_scenes_kernels(place, capsys):
+    from spinorbit import cli
+
+    out = place / "kernels"
+    assert cli.main(["export", "moon_libration", "--set", "span.start=2000-01-01T12:00:00",
+                     "--set", "span.end=2000-01-21T12:00:00", "--out", str(out)]) == 0
+    assert sorted(p.name for p in out.iterdir()) == ["moon_libration_moon.bpc", "moon_libration_moon.tf"]
+    assert "fit errors" in capsys.readouterr().out

@@ -2,7 +2,8 @@
 
 Where: ``<the kernel cache's private directory>/solutions`` (spinorbit.linker.cache: 0700, refused when
 another user could change it).  A solution is keyed by what decides its numbers: the scene, every key of the
-scenario but its span and its comparisons, and the code's version (spinorbit's version and a sha256 of the
+scenario but its comparisons, outputs and span (kept for a scene whose start is fitted over its span: the
+Earth's), the integrator's options, and the code's version (spinorbit's version and a sha256 of the
 package's source: a changed integration never reuses an old file).  Each file is an npz read with
 ``allow_pickle=False`` (nothing in it can run code) holding the series, the layout, the provenance, the states
 where the integration stopped, the record it was keyed by and a sha256 over every array; one that is not
@@ -30,8 +31,8 @@ from ..linker import cache
 from .chebyshev import Segments
 from .solution import Solution
 
-LAYER_KEYS = ("span.", "scene.", "compare.", "comparison.", "report.", "earth.nonrigid", "earth.transfer_function",
-              "integrator.estimate_error")
+LAYER_KEYS = ("span.", "model.start", "scene.", "compare.", "comparison.", "report.", "output.", "limits.",
+              "earth.nonrigid", "earth.transfer_function", "integrator.estimate_error")
 
 
 PLACE = {"directory": None}          # another directory (tests); None: the private cache's
@@ -58,9 +59,15 @@ def code_version():
 
 
 def record(scenario):
-    """What decides a solution's numbers: the scene kind, its model keys, the code's version."""
+    """What decides a solution's numbers: the scene kind, its model keys, the code's version (and the span, for a
+    scene whose start depends on it: the Earth's is fitted over its span's outputs)."""
+    from .models import KINDS
+
+    anchored = scenario.kind in KINDS and KINDS[scenario.kind].anchor is not None
+    ignored = LAYER_KEYS if anchored else tuple(k for k in LAYER_KEYS if k not in ("span.", "model.start"))
     keys = {k: v.tolist() if hasattr(v, "tolist") else v for k, v in sorted(scenario.values.items())
-            if not k.startswith(LAYER_KEYS)}
+            if not k.startswith(ignored)}
+    keys["integrator"] = scenario.integrator_options()
     return {"scene": scenario.kind, "keys": json.loads(json.dumps(keys, default=str)), "code": code_version()}
 
 

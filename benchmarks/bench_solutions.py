@@ -1,0 +1,234 @@
+"""Answers from stored solutions (spinorbit.solutions) against runs, side by side in one run.
+
+    python benchmarks/bench_solutions.py [latency|agreement|extension|export|readme|all] [--before REV]
+
+* latency: a process asks for dates spread over 2021-2041 (the store then holds the span); a new process asks
+  ``earth_pole`` and ``moon_librations`` for 10^4 other dates there: the call's wall time (its first and a
+  second call; ``import spinorbit`` aside), this code beside the code at REV (default: the commit before the
+  solutions, which ran a scene per call), each with its own warm caches;
+* agreement: the API's values against direct scene runs over the same span (the Moon 2000-2020 started at
+  J2000, the non-rigid Earth 1950-2050): the largest difference, uas;
+* extension: a stored Moon 2000-2050 extended to 2100, beside integrating 2050-2100 (simulate() of the same
+  System to the scene's 2-d outputs, with its error estimate) and a scene run of 2050-2100;
+* export: the Moon 1900-2050 as a binary PCK (``spinorbit export moon_libration``): size, write time; read
+  back by spiceypy and skyfield at 1000 dates against the solution (uas) and against DE421 (arcsec);
+* readme: the README's API example (ten dates of 2027, ``moon_librations`` and ``earth_pole``) from empty
+  caches (a fresh SPINORBIT_CACHE_DIR and NUMBA_CACHE_DIR), this code beside REV's.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+BEFORE = "a324417"          # main before issue 31: each API call ran its scene
+SPAN_2021_2041 = (7670.5, 14975.5)      # TDB days from J2000
+
+
+def python(code, tree, env=None):
+    """Run ``code`` in a new interpreter with spinorbit from ``tree``; its last stdout line as JSON."""
+    environment = {**os.environ, "PYTHONPATH": str(tree), "SPINORBIT_QUIET": "1", **(env or {})}
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=environment,
+                          cwd=tempfile.gettempdir())
+    if done.returncode:
+        raise RuntimeError(done.stderr[-3000:])
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+def checkout(rev):
+    """The package at ``rev`` in a temporary folder (git archive)."""
+    folder = Path(tempfile.mkdtemp(prefix=f"spinorbit-{rev}-"))
+    archive = subprocess.run(["git", "-C", str(ROOT), "archive", rev, "spinorbit", "scenarios"],
+                             capture_output=True, check=True).stdout
+    subprocess.run(["tar", "-x", "-C", str(folder)], input=archive, check=True)
+    return folder
+
+
+DATES = """
+import numpy as np
+from astropy.time import Time
+def dates(n, seed):
+    days = np.sort(np.random.default_rng(seed).uniform({lo}, {hi}, n))
+    return Time(2451545.0, days, format="jd", scale="tdb")
+""".format(lo=SPAN_2021_2041[0], hi=SPAN_2021_2041[1])
+
+LATENCY = DATES + """
+import json, time
+import spinorbit
+out = {}
+for name in ("moon_librations", "earth_pole"):
+    call, t = getattr(spinorbit, name), dates(10_000, 2)
+    started = time.perf_counter(); call(t); first = time.perf_counter() - started
+    started = time.perf_counter(); call(dates(10_000, 3)); second = time.perf_counter() - started
+    out[name] = [first, second]
+print(json.dumps(out))
+"""
+
+PREPARE = DATES + """
+import json, spinorbit
+spinorbit.moon_librations(dates(100, 1)); spinorbit.earth_pole(dates(100, 1))
+print(json.dumps({}))
+"""
+
+
+def latency(before):
+    rows = {}
+    for label, tree in (("solutions (this code)", ROOT), (f"a scene per call ({before})", checkout(before))):
+        python(PREPARE, tree)
+        rows[label] = python(LATENCY, tree)
+    print("\n## latency: 10^4 dates in 2021-2041, a new process (first call / second call, s)\n")
+    print("| code | moon_librations | earth_pole |\n|---|---|---|")
+    for label, row in rows.items():
+        print(f"| {label} | {row['moon_librations'][0]:.3f} / {row['moon_librations'][1]:.3f} | "
+              f"{row['earth_pole'][0]:.3f} / {row['earth_pole'][1]:.3f} |")
+    new, old = rows.values()
+    for name in ("moon_librations", "earth_pole"):
+        print(f"\n{name}: {old[name][0] / new[name][0]:.0f}x faster (first call)", end="")
+    print()
+
+
+def agreement():
+    import spinorbit
+    from spinorbit.constants import ARCSEC
+    from spinorbit.results import run_scenario
+    from spinorbit.rotations import matrix_from_euler313
+
+    moon = run_scenario("moon_libration", ["span.start=2000-01-01T12:00:00", "span.end=2020-01-01T12:00:00",
+                                           "model.start=2000-01-01T12:00:00", "output.plots=false"])
+    answer = spinorbit.moon_librations(moon.table["time"])
+    mats = [matrix_from_euler313(*(table[c].to_value("rad") for c in ("phi", "theta", "psi")))
+            for table in (moon.table, answer)]
+    moon_uas = np.linalg.norm(mats[0] - mats[1], axis=(1, 2)).max() / np.sqrt(2) / ARCSEC * 1e6
+    earth = run_scenario("earth_precession_nutation_nonrigid", ["output.plots=false"])
+    pole = spinorbit.earth_pole(earth.table["time"])
+    earth_uas = max(np.abs((pole[c] - earth.table[c]).to_value("arcsec")).max() for c in ("cip_x", "cip_y")) * 1e6
+    print("\n## agreement with direct scene runs (largest difference, uas)\n")
+    print("| answer | scene run | difference |\n|---|---|---|")
+    print(f"| moon_librations, {len(moon.table)} dates | moon_libration 2000-2020 from J2000 | {moon_uas:.3g} |")
+    print(f"| earth_pole, {len(earth.table)} dates | earth_precession_nutation_nonrigid 1950-2050 | "
+          f"{earth_uas:.3g} |")
+    print(f"\nfit errors stated: Moon {answer.meta['fit_error']}, Earth layer {pole.meta['fit_error']}")
+
+
+def extension():
+    from spinorbit import solutions
+    from spinorbit.results import run_scenario
+    from spinorbit.simulate import simulate
+    from spinorbit.solutions import models, store
+
+    store.PLACE["directory"] = Path(tempfile.mkdtemp(prefix="solutions-"))
+    year = 365.25
+    solutions.solve("moon_libration", [], 0.0, 50 * year)
+    started = time.perf_counter()
+    extended = solutions.solve("moon_libration", [], 0.0, 100 * year)
+    extend_s = time.perf_counter() - started
+    scenario = solutions.scenario_of("moon_libration", [])
+    stretch = models.stretch(scenario, 50 * year, 100 * year, 50 * year)     # DE421's Moon at 2050, out to 2100
+    system = models.system(stretch, None)
+    t_out = stretch.output_times()
+    simulate(system, t_out[:10], "rk8", stretch.integrator_options(), estimate_error=False)   # compiled
+    started = time.perf_counter()
+    simulate(system, t_out, "rk8", stretch.integrator_options(), estimate_error=True)
+    integrate_s = time.perf_counter() - started
+    started = time.perf_counter()
+    run_scenario("moon_libration", [f"span.start={models.iso(50 * year)[0]}", f"span.end={models.iso(100 * year)[0]}",
+                                    "output.plots=false"])
+    scene_s = time.perf_counter() - started
+    print("\n## extending a stored Moon by 50 yr (2050-2100), s\n")
+    print("| extension of the stored solution | simulate() of those 50 yr (2-d outputs, error estimate) "
+          "| scene run of 2050-2100 |\n|---|---|---|")
+    print(f"| {extend_s:.2f} | {integrate_s:.2f} | {scene_s:.2f} |")
+    print(f"\nruns: {json.dumps(extended.provenance['runs'])}")
+
+
+def export():
+    import spiceypy
+    from skyfield.api import load
+    from skyfield.functions import mxm, rot_x, rot_z
+    from skyfield.planetarylib import PlanetaryConstants
+
+    from spinorbit.analysis.librations import icrf_to_body, pole_and_longitude_difference
+    from spinorbit.constants import ARCSEC, DAY_S
+    from spinorbit.references.moon_de421 import Orientation
+    from spinorbit.scenarios import load_scenario
+    from spinorbit.solutions import for_scenario
+
+    started = time.perf_counter()
+    solution = for_scenario(load_scenario("moon_libration", []))
+    solve_s = time.perf_counter() - started
+    out = Path(tempfile.mkdtemp(prefix="export-"))
+    started = time.perf_counter()
+    written = solution.export(out)
+    write_s = time.perf_counter() - started
+    pck, frame = (next(f for f in written["files"] if f.endswith(suffix)) for suffix in (".bpc", ".tf"))
+    t = np.random.default_rng(8).uniform(-36520.0, 18262.0, 1000)               # 1900-2050
+    truth = icrf_to_body(solution.part("moon.q", t))
+    for path in written["files"]:
+        spiceypy.furnsh(path)
+    by_spice = np.array([spiceypy.pxform("J2000", "MOON_PA_SPINORBIT", ti * DAY_S) for ti in t])
+    constants = PlanetaryConstants()
+    constants.read_text(load.open(frame))
+    constants.read_binary(load.open(pck))
+    segment = constants.build_frame_named("MOON_PA_SPINORBIT")._segment
+    by_skyfield = np.array([mxm(rot_z(-w), mxm(rot_x(-d), rot_z(-r)))
+                            for r, d, w in (segment.compute(2451545.0, ti, False) for ti in t)])
+    de421 = Orientation()(t)["icrf_to_body"]
+
+    def uas(a):
+        return np.linalg.norm(a - truth, axis=(1, 2)).max() / np.sqrt(2) / ARCSEC * 1e6
+
+    pole, longitude = (np.abs(x).max() / ARCSEC for x in pole_and_longitude_difference(by_spice, de421))
+    print("\n## the Moon 1900-2050 exported (binary PCK type 2 + frame kernel)\n")
+    print(f"solve {solve_s:.1f} s (from the store, or integrated when it lacks the span); write {write_s:.2f} s; "
+          f"{Path(pck).stat().st_size / 1e6:.3g} MB; angles refit {written['fit_error']['moon_angles_arcsec']:.2g}\"")
+    print("\n| read back by | vs the solution, uas | vs DE421: pole, longitude (tolerance 0.1\", 0.01\") |")
+    print("|---|---|---|")
+    print(f"| spiceypy pxform | {uas(by_spice):.3g} | {pole:.4f}\", {longitude:.4f}\" |")
+    print(f"| skyfield (two-part TDB) | {uas(by_skyfield):.3g} | |")
+    spiceypy.kclear()
+
+
+README_EXAMPLE = """
+import json, time
+started = time.perf_counter()
+import spinorbit
+from astropy.time import Time
+t = Time([f"2027-{month:02d}-15" for month in range(1, 11)])
+moon, pole = spinorbit.moon_librations(t), spinorbit.earth_pole(t)
+print(json.dumps({"wall_s": time.perf_counter() - started}))
+"""
+
+
+def readme(before):
+    rows = {}
+    for label, tree in (("solutions (this code)", ROOT), (f"a scene per call ({before})", checkout(before))):
+        empty = tempfile.mkdtemp(prefix="empty-cache-")
+        rows[label] = python(README_EXAMPLE, tree, {"SPINORBIT_CACHE_DIR": f"{empty}/spinorbit",
+                                                     "NUMBA_CACHE_DIR": f"{empty}/numba"})["wall_s"]
+    print("\n## the README's API example from empty caches (s, import included)\n")
+    print("| code | wall |\n|---|---|")
+    for label, wall in rows.items():
+        print(f"| {label} | {wall:.1f} |")
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("part", nargs="?", default="all",
+                        choices=["latency", "agreement", "extension", "export", "readme", "all"])
+    parser.add_argument("--before", default=BEFORE)
+    args = parser.parse_args()
+    parts = ["latency", "agreement", "extension", "export", "readme"] if args.part == "all" else [args.part]
+    for part in parts:
+        function = globals()[part]
+        function(args.before) if part in ("latency", "readme") else function()
+        sys.stdout.flush()
+
+
+if __name__ == "__main__":
+    main()
