@@ -82,13 +82,14 @@ def run(scenario, model, part=None):
     elif reached == t.size:
         return History(t, y, c, system.params[1], point, solution=solution)
     t, y = t[:reached], y[:reached]
-    stop_t, reason = _stop(system, t[-1], y[-1], 2 * t[-1] - t[-2], c)
+    settings = (scenario["integrator.method"], scenario.integrator_options())
+    stop_t, reason = _stop(system, t[-1], y[-1], 2 * t[-1] - t[-2], c, settings)
     return History(t, y, c, system.params[1], point, reason, stop_t, solution)
 
 
-def _stop(system, t_last, y_last, t_next, c, levels=2):
+def _stop(system, t_last, y_last, t_next, c, settings, levels=2):
     """(the time and the reason) the history stops between t_last and t_next, found to an output step over
-    STOP_REFINEMENT**levels.
+    STOP_REFINEMENT**levels with the scenario's integrator ``settings`` (method, options).
 
     The equations are zero outside their domain; an adaptive step cannot cross that edge where the rates run
     away (the Moon at the Roche limit, ~a^-6.5), so there the run ends: the time is the last state reached,
@@ -99,19 +100,19 @@ def _stop(system, t_last, y_last, t_next, c, levels=2):
     fine = np.linspace(t_last, t_next, STOP_REFINEMENT + 1)
     start = replace(system, t0=float(t_last), y0=np.asarray(y_last, dtype=float))
     try:
-        solution, _ = simulate(start, fine[1:], "dop853", {"rtol": 1e-10, "atol": 1e-12}, False)
+        solution, _ = simulate(start, fine[1:], *settings, False)
     except IntegrationError as exc:
         solution = exc.partial
     times, states = [t_last, *solution.t], [np.asarray(y_last, dtype=float), *solution.y]
     for k, (tk, yk) in enumerate(zip(times, states)):
         if equations.stop(yk, c):
             if levels > 1 and k > 0:
-                return _stop(system, times[k - 1], states[k - 1], tk, c, levels - 1)
+                return _stop(system, times[k - 1], states[k - 1], tk, c, settings, levels - 1)
             return float(tk), equations.stop(yk, c)
     if len(times) == fine.size:
         return float(times[-1]), ""
     if levels > 1:
-        return _stop(system, times[-1], states[-1], fine[len(times)], c, levels - 1)
+        return _stop(system, times[-1], states[-1], fine[len(times)], c, settings, levels - 1)
     a = states[-1][0]
     if a < 2 * c[equations.STOP_A]:
         at_limit = np.array(states[-1])
