@@ -19,6 +19,7 @@ Wall times exclude one-off compilation (each integrator warms up first).
 import csv
 import math
 import shlex
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -81,13 +82,17 @@ def run_method(name, system, t_out, error, budget_s=10.0, floor=1e-14):
             for setting, row in zip(settings, rows) if "failed" not in row]
 
 
-def bench_system(system, t_out, error, methods=None, budget_s=10.0):
-    """Work-precision rows for every requested (default: every suitable) method."""
+def bench_system(system, t_out, error, methods=None, budget_s=10.0, rows=None):
+    """Work-precision rows for every requested (default: every suitable) method, appended to ``rows`` (a new
+    list by default) as each method finishes, so that an interrupted bench still has the finished ones."""
     names = methods or [m for m in METHODS if get_method(m)().supports(system)]
     for name in names:
         if name not in METHODS:
             raise ScenarioError("--methods", name, f"method names, of {sorted(METHODS)}")
-    return [row for name in names for row in run_method(name, system, t_out, error, budget_s)]
+    rows = [] if rows is None else rows
+    for name in names:
+        rows.extend(run_method(name, system, t_out, error, budget_s))
+    return rows
 
 
 def fastest_at(rows, level, error="error_rad", wall="wall_s"):
@@ -166,13 +171,19 @@ def bench_scenario(path, methods=None, out=None, budget_s=10.0, overrides=(), fo
     with RunDirectory(target, force=force) as run_dir:     # refuses a bad --out before the ladder runs
         with scenario_errors(scenario):
             system, t_out, error = scenario.module.build(scenario)
-        rows = bench_system(system, t_out, error, methods, budget_s)
         command = " ".join(["spinorbit bench", str(path), *(f"--set {shlex.quote(o)}" for o in overrides),
                             *([f"--methods {','.join(methods)}"] if methods else [])])
         title = scenario["scene.title"] or scenario.name
         agreement = system.meta.get("reference_agreement_rad")
         note = "" if agreement is None else (f"Reference: a converged run (agrees with one at half its step "
                                              f"to {agreement:.1e} rad).")
-        names = []
+        rows, names = [], []
+        try:
+            bench_system(system, t_out, error, methods, budget_s, rows)
+        except KeyboardInterrupt:                      # Ctrl-C or SIGTERM: keep the methods that finished
+            if rows:
+                where = run_dir.fail(lambda d: write(rows, d, f"{title} (interrupted)", command, note))
+                print(f"the methods that finished are written to {where}/", file=sys.stderr)
+            raise
         run_dir.commit(lambda d: names.extend(p.name for p in write(rows, d, title, command, note)))
     return rows, [run_dir.out / name for name in names]

@@ -82,9 +82,11 @@ def main(argv=None):
             with _sigterm_interrupts():
                 return _run(args)
         if args.command == "sweep":
-            return _sweep(args)
+            with _sigterm_interrupts():
+                return _sweep(args)
         if args.command == "bench":
-            return _bench(args)
+            with _sigterm_interrupts():
+                return _bench(args)
         if args.command == "cache":
             return _cache(args.action)
         if args.command == "show":
@@ -210,11 +212,11 @@ def _keep_partial(run_dir, exc, out):
 
 
 def _sweep(args):
-    from .sweep import parse_vary, run_sweep
+    from .sweep import grid, run_sweep
 
-    grid = dict(parse_vary(v) for v in args.vary)
+    varied = grid(args.vary)
     out = Path(args.out or Path("runs") / f"{Path(args.scenario).stem}-sweep")
-    records = run_sweep(args.scenario, grid, out, args.scheduler, args.overrides, force=args.force)
+    records = run_sweep(args.scenario, varied, out, args.scheduler, args.overrides, force=args.force)
     failed = [r for r in records if r["status"] != "ok"]
     print(f"sweep: {len(records)} runs, {len(failed)} failed; table in {out}/sweep.csv")
     for record in failed:

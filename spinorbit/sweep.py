@@ -37,6 +37,19 @@ def parse_vary(text):
     return key, items
 
 
+def grid(varies):
+    """{key: [values]} of ``--vary`` texts, in their order; a key given twice is refused (one list per key:
+    give its values once, comma-separated)."""
+    out = {}
+    for text in varies:
+        key, values = parse_vary(text)
+        if key in out:
+            raise ScenarioError(f"--vary {key}", text, f"each key once, its values in one list (e.g. {key}="
+                                f"{','.join(out[key] + values)})")
+        out[key] = values
+    return out
+
+
 def members(grid):
     """Cartesian product of {key: [values]} as lists of ``key=value`` overrides (at most MAX_MEMBERS)."""
     count = math.prod(len(values) for values in grid.values())

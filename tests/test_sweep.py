@@ -25,3 +25,18 @@ def test_sweep_over_tolerance_converges_to_the_closed_form(tmp_path, scheduler):
     assert tight < 1e-10 < loose < 1e-4
     assert json.loads((tmp_path / "sweep.json").read_text()) == records
     assert all((Path(r["out"]) / "summary.json").is_file() for r in records)
+
+
+def test_a_key_given_twice_to_vary_is_refused_in_one_line(capsys):
+    from spinorbit import cli
+    from spinorbit.errors import ScenarioError
+    from spinorbit.sweep import grid
+
+    with pytest.raises(ScenarioError, match="--vary integrator.rtol") as info:
+        grid(["integrator.rtol=1e-8", "span.end=5 d", "integrator.rtol=1e-10,1e-12"])
+    assert "\n" not in str(info.value) and "once" in str(info.value)
+    assert grid(["integrator.rtol=1e-8,1e-10", "span.end=5 d"]) == {"integrator.rtol": ["1e-8", "1e-10"],
+                                                                      "span.end": ["5 d"]}
+    assert cli.main(["sweep", "scenarios/free_body.toml", "--vary", "integrator.rtol=1e-8", "--vary",
+                     "integrator.rtol=1e-10", "--scheduler", "synchronous", "--out", "/nonexistent/x"]) == 2
+    assert capsys.readouterr().err.count("\n") == 1

@@ -14,11 +14,13 @@ from ..errors import InputError
 from ..progress import progress
 from ..rotations import vector_angle
 from .interpolant import HermiteOrbits, grid
+from .interrupts import python_sigint
 from .kernel import DE421Arrays, JPLKernel
 
 BODIES = ("sun", "mercury", "venus", "earth", "moon", "mars", "jupiter", "saturn", "uranus", "neptune",
           "pluto")
 EMB = "earth_moon_barycenter"           # the GM-weighted mean of the Earth and Moon particles
+OUT_CHUNK_D = 3652.5                    # integrating out from an epoch: a signal is handled every 10 yr
 
 
 def de421_gm():
@@ -90,7 +92,7 @@ class ReboundOrbits(HermiteOrbits):
         self.simulation, self.extras = sim, extras        # keep extras alive with sim
 
         times = grid(t_start, t_end, step)
-        sim.integrate(t_start - epoch, exact_finish_time=1)            # out from the kernel's epoch, if it differs
+        _integrate_out(sim, t_start - epoch)                      # out from the kernel's epoch, if it differs
         n = len(BODIES)
         xyz, vxyz = np.empty((n, 3)), np.empty((n, 3))
         relative = np.array([weights(b, gm) - weights(center, gm) for b in bodies])
@@ -98,13 +100,25 @@ class ReboundOrbits(HermiteOrbits):
         vel = np.empty_like(pos)
         with progress("rebound", times[0], times[-1]) as advance_to:
             for k, t in enumerate(times):
-                sim.integrate(t - epoch, exact_finish_time=1)
+                with python_sigint():
+                    sim.integrate(t - epoch, exact_finish_time=1)
                 sim.serialize_particle_data(xyz=xyz, vxvyvz=vxyz)
                 pos[:, k] = relative @ xyz
                 vel[:, k] = relative @ vxyz
                 if k % 256 == 0:
                     advance_to(t)
         super().__init__(bodies, [gm[b] for b in bodies], t_start, step, pos, vel, source="rebound")
+
+
+def _integrate_out(sim, t):
+    """Integrate ``sim`` to ``t`` in pieces of OUT_CHUNK_D (not landing on their ends: the steps are those of
+    one call), so that a signal is handled between them, then exactly to ``t``."""
+    direction = 1.0 if t >= sim.t else -1.0
+    while direction * (t - sim.t) > OUT_CHUNK_D:
+        with python_sigint():
+            sim.integrate(sim.t + direction * OUT_CHUNK_D, exact_finish_time=0)
+    with python_sigint():
+        sim.integrate(t, exact_finish_time=1)
 
 
 def moon_drift(years, t_start=0.0, step=0.01):

@@ -47,6 +47,7 @@ from ..errors import InputError
 from ..files import open_regular, process_alive
 from ..linker import cache
 from ..progress import progress
+from .interrupts import python_sigint
 
 BODIES = ("sun", "mercury", "venus", "earth_moon_barycenter", "mars", "jupiter", "saturn", "uranus",
           "neptune", "pluto")
@@ -398,10 +399,12 @@ class _Run:
         The first step after an output is taken in WHFast's safe mode, which starts from the particles: a run
         continued from a stored output then steps exactly as one that never stopped."""
         self.sim.integrator.safe_mode = 1
-        self.sim.steps(1)
+        with python_sigint():
+            self.sim.steps(1)
         self.sim.integrator.safe_mode = 0
-        self.sim.integrate(self.sim.t + self.direction * (self.settings.output_d - self.settings.step_d),
-                           exact_finish_time=0)
+        with python_sigint():
+            self.sim.integrate(self.sim.t + self.direction * (self.settings.output_d - self.settings.step_d),
+                               exact_finish_time=0)
         self.sim.synchronize()
         self._orient()
         return self.output()

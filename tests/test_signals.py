@@ -1,0 +1,114 @@
+"""Signals stop a run as the user means them to: Ctrl-C after REBOUND has run (it installs its own SIGINT
+handler) still interrupts, and SIGTERM keeps a sweep's or a bench's finished members as Ctrl-C does.
+Each case is a fresh process, signalled once it has reached the stage named."""
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).parents[1]
+ENV = {**os.environ, "PYTHONPATH": str(ROOT)}
+
+
+def wait_for(condition, process, timeout=240.0):
+    start = time.monotonic()
+    while not condition():
+        assert process.poll() is None, process.communicate()
+        assert time.monotonic() - start < timeout, "the process never reached the stage"
+        time.sleep(0.05)
+
+
+AFTER_REBOUND = """
+import sys, time
+from spinorbit.orbits import nbody, solution
+{call}
+try:
+    print("ready", flush=True)
+    time.sleep(60)
+except KeyboardInterrupt:
+    sys.exit(130)
+sys.exit(0)
+"""
+
+
+def interrupted_after(call):
+    """Exit code of a process sent SIGINT once ``call`` (a REBOUND run) has returned: 130 when Python's
+    handler raised KeyboardInterrupt, a timeout when the signal went to REBOUND's."""
+    process = subprocess.Popen([sys.executable, "-c", AFTER_REBOUND.format(call=call)], stdout=subprocess.PIPE,
+                               text=True, env=ENV)
+    assert process.stdout.readline().strip() == "ready"
+    process.send_signal(signal.SIGINT)
+    try:
+        return process.wait(timeout=20)
+    finally:
+        process.kill()
+
+
+def test_ctrl_c_interrupts_after_an_nbody_orbit():
+    assert interrupted_after("nbody.ReboundOrbits('earth', ('moon',), 0.0, 2.0, step=1.0, epoch=-20.0)") == 130
+
+
+def test_ctrl_c_interrupts_after_an_orbital_solution(tmp_path):
+    call = f"solution.solve(solution.Settings(output_d=3650.0), -3650.0, 0.0, path={str(tmp_path / 'a.npz')!r})"
+    assert interrupted_after(call) == 130
+
+
+def staged_member(out):
+    """A finished member in the sweep's or bench's hidden staging directory beside ``out``."""
+    return any((p / "000" / "summary.json").exists() or list(p.glob("*.csv"))
+               for p in out.parent.glob(f".{out.name}.new-*"))
+
+
+def test_sigterm_keeps_a_sweeps_finished_members(tmp_path):
+    out = tmp_path / "sweep"
+    process = subprocess.Popen([sys.executable, "-m", "spinorbit.cli", "--quiet", "sweep",
+                                "scenarios/free_body.toml", "--vary", "integrator.rtol=1e-8,1e-9,1e-10,1e-11,1e-12",
+                                "--set", "span.end=2000 d", "--set", "output.plots=false", "--scheduler",
+                                "synchronous", "--out", str(out)], cwd=ROOT, env=ENV, stderr=subprocess.PIPE,
+                               text=True)
+    wait_for(lambda: staged_member(out), process)
+    process.send_signal(signal.SIGTERM)
+    _, err = process.communicate(timeout=60)
+    assert process.returncode == 130, err
+    kept = out if (out / "000").exists() else Path(f"{out}.failed")
+    assert (kept / "000" / "summary.json").exists(), err
+    assert not list(tmp_path.glob(".sweep.new-*"))
+
+
+def test_sigterm_stops_a_bench_as_ctrl_c_does(tmp_path):
+    out = tmp_path / "bench"
+    process = subprocess.Popen([sys.executable, "-m", "spinorbit.cli", "--quiet", "bench",
+                                "scenarios/free_body.toml", "--methods", "rk4,dop853", "--budget", "5",
+                                "--out", str(out)], cwd=ROOT, env=ENV, stderr=subprocess.PIPE, text=True)
+    wait_for(lambda: (tmp_path / ".bench.lock").exists(), process)      # the command has started
+    process.send_signal(signal.SIGTERM)
+    _, err = process.communicate(timeout=60)
+    assert process.returncode == 130, err
+    assert not list(tmp_path.glob(".bench.new-*"))
+
+
+def test_an_interrupted_bench_keeps_the_methods_that_finished(tmp_path, monkeypatch):
+    from spinorbit import bench
+
+    run_method, calls = bench.run_method, []
+
+    def second_interrupted(name, *args, **kwargs):
+        calls.append(name)
+        if len(calls) == 2:
+            raise KeyboardInterrupt
+        return run_method(name, *args, **kwargs)
+
+    monkeypatch.setattr(bench, "run_method", second_interrupted)
+    try:
+        bench.bench_scenario(ROOT / "scenarios/free_body.toml", ["rk4", "dop853"], tmp_path / "bench", 0.5,
+                             ["span.end=50 d"])
+    except KeyboardInterrupt:
+        pass
+    else:
+        raise AssertionError("the bench was not interrupted")
+    kept = tmp_path / "bench"
+    table = (kept / "work_precision.csv").read_text().splitlines()
+    assert table[0].startswith("method") and len(table) > 1
+    assert {line.split(",")[0] for line in table[1:]} == {"rk4"}
