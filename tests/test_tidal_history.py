@@ -229,3 +229,19 @@ def test_an_unphysical_state_stops_the_equations_with_its_reason():
         bad[index] = value
         assert word in equations.stop(bad, c)
         assert not np.any(equations.rhs(0.0, bad, (c, response.responses("constant_q", 0.02))))
+
+
+def test_obliquity_rate_of_a_single_circular_orbit_is_mignards():
+    """One perturber (no Sun), circular orbit, the spin at theta from its normal (no node to average: i = 0):
+    the constant-time-lag obliquity rate against the spin rate, d(theta)/dt / (dOmega/dt / Omega) =
+    -sin(theta) (cos(theta) Omega/(2n) - 1) / ((1 + cos^2 theta) Omega/(2n) - cos(theta)) (Mignard 1980;
+    Correia et al. 2011, CeMDA 111, 105, eqs. 14-15 at e = 0)."""
+    theta = math.radians(23.4393)
+    c = constants()
+    y = equations.state(c, A, 0.0, SPIN, theta, 0.0)
+    dy = equations.rhs(0.0, y, (c, response.responses("constant_time_lag", 0.0022)))
+    h_spin = earth.C_MR2 * R**2 * SPIN
+    dtheta = -(dy[3] - y[3] * dy[2] / SPIN) / (h_spin * math.sin(theta))
+    x = SPIN / (2 * mean_motion())
+    expected = -math.sin(theta) * (math.cos(theta) * x - 1) / ((1 + math.cos(theta) ** 2) * x - math.cos(theta))
+    assert dtheta / (dy[2] / SPIN) == pytest.approx(expected, rel=1e-9)

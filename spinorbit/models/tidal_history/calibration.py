@@ -4,8 +4,8 @@ import math
 
 import numpy as np
 
-from ...constants import DAY_S, JULIAN_CENTURY_D, JULIAN_YEAR_D
-from .equations import GM_EARTH, GM_MOON, GM_SUN, SUN_A, rhs
+from ...constants import DAY_S, JULIAN_CENTURY_D, JULIAN_YEAR_D, MAS
+from .equations import GM_EARTH, GM_MOON, GM_SUN, INERTIA, RADIUS, SUN_A, rhs
 from .response import STRENGTH, responses
 
 CM_PER_KM = 1e5
@@ -18,14 +18,18 @@ def solar_day_h(rotation_rad_d, c):
 
 
 def today_rates(c, response, y0):
-    """{recession_rate_cm_per_yr, length_of_day_rate_ms_per_cy, eccentricity_rate_per_gyr, solar_torque_share}
-    from the rhs at y0."""
+    """{recession_rate_cm_per_yr, length_of_day_rate_ms_per_cy, eccentricity_rate_per_gyr,
+    obliquity_rate_mas_per_cy, solar_share_of_spin_torque_z} from the rhs at y0."""
     dy = rhs(0.0, y0, (c, response))
+    h_spin = c[INERTIA] * c[RADIUS] ** 2 * y0[2]
+    sin_eps = math.sqrt(1.0 - (y0[3] / h_spin) ** 2)
+    obliquity_rate = -(dy[3] - y0[3] * dy[2] / y0[2]) / (h_spin * sin_eps)     # from X = h cos(eps)
     lod_s = solar_day_h(y0[2], c) * 3600.0
     n_sun = math.sqrt((c[GM_SUN] + c[GM_EARTH] + c[GM_MOON]) / c[SUN_A] ** 3)
     return {"recession_rate_cm_per_yr": dy[0] * CM_PER_KM * JULIAN_YEAR_D,
             "length_of_day_rate_ms_per_cy": -lod_s / (y0[2] - n_sun) * dy[2] * JULIAN_CENTURY_D * 1e3,
             "eccentricity_rate_per_gyr": dy[1] / (2 * math.sqrt(y0[1])) * JULIAN_YEAR_D * 1e9,
+            "obliquity_rate_mas_per_cy": obliquity_rate * JULIAN_CENTURY_D / MAS,
             "solar_share_of_spin_torque_z": dy[5] / (dy[4] + dy[5]) if dy[4] + dy[5] else 0.0}
 
 

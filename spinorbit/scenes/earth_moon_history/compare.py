@@ -39,6 +39,7 @@ def metrics(history, q):
     out = {"recession_rate_today_cm_per_yr": rates["recession_rate_cm_per_yr"],
            "length_of_day_rate_today_ms_per_cy": rates["length_of_day_rate_ms_per_cy"],
            "eccentricity_rate_today_per_gyr": rates["eccentricity_rate_per_gyr"],
+           "obliquity_rate_today_mas_per_cy": rates["obliquity_rate_mas_per_cy"],
            "angular_momentum_relative_error_max": float(np.abs(q["angular_momentum_error"]).max()),
            "obliquity_period_today_kyr": float(q["obliquity_period"][0]),
            "precession_period_today_kyr": float(q["precession_period"][0]),
