@@ -14,7 +14,18 @@ A scene, built in (``spinorbit list``) or a scenario file::
 
 Internal units: TDB days from J2000.0, km, rad (see spinorbit.constants).
 """
+import os as _os
+import sys as _sys
+
+from .private import NUMBA as _NUMBA
+from .private import numba_cache_refusal as _numba_cache_refusal
+
 __version__ = "0.1.0"
+
+if _numba_cache_refusal() is not None:           # others could plant pickles there: numba never reads it
+    _os.environ[_NUMBA] = ""                     # (the first kernel asked for refuses it in one line)
+    if "numba.core.config" in _sys.modules:
+        _sys.modules["numba.core.config"].CACHE_DIR = ""
 
 
 def load_scenario(path, overrides=()):

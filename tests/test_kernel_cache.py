@@ -260,3 +260,46 @@ def test_free_names_are_declared_placeholders():
 
     bare = types.FunctionType(rk8.rk_step.__code__, rk8.rk_step.__globals__, "rk_step")
     assert linker.template()(bare).free_names == ("rhs",)
+
+
+INDEX_OF_DOT3 = """
+import sys
+from numba.core import config
+from numba.core.caching import FunctionCache
+import spinorbit.rotations
+config.CACHE_DIR = sys.argv[1]
+print(FunctionCache(spinorbit.rotations.dot3.py_func)._cache_file._index_path)
+"""
+CALL_DOT3 = "import numpy as np, spinorbit.rotations as r; print(r.dot3(np.ones(3), np.ones(3)))"
+
+
+class _Planted:
+    def __init__(self, marker):
+        self.marker = marker
+
+    def __reduce__(self):
+        return open, (self.marker, "w")
+
+
+def test_a_numba_cache_dir_others_can_write_is_refused_and_its_pickles_never_run(tmp_path, cache):
+    shared, marker = tmp_path / "shared", tmp_path / "ran"
+    shared.mkdir()
+    os.chmod(shared, 0o777)
+    env = {k: v for k, v in environment(cache).items() if k != "NUMBA_CACHE_DIR"}
+    index = subprocess.run([sys.executable, "-c", INDEX_OF_DOT3, str(shared)], capture_output=True, text=True,
+                           check=True, env=env).stdout.strip()
+    assert index.startswith(str(shared))
+    Path(index).parent.mkdir(parents=True, exist_ok=True)
+    Path(index).write_bytes(pickle.dumps(_Planted(str(marker))))        # numba unpickles an index first
+    env["NUMBA_CACHE_DIR"] = str(shared)
+    called = subprocess.run([sys.executable, "-c", CALL_DOT3], capture_output=True, text=True, env=env)
+    assert called.stdout.strip() == "3.0" and not marker.exists(), called.stderr
+    done = subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache"], capture_output=True, text=True,
+                          env=env)
+    err = done.stderr.strip().splitlines()
+    assert done.returncode == 2 and len(err) == 1, done.stderr
+    assert err[0].startswith(f"error: NUMBA_CACHE_DIR: got '{shared}'") and "writable by others" in err[0]
+    assert not marker.exists()
+    os.chmod(shared, 0o700)                                             # a private one is used
+    assert subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache"], capture_output=True,
+                          env=env).returncode == 0

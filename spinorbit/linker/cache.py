@@ -18,9 +18,10 @@ damaged, edited) is rewritten, and said in one line.
 numba's cache files are pickles, so they are trusted only as far as they are checked: a generated
 kernel's index and data files live in the private ``kernels/numba/`` whatever NUMBA_CACHE_DIR says,
 each written with a sha256 of its content that is checked before it is unpickled; a damaged one is
-deleted, the kernel compiled again, and said in one line.  (Functions of the package itself,
-``@njit(cache=True)``, are cached by numba beside them or in NUMBA_CACHE_DIR: the same trust as the
-package's own files and their ``.pyc``.)
+deleted, the kernel compiled again, and said in one line.  Functions of the package itself,
+``@njit(cache=True)``, are cached by numba beside them (the same trust as the package's own files and their
+``.pyc``) or in NUMBA_CACHE_DIR, which must meet the same rule: ``import spinorbit`` hides a NUMBA_CACHE_DIR
+that breaks it from numba, and the first kernel asked for refuses it in one line (spinorbit.private).
 """
 import functools
 import hashlib
@@ -38,6 +39,7 @@ from numba import njit
 from numba.core.caching import CompileResultCacheImpl, FunctionCache, IndexDataCacheFile, _CacheLocator
 
 from ..errors import InputError
+from ..private import check_above, check_private, numba_cache_refusal
 
 ENVIRONMENT = "SPINORBIT_CACHE_DIR"
 MAGIC = b"spinorbit numba cache 1\n"
@@ -55,7 +57,11 @@ def root():
 
 @functools.cache
 def kernels_dir():
-    """The private directory of the generated modules (created 0700; refused if not private)."""
+    """The private directory of the generated modules (created 0700; refused if not private, and refused when
+    NUMBA_CACHE_DIR is not: spinorbit.private)."""
+    refusal = numba_cache_refusal()
+    if refusal is not None:
+        raise refusal
     base = root()
     try:
         base.parent.mkdir(parents=True, exist_ok=True)
@@ -67,9 +73,9 @@ def kernels_dir():
         raise InputError(ENVIRONMENT, str(base), f"a directory spinorbit can create for its compiled kernels "
                                                  f"({exc.strerror}); set {ENVIRONMENT} to one") from None
     for folder in (resolved, resolved / "kernels", resolved / "kernels" / "numba"):
-        _check_private(folder, base)
+        check_private(folder, base, ENVIRONMENT)
     for folder in resolved.parents:
-        _check_above(folder, base)
+        check_above(folder, base, ENVIRONMENT)
     return resolved / "kernels"
 
 
@@ -83,29 +89,8 @@ def private_folder(name):
     except OSError as exc:
         raise InputError(ENVIRONMENT, str(root()), f"a directory spinorbit can create for its caches ({folder}: "
                                                    f"{exc.strerror}); set {ENVIRONMENT} to one") from None
-    _check_private(folder, root())
+    check_private(folder, root(), ENVIRONMENT, "spinorbit's caches")
     return folder
-
-
-def _check_private(folder, named):
-    info = os.lstat(folder)
-    mode = stat.S_IMODE(info.st_mode)
-    why = ("it is not a directory" if not stat.S_ISDIR(info.st_mode)
-           else f"{folder} belongs to uid {info.st_uid}" if info.st_uid != os.geteuid()
-           else f"{folder} is writable by others (mode {mode:o})" if mode & 0o022 else None)
-    if why:
-        raise InputError(ENVIRONMENT, str(named), f"a private directory for compiled kernels, yours and "
-                                                  f"writable by you only ({why}); set {ENVIRONMENT} to one")
-
-
-def _check_above(folder, named):
-    info = os.stat(folder)
-    others_write = info.st_mode & 0o022 and not info.st_mode & stat.S_ISVTX
-    if others_write or info.st_uid not in (0, os.geteuid()):
-        what = "writable by others" if others_write else "another user's"
-        raise InputError(ENVIRONMENT, str(named), f"a private directory for compiled kernels in folders only "
-                                                  f"you (or root) can change ({folder} is {what}); set "
-                                                  f"{ENVIRONMENT} to one")
 
 
 def say(message):
