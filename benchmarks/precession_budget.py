@@ -127,7 +127,7 @@ def laplace_tilt(half_span_cy=1.0, step_d=0.25, window_yr=3.0):
 
 def run(overrides):
     result = run_scenario(SCENARIO, ["output.plots=false", "integrator.estimate_error=false", "earth.hd=iau2006",
-                                     "earth.start_pole=iau_mean_plus_rigid_nutation"] + overrides)
+                                     "earth.start_pole=iau_mean_plus_rigid_nutation", "earth.tides=none"] + overrides)
     return result
 
 

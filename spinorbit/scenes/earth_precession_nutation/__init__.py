@@ -28,7 +28,8 @@ SCHEMA = {
     "earth.geodesic_precession": Key(type=bool, default=True),
     "earth.j2_rate": Key(type=bool, default=True),
     "earth.j4": Key(type=bool, default=False, help="torques on the Earth's J4 (EGM2008; gyroscopic model)"),
-    "earth.tidal_obliquity": Key(type=bool, default=False, help="the tides' tilt, +2.4 mas/cy (W94)"),
+    "earth.tides": Key(type=str, default="none", choices=("none", "de421", "williams1994"),
+                       help="the tides' secular rates (tides.py): DE421's tidal model's, or Williams'"),
     "earth.geodesic_nutation": Key(type=bool, default=False, help="the geodesic precession's annual term"),
     "earth.nonrigid": Key(type=bool, default=False, help="the rigid nutation times earth.transfer_function"),
     "earth.transfer_function": Key(type=str, default="mhb2000", choices=tuple(MODELS)),
@@ -89,13 +90,14 @@ def run(scenario):
     from . import compare as vs
     from . import ellipticity as hd
     from . import nonrigid as nr
+    from . import tides
     from .start import build
 
     t = scenario.output_times()
     system, orbits, (z0, pole_ecl, plane_tilt) = build(scenario, t)
     solution, point = common.simulate_scenario(scenario, system, t)
     z = system.figure_axes("earth", t, solution.y)
-    z = z_rigid = vs.tidal_tilt(t, z, scenario["earth.tidal_obliquity"])
+    z = z_rigid = tides.tilted(t, z, *tides.rates(scenario["earth.tides"], scenario["orbit.source"]))
     iau, nonrigid = erfa_pole.IauPole()(t), scenario["earth.nonrigid"] and nr.settings(scenario)
     z = nr.nonrigid_pole(t, z, **nonrigid) if nonrigid else z
     dx, dy, comparison = vs.residuals(z, iau)

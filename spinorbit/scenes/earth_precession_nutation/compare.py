@@ -49,17 +49,6 @@ def precession_nutation(t, z, iau):
     return comparison, not_measured, nutation
 
 
-def tidal_tilt(t, z, on):
-    """The axes ``z`` (n, 3, GCRS) turned away from the ecliptic pole, from the first time on, at the rate of
-    the tides' own torque on the Earth's bulge, earth.TIDAL_OBLIQUITY_RATE_ARCSEC_CY (Williams 1994, AJ 108,
-    711; P03 Table 3, tides (c)), which a rigid Earth on DE421 lacks (``on``: else z as it is)."""
-    if not on:
-        return z
-    dpsi, deps = erfa_pole.about_mean_pole(t, z)
-    rate = earth.TIDAL_OBLIQUITY_RATE_ARCSEC_CY * ARCSEC / JULIAN_CENTURY_D
-    return erfa_pole.from_mean_pole(t, dpsi, deps + rate * (t - t[0]))
-
-
 def torque_rates(t, poles, positions, gm, h_d=earth.H_D):
     """(dpsi/dt, deps/dt), "/cy, of the Fukushima-Williams angles of the axes ``poles`` (n, 3, GCRS) under the
     point masses' torque alone, H_d (T z) x z / omega (the axes held where they are: the first-order rate);

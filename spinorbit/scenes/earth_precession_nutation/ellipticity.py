@@ -8,14 +8,15 @@ unit H.  ``earth.hd = "observed_rate"`` does the same with this model's own torq
 IAU 2006's H_0 over 1950-2050 (centred on J2000, so the fitted rate is the rate at J2000 and not biased by the
 t^2 term) on the scene's orbits and settings gives the model's rate and its rows,
 
-    psi_1 = x F + x^2 S + G + N,    x = H_d / H_0,
+    psi_1 = x F + x^2 S + G + N + T,    x = H_d / H_0,
 
 F the rows that go as H (the first-order luni-solar torque with the tilts, the planets' direct torques, the
 torques on J4, which are in fact independent of H but at 2.6 mas/cy move H by < 1e-12 if scaled), S the
 second order (the nutation's feedback, as H^2), G the geodesic precession and N MHB2000's nonlinear rate
 (a row of the observed rate, as in P03, which the non-rigid layer adds: H_d is the Earth's, the same with the
-layer off); H_d is the root.  The obliquity rate's rows come from the same run: it
-is not fitted, and is what is judged with the nutation.
+layer off) and T the tides' (``earth.tides``, tides.py; independent of H); H_d is the root.  The obliquity
+rate's rows come from the same run (with the tides'): it is not fitted, and is what is judged with the
+nutation.
 
 Edge module (ERFA through references.erfa_pole); the run is cached in memory per setting.
 """
@@ -41,7 +42,7 @@ def settings(scenario):
     """The keys the observed-rate H_d depends on, as a hashable tuple (the cache's key)."""
     return (scenario["orbit.source"], scenario["orbit.planets"], scenario["orbit.sample_step"],
             scenario["earth.j2_rate"], scenario["earth.j4"], scenario["earth.geodesic_precession"],
-            scenario["earth.geodesic_nutation"])
+            scenario["earth.geodesic_nutation"], scenario["earth.tides"])
 
 
 def dynamical_ellipticity(scenario):
@@ -60,7 +61,7 @@ def summary(scenario):
 
 
 @functools.lru_cache(maxsize=4)
-def from_observed_rate(source, planets, sample_step, j2_rate, j4, geodesic, geodesic_nutation):
+def from_observed_rate(source, planets, sample_step, j2_rate, j4, geodesic, geodesic_nutation, tidal="none"):
     """The H_d that gives the model IAU 2006's rate in longitude at J2000, and the model's budget in
     longitude and obliquity at H_0 (the rows, "/cy, by the run's torques; see the module docstring)."""
     from ...analysis import nonrigid
@@ -71,6 +72,7 @@ def from_observed_rate(source, planets, sample_step, j2_rate, j4, geodesic, geod
     from ...simulate import simulate
     from .nonrigid import ren2000_scaled
     from .start import PLANETS, ecliptic_pole, started
+    from .tides import rates as tidal_rates
 
     t = np.arange(-HALF_SPAN_D, HALF_SPAN_D + STEP_D / 2, STEP_D)
     bodies = ("moon", "sun") + (PLANETS if planets else ())
@@ -101,9 +103,10 @@ def from_observed_rate(source, planets, sample_step, j2_rate, j4, geodesic, geod
         planet_rows = [at_j2000(r) for r in planet_rates]
     geodesic_row = -earth.GEODESIC_PRECESSION_ARCSEC_CY if geodesic else 0.0
     nonlinear_row = nonrigid.NONLINEAR_PRECESSION_ARCSEC_CY
+    tides = tidal_rates(tidal, source)
     first = rate[0] - second[0] - geodesic_row
-    # psi_1 = x F + x^2 S + G + N: the root near x = 1
-    target = erfa_pole.PSI_A_RATE_ARCSEC_CY - geodesic_row - nonlinear_row
+    # psi_1 = x F + x^2 S + G + N + T: the root near x = 1
+    target = erfa_pole.PSI_A_RATE_ARCSEC_CY - geodesic_row - nonlinear_row - tides[0]
     x = 2.0 * target / (first + math.sqrt(first**2 + 4.0 * second[0] * target))
     return {"h_d": earth.H_D * x, "h_d_iau2006": earth.H_D, "h_d_over_iau2006_minus_1": x - 1.0,
             "psi_rate_target_arcsec_cy": erfa_pole.PSI_A_RATE_ARCSEC_CY,
@@ -111,9 +114,12 @@ def from_observed_rate(source, planets, sample_step, j2_rate, j4, geodesic, geod
             "longitude_rows_at_h_iau2006_arcsec_cy": {
                 "first_order_lunisolar_planets_j4_tilts": first, "of_which_planets_direct": planet_rows[0],
                 "second_order": second[0], "geodesic": geodesic_row, "nonlinear_mhb2000": nonlinear_row,
-                "total": rate[0] + nonlinear_row},
+                "tides": tides[0], "total": rate[0] + nonlinear_row + tides[0]},
             "first_order_per_unit_h_arcsec_cy": first / earth.H_D,
             "obliquity_rows_at_h_iau2006_arcsec_cy": {
                 "first_order_lunisolar_tilt_b_j4": rate[1] - second[1] - planet_rows[1],
-                "planets_direct": planet_rows[1], "second_order": second[1], "total": rate[1]}}
+                "planets_direct": planet_rows[1], "second_order": second[1], "tides": tides[1],
+                "total": rate[1] + tides[1]},
+            "obliquity_rate_p03_arcsec_cy": P03_OBLIQUITY_RATE_ARCSEC_CY,
+            "tides": tidal}
 
