@@ -29,9 +29,11 @@ COLUMNS = {
                           "ecliptic of date minus the mean I = 1.54242 deg",
     "libration_node": "physical libration in node sigma: the lunar equator's node on the mean ecliptic of date minus "
                       "(Om + 180 deg); large (~5600\") because it is the node's offset, sigma ~ rho / sin I",
-    "sub_earth_longitude": "selenographic longitude of the Earth's direction (the total libration in longitude: "
-                           "optical + physical), lunar principal axes",
-    "sub_earth_latitude": "selenographic latitude of the Earth's direction (the total libration in latitude)",
+    "sub_earth_longitude": "longitude of the Earth's geometric direction (no light time, no aberration) in the "
+                           "Moon's principal-axis frame, not the mean-Earth selenographic frame (the total "
+                           "libration in longitude: optical + physical)",
+    "sub_earth_latitude": "latitude of the Earth's geometric direction in the Moon's principal-axis frame (the "
+                          "total libration in latitude)",
     "optical_libration_longitude": "optical libration in longitude: the sub-Earth longitude of the Cassini state "
                                    "(tau = rho = sigma = 0)",
     "optical_libration_latitude": "optical libration in latitude: the sub-Earth latitude of the Cassini state",

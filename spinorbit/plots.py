@@ -45,16 +45,20 @@ def _panels(fig, x, panels, xlabel, sharex):
             ax.plot(*thinned(np.asarray(x)[shown], y[shown]), lw=1.2 if i == 0 else 0.9, ls="-" if i == 0 else "--",
                     label=label)
         ax.set_ylabel(ylabel)
-        ax.legend(fontsize=8, loc="upper right")
+        # above the panel, off the curves (which run to both edges)
+        ax.legend(fontsize=8, loc="lower right", bbox_to_anchor=(1.0, 1.0), ncol=len(labels), frameon=False,
+                  borderaxespad=0.1, handlelength=1.5)
         ax.grid(alpha=0.3)
     np.atleast_1d(axes)[-1].set_xlabel(xlabel)
 
 
 def monthly_means(years, ys, month_d=27.321661):
-    """(the middle years, the means (k, m)) of ``ys`` (k, n) over consecutive sidereal months of ``years``."""
-    bins = np.floor(np.abs(years - years[0]) * 365.25 / month_d).astype(int)
+    """(the middle years, the means (k, m)) of ``ys`` (k, n) over consecutive sidereal months of ``years``;
+    a month the series does not cover whole (the last, cut by the span's end) is left out."""
+    elapsed = np.abs(years - years[0]) * 365.25 / month_d
+    bins = np.floor(elapsed).astype(int)
     counts = np.bincount(bins)
-    kept = counts > 0
+    kept = (counts > 0) & (np.arange(counts.size) < int(np.floor(elapsed[-1] + 1e-9)))
     means = np.array([np.bincount(bins, weights=y)[kept] / counts[kept] for y in np.atleast_2d(ys)])
     return np.bincount(bins, weights=years)[kept] / counts[kept], means
 
@@ -185,11 +189,44 @@ def moon_libration(t, table, rows, labelled, zoom, zoom_reference):
         return figures
     model = {k: table[name].value[zoom] for k, name in (("tau", "libration_longitude"), ("rho", "libration_latitude"))}
     reference = {k: zoom_reference[k] / ARCSEC for k in ("tau", "rho")}
-    return {"residuals_vs_de421": titled(plot_series(
-                years, column("pole_error", "longitude_error"), "year (TDB)", "model - DE421 [arcsec]",
-                ["pole", "longitude"]), "pole and longitude, model minus DE421"), **figures,
+    return {"residuals_vs_de421": titled(plot_panels(years, [
+                ([table["pole_error"].value], ["angle between the poles"], "pole: |model, DE421| [arcsec]"),
+                ([table["longitude_error"].value], ["model − DE421"], "longitude [arcsec]")], "year (TDB)"),
+                "pole separation (unsigned) and longitude difference from DE421"), **figures,
             "libration_zoom_vs_de421": titled(libration_zoom(years[zoom], model, reference),
                                               "the last two years, model and DE421")}
+
+
+def moon_vs_de421(year, direction, pole, longitude, unit):
+    """The Moon against DE421 in three panels, each on its own scale: the angle between the model's and
+    DE421's geocentric directions and between their lunar poles (unsigned), and the libration longitude's
+    signed difference, in ``unit``."""
+    return titled(plot_panels(year, [([direction], ["angle between the directions"], f"Moon direction [{unit}]"),
+                                     ([pole], ["angle between the poles"], f"lunar pole [{unit}]"),
+                                     ([longitude], ["model − DE421"], f"libration longitude [{unit}]")],
+                              "year (TDB)"),
+                  "the Moon against DE421: direction and pole (unsigned), libration longitude (signed)")
+
+
+def planets_vs_de421(year, errors_km, floor_km=1e-3):
+    """Each planet's heliocentric distance from DE421 (km) on a log axis from ``floor_km`` (the start, where
+    the run and DE421 agree, dips below it), the legend above the curves."""
+    return titled(partial(_planets, year=year, errors_km=errors_km, floor_km=floor_km),
+                  "the planets against DE421, heliocentric")
+
+
+def _planets(fig, year, errors_km, floor_km):
+    ax = fig.add_subplot()
+    for name, error in errors_km.items():
+        ax.plot(*thinned(year, error), lw=0.8, label=name)
+    ax.set_yscale("log")
+    top = max(float(np.nanmax(error)) for error in errors_km.values())
+    ax.set_ylim(floor_km, 100 * top)                  # a decade and more above the curves: the legend's room
+    plain_log_labels(ax)
+    ax.set_xlabel("year (TDB)")
+    ax.set_ylabel("|model − DE421| [km]")
+    ax.legend(fontsize=8, loc="upper center", ncol=5, frameon=False)
+    ax.grid(alpha=0.3, which="both")
 
 
 def plot_lyapunov_map(theta, rate, exponent, threshold):
@@ -254,12 +291,16 @@ MILANKOVITCH_KYR = {"41": 41.0, "23": 23.0, "19": 19.0, "100": 100.0, "405": 405
 
 def deep_time(t_kyr, model, reference, name):
     """Obliquity (deg) and climatic precession e sin(varpi_bar) against kyr from J2000, the reference (e.g.
-    La2004) dashed over the model; ``model``/``reference`` = {"obliquity_deg": .., "climatic_precession": ..}
-    (``reference`` None: the model alone)."""
-    panels = [([model[key]] + ([] if reference is None else [reference[key]]),
-               ["model"] + ([] if reference is None else [name]), label)
-              for key, label in (("obliquity_deg", "obliquity [deg]"),
-                                 ("climatic_precession", "e sin(ϖ̄)"))]
+    La2004) dashed over the model, and below each the model minus the reference; ``model``/``reference`` =
+    {"obliquity_deg": .., "climatic_precession": ..} (``reference`` None: the model alone)."""
+    panels = []
+    for key, label in (("obliquity_deg", "obliquity [deg]"), ("climatic_precession", "e sin(ϖ̄)")):
+        if reference is None:
+            panels.append(([model[key]], ["model"], label))
+            continue
+        panels += [([model[key], reference[key]], ["model", name], label),
+                   ([model[key] - reference[key]], [f"model − {name}"], f"{label.split(' [')[0]}: "
+                    f"model − {name}" + (" [deg]" if "[deg]" in label else ""))]
     return titled(plot_panels(t_kyr, panels, "kyr from J2000"),
                   "obliquity and climatic precession" + ("" if reference is None else f" ({name} dashed)"))
 
@@ -281,7 +322,7 @@ def deep_time_spectra(t_kyr, model, reference, name):
         series[key] = curves
     span = abs(t_kyr[-1] - t_kyr[0])
     draw = partial(_deep_time_spectra, series=series, span=span, name=name)
-    draw.figsize = (8, 8)
+    draw.figsize = (8, 8.5)
     return titled(draw, "spectra, the astronomical periods marked")
 
 
@@ -292,11 +333,14 @@ def _deep_time_spectra(fig, series, span, name):
             keep = period <= span / 2
             ax.loglog(*thinned(period[keep], amplitude[keep], log=True), lw=1.0 if i == 0 else 0.8,
                       ls="-" if i == 0 else "--", label="model" if i == 0 else name)
-        for k, (text, period) in enumerate(MILANKOVITCH_KYR.items()):
-            if period <= span / 2:
-                ax.axvline(period, color="0.6", lw=0.6, ls=":")
-                ax.annotate(f"{text} kyr", (period, 1), xycoords=("data", "axes fraction"), fontsize=7,
-                            xytext=(2, -10 - 9 * (k % 2)), textcoords="offset points")
+        marked = {text: period for text, period in MILANKOVITCH_KYR.items() if period <= span / 2}
+        for period in marked.values():
+            ax.axvline(period, color="0.6", lw=0.6, ls=":")
+        if ax is axes[0] and marked:                 # the periods named once, above the plots, off the curves
+            top = ax.secondary_xaxis("top")
+            top.set_xticks(list(marked.values()), [f"{text}" for text in marked], fontsize=7)
+            top.tick_params(which="minor", top=False, labeltop=False)
+            top.set_xlabel("marked: the astronomical periods [kyr]", fontsize=7)
         ax.set_ylabel(f"amplitude of {DEEP_TIME_LABELS[key]}")
         ax.legend(fontsize=8, loc="lower right")
         ax.grid(alpha=0.3, which="both")

@@ -39,6 +39,10 @@ def provenance(scenario):
 def ephemeris(scenario):
     """{"name", "span"} of the ephemeris the scene reads, or None for analytic orbits."""
     source = scenario.get("orbit.source")
+    start = scenario.get("orbit.ephemeris")                  # deep time: the state its N-body run starts from
+    if isinstance(start, str) and not isinstance(source, str):
+        return {"name": f"{start} (the solar system's state at J2000 its N-body run starts from)",
+                "span": EPHEMERIS_SPANS.get(start)}
     if not isinstance(source, str) or source in ("", "circular"):
         return None
     if source == "rebound":

@@ -214,9 +214,9 @@ def verdict_markdown(verdict):
     if verdict["checks"]:
         lines += ["| check | figure | tolerance | result | tolerance from |", "|---|---|---|---|---|"]
         for c in verdict["checks"]:
-            figure = c.get("reason") if c["figure"] is None else _fmt(c["figure"])
+            figure = c.get("reason") if c["figure"] is None else f"{_fmt(c['figure'])}{c['unit']}"
             if "expected" in c and c["figure"] is not None:
-                figure = f"{_fmt(c['expected'] + c['figure'])} (expected {_fmt(c['expected'])})"
+                figure = f"{_fmt(c['expected'] + c['figure'])}{c['unit']} (expected {_fmt(c['expected'])}{c['unit']})"
             lines.append(f"| {c['label']} | {figure} | {_fmt(c['tolerance'])}{c['unit']} | {c['result']} | "
                          f"{c['source']} |")
         lines.append("")

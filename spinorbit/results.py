@@ -102,11 +102,17 @@ def base_summary(scenario):
 JULIAN_YEAR_D = 365.25
 
 
+LONG_SPAN_YR = 10_000          # spans at least this long are labelled in kyr from J2000
+
+
 def span_label(scenario):
     """The run's span for titles: calendar years "1900–2050" (Julian epochs), or its length in days."""
     length = abs(scenario.t_end - scenario.t_start)
     if length < JULIAN_YEAR_D:
         return f"{length:.4g} d"
+    if length >= LONG_SPAN_YR * JULIAN_YEAR_D:         # deep time: kyr from J2000, as La2004 counts
+        k0, k1 = (t / JULIAN_YEAR_D / 1000.0 for t in (scenario.t_start, scenario.t_end))
+        return f"{k0:.0f} to {k1:.0f} kyr from J2000".replace("-", "−")
     y0, y1 = (2000.0 + t / JULIAN_YEAR_D for t in (scenario.t_start, scenario.t_end))
     digits = 0 if length >= 2 * JULIAN_YEAR_D else 1
     return f"{y0:.{digits}f}–{y1:.{digits}f}"

@@ -20,6 +20,7 @@ import numpy as np
 
 from ...errors import ScenarioError
 from ...models.assemblies.earth_moon import EXTERNAL, PLANETS, SWITCHES
+from ...plots import moon_vs_de421
 from ...schema import Key
 from ...verdict import Check, Verdict
 from .. import common
@@ -129,8 +130,7 @@ def run(scenario):
     year = common.decimal_year(t)
     in_arcsec = [table[name].value for name in ("moon_direction_error", "pole_error", "longitude_error")]
     figures = {
-        "moon_vs_de421": common.plot_series(year, in_arcsec, "year (TDB)", "error [arcsec]",
-                                            ["Moon direction", "lunar pole", "libration longitude"]),
+        "moon_vs_de421": moon_vs_de421(year, *in_arcsec, "arcsec"),
         "moon_range_vs_de421": common.plot_series(year, [distance * 1e3], "year (TDB)", "range error [m]",
                                                   ["range"])}
     return common.result(scenario, table, summary, figures, solution)

@@ -10,6 +10,7 @@ asteroids this does not; what they move in each planet is stated beside its figu
 Runs with the Taylor integrator (``integrator.method = "taylor"``) or any other.
 """
 from ...models.assemblies.solar_system import SWITCHES
+from ...plots import moon_vs_de421, planets_vs_de421
 from ...schema import Key
 from ...verdict import Check, Verdict
 from .. import common
@@ -72,18 +73,16 @@ def run(scenario):
     model = system(scenario)
     solution, point = common.simulate_scenario(scenario, model, t)
     direction, distance = vs.orbit_errors(t, solution.part("moon.r"))
-    pole, longitude, lunar = vs.lunar(t, solution.part("moon.q"))
+    mats, pole, longitude, lunar = vs.lunar(t, solution.part("moon.q"))
     planets = vs.planet_errors(t, vs.heliocentric(model, solution))
     summary = {"comparison": vs.metrics(direction, distance, lunar, planets), "run": point,
                "reference": "DE421 (Folkner, Williams & Boggs 2008, IPN PR 42-178)",
                "model": {"switches": list(model.meta["switches"]), "t0_tdb_d": model.t0,
                          "asteroids_km": vs.ASTEROIDS_KM, "asteroids_moon": vs.ASTEROIDS_MOON}}
     errors = {"direction": direction, "range": distance, "pole": pole, "longitude": longitude}
-    table = vs.table(t, solution.part("moon.r"), errors, planets)
+    table = vs.table(t, solution.part("moon.r"), mats, errors, planets)
     year = common.decimal_year(t)
-    figures = {"moon_vs_de421": common.plot_series(
-        year, [table[name].value for name in ("moon_direction_error", "pole_error", "longitude_error")],
-        "year (TDB)", "error [mas]", ["Moon direction", "lunar pole", "libration longitude"]),
-        "planets_vs_de421": common.plot_series(year, list(planets.values()), "year (TDB)",
-                                               "heliocentric error [km]", list(planets))}
+    figures = {"moon_vs_de421": moon_vs_de421(
+        year, *(table[name].value for name in ("moon_direction_error", "pole_error", "longitude_error")), "mas"),
+        "planets_vs_de421": planets_vs_de421(year, planets)}
     return common.result(scenario, table, summary, figures, solution)

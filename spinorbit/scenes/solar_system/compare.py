@@ -51,18 +51,22 @@ def metrics(direction, distance, lunar, planets):
     return out
 
 
-def table(t, r, errors, planets):
-    """The run's table: the geocentric Moon (km, ICRF) and its errors, the lunar pole and longitude errors,
-    each planet's heliocentric error.  errors: {name: array} in rad and km."""
+def table(t, r, mats, errors, planets):
+    """The run's table: the geocentric Moon (km, ICRF) and its errors, the Moon's JPL 3-1-3 angles (rad, from
+    its ICRF-to-body matrices ``mats``) and the lunar pole and longitude errors, each planet's heliocentric
+    error.  errors: {name: array} in rad and km."""
     import astropy.units as u
     from astropy.table import QTable
 
+    from ...rotations import euler313_from_matrix
     from ...schema import tdb_days_to_time
 
     out = QTable()
     out["time"] = tdb_days_to_time(t)
     for k, axis in enumerate("xyz"):
         out[f"moon_geocentric_{axis}"] = r[:, k] * u.km
+    for name, column in zip(("phi", "theta", "psi"), euler313_from_matrix(mats).T):
+        out[name] = column * u.rad
     out["moon_direction_error"] = errors["direction"] / MAS * u.mas
     out["moon_range_error"] = errors["range"] * 1e3 * u.m
     out["pole_error"] = errors["pole"] / MAS * u.mas
@@ -73,9 +77,10 @@ def table(t, r, errors, planets):
 
 
 def lunar(t, q):
-    """(pole and longitude differences (rad), their metrics) of the Moon's attitudes q (n, 4) vs DE421."""
-    _, _, pole, longitude, metrics_ = lunar_errors(t, q)
-    return pole, longitude, metrics_
+    """(ICRF-to-body matrices, pole and longitude differences (rad), their metrics) of the Moon's attitudes
+    q (n, 4) vs DE421."""
+    mats, _, pole, longitude, metrics_ = lunar_errors(t, q)
+    return mats, pole, longitude, metrics_
 
 
 __all__ = ["HELIOCENTRIC", "heliocentric", "lunar", "metrics", "orbit_errors", "planet_errors", "table"]
