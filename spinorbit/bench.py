@@ -160,17 +160,25 @@ def bench_scenario(path, methods=None, out=None, budget_s=10.0, overrides=(), fo
     ``force``); returns (rows, paths)."""
     from .rundir import RunDirectory
     from .scenarios import load_scenario, scenario_errors
+    from .scenes import scene_module as scenario_module
 
     if not isinstance(budget_s, (int, float)) or not 0 < budget_s <= MAX_BUDGET_S:
         raise ScenarioError("--budget", budget_s, f"seconds in (0, {MAX_BUDGET_S:g}]")
     scenario = load_scenario(path, overrides)
-    if not hasattr(scenario.module, "build"):
-        raise ScenarioError("scene.kind", scenario.kind,
-                            "a scene kind whose module defines build() for benchmarking")
+    legacy = getattr(scenario_module(scenario.kind), "build", None) if scenario.scene.run else None
+    if scenario.scene.bench is None and legacy is None:
+        raise ScenarioError("scene.kind", scenario.kind, "a scene kind that declares how to bench it "
+                            f"(bench: {', '.join(bench_kinds())})")
     target = Path(out or Path("runs") / f"{scenario.name}-bench")
     with RunDirectory(target, force=force) as run_dir:     # refuses a bad --out before the ladder runs
         with scenario_errors(scenario):
-            system, t_out, error = scenario.module.build(scenario)
+            if legacy is not None:
+                system, t_out, error = legacy(scenario)
+            else:
+                t_out = scenario.output_times()
+                model = scenario.scene.build(scenario.params, t_out)
+                system = model.system if model.system is not None else model.bench_system
+                error = scenario.scene.bench(scenario.params, model, t_out)
         command = " ".join(["spinorbit bench", str(path), *(f"--set {shlex.quote(o)}" for o in overrides),
                             *([f"--methods {','.join(methods)}"] if methods else [])])
         title = scenario["scene.title"] or scenario.name
@@ -187,3 +195,10 @@ def bench_scenario(path, methods=None, out=None, budget_s=10.0, overrides=(), fo
             raise
         run_dir.commit(lambda d: names.extend(p.name for p in write(rows, d, title, command, note)))
     return rows, [run_dir.out / name for name in names]
+
+
+def bench_kinds():
+    """The scene kinds ``spinorbit bench`` takes: their Scene declares ``bench``."""
+    from .scenes import SCENES, scene_of
+
+    return sorted(kind for kind in SCENES if scene_of(kind).bench is not None)

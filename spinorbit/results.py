@@ -1,8 +1,10 @@
-"""Running a scenario: ``run_scenario``, the one entry point of the command line and notebooks.
+"""Running a scenario: ``run_scenario``, the one entry point of the command line, notebooks and the API, and
+the one runner of every scene.
 
-Edge module (imports astropy): loads the scenario, runs its scene, and completes the scene's
-:class:`~spinorbit.run_result.RunResult` with the summary every run has (span, integrator,
-verdict, provenance; NaN turned into "not measured").
+Edge module (imports astropy): loads the scenario, then for its scene (spinorbit.scene.Scene) builds the model,
+integrates it, has the scene compare, makes the table, and completes the
+:class:`~spinorbit.run_result.RunResult` with the summary every run has (span, integrator, verdict,
+provenance; NaN turned into "not measured").
 """
 import functools
 import math
@@ -13,6 +15,8 @@ import numpy as np
 from .errors import IntegrationError, ScenarioError
 from .run_result import RunResult, attitude_table
 from .scenarios import Scenario, load_scenario, scenario_errors
+from .scene import Run
+from .simulate import simulate
 from .solutions import for_scenario
 
 
@@ -25,21 +29,22 @@ def run_scenario(scenario, overrides=()):
     try:
         # NaN/inf are reported as not measured; the library's InputError names its scenario key
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"), scenario_errors(scenario):
-            result = scenario.module.run(scenario)
+            result = run_scene(scenario)
     except IntegrationError as exc:
         if getattr(exc, "result", None) is None and getattr(exc, "partial", None) is not None:
             exc.result = partial_result(scenario, exc)
         raise
     from .provenance import provenance
-    from .verdict import evaluate, spec_of
+    from .verdict import evaluate
 
     summary = mark_unmeasured({**base_summary(scenario), **result.summary, "status": "ok"})
     resumed = getattr(scenario.checkpoint, "resumed_outputs", 0)
     if resumed:                          # run.wall_s is then this process's part only
         summary.setdefault("run", {})["resumed_after_outputs"] = resumed
     comparison = summary.get("comparison", {})
-    summary["verdict"] = evaluate(spec_of(scenario, comparison), comparison, abs(scenario.t_end - scenario.t_start),
-                                  scenario.name, span_label(scenario), summary.get("not_measured"))
+    spec = scenario.scene.verdict_for(scenario.params, comparison)
+    summary["verdict"] = evaluate(spec, comparison, abs(scenario.t_end - scenario.t_start), scenario.name,
+                                  span_label(scenario), summary.get("not_measured"))
     summary["provenance"] = provenance(scenario)
     result.summary = summary
     result.continuous = functools.partial(for_scenario, scenario)
@@ -49,6 +54,44 @@ def run_scenario(scenario, overrides=()):
         describe(result.table)
         result.table.meta.update({"scene": scenario.name, "title": summary["title"], **summary["provenance"]})
     return result
+
+
+def run_scene(scenario):
+    """The scene's run: build its model once, integrate it over the output times, let the scene compare, make
+    the table (the attitude table and the scene's columns, or the scene's own) and the summary (a scene that
+    declares its own ``run`` aside)."""
+    scene, p = scenario.scene, scenario.params
+    if scene.run is not None:
+        return scene.run(scenario)
+    times = scenario.output_times()
+    model = scene.build(p, times)
+    run = Run(p, model, times, functools.partial(integrate, scenario))
+    if model.system is not None:
+        run.solution, run.point = run.integrate(model.system, times)
+    outcome = scene.compare(p, run)
+    table = outcome.table
+    if table is None and run.solution is not None and run.solution.layout.quaternions:
+        table = attitude_table(run.solution)
+        for name, column in outcome.columns.items():
+            table[name] = column
+    summary = {"comparison": outcome.comparison, "run": run.point, **outcome.sections}
+    if outcome.not_measured:
+        summary["not_measured"] = {**summary.get("not_measured", {}), **outcome.not_measured}
+    return RunResult(scenario, table, summary, outcome.figures, run.solution)
+
+
+def integrate(scenario, system, times, part=None, method=None, options=None):
+    """simulate() with the scenario's [integrator] table (or ``method`` and ``options``): the main run
+    checkpointed when the command line gives a checkpoint, a further run ``part`` in a checkpoint of its own
+    and a progress bar named for it; its error estimated as the scenario says."""
+    checkpoint = scenario.checkpoint
+    if checkpoint is not None and part is not None:
+        checkpoint = checkpoint.part(part)
+    label = scenario.name if part is None else f"{scenario.name} ({part})"
+    if method is not None:
+        return simulate(system, times, method, options or {}, False, None, label)
+    return simulate(system, times, scenario["integrator.method"], scenario.integrator_options(),
+                    scenario["integrator.estimate_error"], checkpoint, label)
 
 
 def mark_unmeasured(summary):

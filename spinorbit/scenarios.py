@@ -18,7 +18,7 @@ plausible range (``Key.min``/``Key.max``), tolerances inside [100 eps, 1e-3];
 a step over the span must not ask for more output rows, orbit samples or
 integrator steps than ``LIMITS`` allows, nor a rate for more than ``MAX_CYCLES``
 cycles; and the run's time and memory, estimated from the counts and the costs
-measured per item for its scene kind (``COSTS``: seconds per integrator step,
+measured per item for its scene kind (its Scene's ``cost``: seconds per integrator step,
 bytes per row and per orbit sample), must fit ``limits.time`` (default 1 h) and
 ``limits.memory`` (default half the machine's): the run is refused up front with
 the estimate, instead of hanging or filling the memory.  Files must be UTF-8, at
@@ -29,7 +29,6 @@ import math
 import os
 import tomllib
 from contextlib import contextmanager
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -42,8 +41,10 @@ from .schema import (
     Key,
     checked_float,
     dotted_items,
+    filled,
     finite_float,
     parse_tdb_days,
+    record,
 )
 
 MAX_DEPTH = 8                  # nesting of tables and arrays in a scenario
@@ -53,35 +54,6 @@ LIMITS = {"output rows": 1_000_000, "orbit samples": 10_000_000, "integrator ste
           "adaptive steps (at max_step)": 1_000_000}
 
 
-@dataclass(frozen=True)
-class Cost:
-    """What one item of a count costs a scene kind, measured (``python benchmarks/bench_costs.py``, peak
-    resident memory and wall time of whole runs at two sizes; benchmarks/results_costs.md): wall
-    seconds per integrator step of its fixed-step method, peak bytes per output row and per orbit
-    sample, and the peak of a small run."""
-
-    step_s: float
-    row_bytes: float = 1000
-    sample_bytes: float = 1000
-    base_bytes: float = 350e6
-
-    @property
-    def bytes_per(self):
-        return {"output rows": self.row_bytes, "orbit samples": self.sample_bytes}
-
-
-# Measured with the scenes' own settings (error estimate, plots), benchmarks/results_costs.md: peak memory
-# 590-720 B per output row, 690 B per orbit sample of the Moon's (140 of the Earth's), 200-350 MB for a small
-# run; per step 25-48 us of the closed Earth-Moon system, 0.16-0.27 ms of the solar-system one, 84 us of the
-# lunar model (its error-vs-cost ladder included), 8-21 us of a rigid body on a Kepler orbit, on one free
-# core of a 2-core x86-64; each cost here is about twice that (a machine shared with other jobs is slower).
-COSTS = {
-    "coupled_conservation": Cost(step_s=1e-4),
-    "earth_moon_coupled": Cost(step_s=3e-4),
-    "moon_libration": Cost(step_s=2e-4),
-    "earth_precession_nutation": Cost(step_s=3e-5, sample_bytes=300),
-}
-DEFAULT_COST = Cost(step_s=3e-5)             # the rigid-body scenes
 ADAPTIVE_STEP_S = 2e-4         # scipy's adaptive methods: Python between the stages of each step
 COMMON_SCHEMA = {
     "scene.kind": Key(type=str, help="what the scene runs (spinorbit.scenes.SCENES)"),
@@ -101,12 +73,11 @@ COMMON_SCHEMA = {
 }
 OPEN_TABLES = ("integrator",)     # [integrator] options go to the method, which checks their names
 MIN_SPAN_D = 1e-6              # shortest span, days (0.0864 s)
-# Cycles a run may have to follow: any rate key (rad/d) times the span, and the torque's own
-# time-scale sqrt(3 GM/s^3) when a scene has orbit.gm and a distance.  The fast-spin stress
+# Cycles a run may have to follow: any rate key (rad/d) times the span, and the time-scales its scene declares
+# (a torque's sqrt(3 GM/s^3), Euler's equations' body-frame rates).  The fast-spin stress
 # scene follows 1e5 spin cycles (a compiled splitting method); dop853 costs ~10 ms per cycle
 # (p93 at orbit.rate = 1000 rad/d: 3200 cycles in 45 s), so 2e5 cycles is about half an hour.
 MAX_CYCLES = 2e5
-DISTANCE_KEYS = ("orbit.radius", "orbit.f", "orbit.a")
 SPAN_END_ACCEPTED = ("an ISO date in TDB without a time zone (e.g. '2030-01-01' or '2030-01-01T12:00:00'), or a "
                      "finite duration from span.start (e.g. '100 yr', '2 d', '2 days', '-1 Myr')")
 
@@ -121,23 +92,24 @@ class Scenario:
         self.checkpoint = None          # a checkpoint.Checkpoint when the command line runs it (--resume)
         self.extra_times = None         # TDB days the Python API asks for, besides the span's grid
         self.notes = []                 # what loading changed and says (method_switch)
-        from .scenes import scene_module  # the scene registry (lazy imports)
+        from .scenes import scene_of  # the scene registry (lazy imports)
 
         check_depth(data, str(self.path) if self.path else "scenario")
         kind = _lookup(data, "scene.kind", Key(type=str))
         if not isinstance(kind, str):
             raise ScenarioError("scene.kind", kind, "a string naming a scene kind")
-        self.module = scene_module(kind)
+        self.scene = scene_of(kind)
         method = data.get("integrator", {}).get("method") if isinstance(data.get("integrator"), dict) else None
-        if method == "taylor" and not getattr(self.module, "TAYLOR", False):
+        if method == "taylor" and not self.scene.taylor:
             raise ScenarioError("integrator.method", "taylor", f"a method other than 'taylor' for scene kind "
                                 f"'{kind}', which reads an ephemeris (taylor runs: {', '.join(taylor_kinds())})")
-        self.schema = {**COMMON_SCHEMA, **self.module.SCHEMA}
+        self.schema = {**COMMON_SCHEMA, **self.scene.schema}
         self._check_keys()
         self.values = {key: self._convert(key, spec) for key, spec in self.schema.items()}
         self.kind = kind
         self._options = self._integrator_options()
         self.t_start, self.t_end = self._span()
+        self.params = filled(_record_type(kind, self.schema), self.values, self.t_start, self.t_end)
         self._check_counts()
         self._check_cycles()
         from .integrators import get_method
@@ -262,7 +234,7 @@ class Scenario:
                 end = start + checked_float("span.end", end_text, Key(unit="d"))
             except ScenarioError:
                 raise ScenarioError("span.end", end_text, SPAN_END_ACCEPTED) from None
-        if end < start and not getattr(self.module, "BACKWARD", False):
+        if end < start and not self.scene.backward:
             raise ScenarioError("span.end", end_text, f"a time after span.start ({self['span.start']}); "
                                 f"scene kind '{self.kind}' runs forward only (backward runs: "
                                 f"{', '.join(backward_kinds())})")
@@ -279,8 +251,8 @@ class Scenario:
         return counts
 
     def cost(self):
-        """The measured per-item costs of this scene kind (COSTS)."""
-        return COSTS.get(self.kind, DEFAULT_COST)
+        """The measured per-item costs of this scene kind (its Scene's cost)."""
+        return self.scene.cost
 
     def estimate(self):
         """{"time_s", "memory_bytes"} of the run, from its counts and the kind's measured costs."""
@@ -349,28 +321,29 @@ class Scenario:
         raise ScenarioError(key, _lookup(self.data, key, Key()) if _has(self.data, key) else value, accepted)
 
     def _check_cycles(self):
-        """Refuse rates (and GM over distance^3) that would make the run follow over MAX_CYCLES cycles."""
+        """Refuse rate keys, and the time-scales the scene declares, that would make the run follow over
+        MAX_CYCLES cycles."""
         span = abs(self.t_end - self.t_start)
         rates = [(key, float(np.linalg.norm(self.values[key])), "") for key, spec in self.schema.items()
                  if spec.unit == "rad/d" and self.values[key] is not None]
-        moments = self.values.get("body.moments")
-        if moments is not None and np.all(np.abs(moments) > 0):
-            a, b, c = (float(m) for m in moments)
-            euler = max(abs(b - c) / abs(a), abs(c - a) / abs(b), abs(a - b) / abs(c))   # Euler's equations
-            rates += [("body.moments", rate * euler,
-                       f" (the body-frame rate |{key}| x {euler:.3g}, Euler's equations)")
-                      for key, rate, _ in list(rates) if key.startswith("body.") and euler > 1]
-        distance = next((key for key in DISTANCE_KEYS if key in self.values), None)
-        if "orbit.gm" in self.values and distance:
-            torque_rate = math.sqrt(3 * self.values["orbit.gm"] / self.values[distance] ** 3)
-            rates.append((distance, torque_rate,
-                          f" (sqrt(3 orbit.gm/{distance}^3) = {torque_rate:.3g} rad/d)"))
+        if self.scene.time_scales is not None:
+            rates += [(s.key, s.rate, s.how) for s in self.scene.time_scales(self.params)]
         for key, rate, how in rates:
             cycles = rate * span / (2 * math.pi)
             if cycles > MAX_CYCLES:
                 self._refuse(key, rate, f"a value giving at most {MAX_CYCLES:.0e} cycles over the {span:.6g} "
                                         f"d span (this one gives {cycles:.3g}{how}); change {key} or shorten "
                                         "the span")
+
+
+_RECORDS = {}
+
+
+def _record_type(kind, keys):
+    """The typed record of a scene kind's values (schema.record), made once per kind."""
+    if kind not in _RECORDS:
+        _RECORDS[kind] = record(f"{kind}_params", keys)
+    return _RECORDS[kind]
 
 
 # The library names an argument it cannot use (errors.InputError); the scenario key that sets it:
@@ -447,18 +420,18 @@ def physical_memory():
 
 
 def backward_kinds():
-    """Scene kinds that run a span backward (their module sets BACKWARD = True)."""
-    from .scenes import SCENES, scene_module
+    """Scene kinds that run a span backward (their Scene says ``backward``)."""
+    from .scenes import SCENES, scene_of
 
-    return sorted(kind for kind in SCENES if getattr(scene_module(kind), "BACKWARD", False))
+    return sorted(kind for kind in SCENES if scene_of(kind).backward)
 
 
 def taylor_kinds():
-    """Scene kinds whose every term is a function of the state and the time (their module sets TAYLOR = True):
+    """Scene kinds whose every term is a function of the state and the time (their Scene says ``taylor``):
     heyoka's Taylor integrator takes them."""
-    from .scenes import SCENES, scene_module
+    from .scenes import SCENES, scene_of
 
-    return sorted(kind for kind in SCENES if getattr(scene_module(kind), "TAYLOR", False))
+    return sorted(kind for kind in SCENES if scene_of(kind).taylor)
 
 
 def _toml_datetime_text(key, value):
@@ -593,8 +566,8 @@ def key_table(scene):
     options = get_method(method).options if method in METHODS else {}
     summary = " ".join((module.__doc__ or "").strip().split("\n\n")[0].split())
     rows = [("key", "value in the file", "default", "unit", "range", "meaning")]
-    for key, spec in {**COMMON_SCHEMA, **module.SCHEMA, **{f"integrator.{name}": spec for name, spec in
-                                                           INTEGRATOR_OPTIONS.items() if name in options}}.items():
+    options_keys = {f"integrator.{name}": spec for name, spec in INTEGRATOR_OPTIONS.items() if name in options}
+    for key, spec in {**COMMON_SCHEMA, **scenario.scene.schema, **options_keys}.items():
         name = key.removeprefix("integrator.")
         default = repr(options[name]) if key.startswith("integrator.") and name in options else \
             "(required)" if spec.default is REQUIRED else repr(spec.default)

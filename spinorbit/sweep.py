@@ -110,7 +110,7 @@ def run_sweep(scenario_path, grid, out_dir, scheduler="local", base_overrides=()
 
 
 def _sweep_figures(scenario_path, overrides, records, staged):
-    """The scene's figures over its members, when its module has ``sweep_figures(tables) -> {name: draw}``
+    """The scene's figures over its members, when its Scene has ``sweep_figures(tables) -> {name: draw}``
     (e.g. a band over the members' curves), drawn into the sweep directory from the members' tables."""
     from astropy.table import QTable
 
@@ -119,7 +119,7 @@ def _sweep_figures(scenario_path, overrides, records, staged):
     from .scenarios import load_scenario
 
     scenario = load_scenario(scenario_path, overrides)
-    make = getattr(scenario.module, "sweep_figures", None)
+    make = scenario.scene.sweep_figures
     tables = [QTable.read(staged / Path(r["out"]).name / "timeseries.ecsv", format="ascii.ecsv")
               for r in records if r.get("status") == "ok"]
     if make is None or len(tables) < 2:

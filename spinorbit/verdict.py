@@ -1,7 +1,7 @@
 """The verdict of a run: does the comparison a scene exists for meet its tolerance?
 
-A scene declares ``VERDICT``, a ``Verdict``, or a function ``verdict(scenario, comparison)
--> Verdict`` when the question depends on the scenario's settings (or, for P96, on whether
+A scene declares its ``verdict`` (spinorbit.scene.Scene): a ``Verdict``, or a function ``verdict(p,
+comparison) -> Verdict`` when the question depends on the scene's parameters ``p`` (or, for P96, on whether
 the run met the resonance), naming the reference, and ``Check``s on keys of
 ``summary["comparison"]`` with a tolerance in the metric's unit and its source.  ``evaluate`` turns it into
 ``summary["verdict"]``:
@@ -44,12 +44,6 @@ class Verdict:
     reference: str
     checks: tuple
     note: str = ""
-
-
-def spec_of(scenario, comparison=None):
-    """The scene's Verdict for this scenario, or None when the scene declares none."""
-    choose = getattr(scenario.module, "verdict", None)
-    return choose(scenario, comparison or {}) if choose is not None else getattr(scenario.module, "VERDICT", None)
 
 
 def evaluate(spec, comparison, span_d, name="", span_label="", not_measured=None):

@@ -9,7 +9,7 @@ from spinorbit.cli import EXIT_VERDICT_FAIL, main
 from spinorbit.reports import write_run
 from spinorbit.results import base_summary, run_scenario
 from spinorbit.scenarios import load_scenario
-from spinorbit.verdict import Check, Verdict, evaluate, spec_of
+from spinorbit.verdict import Check, Verdict, evaluate
 
 SCENARIOS = Path(__file__).parents[1] / "scenarios"
 P92 = SCENARIOS / "p92_arc_ab.toml"
@@ -51,7 +51,8 @@ def test_headline_names_figure_tolerance_reference_and_span():
 def test_every_shipped_scene_declares_its_comparison():
     for path in sorted(SCENARIOS.rglob("*.toml")):
         for comparison in ({}, {"resonance_detected": True}):
-            spec = spec_of(load_scenario(path), comparison)
+            scenario = load_scenario(path)
+            spec = scenario.scene.verdict_for(scenario.params, comparison)
             assert spec.reference and spec.checks and all(isinstance(c, Check) for c in spec.checks), path.name
             assert all(c.source for c in spec.checks), path.name
 
@@ -60,7 +61,8 @@ def test_the_rebound_driven_moon_fails_and_names_the_accurate_rebound_path():
     """moon_libration_rebound.toml with its measured drift (pole 0.33", longitude 19.8" over 50 yr,
     benchmarks/RESULTS.md) fails against level 3's targets; its note says what to expect and names the coupled
     scene on REBOUND's bodies, which exists and takes them from REBOUND."""
-    spec = spec_of(load_scenario(SCENARIOS / "moon_libration_rebound.toml"))
+    scenario = load_scenario(SCENARIOS / "moon_libration_rebound.toml")
+    spec = scenario.scene.verdict_for(scenario.params, {})
     figures = {"pole_error_max_arcsec": 0.33, "longitude_error_max_arcsec": 19.8}
     assert evaluate(spec, figures, 18262.5)["result"] == "fail"
     coupled = SCENARIOS / "earth_moon_coupled_rebound.toml"

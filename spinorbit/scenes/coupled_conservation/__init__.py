@@ -17,11 +17,11 @@ import numpy as np
 
 from ...constants import JULIAN_CENTURY_D
 from ...models.assemblies.earth_moon import FIGURES
+from ...scene import Cost, Model, Outcome, Scene
 from ...schema import Key
 from ...verdict import Check, Verdict
 from .. import common
 
-TAYLOR = True          # every term a function of the state and the time: heyoka's Taylor integrator takes it
 SCHEMA = {
     **{f"model.{name}": Key(type=bool, default=True, help=text) for name, text in FIGURES.items()},
     "model.earth_rotator": Key(
@@ -36,16 +36,16 @@ METRICS = ("L_norm_rel_drift", "L_vector_rel_drift", "energy_rel_drift")
 MIN_SPAN_D = 10 * 365.25
 
 
-def verdict(scenario, comparison):
+def verdict(p, comparison):
     """Each drift per century within stress.tolerance_per_century."""
-    tolerance = scenario["stress.tolerance_per_century"]
+    tolerance = p.stress.tolerance_per_century
     source = ("the rounding floor of RK8 on this system: 3e-13 to 7e-13 per century at 0.1 d "
               "(benchmarks/RESULTS.md)")
     return Verdict("conservation (closed system)", tuple(
         Check(name, f"{name}_per_century", tolerance, "", source, min_span_d=MIN_SPAN_D) for name in METRICS))
 
 
-def system(scenario):
+def build(p, times):
     """The closed Earth-Moon System of the scenario's figures and Earth, started from DE421 at span.start."""
     from ...bodies import earth
     from ...models.assemblies.earth_moon import closed
@@ -53,20 +53,21 @@ def system(scenario):
     from ...models.start import earth_moon_de421
     from ...references.erfa_pole import cip_vector
 
-    t0 = scenario.t_start
-    rotator = Rigid() if scenario["model.earth_rotator"] == "rigid" else None
-    built = closed(tuple(name for name in FIGURES if scenario[f"model.{name}"]), t0,
-                   earth_rotator=rotator, moon_core=False)
+    t0 = p.t_start
+    rotator = Rigid() if p.model.earth_rotator == "rigid" else None
+    built = closed(tuple(name for name in FIGURES if getattr(p.model, name)), t0, earth_rotator=rotator,
+                   moon_core=False)
     built.y0 = built.layout.pack(earth_moon_de421(built, t0, cip_vector(t0), earth.ERA_RATE_RAD_D))
-    return built
+    return Model(built)
 
 
-def run(scenario):
-    t0, t = scenario.t_start, scenario.output_times()
-    model = system(scenario)
-    solution, point = common.simulate_scenario(scenario, model, t)
-    states = solution.y
-    energy, big_l = model.invariants(states, t)
+def compare(p, run):
+    from astropy.table import QTable
+
+    from ...schema import tdb_days_to_time
+
+    t, t0, solution = run.times, p.t_start, run.solution
+    energy, big_l = run.model.system.invariants(solution.y, t)
     norm = np.linalg.norm(big_l, axis=1)
     changes = {"L_norm_rel_drift": np.abs(norm / norm[0] - 1),
                "L_vector_rel_drift": np.linalg.norm(big_l - big_l[0], axis=1) / norm[0],
@@ -77,26 +78,22 @@ def run(scenario):
     for name in METRICS:
         comparison[name] = float(changes[name].max())
         comparison[f"{name}_per_century"] = comparison[name] / centuries
-    summary = {"comparison": comparison}
+    not_measured = {}
     if abs(t[-1] - t0) >= MIN_SPAN_D:
-        comparison["passed"] = all(comparison[f"{n}_per_century"] <= scenario["stress.tolerance_per_century"]
+        comparison["passed"] = all(comparison[f"{n}_per_century"] <= p.stress.tolerance_per_century
                                    for n in METRICS)
     else:
         comparison["passed"] = None
-        summary["not_measured"] = {
-            "comparison.passed": "a span under 10 yr: the per-century drift is not judged"}
-
-    from astropy.table import QTable
-
-    from ...schema import tdb_days_to_time
-
-    u = common.u()
+        not_measured["comparison.passed"] = "a span under 10 yr: the per-century drift is not judged"
     table = QTable()
     table["time"] = tdb_days_to_time(t)
     for k, axis in enumerate("xyz"):
-        table[f"moon_geocentric_{axis}"] = solution.part("moon.r")[:, k] * u.km
+        table[f"moon_geocentric_{axis}"] = solution.part("moon.r")[:, k] * common.u().km
     for name in METRICS:
         table[name.replace("_drift", "_change")] = changes[name]
     figures = {"drift": common.plot_series(common.decimal_year(t), [changes[n] for n in METRICS],
                                            "year (TDB)", "relative change", ["|L|", "L vector", "E"])}
-    return common.result(scenario, table, {**summary, "run": point}, figures, None)
+    return Outcome(comparison, figures=figures, not_measured=not_measured, table=table)
+
+
+SCENE = Scene(SCHEMA, build, compare, verdict, Cost(step_s=1e-4), taylor=True)

@@ -13,11 +13,11 @@ from ...constants import ARCSEC
 from ...errors import PhysicsError, ScenarioError
 from ...models.assemblies.idealised import free_body
 from ...rotations import quat_angle, quat_from_euler313
+from ...scene import Model, Outcome, Scene
 from ...schema import ANGLE, SPIN, Key
 from ...verdict import Check, Verdict
 from .. import common
 
-TAYLOR = True          # every term a function of the state and the time: heyoka's Taylor integrator takes it
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A <= B <= C, any unit"),
     "body.omega0": Key(**SPIN, size=3, help="initial body angular velocity"),
@@ -33,38 +33,24 @@ VERDICT = Verdict("Euler's closed form", (
 ))
 
 
-def build(scenario):
-    """For ``spinorbit bench``: (system, output times, error(solution) = max attitude error vs closed
-    form, rad)."""
+def build(p, times):
+    """The free body and its closed form (theory.FreeRigidBody) from the same start."""
     from ...theory import FreeRigidBody
 
-    moments, omega0 = scenario["body.moments"], scenario["body.omega0"]
-    q0 = quat_from_euler313(*scenario["body.attitude0"])
-    system = free_body(moments, q0, omega0, scenario.t_start)
-    t = scenario.output_times()
-    q_exact = FreeRigidBody(moments, omega0, q0).attitude(t - scenario.t_start)
-    return system, t, lambda solution: float(quat_angle(solution.quaternion, q_exact).max())
-
-
-def run(scenario):
-    from ...theory import FreeRigidBody
-
-    moments, omega0 = scenario["body.moments"], scenario["body.omega0"]
-    q0 = quat_from_euler313(*scenario["body.attitude0"])
+    q0 = quat_from_euler313(*p.body.attitude0)
     try:
-        exact = FreeRigidBody(moments, omega0, q0)
+        exact = FreeRigidBody(p.body.moments, p.body.omega0, q0)
     except PhysicsError as exc:
-        raise ScenarioError("body", {"moments": moments.tolist(), "omega0": omega0.tolist()},
+        raise ScenarioError("body", {"moments": p.body.moments.tolist(), "omega0": p.body.omega0.tolist()},
                             f"0 < A <= B <= C and a non-zero omega0 ({exc})") from None
-    system = free_body(moments, q0, omega0, scenario.t_start)
-    t = scenario.output_times()
-    solution, point = common.simulate_scenario(scenario, system, t)
+    return Model(free_body(p.body.moments, q0, p.body.omega0, p.t_start), exact=exact)
 
-    dt = solution.t - scenario.t_start
-    omega_exact = exact.omega(dt)
-    q_exact = exact.attitude(dt)
-    omega_err = np.abs(solution.omega - omega_exact).max() / np.linalg.norm(omega0)
-    attitude_err = quat_angle(solution.quaternion, q_exact) / ARCSEC
+
+def compare(p, run):
+    solution, exact = run.solution, run.model.exact
+    dt = solution.t - p.t_start
+    omega_err = np.abs(solution.omega - exact.omega(dt)).max() / np.linalg.norm(p.body.omega0)
+    attitude_err = quat_angle(solution.quaternion, exact.attitude(dt)) / ARCSEC
     comparison = {
         "regime": exact.regime,
         "period_d": exact.period,
@@ -74,14 +60,19 @@ def run(scenario):
         "attitude_max_error_vs_closed_form_arcsec": float(attitude_err.max()),
         "attitude_max_error_vs_closed_form_rad": float(attitude_err.max() * ARCSEC),
     }
-    table = common.attitude_table(solution)
-    table["attitude_error"] = attitude_err * common.u().arcsec
-    figures = {
-        "omega": common.plot_omega(solution),
-        "error_vs_closed_form": common.plot_series(
-            solution.t - scenario.t_start, attitude_err,
-            "days from start", "attitude error vs closed form [arcsec]"),
-    }
-    invariants = invariant_drift(moments, solution.quaternion, solution.omega)
-    summary = {"comparison": comparison, "run": point, "invariants": invariants}
-    return common.result(scenario, table, summary, figures, solution)
+    figures = {"omega": common.plot_omega(solution),
+               "error_vs_closed_form": common.plot_series(dt, attitude_err, "days from start",
+                                                          "attitude error vs closed form [arcsec]")}
+    invariants = invariant_drift(p.body.moments, solution.quaternion, solution.omega)
+    return Outcome(comparison, columns={"attitude_error": attitude_err * common.u().arcsec}, figures=figures,
+                   sections={"invariants": invariants})
+
+
+def bench(p, model, times):
+    """Max attitude error against the closed form, rad."""
+    q_exact = model.exact.attitude(times - p.t_start)
+    return lambda solution: float(quat_angle(solution.quaternion, q_exact).max())
+
+
+SCENE = Scene(SCHEMA, build, compare, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA), bench=bench,
+              taylor=True)

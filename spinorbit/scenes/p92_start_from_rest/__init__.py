@@ -11,11 +11,11 @@ import numpy as np
 
 from ...constants import ARCSEC
 from ...models.assemblies.idealised import under_point_masses
+from ...scene import Model, Outcome, Scene
 from ...schema import DISTANCE, GM, Key
 from ...verdict import Check, Verdict
 from .. import common
 
-TAYLOR = True          # every term a function of the state and the time: heyoka's Taylor integrator takes it
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A <= B <= C, any unit"),
     "orbit.gm": Key(**GM, help="GM of the centre of forces"),
@@ -32,22 +32,24 @@ VERDICT = Verdict("Euler's first motion (§821-823)", (
 ))
 
 
-def run(scenario):
+def build(p, times):
+    """The body at rest, F fixed (rate 0) at ``force.direction``: a circle point (cos a, sin a cos i,
+    sin a sin i)."""
     from ...orbits.analytic import CircularOrbits
+
+    body = common.rigid_body(p)
+    u = p.force.direction / np.linalg.norm(p.force.direction)
+    orbit = CircularOrbits(("F",), [p.orbit.gm], [p.orbit.radius], [0.0], phase=[math.acos(u[0])],
+                           inclination=[math.atan2(u[2], u[1])])
+    system = under_point_masses(body.moments, orbit, [1.0, 0, 0, 0], np.zeros(3), p.t_start, "body at rest")
+    return Model(system, direction=u)
+
+
+def compare(p, run):
     from ...theory import start_from_rest
 
-    body = common.rigid_body(scenario)
-    gm, s = scenario["orbit.gm"], scenario["orbit.radius"]
-    u = scenario["force.direction"] / np.linalg.norm(scenario["force.direction"])
-    # F fixed (rate 0) at u: a circle point (cos a, sin a cos i, sin a sin i).
-    orbit = CircularOrbits(("F",), [gm], [s], [0.0], phase=[math.acos(u[0])],
-                           inclination=[math.atan2(u[2], u[1])])
-    system = under_point_masses(body.moments, orbit, [1.0, 0, 0, 0], np.zeros(3), scenario.t_start,
-                                "body at rest")
-    t = scenario.output_times()
-    solution, point = common.simulate_scenario(scenario, system, t)
-
-    axis, cos_of, rate = start_from_rest(body.moments, u, gm, s)
+    solution = run.solution
+    axis, cos_of, rate = start_from_rest(p.body.moments, run.model.direction, p.orbit.gm, p.orbit.radius)
     dt1 = solution.t[1] - solution.t[0]
     w1 = solution.omega[1]
     axis_num = w1 / np.linalg.norm(w1)
@@ -62,6 +64,7 @@ def run(scenario):
             math.atan2(np.linalg.norm(np.cross(axis_num, axis)), axis_num @ axis) / ARCSEC),
         "first_step_d": float(dt1),
     }
-    table = common.attitude_table(solution)
-    figures = {"omega": common.plot_omega(solution)}
-    return common.result(scenario, table, {"comparison": comparison, "run": point}, figures, solution)
+    return Outcome(comparison, figures={"omega": common.plot_omega(solution)})
+
+
+SCENE = Scene(SCHEMA, build, compare, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA), taylor=True)

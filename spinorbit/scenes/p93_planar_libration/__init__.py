@@ -13,11 +13,11 @@ import numpy as np
 from ...constants import ARCSEC
 from ...models.assemblies.idealised import under_point_masses
 from ...rotations import matrix_from_quat
+from ...scene import Model, Outcome, Scene
 from ...schema import DISTANCE, GM, RATE, Key
 from ...verdict import Check, Verdict
 from .. import common
 
-TAYLOR = True          # every term a function of the state and the time: heyoka's Taylor integrator takes it
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A < B <= C, any unit"),
     "orbit.gm": Key(**GM, help="GM of the centre of forces"),
@@ -30,9 +30,9 @@ SCHEMA = {
 _ZETA = "dop853 at rtol 1e-12 over 200 d: ~1e-4\" (tests/test_idealised_scenes.py)"
 
 
-def verdict(scenario, comparison):
+def verdict(p, comparison):
     """zeta against Euler's closed form; on the separatrix only while zeta < 80 deg (it is unstable)."""
-    metric = ("zeta_error_max_arcsec_below_80deg" if scenario["libration.energy_over_n"] == 1
+    metric = ("zeta_error_max_arcsec_below_80deg" if p.libration.energy_over_n == 1
               else "zeta_error_max_arcsec")
     return Verdict("Euler's closed form (§826-831)", (Check("zeta", metric, 1e-3, "″", _ZETA),))
 
@@ -56,23 +56,23 @@ def crossing_times(t, x, level=0.0):
     return t[i] + (level - x[i]) * (t[i + 1] - t[i]) / (x[i + 1] - x[i])
 
 
-def run(scenario):
+def build(p, times):
+    """The body on Euler's circle with zeta = 0 and zeta' from the energy constant; the closed form."""
     from ...orbits.analytic import CircularOrbits
     from ...theory import PlanarLibration, libration_n
 
-    body = common.rigid_body(scenario)
-    gm, s, delta = scenario["orbit.gm"], scenario["orbit.radius"], scenario["orbit.rate"]
+    body = common.rigid_body(p)
+    gm, s, delta = p.orbit.gm, p.orbit.radius, p.orbit.rate
     n = libration_n(body.moments, gm, s)
-    energy = scenario["libration.energy_over_n"] * n
-    zeta_dot0 = math.sqrt(max(energy + n, 0.0))
-    t0 = scenario.t_start
-    orbit = CircularOrbits(("F",), [gm], [s], [delta], phase=[-delta * t0])
-    system = planar_system(body.moments, orbit, t0, 0.0, zeta_dot0, delta)
-    t = scenario.output_times()
-    solution, point = common.simulate_scenario(scenario, system, t)
+    zeta_dot0 = math.sqrt(max(p.libration.energy_over_n * n + n, 0.0))
+    orbit = CircularOrbits(("F",), [gm], [s], [delta], phase=[-delta * p.t_start])
+    return Model(planar_system(body.moments, orbit, p.t_start, 0.0, zeta_dot0, delta), n=n,
+                 theory=PlanarLibration(n, 0.0, zeta_dot0))
 
-    theory = PlanarLibration(n, 0.0, zeta_dot0)
-    dt = solution.t - t0
+
+def compare(p, run):
+    solution, theory, n, delta = run.solution, run.model.theory, run.model.n, p.orbit.rate
+    dt = solution.t - p.t_start
     zeta_num = zeta_from_solution(solution, delta * dt)
     zeta_cf = theory.zeta(dt)
     comparison = {"case": theory.case, "n_rad2_per_d2": n, "energy_over_n": theory.energy / n}
@@ -116,17 +116,16 @@ def run(scenario):
     if theory.case == "equilibrium":
         comparison["max_digression_measured_arcsec"] = float(np.abs(zeta_num).max() / ARCSEC)
 
-    table = common.attitude_table(solution)
-    table["zeta"] = zeta_num * common.u().rad
-    table["zeta_closed_form"] = zeta_cf * common.u().rad
     figures = {"zeta": common.plot_series(dt, np.degrees([zeta_num, zeta_cf]), "days from start",
                                           "zeta = AF [deg]", ["integrated (3-D rigid body)", "closed form"])}
-    summary = {"comparison": comparison, "run": point,
-               **({"not_measured": not_measured} if not_measured else {})}
-    return common.result(scenario, table, summary, figures, solution)
+    columns = {"zeta": zeta_num * common.u().rad, "zeta_closed_form": zeta_cf * common.u().rad}
+    return Outcome(comparison, columns, figures, not_measured=not_measured)
 
 
 def _too_short(span_d, found, events, period_d):
     """Why a period cannot be measured: the span holds fewer than two of the events that bound one."""
     return (f"not measured: the {span_d:.6g} d span holds {found} {events}, two are needed; "
             f"the closed-form period is {period_d:.6g} d, so lengthen span.end beyond {2 * period_d:.6g} d")
+
+
+SCENE = Scene(SCHEMA, build, compare, verdict, time_scales=common.rigid_body_time_scales(SCHEMA), taylor=True)

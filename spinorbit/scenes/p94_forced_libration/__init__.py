@@ -10,12 +10,12 @@ import numpy as np
 
 from ...constants import ARCSEC
 from ...errors import ScenarioError
+from ...scene import Model, Outcome, Scene
 from ...schema import ANGLE, DISTANCE, GM, RATE, Key
 from ...verdict import Check, Verdict
 from .. import common
 from ..p93_planar_libration import planar_system, zeta_from_solution
 
-TAYLOR = True          # every term a function of the state and the time: heyoka's Taylor integrator takes it
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A < B <= C, any unit"),
     "orbit.gm": Key(**GM, help="GM of the centre of forces"),
@@ -32,29 +32,30 @@ VERDICT = Verdict("Euler's forced libration to second order (§835)", (
 ))
 
 
-def run(scenario):
+def build(p, times):
+    """The body with A towards F and the spin §838 prescribes (no free libration excited)."""
     from ...orbits.analytic import UnevenCircle
-    from ...theory import forced_libration, forced_libration_initial_rate, libration_n
+    from ...theory import forced_libration_initial_rate, libration_n
 
-    body = common.rigid_body(scenario)
-    gm, f, delta = scenario["orbit.gm"], scenario["orbit.f"], scenario["orbit.rate"]
-    alpha, beta, freq = scenario["orbit.alpha"], scenario["orbit.beta"], scenario["orbit.frequency"]
-    t0 = scenario.t_start
-    n = libration_n(body.moments, gm, f)
-    orbit = UnevenCircle(("F",), [gm], [f], [delta], [alpha], [beta], [freq])
-    if t0 != 0.0:
-        raise ScenarioError("span.start", scenario["span.start"],
+    body, o = common.rigid_body(p), p.orbit
+    n = libration_n(body.moments, o.gm, o.f)
+    orbit = UnevenCircle(("F",), [o.gm], [o.f], [o.rate], [o.alpha], [o.beta], [o.frequency])
+    if p.t_start != 0.0:
+        raise ScenarioError("span.start", p.span.start,
                             "'2000-01-01T12:00:00' (J2000): Euler's inequality sin At is timed from t = 0")
-    zeta_dot0 = forced_libration_initial_rate(n, freq, alpha, beta)
-    system = planar_system(body.moments, orbit, t0, 0.0, zeta_dot0 - freq * alpha, delta)
-    t = scenario.output_times()
-    solution, point = common.simulate_scenario(scenario, system, t)
+    zeta_dot0 = forced_libration_initial_rate(n, o.frequency, o.alpha, o.beta)
+    start_rate = zeta_dot0 - o.frequency * o.alpha
+    return Model(planar_system(body.moments, orbit, p.t_start, 0.0, start_rate, o.rate), n=n)
 
-    dt = solution.t - t0
-    zeta_num = zeta_from_solution(solution, delta * dt + alpha * np.sin(freq * dt))
-    zeta_first = forced_libration(dt, n, freq, alpha)
-    zeta_second = forced_libration(dt, n, freq, alpha, beta)
-    amplitude = freq**2 * alpha / (freq**2 - 2 * n)
+
+def compare(p, run):
+    from ...theory import forced_libration
+
+    o, n, dt = p.orbit, run.model.n, run.solution.t - p.t_start
+    zeta_num = zeta_from_solution(run.solution, o.rate * dt + o.alpha * np.sin(o.frequency * dt))
+    zeta_first = forced_libration(dt, n, o.frequency, o.alpha)
+    zeta_second = forced_libration(dt, n, o.frequency, o.alpha, o.beta)
+    amplitude = o.frequency**2 * o.alpha / (o.frequency**2 - 2 * n)
     comparison = {
         "n_rad2_per_d2": n,
         "amplitude_euler_arcsec": amplitude / ARCSEC,
@@ -63,9 +64,10 @@ def run(scenario):
         "zeta_error_second_order_max_arcsec": float(np.abs(zeta_num - zeta_second).max() / ARCSEC),
         "zeta_error_second_order_rel": float(np.abs(zeta_num - zeta_second).max() / abs(amplitude)),
     }
-    table = common.attitude_table(solution)
-    table["zeta"] = zeta_num * common.u().rad
-    table["zeta_euler"] = zeta_second * common.u().rad
     figures = {"zeta": common.plot_series(dt, np.array([zeta_num, zeta_second]) / ARCSEC, "days from start",
                                           "zeta = AF [arcsec]", ["integrated", "Euler §835"])}
-    return common.result(scenario, table, {"comparison": comparison, "run": point}, figures, solution)
+    rad = common.u().rad
+    return Outcome(comparison, {"zeta": zeta_num * rad, "zeta_euler": zeta_second * rad}, figures)
+
+
+SCENE = Scene(SCHEMA, build, compare, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA), taylor=True)

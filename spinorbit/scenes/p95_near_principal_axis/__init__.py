@@ -15,11 +15,11 @@ import numpy as np
 
 from ...errors import ScenarioError
 from ...models.assemblies.idealised import under_point_masses
+from ...scene import Model, Outcome, Scene
 from ...schema import ANGLE, DISTANCE, GM, SPIN, Key
 from ...verdict import Check, Verdict
 from .. import common
 
-TAYLOR = True          # every term a function of the state and the time: heyoka's Taylor integrator takes it
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="symmetric body [cc, cc, aa]"),
     "body.spin": Key(**SPIN, help="angular speed gamma'"),
@@ -38,32 +38,36 @@ VERDICT = Verdict("Euler's pole rates (§843a)", (
 ))
 
 
-def run(scenario):
+def build(p, times):
+    """The symmetric body spinning about a pole alpha from its figure axis, F fixed at ``force.direction``."""
     from ...orbits.analytic import CircularOrbits
-    from ...theory import pole_rates_symmetric
 
-    body = common.rigid_body(scenario)
+    body, b = common.rigid_body(p), p.body
     cc, aa = body.moments[0], body.moments[2]
     if abs(body.moments[1] - cc) > 1e-12 * aa:
         raise ScenarioError("body.moments", body.moments.tolist(),
                             "a symmetric body [cc, cc, aa] (§841: bb = cc)")
-    gamma, alpha, rho = scenario["body.spin"], scenario["body.pole_offset"], scenario["body.pole_angle"]
-    gm, s = scenario["orbit.gm"], scenario["orbit.radius"]
-    u_euler = scenario["force.direction"] / np.linalg.norm(scenario["force.direction"])
+    u_euler = p.force.direction / np.linalg.norm(p.force.direction)
     u = np.array([u_euler[1], u_euler[2], u_euler[0]])          # our (x, y, z) = Euler's (B, C, A)
-    orbit = CircularOrbits(("F",), [gm], [s], [0.0], phase=[math.acos(u[0])],
+    orbit = CircularOrbits(("F",), [p.orbit.gm], [p.orbit.radius], [0.0], phase=[math.acos(u[0])],
                            inclination=[math.atan2(u[2], u[1])])
-    omega0 = gamma * np.array([math.sin(alpha) * math.cos(rho), math.sin(alpha) * math.sin(rho),
-                               math.cos(alpha)])
-    system = under_point_masses(body.moments, orbit, [1.0, 0, 0, 0], omega0, scenario.t_start,
-                                "near principal axis")
-    t = scenario.output_times()
-    solution, point = common.simulate_scenario(scenario, system, t)
+    alpha, rho = b.pole_offset, b.pole_angle
+    omega0 = b.spin * np.array([math.sin(alpha) * math.cos(rho), math.sin(alpha) * math.sin(rho),
+                                math.cos(alpha)])
+    system = under_point_masses(body.moments, orbit, [1.0, 0, 0, 0], omega0, p.t_start, "near principal axis")
+    return Model(system, u_euler=u_euler)
 
-    dt = solution.t - scenario.t_start
+
+def compare(p, run):
+    from ...theory import pole_rates_symmetric
+
+    solution, (cc, _, aa) = run.solution, p.body.moments
+    gamma, alpha, rho = p.body.spin, p.body.pole_offset, p.body.pole_angle
+    dt = solution.t - p.t_start
     pole = solution.omega / np.linalg.norm(solution.omega, axis=1, keepdims=True)
     shift = pole[:, :2] - pole[0, :2]                              # (xi, eta) displacement of O
-    d_alpha, alpha_d_rho = pole_rates_symmetric(aa, cc, gamma, gm, s, rho, u_euler)
+    d_alpha, alpha_d_rho = pole_rates_symmetric(aa, cc, gamma, p.orbit.gm, p.orbit.radius, rho,
+                                                run.model.u_euler)
     rate = np.array([d_alpha * math.cos(rho) - alpha_d_rho * math.sin(rho),
                      d_alpha * math.sin(rho) + alpha_d_rho * math.cos(rho)])
     predicted = np.outer(dt, rate)
@@ -77,8 +81,10 @@ def run(scenario):
         "free_rotation_over_torque_rate": float((aa - cc) / cc * gamma * alpha / np.linalg.norm(rate)),
         "spin_rel_change": float(abs(np.linalg.norm(solution.omega[-1]) / gamma - 1)),
     }
-    table = common.attitude_table(solution)
     shifts = np.array([shift[:, 0], predicted[:, 0], shift[:, 1], predicted[:, 1]])
     figures = {"pole": common.plot_series(dt, shifts, "days from start", "pole shift [rad]",
                                           ["xi integrated", "xi §843a", "eta integrated", "eta §843a"])}
-    return common.result(scenario, table, {"comparison": comparison, "run": point}, figures, solution)
+    return Outcome(comparison, figures=figures)
+
+
+SCENE = Scene(SCHEMA, build, compare, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA), taylor=True)

@@ -19,12 +19,12 @@ import numpy as np
 from ...constants import ARCSEC
 from ...errors import ResonanceError, ScenarioError
 from ...models.assemblies.idealised import under_point_masses
+from ...scene import Model, Outcome, Scene
 from ...schema import ANGLE, DISTANCE, GM, RATE, SPIN, Key
 from ...verdict import Check, Verdict
 from .. import common
 from .angles import fit_angles
 
-TAYLOR = True          # every term a function of the state and the time: heyoka's Taylor integrator takes it
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments cc = cc < aa (symmetric, oblate)"),
     "body.spin": Key(**SPIN, help="spin rate eps about the figure axis"),
@@ -38,7 +38,7 @@ _SECOND_ORDER = ("Euler's theory is first order in N/delta and drops eps aa/cc -
                  "2e-3 covers the remainder")
 
 
-def verdict(scenario, comparison):
+def verdict(p, comparison):
     """Away from resonance: rate and 2 phi terms vs the closed form; where theory.SymmetricPrecession
     finds eps aa/cc = 2 delta (``resonance_detected``): §849's growth."""
     if comparison.get("resonance_detected"):
@@ -53,34 +53,37 @@ def verdict(scenario, comparison):
               versus="xza_2phi_amplitude_gyroscopic_arcsec", relative=True)))
 
 
-def run(scenario):
+def build(p, times):
+    """The spinner on Euler's forced solution (§844), or at its pole where the formulas fail (§849); the
+    closed forms of Euler's text and with the pole's free rotation (``true``)."""
     from ...orbits.analytic import CircularOrbits
     from ...theory import SymmetricPrecession, p96_initial_state, precession_constant
 
-    body = common.rigid_body(scenario)
+    body = common.rigid_body(p)
     cc, aa = body.moments[0], body.moments[2]
     if not (abs(body.moments[1] - cc) <= 1e-12 * aa and aa > cc):
         raise ScenarioError("body.moments", body.moments.tolist(),
                             "a symmetric oblate body [cc, cc, aa] with aa > cc")
-    eps, n = scenario["body.spin"], scenario["body.obliquity"]
-    gm, s, delta = scenario["orbit.gm"], scenario["orbit.radius"], scenario["orbit.rate"]
-    t0 = scenario.t_start
-    big_n = precession_constant(gm, s, eps, aa, cc)
-    euler = SymmetricPrecession(eps, delta, big_n, n)
-    true = SymmetricPrecession(eps, delta, big_n, n, ratio=aa / cc)
-    comparison = {"N_rad_per_d": big_n, "eps_over_delta": eps / delta}
+    eps, n, o = p.body.spin, p.body.obliquity, p.orbit
+    big_n = precession_constant(o.gm, o.radius, eps, aa, cc)
+    euler = SymmetricPrecession(eps, o.rate, big_n, n)
+    true = SymmetricPrecession(eps, o.rate, big_n, n, ratio=aa / cc)
     try:
         e, f, _ = true.coefficients()
         x0, resonance = e + f, None
     except ResonanceError as exc:
         x0, resonance = 0.0, exc
     q0, omega0 = p96_initial_state(n, eps, x0, 0.0)
-    orbit = CircularOrbits(("F",), [gm], [s], [delta], phase=[-delta * t0])
-    system = under_point_masses(body.moments, orbit, q0, omega0, t0, "symmetric spinner")
-    t = scenario.output_times()
-    solution, point = common.simulate_scenario(scenario, system, t)
+    orbit = CircularOrbits(("F",), [o.gm], [o.radius], [o.rate], phase=[-o.rate * p.t_start])
+    system = under_point_masses(body.moments, orbit, q0, omega0, p.t_start, "symmetric spinner")
+    return Model(system, big_n=big_n, euler=euler, true=true, resonance=resonance)
 
-    dt, p, lam, lam_fit, p_fit = fit_angles(solution, t0, delta, true.eps_f,
+
+def compare(params, run):
+    m, delta, eps = run.model, params.orbit.rate, params.body.spin
+    euler, true, resonance = m.euler, m.true, m.resonance
+    comparison = {"N_rad_per_d": m.big_n, "eps_over_delta": eps / delta}
+    dt, p, lam, lam_fit, p_fit = fit_angles(run.solution, params.t_start, delta, true.eps_f,
                                             resonant=resonance is not None)
     if resonance is None:
         comparison.update({
@@ -106,14 +109,10 @@ def run(scenario):
             "detuning_eps_aa_over_cc_minus_2delta_rad_per_d": true.eps_f - 2 * delta,
         })
     not_measured = _unsupported(comparison, dt[-1], delta)
-    table = common.attitude_table(solution)
-    table["ZA"] = p * common.u().rad
-    table["XZA"] = lam * common.u().rad
     figures = {"ZA": common.plot_series(dt, np.degrees(p), "days from start", "ZA [deg]"),
                "XZA": common.plot_series(dt, np.degrees(lam), "days from start", "XZA [deg]")}
-    summary = {"comparison": comparison, "run": point,
-               **({"not_measured": not_measured} if not_measured else {})}
-    return common.result(scenario, table, summary, figures, solution)
+    return Outcome(comparison, {"ZA": p * common.u().rad, "XZA": lam * common.u().rad}, figures,
+                   not_measured=not_measured)
 
 
 def _unsupported(comparison, span_d, delta):
@@ -127,3 +126,6 @@ def _unsupported(comparison, span_d, delta):
     fitted = [key for key in comparison if "measured" in key or key.endswith("rel_error")]
     comparison.update(dict.fromkeys(fitted))
     return {f"comparison.{key}": reason for key in fitted}
+
+
+SCENE = Scene(SCHEMA, build, compare, verdict, time_scales=common.rigid_body_time_scales(SCHEMA), taylor=True)

@@ -23,21 +23,20 @@ import numpy as np
 from ...analysis.ladder import work_precision
 from ...models.assemblies.idealised import under_point_masses
 from ...rotations import quat_angle
+from ...scene import Model, Outcome, Scene
 from ...schema import ANGLE, SPIN, Key
-from ...simulate import simulate
 from ...verdict import Check, Verdict
 from .. import common
 from ..p96_precession.angles import figure_axis, fit_angles
 from .runs import label, options, winner
 
 
-def verdict(scenario, comparison):
+def verdict(p, comparison):
     """Converged runs agree, and every full-span run's precession rate matches P96's N cos n."""
     return Verdict("a converged suzuki4 run; P96's N cos n", (
-        Check("converged runs agree", "reference_agreement_axis_rad",
-              scenario["stress.reference_agreement_max"],
+        Check("converged runs agree", "reference_agreement_axis_rad", p.stress.reference_agreement_max,
               " rad", "stress.reference_agreement_max: the figure axis of two converged runs"),
-        Check("rate vs P96", "precession_rate_rel_error_max", scenario["stress.rate_rel_tol"], "",
+        Check("rate vs P96", "precession_rate_rel_error_max", p.stress.rate_rel_tol, "",
               "P96 is first order in N/delta = 1e-3 (stress.rate_rel_tol)")))
 
 
@@ -57,25 +56,26 @@ SCHEMA = {
 RADIUS = 1.0          # F's distance (length unit arbitrary: only GM/s^3 enters)
 
 
-def build_system(scenario):
-    """(SpinSystem, closed form, delta): the spinner started on Euler's forced solution (§844)."""
+def build(p, times):
+    """No main run (a converged reference and the ladder of ``stress.runs``, compare): the spinner started on
+    Euler's forced solution (§844), its closed form."""
     from ...orbits.analytic import CircularOrbits
     from ...theory import SymmetricPrecession, p96_initial_state, precession_constant
 
-    body = common.rigid_body(scenario)
+    body = common.rigid_body(p)
     a_, b_, aa = body.moments
     cc = 0.5 * (a_ + b_)
-    eps, n = scenario["body.spin"], scenario["body.obliquity"]
-    delta = eps / scenario["stress.spin_over_orbit"]
-    big_n = scenario["stress.precession_over_orbit"] * delta
+    eps, n = p["body.spin"], p["body.obliquity"]
+    delta = eps / p["stress.spin_over_orbit"]
+    big_n = p["stress.precession_over_orbit"] * delta
     gm = big_n / precession_constant(1.0, RADIUS, eps, aa, cc)          # N is proportional to GM
     theory = SymmetricPrecession(eps, delta, big_n, n, ratio=aa / cc)
     e, f, _ = theory.coefficients()
     q0, omega0 = p96_initial_state(n, eps, e + f, 0.0)
-    t0 = scenario.t_start
+    t0 = p.t_start
     orbit = CircularOrbits(("F",), [gm], [RADIUS], [delta], phase=[-delta * t0])
     system = under_point_masses(body.moments, orbit, q0, omega0, t0, "fast spinner, slow orbit")
-    return system, theory, delta
+    return Model(None, spinner=system, theory=theory, delta=delta)
 
 
 def precession_rate(solution, t0, delta, eps_f):
@@ -83,15 +83,15 @@ def precession_rate(solution, t0, delta, eps_f):
     return float(-fit_angles(solution, t0, delta, eps_f)[3][1])
 
 
-def run(scenario):
-    system, theory, delta = build_system(scenario)
-    t, t0, span = scenario.output_times(), scenario.t_start, scenario.t_end - scenario.t_start
+def compare(p, run):
+    system, theory, delta = run.model.spinner, run.model.theory, run.model.delta
+    t, t0, span = run.times, p.t_start, p.t_end - p.t_start
     closed_form = theory.precession_rate
-    ref_method, ref_opts, _ = options(scenario["stress.reference"][0], "stress.reference")
-    reference = simulate(system, t, ref_method, ref_opts, estimate_error=False)[0]
+    ref_method, ref_opts, _ = options(p["stress.reference"][0], "stress.reference")
+    reference = run.integrate(system, t, "reference", ref_method, ref_opts)[0]
     ref_axis, reference_rate = figure_axis(reference), precession_rate(reference, t0, delta, theory.eps_f)
     rows = []
-    for entry in scenario["stress.runs"]:
+    for entry in p["stress.runs"]:
         method, opts, fraction = options(entry)
         keep, full = t <= t0 + fraction * span * (1 + 1e-12), fraction >= 1.0
 
@@ -116,7 +116,7 @@ def run(scenario):
                   "and max attitude error vs a converged run, and the fitted precession rate vs P96's "
                   "N cos n cc/aa; passes if the reference agrees with the best run to "
                   "stress.reference_agreement_max and every full-span rate is within stress.rate_rel_tol",
-        "spin_over_orbit": scenario["stress.spin_over_orbit"],
+        "spin_over_orbit": p["stress.spin_over_orbit"],
         "precession_rate_closed_form_rad_per_d": closed_form,
         "precession_rate_reference_rel_error": reference_rate / closed_form - 1,
         "reference": label(ref_method, ref_opts),
@@ -125,9 +125,12 @@ def run(scenario):
         "precession_rate_rel_error_max": max(rate_errors),
         "winner_axis_error": winner(full_rows, "axis_error_vs_converged_rad", (1e-6, 1e-8, 1e-10)),
         "winner_attitude_error": winner(full_rows, "error_vs_converged_rad", (1e-4, 1e-6, 1e-7)),
-        "passed": bool(agreement < scenario["stress.reference_agreement_max"]
+        "passed": bool(agreement < p["stress.reference_agreement_max"]
                        and not any("failed" in r for r in rows)
-                       and max(rate_errors) < scenario["stress.rate_rel_tol"]),
+                       and max(rate_errors) < p["stress.rate_rel_tol"]),
     }
-    return common.result(scenario, None, {"comparison": comparison, "details": {"runs": rows},
-                                          "run": {"method": ",".join(r["run"] for r in rows)}}, {}, None)
+    return Outcome(comparison, sections={"details": {"runs": rows},
+                                         "run": {"method": ",".join(r["run"] for r in rows)}})
+
+
+SCENE = Scene(SCHEMA, build, compare, verdict, time_scales=common.rigid_body_time_scales(SCHEMA))

@@ -13,6 +13,7 @@ import numpy as np
 from ...errors import ScenarioError
 from ...integrators import METHODS
 from ...models.assemblies.idealised import free_body
+from ...scene import Model, Outcome, Scene
 from ...schema import Key
 from ...theory import FreeRigidBody
 from ...verdict import Check, Verdict
@@ -45,23 +46,25 @@ CHECKS = {
                 "energy error in the last tenth below twice that of the first (no secular growth)"}
 
 
-def build(scenario):
-    """For ``spinorbit bench``: the case's torque-free system (flip: closed-form period reference)."""
-    moments, omega0 = scenario["body.moments"], scenario["body.omega0"]
-    system = free_body(moments, Q0, omega0)
-    t = scenario.output_times()
-    error = attitude_error(FreeRigidBody(moments, omega0, Q0).attitude(t - scenario.t_start))
-    return system, t, lambda solution: error(solution)["attitude_error_max_rad"]
-
-
-def run(scenario):
-    case = scenario["stress.case"]
-    for method in scenario["stress.methods"]:
+def build(p, times):
+    """No main run: the case runs its methods (cases.py); for bench, the case's torque-free body."""
+    for method in p.stress.methods:
         if not isinstance(method, str) or method not in METHODS:
             raise ScenarioError("stress.methods", method, f"method names, of {sorted(METHODS)}")
+    return Model(None, bench_system=free_body(p.body.moments, Q0, p.body.omega0))
+
+
+def bench(p, model, times):
+    """Attitude error against the closed form (theory.FreeRigidBody), rad."""
+    error = attitude_error(FreeRigidBody(p.body.moments, p.body.omega0, Q0).attitude(times - p.t_start))
+    return lambda solution: error(solution)["attitude_error_max_rad"]
+
+
+def compare(p, run):
     cases = {"flip": flip, "degenerate": degenerate, "shapes": shapes, "long_run": long_run}
-    comparison, details = cases[case](scenario)
-    comparison = {"checks": CHECKS[case], **comparison}
-    summary = {"comparison": comparison, "details": details,
-               "run": {"method": ",".join(scenario["stress.methods"])}}
-    return common.result(scenario, None, summary, {}, None)
+    comparison, details = cases[p.stress.case](p)
+    return Outcome({"checks": CHECKS[p.stress.case], **comparison},
+                   sections={"details": details, "run": {"method": ",".join(p.stress.methods)}})
+
+
+SCENE = Scene(SCHEMA, build, compare, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA), bench=bench)

@@ -24,6 +24,7 @@ import numpy as np
 
 from ...analysis.lyapunov import ensemble_mean
 from ...models.planar import planar_params
+from ...scene import Model, Outcome, Scene
 from ...schema import DISTANCE, GM, Key
 from ...verdict import Check, Verdict
 from .. import common
@@ -31,13 +32,13 @@ from ..planar_spin_orbit import kepler_orbit, planar_lyapunov, planar_vs_rigid_b
 from .maps import lyapunov_map
 
 
-def verdict(scenario, comparison):
+def verdict(p, comparison):
     """The exponents' agreement between integrators and run lengths, the regular orbit, and all criteria."""
     return Verdict("Benettin exponents, rk8 and dop853", (
-        Check("regular exponent", "lyapunov_regular_per_T", scenario["lyapunov.regular_max"], "/T",
+        Check("regular exponent", "lyapunov_regular_per_T", p["lyapunov.regular_max"], "/T",
               "a regular orbit's exponent falls like ln t/t (lyapunov.regular_max)"),
         *(Check(f"ensemble means, {pair.replace('_vs_', ' vs ').replace('_', ' ')}",
-                f"lyapunov_nominal_{pair}_sigmas", scenario["lyapunov.max_sigma"], " sigma",
+                f"lyapunov_nominal_{pair}_sigmas", p["lyapunov.max_sigma"], " sigma",
                 "two integrators and two run lengths must give one mean exponent, within the ensemble's own "
                 "standard errors (lyapunov.max_sigma)") for pair in ("rk8_T_vs_rk8_2T", "rk8_T_vs_dop853_T")),
         Check("all criteria", "passed", source="module docstring: (a)-(d)")))
@@ -70,33 +71,38 @@ SCHEMA = {
 }
 
 
-def run(scenario):
+def build(p, times):
+    """No main run: the Lyapunov pairs, ensembles and map are integrations of their own (compare)."""
+    return Model(None)
+
+
+def compare(p, run):
     from ... import plots
 
-    moments = scenario["body.moments"]
+    moments = p["body.moments"]
     gamma = (moments[1] - moments[0]) / moments[2]
-    gm, a, e = scenario["orbit.gm"], scenario["orbit.a"], scenario["orbit.e"]
-    t0, n, start = scenario.t_start, math.sqrt(gm / a**3), scenario["lyapunov.start"]
-    period, orbit, p = 2 * math.pi / n, kepler_orbit(gm, a, e, t0), planar_params(n, e, t0, gamma)
-    orbits, steps = scenario["lyapunov.orbits"], scenario["lyapunov.steps_per_orbit"]
-    d0 = scenario["lyapunov.d0"]
+    gm, a, e = p["orbit.gm"], p["orbit.a"], p["orbit.e"]
+    t0, n, start = p.t_start, math.sqrt(gm / a**3), p["lyapunov.start"]
+    period, orbit, planar = 2 * math.pi / n, kepler_orbit(gm, a, e, t0), planar_params(n, e, t0, gamma)
+    orbits, steps = p["lyapunov.orbits"], p["lyapunov.steps_per_orbit"]
+    d0 = p["lyapunov.d0"]
 
-    planar_error, system = planar_vs_rigid_body(moments, orbit, p, t0, period, start)
-    regular_orbits = scenario["lyapunov.regular_orbits"]
-    regular = planar_lyapunov(planar_params(n, e, t0, scenario["lyapunov.regular_gamma"]), 0.0, n, t0, period,
+    planar_error, system = planar_vs_rigid_body(moments, orbit, planar, t0, period, start)
+    regular_orbits = p["lyapunov.regular_orbits"]
+    regular = planar_lyapunov(planar_params(n, e, t0, p["lyapunov.regular_gamma"]), 0.0, n, t0, period,
                               regular_orbits, steps, d0)[:, 0]
-    thetas = start[0] + 1e-3 * np.arange(scenario["lyapunov.ensemble"])
-    long_run = planar_lyapunov(p, thetas, start[1] * n, t0, period, 2 * orbits, steps, d0)
-    dop853 = planar_lyapunov(p, thetas, start[1] * n, t0, period, orbits, steps, d0, "dop853")
-    tilted = rigid_body_lyapunov(system, period, scenario["lyapunov.orbits_3d"], steps, d0)
-    theta, rate, exponent = lyapunov_map(scenario, p, period)
+    thetas = start[0] + 1e-3 * np.arange(p["lyapunov.ensemble"])
+    long_run = planar_lyapunov(planar, thetas, start[1] * n, t0, period, 2 * orbits, steps, d0)
+    dop853 = planar_lyapunov(planar, thetas, start[1] * n, t0, period, orbits, steps, d0, "dop853")
+    tilted = rigid_body_lyapunov(system, period, p["lyapunov.orbits_3d"], steps, d0)
+    theta, rate, exponent = lyapunov_map(p, planar, period)
 
     nominal = {"rk8_T": ensemble_mean(long_run[orbits - 1]), "rk8_2T": ensemble_mean(long_run[-1]),
                "dop853_T": ensemble_mean(dop853[-1])}
     sigmas = {f"{a}_vs_{b}": abs(nominal[a][0] - nominal[b][0]) / math.hypot(nominal[a][1], nominal[b][1])
               for a, b in (("rk8_T", "rk8_2T"), ("rk8_T", "dop853_T"))}
     decay = float(regular[-1] / regular[regular_orbits // 2 - 1])     # ln(t)/t: ~0.5 from T to 2T; chaos: ~1
-    chaotic_min = scenario["lyapunov.chaotic_min"]
+    chaotic_min = p["lyapunov.chaotic_min"]
     chaotic = exponent > chaotic_min
     comparison = {
         "checks": "maximal Lyapunov exponent (Benettin two-trajectory renormalisation every orbit, 1/T): "
@@ -122,9 +128,9 @@ def run(scenario):
         "map_exponent_median_chaotic_per_T":
             float(np.median(exponent[chaotic])) if chaotic.any() else math.nan,
         "planar_vs_3d_theta_max_rad_5_orbits": planar_error,
-        "passed": bool(regular[-1] < scenario["lyapunov.regular_max"] and decay < 0.75
+        "passed": bool(regular[-1] < p["lyapunov.regular_max"] and decay < 0.75
                        and min(v[0] for v in nominal.values()) > chaotic_min
-                       and max(sigmas.values()) < scenario["lyapunov.max_sigma"] and planar_error < 1e-8),
+                       and max(sigmas.values()) < p["lyapunov.max_sigma"] and planar_error < 1e-8),
     }
     details = {"map": {"theta_minus_f_rad": theta, "rate_over_n": rate, "exponent_per_T": exponent},
                "method": "Benettin et al. (1980): two trajectories, renormalised to d0 every orbital period"}
@@ -133,5 +139,8 @@ def run(scenario):
                "lyapunov_running": common.plot_series(
                    np.arange(1, shown + 1), [regular[:shown], long_run[:shown, 0]], "orbital periods",
                    "running exponent [1/T]", ["regular (small (B-A)/C)", "Hyperion nominal"], logy=True)}
-    summary = {"comparison": comparison, "details": details, "run": {"method": "rk8,dop853"}}
-    return common.result(scenario, None, summary, figures, None)
+    sections = {"details": details, "run": {"method": "rk8,dop853"}}
+    return Outcome(comparison, figures=figures, sections=sections)
+
+
+SCENE = Scene(SCHEMA, build, compare, verdict, time_scales=common.rigid_body_time_scales(SCHEMA))

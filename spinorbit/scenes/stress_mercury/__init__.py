@@ -25,6 +25,7 @@ import numpy as np
 
 from ...analysis.spans import refusals, resolvable
 from ...constants import ARCSEC
+from ...scene import Model, Outcome, Scene
 from ...schema import DISTANCE, GM, Key
 from ...verdict import Check, Verdict
 from .. import common
@@ -40,12 +41,12 @@ FITTED_FROM = {"libration_88d_measured_arcsec": 0, "libration_88d_rel_error_vs_l
                "libration_44d_measured_arcsec": 1, "free_libration_fitted_arcsec": HARMONICS}
 
 
-def verdict(scenario, comparison):
+def verdict(p, comparison):
     """The 88-d libration against linear theory and Margot et al. (2007)'s series."""
     return Verdict("linear forced libration; Margot et al. (2007)", (
-        Check("88-d vs linear", "libration_88d_rel_error_vs_linear", scenario["stress.linear_rel_tol"], "",
+        Check("88-d vs linear", "libration_88d_rel_error_vs_linear", p.stress.linear_rel_tol, "",
               "linear in the libration (35.8\" = 1.7e-4 rad): the nonlinear remainder is far below 1e-3"),
-        Check("88-d vs series", "libration_88d_rel_error_vs_series", scenario["stress.series_rel_tol"], "",
+        Check("88-d vs series", "libration_88d_rel_error_vs_series", p.stress.series_rel_tol, "",
               "the e^6 remainder of (1 - 11e^2 + 959e^4/48) at e = 0.2056 (~1e-3)")),
         RADAR_NOT_INDEPENDENT)
 
@@ -79,21 +80,23 @@ def design(t, n, w0, keep):
     return np.column_stack(columns + ([np.sin(w0 * t), np.cos(w0 * t)] if keep[-1] else [t, t * t]))
 
 
-def run(scenario):
-    body = common.rigid_body(scenario)
+def build(p, times):
+    """The body in the 3:2 state on its linear forced solution (gamma(0) = 0 at periapsis)."""
+    body = common.rigid_body(p)
     a_, b_, c_ = body.moments
-    gamma = (b_ - a_) / c_
-    gm, a, e = scenario["orbit.gm"], scenario["orbit.a"], scenario["orbit.e"]
-    n = math.sqrt(gm / a**3)
-    t0 = scenario.t_start
-    theory = libration_theory(gamma, e)
+    gamma, o = (b_ - a_) / c_, p.orbit
+    n = math.sqrt(o.gm / o.a**3)
+    theory = libration_theory(gamma, o.e)
     k = np.arange(1, theory["g"].size + 1)
-    gamma_dot0 = n * float(np.sum(k * theory["g"]))     # on the forced solution (gamma(0) = 0 at periapsis)
-    system = rigid_body_system(body.moments, kepler_orbit(gm, a, e, t0), t0, 0.0, 1.5 * n + gamma_dot0)
-    t = scenario.output_times()
-    solution, point = common.simulate_scenario(scenario, system, t)
+    gamma_dot0 = n * float(np.sum(k * theory["g"]))
+    system = rigid_body_system(body.moments, kepler_orbit(o.gm, o.a, o.e, p.t_start), p.t_start, 0.0,
+                               1.5 * n + gamma_dot0)
+    return Model(system, gamma=gamma, n=n, theory=theory)
 
-    dt = solution.t - t0
+
+def compare(p, run):
+    solution, gamma, n, theory, e = run.solution, run.model.gamma, run.model.n, run.model.theory, p.orbit.e
+    dt = solution.t - p.t_start
     lib = theta_from_quaternions(solution.quaternion) - 1.5 * n * dt
     w0 = theory["w0_over_n"] * n
     names = [f"{2 * math.pi / (k * n):.3g}-d term" for k in range(1, HARMONICS + 1)] + ["free libration"]
@@ -125,18 +128,16 @@ def run(scenario):
         "margot_2007_radar_sigma_arcsec": MARGOT_2007_ARCSEC[1],
         "margot_2007_radar_independent": False,
         "fit_residual_rms_arcsec": float(np.std(lib - columns @ coef) / ARCSEC),
-        "passed": None if measured is None else bool(abs(rel_linear) < scenario["stress.linear_rel_tol"]
-                                                     and abs(rel_series) < scenario["stress.series_rel_tol"]),
+        "passed": None if measured is None else bool(abs(rel_linear) < p.stress.linear_rel_tol
+                                                     and abs(rel_series) < p.stress.series_rel_tol),
     }
     refused = refusals(names, np.append(n * np.arange(1, HARMONICS + 1), w0), abs(dt[-1]))
     not_measured = {f"comparison.{key}": f"not fitted: the {names[k]} {refused[names[k]]}"
                     for key, k in FITTED_FROM.items() if names[k] in refused}
-    table = common.attitude_table(solution)
-    table["libration"] = lib * common.u().rad
     figures = {"libration": common.plot_series(dt[dt < 440], lib[dt < 440] / ARCSEC, "days from periapsis",
                                                "theta - 3/2 M [arcsec]")}
-    summary = {"comparison": comparison, "run": point}
-    if not_measured:
-        summary["not_measured"] = not_measured
-    return common.result(scenario, table, summary, figures, solution)
+    return Outcome(comparison, {"libration": lib * common.u().rad}, figures, not_measured=not_measured)
+
+
+SCENE = Scene(SCHEMA, build, compare, verdict, time_scales=common.rigid_body_time_scales(SCHEMA))
 

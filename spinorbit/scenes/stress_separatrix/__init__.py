@@ -17,16 +17,17 @@ import numpy as np
 from ...analysis.ladder import settings, work_precision
 from ...errors import ScenarioError
 from ...integrators import METHODS
+from ...scene import Model, Outcome, Scene
 from ...schema import DISTANCE, GM, RATE, Key
 from ...verdict import Check, Verdict
 from .. import common
 from ..p93_planar_libration import crossing_times, planar_system, zeta_from_solution
 
 
-def verdict(scenario, comparison):
+def verdict(p, comparison):
     """Side of the separatrix and time to 90 deg against §826, every method and offset."""
     return Verdict("§826 closed form", (
-        Check("time to 90°", "time_rel_error_max", scenario["stress.time_rel_tol"], "",
+        Check("time to 90°", "time_rel_error_max", p.stress.time_rel_tol, "",
               "stress.time_rel_tol: the closed-form time is exact; the margin covers the integrators' "
               "error, amplified near the separatrix (up to 4e-6 measured, benchmarks/RESULTS.md)"),
         Check("side and time", "passed", source="each run on the closed form's side of the separatrix")))
@@ -42,18 +43,16 @@ SCHEMA = {
 }
 
 
-def _setup(scenario, offset):
+def _setup(p, offset):
     from ...orbits.analytic import CircularOrbits
     from ...theory import PlanarLibration, libration_n
 
-    moments = scenario["body.moments"]
-    gm, s, delta = scenario["orbit.gm"], scenario["orbit.radius"], scenario["orbit.rate"]
-    n = libration_n(moments, gm, s)
+    gm, s, delta = p.orbit.gm, p.orbit.radius, p.orbit.rate
+    n = libration_n(p.body.moments, gm, s)
     zeta_dot0 = math.sqrt(n * (2.0 + offset))
-    t0 = scenario.t_start
-    orbit = CircularOrbits(("F",), [gm], [s], [delta], phase=[-delta * t0])
+    orbit = CircularOrbits(("F",), [gm], [s], [delta], phase=[-delta * p.t_start])
     theory = PlanarLibration(n, 0.0, zeta_dot0)
-    return planar_system(moments, orbit, t0, 0.0, zeta_dot0, delta), theory, delta
+    return planar_system(p.body.moments, orbit, p.t_start, 0.0, zeta_dot0, delta), theory
 
 
 def time_to_90(theory):
@@ -74,44 +73,44 @@ def measure(solution, t0, delta):
     return ("bounded", float(stop[0])) if stop.size else ("none", math.nan)
 
 
-def build(scenario):
-    """For ``spinorbit bench``: the run just below the separatrix, error = attitude vs the closed form,
-    rad."""
-    system, theory, delta = _setup(scenario, scenario["stress.offsets"][0])
-    t = scenario.output_times()
-    zeta_exact = theory.zeta(t - scenario.t_start)
-
-    def error(solution):
-        zeta = zeta_from_solution(solution, delta * (solution.t - scenario.t_start))
-        return float(np.abs(zeta - zeta_exact).max())
-
-    return system, t, error
-
-
-def run(scenario):
-    for method in scenario["stress.methods"]:
+def build(p, times):
+    """No main run: a run per offset and method (compare); for bench, the run just below the separatrix."""
+    for method in p.stress.methods:
         if not isinstance(method, str) or method not in METHODS:
             raise ScenarioError("stress.methods", method, f"method names, of {sorted(METHODS)}")
-    t = scenario.output_times()
-    rows, passed = {}, True
-    for offset in scenario["stress.offsets"]:
-        system, theory, delta = _setup(scenario, float(offset))
+    runs = [(float(offset), *_setup(p, float(offset))) for offset in p.stress.offsets]
+    return Model(None, runs=runs, bench_system=runs[0][1])
+
+
+def bench(p, model, times):
+    """Attitude error against the closed form below the separatrix, rad."""
+    theory, delta = model.runs[0][2], p.orbit.rate
+    zeta_exact = theory.zeta(times - p.t_start)
+    return lambda solution: float(np.abs(zeta_from_solution(solution, delta * (solution.t - p.t_start))
+                                         - zeta_exact).max())
+
+
+def compare(p, run):
+    rows, passed, delta = {}, True, p.orbit.rate
+    for offset, system, theory in run.model.runs:
         expected = time_to_90(theory)
 
         def measured(solution):
-            case, took = measure(solution, scenario.t_start, delta)
+            case, took = measure(solution, p.t_start, delta)
             return {"case_closed_form": theory.case, "case_measured": case,
                     "time_to_90deg_closed_form_d": expected,
                     "time_to_90deg_measured_d": took, "time_rel_error": took / expected - 1}
 
-        methods = settings(scenario["stress.methods"], step=0.01, rtol=1e-13, atol=1e-15)
-        for row in work_precision(system, t, methods, measured):
+        methods = settings(p.stress.methods, step=0.01, rtol=1e-13, atol=1e-15)
+        for row in work_precision(system, run.times, methods, measured):
             passed &= (row.get("case_measured") == theory.case
-                       and abs(row["time_rel_error"]) < scenario["stress.time_rel_tol"])
+                       and abs(row["time_rel_error"]) < p.stress.time_rel_tol)
             rows[f"{offset:+g}/{row['method']}"] = row
     comparison = {"checks": "side of the P93 separatrix and time to approach 90 deg vs §826 closed form, "
-                            f"C = n(1 +- 1e-9); passes within {scenario['stress.time_rel_tol']:g} relative",
+                            f"C = n(1 +- 1e-9); passes within {p.stress.time_rel_tol:g} relative",
                   "time_rel_error_max": max(abs(r.get("time_rel_error", math.inf)) for r in rows.values()),
                   "passed": bool(passed)}
-    return common.result(scenario, None, {"comparison": comparison, "details": rows,
-                                          "run": {"method": ",".join(scenario["stress.methods"])}}, {}, None)
+    return Outcome(comparison, sections={"details": rows, "run": {"method": ",".join(p.stress.methods)}})
+
+
+SCENE = Scene(SCHEMA, build, compare, verdict, time_scales=common.rigid_body_time_scales(SCHEMA), bench=bench)

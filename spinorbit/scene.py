@@ -1,0 +1,110 @@
+"""What a scene declares, for the one runner (``results.run_scenario``) to run.
+
+A scene module defines ``SCENE = Scene(...)``: its keys, how it builds the System it integrates, what it
+compares, its verdict, its cost and the time-scales its run follows.  The runner does the rest for every
+scene: validate the scenario into the scene's typed parameters (``schema.record``), build, simulate, compare,
+table, figures, summary, verdict, result.  A scene that needs further integrations (a twin model, a run driven
+by another orbit source, an ensemble of methods) asks the runner for them through ``Run.integrate``; a scene
+with nothing of its own to integrate (an ensemble compared method by method) builds ``Model(None)``.
+
+Edge module, below ``scenes`` (scenes import it) and ``scenarios`` (which reads what a scene declares).
+"""
+from dataclasses import dataclass, field
+from types import SimpleNamespace
+from typing import Callable
+
+
+@dataclass(frozen=True)
+class Cost:
+    """What one item of a count costs a scene kind, measured (``python benchmarks/bench_costs.py``, peak
+    resident memory and wall time of whole runs at two sizes; benchmarks/results_costs.md): wall
+    seconds per integrator step of its fixed-step method, peak bytes per output row and per orbit
+    sample, and the peak of a small run."""
+
+    step_s: float = 3e-5             # a rigid body on an analytic orbit
+    row_bytes: float = 1000
+    sample_bytes: float = 1000
+    base_bytes: float = 350e6
+
+    @property
+    def bytes_per(self):
+        return {"output rows": self.row_bytes, "orbit samples": self.sample_bytes}
+
+
+@dataclass(frozen=True)
+class TimeScale:
+    """A rate (rad/d) a run follows, beside the scenario's rate keys: ``key`` the scenario key that sets it,
+    ``how`` says how it follows from the keys (printed when the run is refused for too many cycles)."""
+
+    key: str
+    rate: float
+    how: str = ""
+
+
+class Model(SimpleNamespace):
+    """What a scene builds: ``system``, the System the runner integrates over the output times (None: nothing),
+    and, by name, whatever its comparison reads besides the solution (a closed form, the orbits, a start)."""
+
+    def __init__(self, system, **context):
+        super().__init__(system=system, **context)
+
+
+@dataclass
+class Run:
+    """What the runner hands a scene's ``compare``: the parameters, the model, the output times, the main
+    run's solution and its point (method, wall time, error estimate), and ``integrate(system, times, part,
+    method=None, options=None)`` for a further run (``part`` names its checkpoint and progress bar; the
+    scenario's [integrator] unless given)."""
+
+    params: object
+    model: Model
+    times: object
+    integrate: Callable
+    solution: object = None
+    point: dict = field(default_factory=dict)
+
+
+@dataclass
+class Outcome:
+    """What a scene's comparison returns.  ``comparison``: the metrics the verdict reads (summary["comparison"]);
+    ``columns``: columns added to the attitude table of the main run (name -> Quantity array), or ``table`` in
+    its place (None with no main run: no table); ``figures``: name -> function drawing one figure;
+    ``sections``: further summary sections (model, reference, details, or ``run`` in place of the point);
+    ``not_measured``: dotted summary key -> why it could not be measured."""
+
+    comparison: dict
+    columns: dict = field(default_factory=dict)
+    figures: dict = field(default_factory=dict)
+    sections: dict = field(default_factory=dict)
+    not_measured: dict = field(default_factory=dict)
+    table: object = None
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A scene's declarations.  ``schema``: its keys (schema.Key by dotted name); ``build(p, times) -> Model``;
+    ``compare(p, run) -> Outcome``; ``verdict``: a Verdict, or ``verdict(p, comparison) -> Verdict`` when it
+    depends on the settings or the outcome; ``cost``: measured per-item costs (the up-front estimate);
+    ``time_scales(p) -> [TimeScale]``: rates the run follows beyond the rate keys (torques, Euler's equations);
+    ``bench(p, model, times) -> error(solution) in rad`` for ``spinorbit bench`` on the model ``build`` made
+    (its ``system``, or ``bench_system`` where it has no main run; it may set the System's
+    ``meta["reference_agreement_rad"]``); ``backward``: the span may run backward;
+    ``taylor``: every term a function of the state and the time, so heyoka's Taylor integrator takes it;
+    ``sweep_figures(tables) -> {name: draw}``: figures over a sweep's members (e.g. a band over their curves);
+    ``run(scenario) -> RunResult``: a scene that runs its own pipeline (each says why)."""
+
+    schema: dict
+    build: Callable = None
+    compare: Callable = None
+    verdict: object = None
+    cost: Cost = Cost()
+    time_scales: Callable = None
+    bench: Callable = None
+    backward: bool = False
+    taylor: bool = False
+    sweep_figures: Callable = None
+    run: Callable = None
+
+    def verdict_for(self, params, comparison):
+        """The Verdict of a run with these parameters and this comparison (None: the scene declares none)."""
+        return self.verdict(params, comparison or {}) if callable(self.verdict) else self.verdict
