@@ -115,3 +115,15 @@ def test_de421_tides_tilt_the_axis_less_than_williams():
     diurnal band alone -0.43, the semi-diurnal +0.90)."""
     _, eps_rate = tides.rates("de421", "de421")
     assert 0.0 < eps_rate * arcsec < 0.0024 * arcsec
+
+
+@pytest.mark.parametrize("overrides, key", [
+    (["orbit.source=circular", "earth.nonrigid=false"], "earth.hd"),
+    (["earth.dynamical_ellipticity=0.00327"], "earth.dynamical_ellipticity")])
+def test_observed_rate_refuses_what_it_cannot_take(overrides, key):
+    """H_d from the observed rate needs the real Moon and Sun, and sets H_d itself: refused in one line."""
+    from spinorbit.errors import ScenarioError
+
+    with pytest.raises(ScenarioError) as err:
+        run_scenario("scenarios/earth_precession_nutation_nonrigid.toml", overrides + ["output.plots=false"])
+    assert err.value.key == key and "\n" not in str(err.value)

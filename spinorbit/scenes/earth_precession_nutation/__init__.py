@@ -1,7 +1,8 @@
 """The Earth's precession and nutation (Euler ch. 16 P91/P96) against IAU 2006/2000A (ERFA).
 
-A rigid oblate Earth (spinorbit.models.assemblies.earth, H_d from IAU 2006) under the Moon's and Sun's
-torques (DE421, or Euler's circles), started on the IAU pole with forced initial conditions (start.py);
+A rigid oblate Earth (spinorbit.models.assemblies.earth, H_d IAU 2006's or from the observed precession
+rate: ellipticity.py) under the Moon's and Sun's torques (DE421, or Euler's circles), with the tides' secular
+rates if asked (tides.py), started on the IAU pole with forced initial conditions (start.py);
 the CIP X, Y, the fitted precession rate and nutation terms, Euler's P96 rate N cos n (§846) beside them
 (compare.py).  The rigid-minus-IAU nutation is the non-rigid response, not an error: ``earth.nonrigid``
 applies it (nonrigid.py; REN-2000 and VLBI's observed pole beside).

@@ -31,13 +31,14 @@ STEP_D = 0.3                 # the Moon moves 4 deg: the average is converged to
 
 def rates(choice, source):
     """(dpsi/dt, deps/dt) of the axis, "/cy, from the tides: ``choice`` one of CHOICES; ``source`` the
-    ephemeris the DE421 model is driven by."""
+    ephemeris the DE421 model is averaged on (DE421 for an orbit source that is not a kernel)."""
     if choice == "none":
         return 0.0, 0.0
     if choice == "williams1994":
         return 0.0, earth.TIDAL_OBLIQUITY_RATE_ARCSEC_CY
     love = earth.de421_tides()
-    return model_rates(source, tuple(love[band] for band in (0, 1, 2)))
+    ephemeris = "de421" if source in ("rebound", "circular", "kepler") else source   # averaged on a kernel
+    return model_rates(ephemeris, tuple(love[band] for band in (0, 1, 2)))
 
 
 @functools.lru_cache(maxsize=2)
