@@ -1,6 +1,8 @@
 """Today's tidal rates of the Earth-Moon equations, and the strength of a one-parameter tide (constant time
 lag, constant Q) that gives a recession rate: da/dt is linear in the strength, so the fit is exact."""
+import json
 import math
+from pathlib import Path
 
 import numpy as np
 
@@ -9,6 +11,12 @@ from .equations import GM_EARTH, GM_MOON, GM_SUN, INERTIA, RADIUS, SUN_A, rhs
 from .response import STRENGTH, responses
 
 CM_PER_KM = 1e5
+OCEAN_FIT = Path(__file__).with_name("global_ocean_fit.json")
+
+
+def ocean_fit():
+    """The global ocean's fitted depth and drag, with the command that fitted them (global_ocean_fit.json)."""
+    return json.loads(OCEAN_FIT.read_text())
 
 
 def solar_day_h(rotation_rad_d, c):
@@ -45,3 +53,24 @@ def calibrated(c, model, y0, recession_cm_per_yr):
 def time_lag_s(response, k2):
     """The constant time lag (s) of a calibrated response for a Love number k2."""
     return response[STRENGTH] / k2 * DAY_S
+
+
+def ocean_drag(c, y0, depth_km, recession_cm_per_yr, solid_k2_over_q, water):
+    """The drag frequency (rad/day) of a global ocean of ``depth_km`` whose recession today is the one given,
+    on the rising side of the rate's dependence on the drag (the weaker drag of the two that give it); None
+    when no drag gives it.  ``water``: ocean.constants(...)."""
+    from scipy.optimize import brentq
+
+    from .response import responses
+
+    def rate(drag):
+        response = responses("global_ocean", solid_k2_over_q, depth=depth_km, drag=drag, ocean=water)
+        return today_rates(c, response, y0)["recession_rate_cm_per_yr"] - recession_cm_per_yr
+
+    drags = np.geomspace(1e-3, 30.0, 60)
+    rates = np.array([rate(d) for d in drags])
+    top = int(np.argmax(rates))
+    above = np.flatnonzero(rates[:top + 1] >= 0.0)
+    if above.size == 0 or above[0] == 0:
+        return None
+    return brentq(rate, drags[above[0] - 1], drags[above[0]], xtol=1e-14, rtol=1e-13)

@@ -31,7 +31,7 @@ from numba import njit
 
 from ...layout import Layout
 from ..ode import Ode
-from .secular import exchange, strength, torque_on_spin
+from .secular import exchange, lags, strength, torque_on_spin
 
 NODES = 16
 # Indices into the constants: gravitational parameters (km^3/d^2), the Earth's radius (km) and c = C/(M R^2),
@@ -78,9 +78,10 @@ def rhs(t, y, p):
     cos_i, cos_eps = y[4] / h_orbit, y[3] / h_spin
     sin_i, sin_eps = math.sqrt(max(0.0, 1.0 - cos_i * cos_i)), math.sqrt(max(0.0, 1.0 - cos_eps * cos_eps))
     axial, normal, power, along_z = 0.0, 0.0, 0.0, 0.0
+    lunar_lags = lags(spin, n, response)
     for j in range(NODES):
         cos_mutual = cos_eps * cos_i + sin_eps * sin_i * math.cos(2.0 * math.pi * (j + 0.5) / NODES)
-        ax, no, po = exchange(spin, n, e2, cos_mutual, response)
+        ax, no, po = exchange(n, e2, cos_mutual, lunar_lags)
         alpha, beta = torque_on_spin(ax, no, cos_mutual)
         axial += ax
         normal += no
@@ -88,7 +89,7 @@ def rhs(t, y, p):
         along_z += alpha * cos_eps + beta * cos_i
     lunar = strength(c[GM_MOON], c[GM_EARTH], c[RADIUS], a) / NODES
     n_sun = math.sqrt((c[GM_SUN] + mu) / c[SUN_A] ** 3)
-    ax_sun, no_sun, _ = exchange(spin, n_sun, c[SUN_E2], cos_eps, response)
+    ax_sun, no_sun, _ = exchange(n_sun, c[SUN_E2], cos_eps, lags(spin, n_sun, response))
     alpha, beta = torque_on_spin(ax_sun, no_sun, cos_eps)
     solar = strength(c[GM_SUN], c[GM_EARTH], c[RADIUS], c[SUN_A])
     solar_z = solar * (alpha * cos_eps + beta)

@@ -4,40 +4,52 @@ odd in sigma, of the degree-2 Love number, for each tidal model.
 * constant time lag (Mignard 1979, Moon Planets 20, 301; Touma & Wisdom 1994, AJ 108, 1943): the bulge is the
   equilibrium tide of a time dt earlier, K = k2 sigma dt (linear in the frequency, Mignard's form);
 * constant Q (Goldreich 1966, Rev. Geophys. 4, 411; MacDonald 1964): a phase lag independent of the
-  frequency, K = (k2/Q) sign(sigma).
+  frequency, K = (k2/Q) sign(sigma);
+* a global ocean (``ocean.love_number``: a thin ocean of uniform depth under the Laplace tidal equations with
+  linear drag, on the rotating Earth) plus the solid Earth's constant lag (k2/Q_solid sign(sigma)).
 
-sigma in rad/day; the models' constants in one array: ``MODEL``, ``STRENGTH`` (k2 dt in days for the time
-lag, k2/Q for constant Q) and the factors of the zonal, diurnal and semi-diurnal bands (order |m| = 0, 1, 2 of
-the tide in the Earth), 1 unless a model gives each band its own Love number and lag (DE421's K2E_m TAUE_m).
+sigma in rad/day, for the term e^{i(m phi + sigma t)} in the Earth (m > 0, sigma > 0: a westward wave); the
+models' constants in one array: ``MODEL``, ``STRENGTH`` (k2 dt in days for the time lag, k2/Q for constant Q,
+the solid Earth's k2/Q under the ocean), the factors of the zonal, diurnal and semi-diurnal bands (order |m| =
+0, 1, 2 of the tide in the Earth; 1 unless a model gives each band its own Love number and lag, as DE421's
+K2E_m TAUE_m), the ocean's depth (km) and drag frequency (rad/day), then the ocean's constants.
 """
 import math
 
 import numpy as np
 from numba import njit
 
-CONSTANT_TIME_LAG, CONSTANT_Q = 0, 1
-MODELS = {"constant_time_lag": CONSTANT_TIME_LAG, "constant_q": CONSTANT_Q}
+from .ocean import love_number
+
+CONSTANT_TIME_LAG, CONSTANT_Q, GLOBAL_OCEAN = 0, 1, 2
+MODELS = {"constant_time_lag": CONSTANT_TIME_LAG, "constant_q": CONSTANT_Q, "global_ocean": GLOBAL_OCEAN}
 # Indices into the response's constants.
-MODEL, STRENGTH, BAND = 0, 1, 2           # BAND + |m|: the band's factor
-SIZE = 5
+MODEL, STRENGTH, BAND, DEPTH, DRAG, OCEAN = 0, 1, 2, 5, 6, 7     # BAND + |m|: the band's factor
 
 
-def responses(model, strength, bands=(1.0, 1.0, 1.0)):
-    """The constants array of a model (a MODELS name or code)."""
-    out = np.zeros(SIZE)
+def responses(model, strength, bands=(1.0, 1.0, 1.0), depth=0.0, drag=0.0, ocean=None):
+    """The constants array of a model (a MODELS name or code); ``ocean``: ocean.constants(...)."""
+    extra = np.zeros(0) if ocean is None else np.asarray(ocean, dtype=float)
+    out = np.zeros(OCEAN + extra.size)
     out[MODEL] = MODELS.get(model, model)
     out[STRENGTH] = strength
-    out[BAND:] = bands
+    out[BAND:BAND + 3] = bands
+    out[DEPTH], out[DRAG] = depth, drag
+    out[OCEAN:] = extra
     return out
 
 
 @njit(cache=True, nogil=True)
-def dissipation(sigma, order, response):
-    """K(sigma) for the band of order |m| = ``order``: the lagging part of the Love number, with the sign of
-    sigma (the bulge lags the forcing)."""
-    scale = response[STRENGTH] * response[BAND + order]
+def dissipation(sigma, m, spin, response):
+    """K(sigma) of the term of order m: the lagging part of the Love number, with the sign of sigma (the bulge
+    lags the forcing); ``spin`` the Earth's rotation rate (rad/day), which the ocean's response depends on."""
+    scale = response[STRENGTH] * response[BAND + abs(m)]
     if response[MODEL] == CONSTANT_TIME_LAG:
         return scale * sigma
     if sigma == 0.0:
         return 0.0
-    return math.copysign(scale, sigma)
+    solid = math.copysign(scale, sigma)
+    if response[MODEL] == CONSTANT_Q:
+        return solid
+    _, lag = love_number(-m, sigma, spin, response[DEPTH], response[DRAG], response[OCEAN:])
+    return solid + lag

@@ -19,6 +19,7 @@ conjugate (-m, -k, -q)).  The power each term dissipates, sigma W K(sigma), is n
 equatorial circular orbit the axial torque is (3/2) G m'^2 R^5 / a^6 K(2 Omega - 2 n), the classical one; to
 O(e^2) the sums give Hut's (1981, A&A 99, 126) constant-time-lag f-functions (tests/test_tidal_history.py).
 """
+import numpy as np
 from numba import njit
 
 from .response import dissipation
@@ -55,10 +56,21 @@ def wigner_squared(m, k, c):
 
 
 @njit(cache=True, nogil=True)
-def exchange(spin, n, e2, cos_i, response):
+def lags(spin, n, response):
+    """K(m spin - q n) for m = -2..2 (rows m + 2) and q = -3..3 (columns q + 3): each term's lag, computed
+    once for every orientation the rates are averaged over."""
+    out = np.zeros((5, 7))
+    for m in range(-2, 3):
+        for q in range(-3, 4):
+            out[m + 2, q + 3] = dissipation(m * spin - q * n, m, spin, response)
+    return out
+
+
+@njit(cache=True, nogil=True)
+def exchange(n, e2, cos_i, lag_table):
     """(axial, normal, power): the sums above over F: the torque on the Earth along its spin axis, the torque
-    on the orbit along its normal, and the orbit's energy rate, for a spin rate ``spin`` and mean motion ``n``
-    (rad/day), e^2, and the cosine of the angle between the spin axis and the orbit normal."""
+    on the orbit along its normal, and the orbit's energy rate, for the mean motion ``n`` (rad/day), e^2, the
+    cosine of the angle between the spin axis and the orbit normal, and the terms' lags (``lags``)."""
     axial, normal, power = 0.0, 0.0, 0.0
     for k, q, w0, w2 in TERMS:
         hansen = w0 * (1.0 + w2 * e2) if w0 != 0.0 else w2 * e2
@@ -66,7 +78,7 @@ def exchange(spin, n, e2, cos_i, response):
             weight = wigner_squared(m, k, cos_i) * hansen
             if weight == 0.0:
                 continue
-            lag = weight * dissipation(m * spin - q * n, abs(m), response)
+            lag = weight * lag_table[m + 2, q + 3]
             axial -= m * lag
             normal += k * lag
             power += q * n * lag

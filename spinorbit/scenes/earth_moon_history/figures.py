@@ -41,6 +41,10 @@ def description(history):
     from .model import LOVE_K2
 
     strength = float(history.response[response.STRENGTH])
+    if history.response[response.MODEL] == response.GLOBAL_OCEAN:
+        drag = float(history.response[response.DRAG])
+        return {"ocean_depth_km": float(history.response[response.DEPTH]), "ocean_drag_per_day": drag,
+                "ocean_drag_per_s": drag / 86400.0, "solid_k2_over_q": strength}
     if history.response[response.MODEL] == response.CONSTANT_TIME_LAG:
         return {"k2_time_lag_s": strength * 86400.0,
                 "time_lag_s_for_k2_0.30": time_lag_s(history.response, LOVE_K2)}

@@ -14,6 +14,7 @@ AU_KM = 1.495978707e8                  # IAU 2012 Resolution B2
 SUN_ECCENTRICITY = 0.0167086           # the Earth-Moon barycentre's, J2000 (Simon et al. 1994)
 OBLIQUITY_DEG = 23.4392911             # IAU 2006, J2000
 LOVE_K2 = 0.30                         # the solid Earth's degree-2 Love number, to quote a time lag
+SOLID_Q = 280.0                        # the solid Earth's Q at M2 (Ray, Eanes & Lemoine 2001, GJI 146, 781)
 STOP_REFINEMENT = 1000                 # outputs that bracket the stop inside one output step
 
 
@@ -51,10 +52,23 @@ def today(c):
 
 
 def tide(scenario, c, y0, model):
-    """The tidal response of ``model`` calibrated to tides.recession_rate (cm/yr)."""
-    from ...models.tidal_history import calibration, response
+    """The tidal response of ``model`` calibrated to tides.recession_rate (cm/yr): the one parameter of the
+    simple tides, the global ocean's drag at tides.ocean_depth (its depth fitted with the Moon's age by
+    ``python -m spinorbit.scenes.earth_moon_history.fit_ocean``)."""
+    from ...errors import ScenarioError
+    from ...models.tidal_history import calibration, equations, ocean, response
 
-    return calibration.calibrated(c, response.MODELS[model], y0, scenario["tides.recession_rate"])
+    rate = scenario["tides.recession_rate"]
+    if model != "global_ocean":
+        return calibration.calibrated(c, response.MODELS[model], y0, rate)
+    radius = c[equations.RADIUS]
+    water = ocean.constants(c[equations.GM_EARTH] / radius**2, radius)
+    depth = scenario["tides.ocean_depth"]
+    drag = calibration.ocean_drag(c, y0, depth, rate, LOVE_K2 / SOLID_Q, water)
+    if drag is None:
+        raise ScenarioError("tides.ocean_depth", depth, f"a depth at which some drag gives the recession "
+                            f"tides.recession_rate = {rate} cm/yr (e.g. 4 to 8 km)")
+    return response.responses("global_ocean", LOVE_K2 / SOLID_Q, depth=depth, drag=drag, ocean=water)
 
 
 def run(scenario, model, part=None):

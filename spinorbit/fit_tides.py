@@ -1,0 +1,73 @@
+"""The global ocean's two parameters fitted to today's recession and the Moon's age, and nothing else:
+
+    python -m spinorbit.fit_tides            # prints the fit
+    python -m spinorbit.fit_tides --write    # and stores it in spinorbit/models/tidal_history/global_ocean_fit.json
+
+At each depth the drag is the one whose recession today is LLR's 3.830 cm/yr (Williams & Boggs 2016;
+calibration.ocean_drag); the depth is bisected until the history (scenarios/earth_moon_history.toml with
+tides.model = "global_ocean") reaches the Roche limit at the Moon's age, 4.425 Ga (Maurice et al. 2020),
+within AGE_TOLERANCE_GYR.  The geological proxies are never used.
+"""
+import argparse
+import datetime
+import json
+import math
+from pathlib import Path
+
+SCENE = Path(__file__).with_name("builtin_scenarios") / "earth_moon_history.toml"
+MOON_AGE_GYR = 4.425
+RECESSION_CM_PER_YR = 3.830
+AGE_TOLERANCE_GYR = 0.001
+BRACKET_KM = (4.0, 6.0)
+COMMAND = "python -m spinorbit.fit_tides --write"
+
+
+def moon_age_gyr(depth_km):
+    """(the age at which the global ocean's history of this depth reaches the Roche limit, Gyr; inf if it
+    does not within 4.6 Gyr, the drag (rad/day))."""
+    from .models.tidal_history import response
+    from .scenarios import load_scenario
+    from .scenes.earth_moon_history import model
+
+    scenario = load_scenario(SCENE, ['tides.model="global_ocean"', f'tides.ocean_depth="{depth_km!r} km"',
+                                     "compare.models=false", "integrator.estimate_error=false",
+                                     'span.end="-4.6 Gyr"', f'tides.recession_rate="{RECESSION_CM_PER_YR} cm/yr"'])
+    history = model.run(scenario, "global_ocean")
+    age = math.inf if history.stop_t is None else -history.stop_t / model.GYR_D
+    return age, float(history.response[response.DRAG])
+
+
+def fit(bracket=BRACKET_KM, log=print):
+    """{depth_km, drag_per_day, moon_age_gyr, ...}: the depth bisected inside ``bracket`` (km), where the age
+    grows with the depth (a deeper ocean's resonances lie further back)."""
+    low, high = bracket
+    age_low, _ = moon_age_gyr(low)
+    age_high, _ = moon_age_gyr(high)
+    if not age_low < MOON_AGE_GYR < age_high:
+        raise RuntimeError(f"the bracket {bracket} km does not straddle the Moon's age: ages {age_low}, {age_high}")
+    while True:
+        middle = 0.5 * (low + high)
+        age, drag = moon_age_gyr(middle)
+        log(f"depth {middle:.6f} km, drag {drag:.6g}/d: the Moon at the Roche limit {age:.4f} Gyr ago")
+        if abs(age - MOON_AGE_GYR) <= AGE_TOLERANCE_GYR or high - low < 1e-9:
+            return {"depth_km": middle, "drag_per_day": drag, "drag_per_s": drag / 86400.0,
+                    "moon_age_gyr": age, "recession_rate_cm_per_yr": RECESSION_CM_PER_YR,
+                    "targets": {"recession_rate_cm_per_yr": "3.830 +- 0.008 (LLR, Williams & Boggs 2016)",
+                                "moon_age_gyr": "4.425 +- 0.025 (Maurice et al. 2020)"},
+                    "command": COMMAND, "date": datetime.date.today().isoformat()}
+        low, high = (middle, high) if age < MOON_AGE_GYR else (low, middle)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--write", action="store_true", help="store the fit in the package")
+    result = fit()
+    print(json.dumps(result, indent=2))
+    if parser.parse_args(argv).write:
+        from .models.tidal_history.calibration import OCEAN_FIT
+
+        OCEAN_FIT.write_text(json.dumps(result, indent=2) + "\n")
+
+
+if __name__ == "__main__":
+    main()
