@@ -55,6 +55,12 @@ LIMITS = {"output rows": 1_000_000, "orbit samples": 10_000_000, "integrator ste
 
 
 ADAPTIVE_STEP_S = 2e-4         # scipy's adaptive methods: Python between the stages of each step
+# The key an N-body stage's refusal names, and what would shorten it.
+NBODY_KEYS = {"WHFast steps": ("span.end", "a shorter span (an orbital solution once computed is kept in the "
+                                           "cache: a later run reads it)"),
+              "IAS15 days": ("orbit.source", "a span nearer DE421's (1899-2200: REBOUND starts from DE421's state "
+                                             "there and integrates out to the span), or an ephemeris that covers "
+                                             "it (orbit.source = 'de440')")}
 COMMON_SCHEMA = {
     "scene.kind": Key(type=str, help="what the scene runs (spinorbit.scenes.SCENES)"),
     "scene.title": Key(type=str, default="", help="one line for reports and `spinorbit list`"),
@@ -248,6 +254,17 @@ class Scenario:
         counts = {}
         for _, kind, step in self._count_keys():
             counts[kind] = max(counts.get(kind, 0), abs(self.t_end - self.t_start) / step + 1)
+        return {**counts, **self.nbody_counts()}
+
+    def nbody_counts(self):
+        """{N-body count: items} the run integrates before its own: the scene's (``Scene.nbody_counts``: the
+        deep-time orbital solution's WHFast steps not yet in the cache) and the IAS15 days of orbit.source =
+        'rebound' (out from DE421's nearest epoch, then over the span)."""
+        from .orbits.sources import rebound_days
+
+        counts = dict(self.scene.nbody_counts(self)) if self.scene.nbody_counts else {}
+        if self.values.get("orbit.source") == "rebound":
+            counts["IAS15 days"] = rebound_days(self.t_start, self.t_end)
         return counts
 
     def cost(self):
@@ -263,8 +280,10 @@ class Scenario:
 
     def _step_cost(self, kind):
         """Seconds per item of a count (0 for those that cost memory only)."""
-        return {"integrator steps": self.cost().step_s,
-                "adaptive steps (at max_step)": ADAPTIVE_STEP_S}.get(kind, 0.0)
+        from .scene import NBODY_COSTS
+
+        return {"integrator steps": self.cost().step_s, "adaptive steps (at max_step)": ADAPTIVE_STEP_S,
+                **NBODY_COSTS}.get(kind, 0.0)
 
     def _count_keys(self):
         """(key, count, step) of every step key that sets a count."""
@@ -296,6 +315,14 @@ class Scenario:
         if estimate <= limit:
             return
         kind = max(counts, key=lambda k: counts[k] * self._step_cost(k))
+        if kind in NBODY_KEYS:
+            key, remedy = NBODY_KEYS[kind]
+            self._refuse(key, self.values.get(key), f"a run the estimate finishes within limits.time = "
+                                                    f"{_duration(limit)}: its N-body stage, {_count(counts[kind])} "
+                                                    f"{kind} at ~{self._step_cost(kind) * 1e6:.3g} us each "
+                                                    f"(measured), is ~{_duration(counts[kind] * self._step_cost(kind))}"
+                                                    f" (the whole run ~{_duration(estimate)}); {remedy}, or raise "
+                                                    "limits.time")
         key, step = culprits[kind]
         self._refuse(key, step, f"a run the estimate finishes within limits.time = {_duration(limit)}: "
                                 f"{_count(counts[kind])} {kind} at ~{self._step_cost(kind) * 1e6:.3g} us "

@@ -31,6 +31,13 @@ class Cost:
         return {"output rows": self.row_bytes, "orbit samples": self.sample_bytes}
 
 
+# The N-body stages a run may do before its own integration, per item (benchmarks/bench_costs.py --only nbody,
+# benchmarks/results_costs.md): the deep-time orbital solution's WHFast steps (10 bodies, 5 d; 1.6 us of CPU a
+# step, 1.5-2 us of wall time on a free core) and REBOUND's IAS15 run of orbit.source = 'rebound' per simulated
+# day (11 bodies, GR; 0.37 ms of CPU a day); each about twice the quiet figure, as Cost's.
+NBODY_COSTS = {"WHFast steps": 4e-6, "IAS15 days": 8e-4}
+
+
 @dataclass(frozen=True)
 class TimeScale:
     """A rate (rad/d) a run follows, beside the scenario's rate keys: ``key`` the scenario key that sets it,
@@ -91,7 +98,9 @@ class Scene:
     ``meta["reference_agreement_rad"]``); ``backward``: the span may run backward;
     ``taylor``: every term a function of the state and the time, so heyoka's Taylor integrator takes it;
     ``sweep_figures(tables) -> {name: draw}``: figures over a sweep's members (e.g. a band over their curves);
-    ``run(scenario) -> RunResult``: a scene that runs its own pipeline (each says why)."""
+    ``run(scenario) -> RunResult``: a scene that runs its own pipeline (each says why);
+    ``nbody_counts(scenario) -> {count: items}``: an N-body stage its run does first (NBODY_COSTS' counts), for
+    the up-front estimate."""
 
     schema: dict
     build: Callable = None
@@ -104,6 +113,7 @@ class Scene:
     taylor: bool = False
     sweep_figures: Callable = None
     run: Callable = None
+    nbody_counts: Callable = None
 
     def verdict_for(self, params, comparison):
         """The Verdict of a run with these parameters and this comparison (None: the scene declares none)."""

@@ -221,6 +221,25 @@ def elements(normal, eccentricity_vector, rotation):
     return (np.linalg.norm(ev, axis=1), np.mod(node + perihelion, 2 * np.pi), incl, np.mod(node, 2 * np.pi))
 
 
+def file_name(settings):
+    """The cache's file of a solution of ``settings``."""
+    return f"{settings.ephemeris}-{settings.key()}.npz"
+
+
+def steps_to_compute(settings, t_start, t_end, path=None):
+    """WHFast steps a :func:`solve` over [t_start, t_end] still has to take: those beyond the span that the file
+    (default: the cache's for these settings) covers, all of them when there is none or it cannot be read."""
+    lo, hi = min(t_start, t_end, 0.0), max(t_start, t_end, 0.0)
+    path = Path(path) if path else cache.root() / "orbital_solutions" / file_name(settings)
+    try:
+        with open_regular(path) as f, np.load(f, allow_pickle=False) as data:
+            t_d = data["t_d"]
+            covered = (float(t_d[0]), float(t_d[-1]))
+    except (OSError, ValueError, KeyError, IndexError, EOFError, zipfile.BadZipFile, zlib.error):
+        covered = (0.0, 0.0)
+    return (max(0.0, covered[0] - lo) + max(0.0, hi - covered[1])) / settings.step_d
+
+
 def solve(settings, t_start, t_end, path=None, label="orbital solution"):
     """The solution covering [t_start, t_end] TDB days (J2000 inside it): read from ``path`` (default: the
     cache file of these settings) and extended as needed, computed when there is none.  One process at a time
@@ -228,7 +247,7 @@ def solve(settings, t_start, t_end, path=None, label="orbital solution"):
     settings.check()
     record = settings.record()
     if path is None:
-        path = cache_directory() / f"{settings.ephemeris}-{settings.key()}.npz"
+        path = cache_directory() / file_name(settings)
     path = Path(path)
     lo, hi = min(t_start, t_end, 0.0), max(t_start, t_end, 0.0)
     with _lock_file(path) as lock:

@@ -136,6 +136,15 @@ def barycentric(source, names, t_start, t_end, step_d=1.0):
                          np.array([s[1] for s in states]), source=ephemeris.name)
 
 
+def rebound_days(t_start, t_end):
+    """Days REBOUND integrates for :func:`rebound_orbits` over [t_start, t_end]: out from DE421's nearest epoch,
+    then over the span."""
+    from .kernel import DE421Arrays
+
+    first, last = DE421Arrays().span
+    return abs(t_start - float(np.clip(t_start, first, last))) + abs(t_end - t_start)
+
+
 def rebound_orbits(center, names, t_start, t_end, step):
     """A REBOUND run (spinorbit.orbits.nbody) sampled over [t_start, t_end], started from DE421's states at
     t_start, or at the nearest epoch DE421 covers and integrated out from there."""

@@ -57,4 +57,5 @@ def _unmigrated(kind, module):
     return Scene(schema=module.SCHEMA, verdict=choose or getattr(module, "VERDICT", None),
                  cost=_COSTS.get(kind, Cost()), time_scales=rigid_body_time_scales(module.SCHEMA),
                  backward=getattr(module, "BACKWARD", False), taylor=getattr(module, "TAYLOR", False),
-                 sweep_figures=getattr(module, "sweep_figures", None), run=module.run)
+                 sweep_figures=getattr(module, "sweep_figures", None), run=module.run,
+                 nbody_counts=getattr(module, "nbody_counts", None))

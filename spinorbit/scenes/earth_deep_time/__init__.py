@@ -92,6 +92,13 @@ def check_span(scenario):
         raise ScenarioError("integrator.step", step, "at most 1 kyr (26 steps a precession cycle)")
 
 
+def nbody_counts(scenario):
+    """The N-body stage the up-front estimate counts: the orbital solution's steps not yet in the cache."""
+    from .model import steps_to_compute
+
+    return {"WHFast steps": steps_to_compute(scenario)}
+
+
 def run(scenario):
     from ...plots import deep_time as deep_time_plot
     from ...plots import deep_time_spectra

@@ -24,11 +24,24 @@ def settings(scenario):
                     moon=scenario["orbit.moon"])
 
 
+def orbit_end(scenario):
+    """Where the orbital solution must reach: the span's end, at least ERFA_SPAN_D from J2000."""
+    return math.copysign(max(abs(scenario.t_end), ERFA_SPAN_D), scenario.t_end)
+
+
+def steps_to_compute(scenario):
+    """The WHFast steps of the orbital solution this run still has to compute (none when it is cached)."""
+    from ...orbits import solution
+
+    return solution.steps_to_compute(settings(scenario), scenario.t_start, orbit_end(scenario),
+                                     path=scenario["orbit.file"] or None)
+
+
 def orbital_solution(scenario, label):
     """The solution covering the span (and at least 2 kyr of it), from the cache or orbit.file."""
     from ...orbits import solution
 
-    end = math.copysign(max(abs(scenario.t_end), ERFA_SPAN_D), scenario.t_end)
+    end = orbit_end(scenario)
     try:
         return solution.solve(settings(scenario), scenario.t_start, end, path=scenario["orbit.file"] or None,
                               label=label)
