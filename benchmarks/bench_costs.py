@@ -1,4 +1,4 @@
-"""The per-item costs behind the up-front estimate (spinorbit.scenarios.COSTS, NBODY_COSTS), measured, beside
+"""The per-item costs behind the up-front estimate (each Scene.cost, scene.NBODY_COSTS), measured, beside
 the estimate.
 
     python benchmarks/bench_costs.py [--only KIND ...]      # KIND "nbody": the N-body stages only
@@ -82,7 +82,7 @@ def timed(call):
 def nbody_costs():
     """Rows of the N-body stages: (count, per-item wall and CPU slopes, NBODY_COSTS, estimate vs measured)."""
     from spinorbit.orbits import nbody, solution
-    from spinorbit.scenarios import NBODY_COSTS
+    from spinorbit.scene import NBODY_COSTS
 
     settings = solution.Settings()
     with tempfile.TemporaryDirectory() as tmp:

@@ -239,9 +239,9 @@ def _check_iso_years(t, span):
 
 def _check_nbody_cost(t, span):
     """Refuse dates whose N-body run (REBOUND from DE421's state at its nearest date, out to the run) the up-front
-    estimate (scenarios.NBODY_COSTS, measured) puts over API_TIME_LIMIT_S."""
+    estimate (scene.NBODY_COSTS, measured) puts over API_TIME_LIMIT_S."""
     from .orbits.sources import rebound_days
-    from .scenarios import NBODY_COSTS
+    from .scene import NBODY_COSTS
 
     days = rebound_days(span[0], span[1])
     seconds = days * NBODY_COSTS["IAS15 days"]

@@ -40,7 +40,7 @@ def test_a_date_before_1000_on_rebound_is_refused_in_the_callers_dates(date):
 
 
 def test_a_far_date_on_rebound_is_refused_with_the_estimate():
-    from spinorbit.scenarios import NBODY_COSTS
+    from spinorbit.scene import NBODY_COSTS
 
     t = Time("5000-01-01", scale="tdb")
     days = (t.jd - 2451545.0) + 4.0             # the Moon's solution runs from J2000 - 2 d to the date + 2 d

@@ -11,7 +11,8 @@ import pytest
 
 from spinorbit.errors import ScenarioError
 from spinorbit.orbits import solution
-from spinorbit.scenarios import NBODY_COSTS, load_scenario
+from spinorbit.scenarios import load_scenario
+from spinorbit.scene import NBODY_COSTS
 
 ROOT = Path(__file__).parents[1]
 YEAR_D = 365.25
