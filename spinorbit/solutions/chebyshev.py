@@ -66,12 +66,8 @@ class Segments:
         k = np.clip(np.floor((t - self.origin_d) / self.length_d).astype(int), self.first,
                     self.first + len(self.coefficients) - 1)
         mid = self.origin_d + (k + 0.5) * self.length_d
-        x = (2.0 * (t - mid) / self.length_d)[:, None]
-        c = self.coefficients[k - self.first]                     # (n, components, degree + 1)
-        b1, b2 = np.zeros(c.shape[:2]), np.zeros(c.shape[:2])     # Clenshaw's recurrence
-        for j in range(self.degree, 0, -1):
-            b1, b2 = 2.0 * x * b1 - b2 + c[:, :, j], b1
-        return x * b1 - b2 + c[:, :, 0]
+        basis = np.polynomial.chebyshev.chebvander(2.0 * (t - mid) / self.length_d, self.degree)
+        return np.matmul(self.coefficients[k - self.first], basis[:, :, None])[:, :, 0]
 
     def nodes(self, first, count):
         """(interpolation times (count, n + 1), check times (count, n + 1)) of segments first..first+count-1."""

@@ -26,9 +26,10 @@ def layer(rigid, scenario, nonrigid):
     """The layer (a Solution over ``rigid``'s span) of the Earth scene ``scenario``, non-rigid or not."""
     from ..scenes.earth_precession_nutation import nonrigid as nr
 
-    settings = nr.settings(scenario) if nonrigid else None
-    rec = {**store.record(scenario), "scene": "earth_layer", "nonrigid": settings}
-    return store.solve(rec, *rigid.span, lambda _, lo, hi: _computed(rigid, settings))
+    rec = {**store.record(scenario), "scene": "earth_layer", "nonrigid": nonrigid,
+           "transfer_function": scenario["earth.transfer_function"] if nonrigid else None}
+    return store.solve(rec, *rigid.span, lambda _, lo, hi: _computed(rigid, nr.settings(scenario) if nonrigid
+                                                                     else None))
 
 
 def _computed(rigid, settings):

@@ -83,8 +83,27 @@ def system(scenario, start):
 def _moon(scenario, start):
     from ..scenes.moon_libration.model import build_system
 
-    built, _ = build_system(scenario, scenario["orbit.source"])
-    return built if start is None else built.with_start(*start)
+    if start is None:
+        return build_system(scenario, scenario["orbit.source"])[0]
+    return _moon_from(scenario, start)
+
+
+def _moon_from(scenario, start):
+    """The Moon scene's System (its model.build_system) started at a stored state: the same model on orbits
+    sampled over the stretch, without the DE421 start (its core carried from DE421's epoch) it would replace."""
+    from ..models.assemblies.moon import LEVELS, moon
+    from ..orbits.sources import sample_orbits
+    from ..references.moon_de421 import earth_pole
+    from ..scenes.moon_libration.model import MARGIN_D
+
+    level, extra = LEVELS[scenario["model.level"]], tuple(scenario["model.terms"])
+    first = min(start[0], *scenario.bounds) - MARGIN_D
+    last = max(start[0], *scenario.bounds) + MARGIN_D
+    orbits = sample_orbits(scenario["orbit.source"], "moon", level.bodies, first, last, scenario["orbit.step"])
+    pole = earth_pole(first, last) if "earth_j2" in level.terms + extra else None
+    built = moon(scenario["model.level"], orbits, extra, scenario["model.tides"], pole, float(start[0]))
+    built.meta["source"] = scenario["orbit.source"]
+    return built.with_start(*start)
 
 
 def _earth(scenario, start):
