@@ -12,6 +12,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
+from .files import open_lock
+
 
 @dataclass(frozen=True)
 class Cache:
@@ -73,7 +75,7 @@ def _clear_solutions(folder):
 
     removed = 0
     for path in sorted(folder.glob("*.npz")):
-        with open(path.with_name(path.name + ".lock"), "a") as lock:
+        with open_lock(path.with_name(path.name + ".lock")) as lock:
             try:
                 fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
             except BlockingIOError:

@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import ScenarioError
+from .files import open_regular
 from .linker import fingerprint, python_function
 
 WHAT_DIFFERS = {"settings": "scenario settings", "source": "spinorbit source code", "rhs": "equations",
@@ -114,7 +115,7 @@ class Checkpoint:
             self._refuse(f"a checkpoint of your own (it belongs to uid {info.st_uid})")
         keys = ["fingerprint", "outputs", "sha256"]
         try:
-            with np.load(self.path, allow_pickle=False) as data:
+            with open_regular(self.path) as f, np.load(f, allow_pickle=False) as data:
                 files = sorted(data.files)
                 content = [data[key] for key in keys] if files == keys else None
         except (OSError, ValueError, EOFError, zipfile.BadZipFile) as exc:

@@ -1,5 +1,5 @@
-"""Files spinorbit reads, opened only when they are regular files: a FIFO, a device or a socket (or a link to
-one) is refused without blocking, before anything is read from it."""
+"""Files spinorbit reads (and locks), opened only when they are regular files: a FIFO, a device or a socket (or
+a link to one) is refused without blocking, before anything is read from it."""
 import os
 import stat
 
@@ -21,6 +21,17 @@ def open_regular(path, mode="rb"):
         os.close(fd)
         raise
     return os.fdopen(fd, mode)
+
+
+def open_lock(path):
+    """A lock file at ``path`` opened for writing (created 0600 if missing), if it is a regular file: a FIFO
+    there never blocks (NotRegular)."""
+    fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_NONBLOCK | os.O_CLOEXEC, 0o600)
+    info = os.fstat(fd)
+    if not stat.S_ISREG(info.st_mode):
+        os.close(fd)
+        raise NotRegular(0, f"not a regular file ({kind(info.st_mode)})", str(path))
+    return os.fdopen(fd, "w")
 
 
 def kind(mode):

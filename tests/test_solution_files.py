@@ -160,3 +160,18 @@ def test_the_command_line_says_any_os_error_in_one_line(monkeypatch, capsys):
     monkeypatch.setattr(cli, "_show", denied)
     assert cli.main(["show", "free_body"]) == 2
     assert capsys.readouterr().err == "error: /somewhere/scene.toml: Permission denied\n"
+
+
+STORE_FIFO = """
+import os, sys
+from spinorbit.solutions import store
+os.mkfifo(sys.argv[1])
+print(store.read(__import__("pathlib").Path(sys.argv[1]), {"scene": "x"}), os.path.lexists(sys.argv[1]))
+"""
+
+
+def test_a_fifo_in_the_store_of_solutions_is_refused_without_blocking(tmp_path):
+    done = subprocess.run([sys.executable, "-c", STORE_FIFO, str(tmp_path / "s.npz")], capture_output=True,
+                          text=True, timeout=60)
+    assert done.stdout.split() == ["None", "False"], done.stdout + done.stderr
+    assert "not a regular file" in done.stderr and done.stderr.count("\n") == 1

@@ -29,7 +29,6 @@ import inspect
 import json
 import os
 import re
-import stat
 import sys
 import textwrap
 import time
@@ -44,7 +43,7 @@ from ..bodies import moon
 from ..bodies.de421_header import gm_km3_d2, header
 from ..constants import DAY_S
 from ..errors import InputError
-from ..files import open_regular, process_alive
+from ..files import NotRegular, open_lock, open_regular, process_alive
 from ..linker import cache
 from ..progress import progress
 from .interrupts import python_sigint
@@ -276,14 +275,12 @@ def _lock_file(path):
     """The lock beside ``path`` (``<name>.lock``), opened for writing if it is a regular file (or none yet): a
     FIFO there never blocks, a missing folder is one line."""
     try:
-        fd = os.open(path.with_name(path.name + ".lock"),
-                     os.O_WRONLY | os.O_CREAT | os.O_NONBLOCK | os.O_CLOEXEC, 0o600)
+        return open_lock(path.with_name(path.name + ".lock"))
+    except NotRegular:
+        raise InputError("orbit_file", str(path), "a regular file beside a regular lock file (its .lock is not)") \
+            from None
     except OSError as exc:
         raise InputError("orbit_file", str(path), f"a file in a folder you can write ({exc.strerror})") from None
-    if not stat.S_ISREG(os.fstat(fd).st_mode):
-        os.close(fd)
-        raise InputError("orbit_file", str(path), "a regular file beside a regular lock file (its .lock is not)")
-    return os.fdopen(fd, "w")
 
 
 def remove_stale_leftovers(path):

@@ -26,6 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..files import open_lock, open_regular
 from ..layout import Layout
 from ..linker import cache
 from .chebyshev import Segments
@@ -119,7 +120,7 @@ class Refused(Exception):
 def load(path, rec):
     """The Solution in ``path``; Refused (saying why) unless it is intact and made with ``rec``."""
     try:
-        with np.load(path, allow_pickle=False) as data:
+        with open_regular(path) as f, np.load(f, allow_pickle=False) as data:
             arrays = {name: data[name] for name in ARRAYS}
             stored_hash = str(data["sha256"])
     except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as exc:
@@ -137,7 +138,7 @@ def load(path, rec):
 
 def read(path, rec):
     """The stored Solution, or None when there is none or it is refused (said in one line, then deleted)."""
-    if not path.exists():
+    if not os.path.lexists(path):
         return None
     try:
         return load(path, rec)
@@ -156,7 +157,7 @@ def solve(rec, t_start, t_end, extend):
     if solution is not None and solution.covers(t_start, t_end):
         solution.path = path
         return solution
-    with open(path.with_name(path.name + ".lock"), "w") as lock:
+    with open_lock(path.with_name(path.name + ".lock")) as lock:
         try:
             fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
@@ -177,7 +178,7 @@ def entries():
     out = []
     for path in sorted(directory().glob("*.npz")):
         try:
-            with np.load(path, allow_pickle=False) as data:
+            with open_regular(path) as f, np.load(f, allow_pickle=False) as data:
                 origin, length, first = data["grid"]
                 count = data["coefficients"].shape[0]
                 scene = json.loads(str(data["record"]))["scene"]
