@@ -90,7 +90,8 @@ class Outcome:
 @dataclass(frozen=True)
 class Scene:
     """A scene's declarations.  ``schema``: its keys (schema.Key by dotted name); ``build(p, times) -> Model``;
-    ``compare(p, run) -> Outcome``; ``verdict``: a Verdict, or ``verdict(p, comparison) -> Verdict`` when it
+    ``compare(p, run) -> Outcome`` (a scene module names it ``compare_run``: the ``compare`` submodule some
+    scenes have would shadow it); ``verdict``: a Verdict, or ``verdict(p, comparison) -> Verdict`` when it
     depends on the settings or the outcome; ``cost``: measured per-item costs (the up-front estimate);
     ``time_scales(p) -> [TimeScale]``: rates the run follows beyond the rate keys (torques, Euler's equations);
     ``bench(p, model, times) -> error(solution) in rad`` for ``spinorbit bench`` on the model ``build`` made

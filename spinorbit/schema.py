@@ -193,8 +193,9 @@ def dotted_items(table, prefix="", is_table=None):
 def record(name, keys):
     """The typed record of a scene's values: a frozen dataclass with one frozen dataclass per table, so that
     ``p.body.moments`` is the converted value of ``body.moments``; beside the tables, ``t_start`` and ``t_end``
-    (TDB days of the span).  Built from the keys, never by hand: every scene's record alike, from a TOML
-    file, ``--set`` or the API (they all go through the scenario's validation)."""
+    (TDB days of the span) and ``bounds`` (earliest, latest).  Built from the keys, never by hand: every
+    scene's record alike, from a TOML file, ``--set`` or the API (they all go through the scenario's
+    validation)."""
     tables = {}
     for key, spec in keys.items():
         table, leaf = key.split(".", 1)
@@ -203,7 +204,7 @@ def record(name, keys):
              for table, fields in tables.items()}
     top = make_dataclass(name, [(table, cls) for table, cls in types.items()] + [("t_start", float),
                                                                                  ("t_end", float)],
-                         frozen=True, eq=False, namespace={"__getitem__": _dotted})
+                         frozen=True, eq=False, namespace={"__getitem__": _dotted, "bounds": property(_bounds)})
     top.tables = types
     return top
 
@@ -220,6 +221,11 @@ def _dotted(record, key):
     """``p["body.moments"]``: a value by its dotted key, as the scenario names it."""
     table, leaf = key.split(".", 1)
     return getattr(getattr(record, table), leaf)
+
+
+def _bounds(record):
+    """(earliest, latest) TDB days of the span, whichever way it runs."""
+    return min(record.t_start, record.t_end), max(record.t_start, record.t_end)
 
 
 def _python_type(spec):

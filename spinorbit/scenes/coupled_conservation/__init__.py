@@ -61,7 +61,7 @@ def build(p, times):
     return Model(built)
 
 
-def compare(p, run):
+def compare_run(p, run):
     from astropy.table import QTable
 
     from ...schema import tdb_days_to_time
@@ -96,4 +96,4 @@ def compare(p, run):
     return Outcome(comparison, figures=figures, not_measured=not_measured, table=table)
 
 
-SCENE = Scene(SCHEMA, build, compare, verdict, Cost(step_s=1e-4), taylor=True)
+SCENE = Scene(SCHEMA, build, compare_run, verdict, Cost(step_s=1e-4), taylor=True)

@@ -46,7 +46,7 @@ def build(p, times):
     return Model(free_body(p.body.moments, q0, p.body.omega0, p.t_start), exact=exact)
 
 
-def compare(p, run):
+def compare_run(p, run):
     solution, exact = run.solution, run.model.exact
     dt = solution.t - p.t_start
     omega_err = np.abs(solution.omega - exact.omega(dt)).max() / np.linalg.norm(p.body.omega0)
@@ -74,5 +74,5 @@ def bench(p, model, times):
     return lambda solution: float(quat_angle(solution.quaternion, q_exact).max())
 
 
-SCENE = Scene(SCHEMA, build, compare, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA), bench=bench,
+SCENE = Scene(SCHEMA, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA), bench=bench,
               taylor=True)

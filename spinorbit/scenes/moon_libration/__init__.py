@@ -17,9 +17,9 @@ import numpy as np
 
 from ...constants import ARCSEC
 from ...models.assemblies.moon import LEVELS
+from ...scene import Cost, Model, Outcome, Scene
 from ...schema import SAMPLE_STEP, Key
 from ...verdict import Check, Verdict
-from .. import common
 
 # Targets (max over the run, arcsec) against DE421 per level: (pole, longitude, source).
 _RIGID = ("project target for level 2 (pole 12\", longitude 2\"): a rigid Moon lacks DE421's fluid core "
@@ -32,9 +32,9 @@ TOLERANCES = {1: (12.0, 2.0, _RIGID), 2: (12.0, 2.0, _RIGID), 3: (0.1, 0.01, _DE
               4: (0.1, 0.01, _DE421_MODEL)}
 
 
-def verdict(scenario, comparison):
+def verdict(p, comparison):
     """Pole and longitude against DE421 at the level's tolerance (see the module docstring)."""
-    level, source = scenario["model.level"], scenario["orbit.source"]
+    level, source = p.model.level, p.orbit.source
     pole, lon, why = TOLERANCES.get(level, TOLERANCES[3])
     notes = []
     if level == 1:
@@ -66,23 +66,26 @@ SCHEMA = {
                                    help="rk8 steps and dop853 tolerances vs a converged run"),
 }
 
-# the DE lunar integrations run both ways from their epoch: a span may end before it starts
-BACKWARD = True
-
 ZOOM_D = 730.5                      # days
 
 
-def run(scenario):
+def build(p, times):
+    """The lunar model of the level, driven by orbit.source, started from DE421's state (model.py)."""
+    from .model import build_system
+
+    system, orbits = build_system(p, p.orbit.source)
+    return Model(system, orbits=orbits)
+
+
+def compare_run(p, run):
     from ... import plots
     from ...analysis.librations import icrf_to_body
     from ...references import eckhardt
     from ...references.moon_de421 import FREE_LIBRATION_LONGITUDE_PERIOD_D
     from . import compare as vs
-    from .model import build_system, difference_driven_by
+    from .model import difference_driven_by
 
-    t_out, level, other = scenario.output_times(), scenario["model.level"], scenario["compare.source"]
-    system, orbits = build_system(scenario, scenario["orbit.source"])
-    solution, point = common.simulate_scenario(scenario, system, t_out)
+    solution, system, orbits, level = run.solution, run.model.system, run.model.orbits, p.model.level
     t, mats = solution.t, icrf_to_body(solution.quaternion)
     de421, covered, comparison, not_measured = vs.against_de421(t, mats)
     lib = eckhardt.physical_librations(t, mats, orbits.positions(t)[:, 0])
@@ -91,41 +94,38 @@ def run(scenario):
         vs.beside_de421(terms, eckhardt.fit_longitude_terms(t[covered], eckhardt.physical_librations(
             t[covered], de421["icrf_to_body"], orbits.positions(t[covered])[:, 0])["tau"] / ARCSEC,
             FREE_LIBRATION_LONGITUDE_PERIOD_D)[0])
-    refused_terms = {f"longitude_terms.{k}": why for k, why in refused.items()}
-    summary = {"not_measured": {**not_measured, **refused_terms},
-               "comparison": comparison, "run": point, "reference": de421.provenance if de421 else None,
-               "model": {"level": level, "name": LEVELS[level].name, "start_tdb_d": system.t0,
-                         "degree": 4 if "harmonics" in system.meta["terms"] else 2,
-                         "core": LEVELS[level].core,
-                         "tides": bool(system.meta["tides"]), "bodies": list(orbits.names),
-                         "terms": list(system.meta["terms"])},
-               "orbits": vs.orbit_summary(scenario["orbit.source"], scenario["orbit.step"], orbits),
-               "longitude_terms": terms}
+    sections = {"reference": de421.provenance if de421 else None,
+                "model": {"level": level, "name": LEVELS[level].name, "start_tdb_d": system.t0,
+                          "degree": 4 if "harmonics" in system.meta["terms"] else 2,
+                          "core": LEVELS[level].core, "tides": bool(system.meta["tides"]),
+                          "bodies": list(orbits.names), "terms": list(system.meta["terms"])},
+                "orbits": vs.orbit_summary(p.orbit.source, p.orbit.step, orbits), "longitude_terms": terms}
     table, rows = vs.table(solution, mats, de421, covered, lib), terms["main"] + terms["other"]
     zoom = covered & (np.abs(t - t[covered][-1]) <= ZOOM_D) if covered.any() else None   # two years vs DE421
     de421_zoom = None if zoom is None else eckhardt.physical_librations(
         t[zoom], de421["icrf_to_body"][zoom[covered]], orbits.positions(t[zoom])[:, 0])
     figures = plots.moon_libration(t, table, rows, [r["term"] for r in terms["main"]], zoom, de421_zoom)
-    if other:
-        pole, lon = difference_driven_by(scenario, other, mats, t_out)
-        summary["comparison"].update(vs.driven_by_metrics(other, pole, lon))
-        figures[f"difference_vs_{other}_driven"] = plots.driven_by(t, pole, lon, scenario["orbit.source"],
-                                                                   other)
-    if scenario["report.error_vs_runtime"] and de421 is not None:
-        summary["error_vs_runtime"] = vs.error_vs_runtime(system, t_out[covered], de421["icrf_to_body"])
-        figures["error_vs_runtime"] = plots.plot_error_vs_cost(summary["error_vs_runtime"], [
+    if p.compare.source:
+        other = p.compare.source
+        pole, lon = difference_driven_by(p, run, other, mats)
+        comparison.update(vs.driven_by_metrics(other, pole, lon))
+        figures[f"difference_vs_{other}_driven"] = plots.driven_by(t, pole, lon, p.orbit.source, other)
+    if p.report.error_vs_runtime and de421 is not None:
+        sections["error_vs_runtime"] = vs.error_vs_runtime(system, run.times[covered], de421["icrf_to_body"])
+        figures["error_vs_runtime"] = plots.plot_error_vs_cost(sections["error_vs_runtime"], [
             ("error_vs_converged_arcsec", "vs converged", 1.0), ("error_vs_de421_arcsec", "vs DE421", 0.4)])
-    return common.result(scenario, table, summary, figures, solution)
+    refused_terms = {f"longitude_terms.{k}": why for k, why in refused.items()}
+    return Outcome(comparison, figures=figures, sections=sections, table=table,
+                   not_measured={**not_measured, **refused_terms})
 
 
-def build(scenario):
-    """For ``spinorbit bench``: (system, output times, attitude error vs a converged rk8 run at 0.5 d,
-    rad)."""
+def bench(p, model, times):
+    """Attitude error against a converged rk8 run at 0.5 d, rad."""
     from ...analysis.ladder import converged_error
-    from .model import build_system
 
-    system, _ = build_system(scenario, scenario["orbit.source"])
-    t_out = scenario.output_times()
-    error, agreement = converged_error(system, t_out, 0.5)
-    system.meta["reference_agreement_rad"] = agreement
-    return system, t_out, error
+    error, model.system.meta["reference_agreement_rad"] = converged_error(model.system, times, 0.5)
+    return error
+
+
+# the DE lunar integrations run both ways from their epoch: a span may end before it starts
+SCENE = Scene(SCHEMA, build, compare_run, verdict, Cost(step_s=2e-4), bench=bench, backward=True)

@@ -9,37 +9,37 @@ from ...models.assemblies.moon import LEVELS, TERMS
 MARGIN_D = 1.0          # orbit samples beyond the outputs: the tide looks back tau (0.1 d)
 
 
-def start_epoch(scenario):
+def start_epoch(p):
     """model.start (default span.start), or the nearest epoch of DE421's lunar series (TDB days) when it lies
     outside."""
     from ...bodies.de421_orientation import span
     from ...schema import parse_tdb_days
 
     first, last = span()
-    given = scenario["model.start"]
-    wanted = parse_tdb_days("model.start", given) if given else scenario.t_start
+    given = p["model.start"]
+    wanted = parse_tdb_days("model.start", given) if given else p.t_start
     return float(np.clip(wanted, first + MARGIN_D, last - MARGIN_D))
 
 
-def build_system(scenario, source):
+def build_system(p, source):
     """(System of the lunar model at the scenario's level, its terms + ``model.terms``, driven by ``source``;
-    the orbits)."""
+    the orbits); ``p`` the scene's parameters (or a Scenario)."""
     from ...models.assemblies.moon import moon
     from ...models.start import moon_de421
     from ...orbits.sources import sample_orbits
     from ...references.moon_de421 import earth_pole
 
-    level, extra = LEVELS[scenario["model.level"]], scenario["model.terms"]
+    level, extra = LEVELS[p["model.level"]], p["model.terms"]
     if not isinstance(extra, list) or any(not isinstance(n, str) or n not in TERMS or n in level.terms
                                           for n in extra):
         raise ScenarioError("model.terms", extra, f"a list of terms not in the level's {list(level.terms)}, "
                                                   f"from {sorted(TERMS)}")
-    t0 = start_epoch(scenario)
-    first, last = min(t0, *scenario.bounds) - MARGIN_D, max(t0, *scenario.bounds) + MARGIN_D
-    orbits = sample_orbits(source, "moon", level.bodies, first, last, scenario["orbit.step"])
+    t0 = start_epoch(p)
+    first, last = min(t0, *p.bounds) - MARGIN_D, max(t0, *p.bounds) + MARGIN_D
+    orbits = sample_orbits(source, "moon", level.bodies, first, last, p["orbit.step"])
     pole = earth_pole(first, last) if "earth_j2" in level.terms + tuple(extra) else None
     try:
-        system = moon(scenario["model.level"], orbits, tuple(extra), scenario["model.tides"], pole, t0,
+        system = moon(p["model.level"], orbits, tuple(extra), p["model.tides"], pole, t0,
                       moon_de421(t0, level.core))
     except InputError as exc:
         if exc.name != "terms":
@@ -49,16 +49,15 @@ def build_system(scenario, source):
     return system, orbits
 
 
-def difference_driven_by(scenario, other, mats, t_out):
+def difference_driven_by(p, run, other, mats):
     """(pole, longitude) differences, rad, of this run from the same run driven by orbit source ``other``."""
     from ...analysis.librations import icrf_to_body, pole_and_longitude_difference
-    from .. import common
 
     try:
-        system, _ = build_system(scenario, other)
+        system, _ = build_system(p, other)
     except ScenarioError as exc:                   # the error is about this source, not orbit.source
         if exc.key != "orbit.source":
             raise
         raise ScenarioError("compare.source", other, exc.accepted) from None
-    solution, _ = common.simulate_scenario(scenario, system, t_out, f"driven_by_{other}")
+    solution, _ = run.integrate(system, run.times, f"driven_by_{other}")
     return pole_and_longitude_difference(mats, icrf_to_body(solution.quaternion))

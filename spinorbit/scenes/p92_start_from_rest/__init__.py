@@ -45,7 +45,7 @@ def build(p, times):
     return Model(system, direction=u)
 
 
-def compare(p, run):
+def compare_run(p, run):
     from ...theory import start_from_rest
 
     solution = run.solution
@@ -67,4 +67,4 @@ def compare(p, run):
     return Outcome(comparison, figures={"omega": common.plot_omega(solution)})
 
 
-SCENE = Scene(SCHEMA, build, compare, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA), taylor=True)
+SCENE = Scene(SCHEMA, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA), taylor=True)

@@ -70,7 +70,7 @@ def build(p, times):
                  theory=PlanarLibration(n, 0.0, zeta_dot0))
 
 
-def compare(p, run):
+def compare_run(p, run):
     solution, theory, n, delta = run.solution, run.model.theory, run.model.n, p.orbit.rate
     dt = solution.t - p.t_start
     zeta_num = zeta_from_solution(solution, delta * dt)
@@ -128,4 +128,4 @@ def _too_short(span_d, found, events, period_d):
             f"the closed-form period is {period_d:.6g} d, so lengthen span.end beyond {2 * period_d:.6g} d")
 
 
-SCENE = Scene(SCHEMA, build, compare, verdict, time_scales=common.rigid_body_time_scales(SCHEMA), taylor=True)
+SCENE = Scene(SCHEMA, build, compare_run, verdict, time_scales=common.rigid_body_time_scales(SCHEMA), taylor=True)

@@ -48,7 +48,7 @@ def build(p, times):
     return Model(planar_system(body.moments, orbit, p.t_start, 0.0, start_rate, o.rate), n=n)
 
 
-def compare(p, run):
+def compare_run(p, run):
     from ...theory import forced_libration
 
     o, n, dt = p.orbit, run.model.n, run.solution.t - p.t_start
@@ -70,4 +70,4 @@ def compare(p, run):
     return Outcome(comparison, {"zeta": zeta_num * rad, "zeta_euler": zeta_second * rad}, figures)
 
 
-SCENE = Scene(SCHEMA, build, compare, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA), taylor=True)
+SCENE = Scene(SCHEMA, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA), taylor=True)

@@ -58,7 +58,7 @@ def build(p, times):
     return Model(system, u_euler=u_euler)
 
 
-def compare(p, run):
+def compare_run(p, run):
     from ...theory import pole_rates_symmetric
 
     solution, (cc, _, aa) = run.solution, p.body.moments
@@ -87,4 +87,4 @@ def compare(p, run):
     return Outcome(comparison, figures=figures)
 
 
-SCENE = Scene(SCHEMA, build, compare, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA), taylor=True)
+SCENE = Scene(SCHEMA, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA), taylor=True)

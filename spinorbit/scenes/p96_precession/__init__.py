@@ -79,7 +79,7 @@ def build(p, times):
     return Model(system, big_n=big_n, euler=euler, true=true, resonance=resonance)
 
 
-def compare(params, run):
+def compare_run(params, run):
     m, delta, eps = run.model, params.orbit.rate, params.body.spin
     euler, true, resonance = m.euler, m.true, m.resonance
     comparison = {"N_rad_per_d": m.big_n, "eps_over_delta": eps / delta}
@@ -128,4 +128,4 @@ def _unsupported(comparison, span_d, delta):
     return {f"comparison.{key}": reason for key in fitted}
 
 
-SCENE = Scene(SCHEMA, build, compare, verdict, time_scales=common.rigid_body_time_scales(SCHEMA), taylor=True)
+SCENE = Scene(SCHEMA, build, compare_run, verdict, time_scales=common.rigid_body_time_scales(SCHEMA), taylor=True)

@@ -83,7 +83,7 @@ def precession_rate(solution, t0, delta, eps_f):
     return float(-fit_angles(solution, t0, delta, eps_f)[3][1])
 
 
-def compare(p, run):
+def compare_run(p, run):
     system, theory, delta = run.model.spinner, run.model.theory, run.model.delta
     t, t0, span = run.times, p.t_start, p.t_end - p.t_start
     closed_form = theory.precession_rate
@@ -133,4 +133,4 @@ def compare(p, run):
                                          "run": {"method": ",".join(r["run"] for r in rows)}})
 
 
-SCENE = Scene(SCHEMA, build, compare, verdict, time_scales=common.rigid_body_time_scales(SCHEMA))
+SCENE = Scene(SCHEMA, build, compare_run, verdict, time_scales=common.rigid_body_time_scales(SCHEMA))

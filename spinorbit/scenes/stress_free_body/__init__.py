@@ -60,11 +60,11 @@ def bench(p, model, times):
     return lambda solution: error(solution)["attitude_error_max_rad"]
 
 
-def compare(p, run):
+def compare_run(p, run):
     cases = {"flip": flip, "degenerate": degenerate, "shapes": shapes, "long_run": long_run}
     comparison, details = cases[p.stress.case](p)
     return Outcome({"checks": CHECKS[p.stress.case], **comparison},
                    sections={"details": details, "run": {"method": ",".join(p.stress.methods)}})
 
 
-SCENE = Scene(SCHEMA, build, compare, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA), bench=bench)
+SCENE = Scene(SCHEMA, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA), bench=bench)

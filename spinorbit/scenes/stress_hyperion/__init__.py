@@ -76,7 +76,7 @@ def build(p, times):
     return Model(None)
 
 
-def compare(p, run):
+def compare_run(p, run):
     from ... import plots
 
     moments = p["body.moments"]
@@ -143,4 +143,4 @@ def compare(p, run):
     return Outcome(comparison, figures=figures, sections=sections)
 
 
-SCENE = Scene(SCHEMA, build, compare, verdict, time_scales=common.rigid_body_time_scales(SCHEMA))
+SCENE = Scene(SCHEMA, build, compare_run, verdict, time_scales=common.rigid_body_time_scales(SCHEMA))

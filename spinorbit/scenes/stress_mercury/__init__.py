@@ -94,7 +94,7 @@ def build(p, times):
     return Model(system, gamma=gamma, n=n, theory=theory)
 
 
-def compare(p, run):
+def compare_run(p, run):
     solution, gamma, n, theory, e = run.solution, run.model.gamma, run.model.n, run.model.theory, p.orbit.e
     dt = solution.t - p.t_start
     lib = theta_from_quaternions(solution.quaternion) - 1.5 * n * dt
@@ -139,5 +139,5 @@ def compare(p, run):
     return Outcome(comparison, {"libration": lib * common.u().rad}, figures, not_measured=not_measured)
 
 
-SCENE = Scene(SCHEMA, build, compare, verdict, time_scales=common.rigid_body_time_scales(SCHEMA))
+SCENE = Scene(SCHEMA, build, compare_run, verdict, time_scales=common.rigid_body_time_scales(SCHEMA))
 

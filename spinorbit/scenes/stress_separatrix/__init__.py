@@ -90,7 +90,7 @@ def bench(p, model, times):
                                          - zeta_exact).max())
 
 
-def compare(p, run):
+def compare_run(p, run):
     rows, passed, delta = {}, True, p.orbit.rate
     for offset, system, theory in run.model.runs:
         expected = time_to_90(theory)
@@ -113,4 +113,4 @@ def compare(p, run):
     return Outcome(comparison, sections={"details": rows, "run": {"method": ",".join(p.stress.methods)}})
 
 
-SCENE = Scene(SCHEMA, build, compare, verdict, time_scales=common.rigid_body_time_scales(SCHEMA), bench=bench)
+SCENE = Scene(SCHEMA, build, compare_run, verdict, time_scales=common.rigid_body_time_scales(SCHEMA), bench=bench)
