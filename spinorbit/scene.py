@@ -60,8 +60,8 @@ class Model(SimpleNamespace):
 class Run:
     """What the runner hands a scene's ``compare``: the parameters, the model, the output times, the main
     run's solution and its point (method, wall time, error estimate), and ``integrate(system, times, part,
-    method=None, options=None)`` for a further run (``part`` names its checkpoint and progress bar; the
-    scenario's [integrator] unless given)."""
+    method=None, options=None, estimate_error=None) -> (solution, point)`` for a further run (``part`` names its
+    checkpoint and progress bar; the scenario's [integrator] unless given)."""
 
     params: object
     model: Model

@@ -36,7 +36,7 @@ def test_earth_full_bench_splitting_matches_rk8_with_geodesic_precession(tmp_pat
     Without the frame rate the split run misses the geodesic precession, 1.92"/cy x 30 d = 7.6e-9 rad.
     """
     from spinorbit.bench import bench_scenario
-    from spinorbit.scenes.earth_precession_nutation import build
+    from spinorbit.scenes.earth_precession_nutation import SCENE
 
     overrides = ['span.end="30 d"', 'earth.start_pole="iau"']
     rows, paths = bench_scenario(SCENARIOS / "earth_precession_nutation_full.toml", ["suzuki4"], tmp_path,
@@ -44,7 +44,10 @@ def test_earth_full_bench_splitting_matches_rk8_with_geodesic_precession(tmp_pat
     assert all(p.exists() for p in paths)
     assert min(r["error_rad"] for r in rows) < 1e-11            # measured 1.4e-12 (h = 0.0625 d)
 
-    system, t, error = build(load_scenario(SCENARIOS / "earth_precession_nutation_full.toml", overrides))
+    scenario = load_scenario(SCENARIOS / "earth_precession_nutation_full.toml", overrides)
+    t = scenario.output_times()
+    model = SCENE.build(scenario.params, t)
+    system, error = model.system, SCENE.bench(scenario.params, model, t)
     assert system.meta["reference_agreement_rad"] < 1e-11                   # measured 4.6e-12 rad
     system.meta.pop("frame_rate")
     assert error(integrate(system, t, "suzuki4", step=0.125)) == pytest.approx(7.6e-9, rel=0.05)   # measured 7.64e-9

@@ -11,9 +11,9 @@ from ...analysis.precession import RATE_MIN_SPAN_D
 from ...analysis.transfer.models import MODELS
 from ...bodies import earth
 from ...references import euler_p96
+from ...scene import Cost, Model, Outcome, Scene
 from ...schema import SAMPLE_STEP, Key
 from ...verdict import Check, Verdict
-from .. import common
 
 SCHEMA = {
     "earth.model": Key(type=str, default="gyroscopic", choices=("full", "gyroscopic")),
@@ -55,88 +55,92 @@ _OBLIQUITY = ("H_d fitted to the psi rate, the obliquity rate is judged: P03's o
               "whose solutions differ by 1.5 mas/cy in it (Herring, Mathews & Buffett 2002, JGR 107, 2069)")
 
 
-def verdict(scenario, comparison):
+def verdict(p, comparison):
     """What this Earth scene is compared for (see the module docstring)."""
-    if scenario["orbit.source"] == "circular":
+    if p["orbit.source"] == "circular":
         return Verdict("Euler's P96 rate N cos n (§846)", (Check(
             "model − P96", "model_minus_p96_arcsec_cy", 0.05, "″/cy",
             "10^-5 of the rate: well below the smallest effect the model must resolve (planets' torques, "
             "0.030\"/cy) and above Euler's first-order remainder in N/delta (~10^-7)"),))
-    if not scenario["earth.geodesic_precession"]:
+    if not p["earth.geodesic_precession"]:
         return Verdict("IAU 2006/2000A (ERFA)", (Check(
             "ψ rate − IAU", "psi_rate_minus_iau_arcsec_cy", 0.05, "″/cy",
             "without geodesic precession the rate is off by its de Sitter value, +1.919883\"/cy "
             "(IERS Conventions 2010); " + _RATE, expected=earth.GEODESIC_PRECESSION_ARCSEC_CY,
             min_span_d=RATE_MIN_SPAN_D),), "X, Y drift by the omitted geodesic precession: not compared")
-    if scenario["earth.nonrigid"]:
+    if p["earth.nonrigid"]:
         checks = [Check(f"{axis} rms", f"{axis.lower()}_rms_mas", 1.0, " mas", _NONRIGID_VS_IAU)
                   for axis in "XY"]
     else:
         checks = [Check(f"{axis} rms", f"{axis.lower()}_rms_mas", limit, " mas", _RIGID_VS_IAU)
                   for axis, limit in (("X", 40.0), ("Y", 25.0))]
-    fitted = scenario["earth.hd"] != "iau2006"          # H_d from the psi rate: the obliquity rate is judged
+    fitted = p["earth.hd"] != "iau2006"          # H_d from the psi rate: the obliquity rate is judged
     rate = (("ε rate − P03", "obliquity_rate_minus_iau_arcsec_cy", 0.002, _OBLIQUITY) if fitted else
             ("ψ rate − IAU", "psi_rate_minus_iau_arcsec_cy", 0.05, _RATE))
     checks.append(Check(*rate[:3], "″/cy", rate[3], min_span_d=RATE_MIN_SPAN_D))
-    if scenario["earth.model"] == "full":
+    if p["earth.model"] == "full":
         checks.append(Check("full − gyroscopic", "full_minus_gyroscopic_max_mas", 1.0, " mas",
                             "the gyroscopic figure axis is exact to second order in 1/Omega: the rest is the "
                             "~10 mas Oppolzer offset times the fastest nutation over the spin (1/13.7)"))
     return Verdict("IAU 2006/2000A (ERFA)", tuple(checks))
 
 
-def run(scenario):
+def build(p, times):
+    """The rigid Earth on its orbits, started on the IAU pole (start.py)."""
+    from .start import build as build_system
+
+    system, orbits, (z0, pole_ecl, plane_tilt) = build_system(p, times)
+    return Model(system, orbits=orbits, z0=z0, pole_ecl=pole_ecl, plane_tilt=plane_tilt)
+
+
+def compare_run(p, run):
     from ... import plots
     from ...references import erfa_pole
     from . import compare as vs
     from . import ellipticity as hd
     from . import nonrigid as nr
     from . import tides
-    from .start import build
 
-    t = scenario.output_times()
-    system, orbits, (z0, pole_ecl, plane_tilt) = build(scenario, t)
-    solution, point = common.simulate_scenario(scenario, system, t)
-    z = system.figure_axes("earth", t, solution.y)
-    z = z_rigid = tides.tilted(t, z, *tides.rates(scenario["earth.tides"], scenario["orbit.source"]))
-    iau, nonrigid = erfa_pole.IauPole()(t), scenario["earth.nonrigid"] and nr.settings(scenario)
+    t, system, m = run.times, run.model.system, run.model
+    z = system.figure_axes("earth", t, run.solution.y)
+    z = z_rigid = tides.tilted(t, z, *tides.rates(p.earth.tides, p.orbit.source))
+    iau, nonrigid = erfa_pole.IauPole()(t), p.earth.nonrigid and nr.settings(p)
     z = nr.nonrigid_pole(t, z, **nonrigid) if nonrigid else z
     dx, dy, comparison = vs.residuals(z, iau)
     not_measured, nutation = {}, {}
-    if plane_tilt is None:                           # on DE421: IAU 2000A's nutation applies
+    if m.plane_tilt is None:                         # on DE421: IAU 2000A's nutation applies
         fitted, not_measured, nutation = vs.precession_nutation(t, z, iau)
         comparison.update(fitted)
     moments = system.bodies["earth"].figure.moments
-    geodesic = earth.GEODESIC_PRECESSION_ARCSEC_CY if scenario["earth.geodesic_precession"] else 0.0
-    p96, p96_not_measured = euler_p96.compare(t, z, pole_ecl, moments / moments[2], earth.ERA_RATE_RAD_D,
-                                              plane_tilt is not None, geodesic)
+    geodesic = earth.GEODESIC_PRECESSION_ARCSEC_CY if p.earth.geodesic_precession else 0.0
+    p96, p96_not_measured = euler_p96.compare(t, z, m.pole_ecl, moments / moments[2], earth.ERA_RATE_RAD_D,
+                                              m.plane_tilt is not None, geodesic)
     comparison.update(p96)
     not_measured.update(p96_not_measured)
     table, figures = vs.table(t, z, dx, dy, nutation), plots.earth_precession_nutation(
         t, dx, dy, nutation, iau, "non-rigid model" if nonrigid else "rigid model")
-    if scenario["earth.model"] == "full":
-        comparison.update(vs.full_model_checks(scenario, system, z0, t, z))
-        figures["full_minus_gyroscopic"] = plots.full_minus_gyroscopic(
-            t, comparison.pop("_full_minus_gyro_mas"))
-    model = vs.model_summary(moments, orbits, geodesic, scenario["earth.j2_rate"], scenario["earth.j4"])
-    summary = {"not_measured": not_measured, "comparison": comparison, "run": point,
-               "reference": iau.provenance, "model": model, "dynamical_ellipticity": hd.summary(scenario),
-               **(nr.summaries(t, z_rigid, z, iau, dx, dy, **nonrigid) if nonrigid else {})}
-    return common.result(scenario, table, summary, figures, solution)
+    if p.earth.model == "full":
+        comparison.update(vs.full_model_checks(p, run, m.z0, z))
+        twin = comparison.pop("_full_minus_gyro_mas")
+        figures["full_minus_gyroscopic"] = plots.full_minus_gyroscopic(t, twin)
+    model = vs.model_summary(moments, m.orbits, geodesic, p.earth.j2_rate, p.earth.j4)
+    sections = {"reference": iau.provenance, "model": model, "dynamical_ellipticity": hd.summary(p),
+                **(nr.summaries(t, z_rigid, z, iau, dx, dy, **nonrigid) if nonrigid else {})}
+    return Outcome(comparison, figures=figures, sections=sections, not_measured=not_measured, table=table)
 
 
 BENCH_REFERENCE_STEP_D = {"full": 0.05, "gyroscopic": 0.5}   # rk8 steps of bench's converged runs, days
 HALF_MONTH_D = 13.66                   # shortest period of the lunisolar torque (inertial axes)
 
 
-def build(scenario):
-    """For ``spinorbit bench``: (system, output times, attitude error vs a converged rk8 run, rad)."""
+def bench(p, model, times):
+    """Attitude error against a converged rk8 run, rad."""
     from ...analysis.ladder import converged_error
-    from .start import build as build_system
 
-    t_out = scenario.output_times()
-    system = build_system(scenario, t_out)[0]
-    system.meta["time_scale"] = HALF_MONTH_D
-    error, agreement = converged_error(system, t_out, BENCH_REFERENCE_STEP_D[scenario["earth.model"]])
-    system.meta["reference_agreement_rad"] = agreement
-    return system, t_out, error
+    model.system.meta["time_scale"] = HALF_MONTH_D
+    error, agreement = converged_error(model.system, times, BENCH_REFERENCE_STEP_D[p.earth.model])
+    model.system.meta["reference_agreement_rad"] = agreement
+    return error
+
+
+SCENE = Scene(SCHEMA, build, compare_run, verdict, Cost(step_s=3e-5, sample_bytes=300), bench=bench)

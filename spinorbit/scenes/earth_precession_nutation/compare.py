@@ -92,18 +92,15 @@ def rms(x):
     return float(np.sqrt(np.mean(np.square(x))))
 
 
-def full_model_checks(scenario, system, pole, t, z_full):
-    """The full model against its gyroscopic twin on the same orbits and start, and the free nutation it
-    started (a dense run over ``comparison.free_nutation_span``)."""
-    from ...simulate import simulate
+def full_model_checks(p, run, pole, z_full):
+    """The full model of ``run`` (spinorbit.scene.Run) against its gyroscopic twin on the same orbits and
+    start, and the free nutation it started (a dense run over ``comparison.free_nutation_span``)."""
     from .start import earth_system, orbits, started
 
-    t0 = scenario.t_start
-    twin = started(earth_system(scenario, orbits(scenario), "gyroscopic", t0), t0, pole)
-    run, _ = simulate(twin, t, "rk8", {"step": scenario["comparison.gyroscopic_step"]}, estimate_error=False,
-                      label="gyroscopic twin")
-    t_dense = t0 + np.arange(0.0, min(scenario["comparison.free_nutation_span"], t[-1] - t0), 0.125)
-    dense, _ = simulate(system, t_dense, scenario["integrator.method"], scenario.integrator_options(),
-                        estimate_error=False, label="free nutation")
-    return full_checks(z_full, twin.figure_axes("earth", t, run.y), t_dense, dense.omega,
+    t, t0, system = run.times, p.t_start, run.model.system
+    twin = started(earth_system(p, orbits(p), "gyroscopic", t0), t0, pole)
+    twin_run, _ = run.integrate(twin, t, "gyroscopic twin", "rk8", {"step": p.comparison.gyroscopic_step})
+    t_dense = t0 + np.arange(0.0, min(p.comparison.free_nutation_span, t[-1] - t0), 0.125)
+    dense, _ = run.integrate(system, t_dense, "free nutation", estimate_error=False)
+    return full_checks(z_full, twin.figure_axes("earth", t, twin_run.y), t_dense, dense.omega,
                        system.bodies["earth"].figure.moments)

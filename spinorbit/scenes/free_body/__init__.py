@@ -74,5 +74,6 @@ def bench(p, model, times):
     return lambda solution: float(quat_angle(solution.quaternion, q_exact).max())
 
 
-SCENE = Scene(SCHEMA, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA), bench=bench,
+SCENE = Scene(SCHEMA, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA),
+              bench=bench,
               taylor=True)

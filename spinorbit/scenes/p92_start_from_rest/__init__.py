@@ -67,4 +67,5 @@ def compare_run(p, run):
     return Outcome(comparison, figures={"omega": common.plot_omega(solution)})
 
 
-SCENE = Scene(SCHEMA, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA), taylor=True)
+SCENE = Scene(SCHEMA, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA),
+              taylor=True)

@@ -128,4 +128,5 @@ def _too_short(span_d, found, events, period_d):
             f"the closed-form period is {period_d:.6g} d, so lengthen span.end beyond {2 * period_d:.6g} d")
 
 
-SCENE = Scene(SCHEMA, build, compare_run, verdict, time_scales=common.rigid_body_time_scales(SCHEMA), taylor=True)
+SCENE = Scene(SCHEMA, build, compare_run, verdict, time_scales=common.rigid_body_time_scales(SCHEMA),
+              taylor=True)

@@ -70,4 +70,5 @@ def compare_run(p, run):
     return Outcome(comparison, {"zeta": zeta_num * rad, "zeta_euler": zeta_second * rad}, figures)
 
 
-SCENE = Scene(SCHEMA, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA), taylor=True)
+SCENE = Scene(SCHEMA, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA),
+              taylor=True)

@@ -128,4 +128,5 @@ def _unsupported(comparison, span_d, delta):
     return {f"comparison.{key}": reason for key in fitted}
 
 
-SCENE = Scene(SCHEMA, build, compare_run, verdict, time_scales=common.rigid_body_time_scales(SCHEMA), taylor=True)
+SCENE = Scene(SCHEMA, build, compare_run, verdict, time_scales=common.rigid_body_time_scales(SCHEMA),
+              taylor=True)

@@ -67,4 +67,5 @@ def compare_run(p, run):
                    sections={"details": details, "run": {"method": ",".join(p.stress.methods)}})
 
 
-SCENE = Scene(SCHEMA, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA), bench=bench)
+SCENE = Scene(SCHEMA, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA),
+              bench=bench)

@@ -113,4 +113,5 @@ def compare_run(p, run):
     return Outcome(comparison, sections={"details": rows, "run": {"method": ",".join(p.stress.methods)}})
 
 
-SCENE = Scene(SCHEMA, build, compare_run, verdict, time_scales=common.rigid_body_time_scales(SCHEMA), bench=bench)
+SCENE = Scene(SCHEMA, build, compare_run, verdict, time_scales=common.rigid_body_time_scales(SCHEMA),
+              bench=bench)
