@@ -21,6 +21,7 @@ import numpy as np
 from ...errors import ScenarioError
 from ...models.assemblies.earth_moon import EXTERNAL, PLANETS, SWITCHES
 from ...plots import moon_vs_de421
+from ...scene import Cost, Model, Outcome, Scene
 from ...schema import Key
 from ...verdict import Check, Verdict
 from .. import common
@@ -45,13 +46,13 @@ TARGETS = ("the same equations as DE421, started from its state: 1\" and 2 km is
 MIN_TIDAL_SPAN_D = 100 * 365.25 - 1.0
 
 
-def verdict(scenario, comparison):
+def verdict(p, comparison):
     """The Moon against DE421 (direction, range, pole, longitude); the tidal acceleration against LLR."""
     checks = [Check("Moon direction", "moon_direction_error_max_arcsec", 1.0, "″", TARGETS),
               Check("Moon range", "moon_range_error_max_km", 2.0, " km", TARGETS),
               Check("lunar pole", "pole_error_max_arcsec", 0.1, "″", TARGETS),
               Check("libration longitude", "longitude_error_max_arcsec", 1.0, "″", TARGETS)]
-    if scenario["compare.tides_off"]:
+    if p.compare.tides_off:
         checks += [Check("n_dot", "tidal_n_dot_arcsec_per_cy2", 1.0, "″/cy²", LLR, expected=-25.8,
                          min_span_d=MIN_TIDAL_SPAN_D),
                    Check("recession", "tidal_recession_mm_per_yr", 1.0, " mm/yr", LLR, expected=38.3,
@@ -59,7 +60,7 @@ def verdict(scenario, comparison):
     earth_axis = ("the Earth's axis against IAU 2006/2000A's CIP is reported, not judged: DE421 turned its "
                   "Earth by IAU 1976 precession, and this Earth is a rigid body (no non-rigid nutation), so "
                   "it runs ~90 mas from the CIP over a century")
-    return Verdict("DE421 and lunar laser ranging" if scenario["compare.tides_off"] else "DE421",
+    return Verdict("DE421 and lunar laser ranging" if p.compare.tides_off else "DE421",
                    tuple(checks), earth_axis)
 
 
@@ -98,32 +99,33 @@ def system(scenario, external, switches):
     return built
 
 
-def run(scenario):
+def build(p, times):
+    """The Earth-Moon System on the Sun, planets and barycentre sampled from orbit.source."""
+    switches = tuple(name for name in SWITCHES if getattr(p.model, name))
+    if p.compare.tides_off and "earth_tides" not in switches:
+        raise ScenarioError("compare.tides_off", True, "false when model.earth_tides is false")
+    external, sampled = external_bodies(p)
+    return Model(system(p, external, switches), external=external, sampled=sampled, switches=switches)
+
+
+def compare_run(p, run):
     from . import compare as vs
 
-    switches = tuple(name for name in SWITCHES if scenario[f"model.{name}"])
-    t = scenario.output_times()
-    external, sampled = external_bodies(scenario)
-    model = system(scenario, external, switches)
-    solution, point = common.simulate_scenario(scenario, model, t)
+    t, solution, m = run.times, run.solution, run.model
     direction, distance = vs.orbit_errors(t, solution.part("moon.r"))
     mats, reference, pole, longitude, lunar = vs.lunar_errors(t, solution.part("moon.q"))
-    axis = model.figure_axes("earth", t, solution.y)
+    axis = m.system.figure_axes("earth", t, solution.y)
     axis_error = vs.earth_axis_error(t, axis)
     comparison, not_measured = vs.metrics(t, direction, distance, lunar, axis_error)
-    summary = {"comparison": comparison, "not_measured": not_measured, "run": point,
-               "reference": reference, "model": {"switches": list(switches), "start_tdb_d": model.t0},
-               "external_bodies": {"source": external.source, "step_d": external.step,
-                                   "wall_s": sampled}}
-    if scenario["compare.tides_off"]:
-        if "earth_tides" not in switches:
-            raise ScenarioError("compare.tides_off", True, "false when model.earth_tides is false")
-        without = system(scenario, external, tuple(s for s in switches if s != "earth_tides"))
-        other, point_off = common.simulate_scenario(scenario, without, t, "tides_off")
+    sections = {"reference": reference, "model": {"switches": list(m.switches), "start_tdb_d": m.system.t0},
+                "external_bodies": {"source": m.external.source, "step_d": m.external.step,
+                                    "wall_s": m.sampled}}
+    if p.compare.tides_off:
+        without = system(p, m.external, tuple(s for s in m.switches if s != "earth_tides"))
+        other, sections["run_tides_off"] = run.integrate(without, t, "tides_off")
         tidal = vs.tidal_acceleration(t, solution.part("moon.r"), other.part("moon.r"),
                                       other.part("moon.v"))
-        summary["comparison"].update({f"tidal_{name}": value for name, value in tidal.items()})
-        summary["run_tides_off"] = point_off
+        comparison.update({f"tidal_{name}": value for name, value in tidal.items()})
     errors = {"direction": direction, "range": distance, "pole": pole, "longitude": longitude,
               "earth_axis": axis_error}
     table = vs.table(t, solution.part("moon.r"), mats, errors, axis)
@@ -133,4 +135,7 @@ def run(scenario):
         "moon_vs_de421": moon_vs_de421(year, *in_arcsec, "arcsec"),
         "moon_range_vs_de421": common.plot_series(year, [distance * 1e3], "year (TDB)", "range error [m]",
                                                   ["range"])}
-    return common.result(scenario, table, summary, figures, solution)
+    return Outcome(comparison, figures=figures, sections=sections, not_measured=not_measured, table=table)
+
+
+SCENE = Scene(SCHEMA, build, compare_run, verdict, Cost(step_s=3e-4))

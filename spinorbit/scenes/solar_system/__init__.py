@@ -11,12 +11,11 @@ Runs with the Taylor integrator (``integrator.method = "taylor"``) or any other.
 """
 from ...models.assemblies.solar_system import SWITCHES
 from ...plots import moon_vs_de421, planets_vs_de421
+from ...scene import Model, Outcome, Scene
 from ...schema import Key
 from ...verdict import Check, Verdict
 from .. import common
 
-TAYLOR = True          # every term a function of the state: heyoka's Taylor integrator takes it
-BACKWARD = True        # from DE421's epoch both ways
 SCHEMA = {
     **{f"model.{name}": Key(type=bool, default=True, help=text) for name, text in SWITCHES.items()},
     "start.epoch": Key(type=str, default="de421", choices=("de421", "span"),
@@ -27,7 +26,7 @@ TARGET = ("the issue's target (INPOP05 re-integrated DE405 to 0.17 mas and 0.034
           "(compare.ASTEROIDS_MOON)")
 
 
-def verdict(scenario, comparison):
+def verdict(p, comparison):
     """The Moon against DE421 (direction, range, pole, longitude); each planet against what asteroids move."""
     from .compare import ASTEROIDS_KM
 
@@ -41,14 +40,16 @@ def verdict(scenario, comparison):
     return Verdict("DE421", tuple(checks))
 
 
-def build(scenario):
-    """For ``spinorbit bench``: (system, output times, the lunar attitude's error vs converged RK8, rad)."""
+def build(p, times):
+    return Model(system(p))
+
+
+def bench(p, model, times):
+    """The lunar attitude's error against a converged RK8 run, rad."""
     from ...analysis.ladder import converged_error
 
-    model, t = system(scenario), scenario.output_times()
-    error, agreement = converged_error(model, t, 0.125)
-    model.meta["reference_agreement_rad"] = agreement
-    return model, t, error
+    error, model.system.meta["reference_agreement_rad"] = converged_error(model.system, times, 0.125)
+    return error
 
 
 def system(scenario):
@@ -66,23 +67,25 @@ def system(scenario):
     return built
 
 
-def run(scenario):
+def compare_run(p, run):
     from . import compare as vs
 
-    t = scenario.output_times()
-    model = system(scenario)
-    solution, point = common.simulate_scenario(scenario, model, t)
+    t, solution, model = run.times, run.solution, run.model.system
     direction, distance = vs.orbit_errors(t, solution.part("moon.r"))
     mats, pole, longitude, lunar = vs.lunar(t, solution.part("moon.q"))
     planets = vs.planet_errors(t, vs.heliocentric(model, solution))
-    summary = {"comparison": vs.metrics(direction, distance, lunar, planets), "run": point,
-               "reference": "DE421 (Folkner, Williams & Boggs 2008, IPN PR 42-178)",
-               "model": {"switches": list(model.meta["switches"]), "t0_tdb_d": model.t0,
-                         "asteroids_km": vs.ASTEROIDS_KM, "asteroids_moon": vs.ASTEROIDS_MOON}}
+    sections = {"reference": "DE421 (Folkner, Williams & Boggs 2008, IPN PR 42-178)",
+                "model": {"switches": list(model.meta["switches"]), "t0_tdb_d": model.t0,
+                          "asteroids_km": vs.ASTEROIDS_KM, "asteroids_moon": vs.ASTEROIDS_MOON}}
     errors = {"direction": direction, "range": distance, "pole": pole, "longitude": longitude}
     table = vs.table(t, solution.part("moon.r"), mats, errors, planets)
     year = common.decimal_year(t)
-    figures = {"moon_vs_de421": moon_vs_de421(
-        year, *(table[name].value for name in ("moon_direction_error", "pole_error", "longitude_error")), "mas"),
-        "planets_vs_de421": planets_vs_de421(year, planets)}
-    return common.result(scenario, table, summary, figures, solution)
+    in_mas = (table[name].value for name in ("moon_direction_error", "pole_error", "longitude_error"))
+    figures = {"moon_vs_de421": moon_vs_de421(year, *in_mas, "mas"),
+               "planets_vs_de421": planets_vs_de421(year, planets)}
+    return Outcome(vs.metrics(direction, distance, lunar, planets), figures=figures, sections=sections,
+                   table=table)
+
+
+# every term a function of the state: heyoka's Taylor integrator takes it; from DE421's epoch both ways
+SCENE = Scene(SCHEMA, build, compare_run, verdict, bench=bench, backward=True, taylor=True)
