@@ -2,7 +2,7 @@
 ``spinorbit.run_scenario``, each outcome classified.
 
     python benchmarks/fuzz_cli.py [--cases 200] [--seed 27] [--timeout 180] [--out runs/fuzz]
-                                  [--commands run,sweep,bench,list,api] [--near]
+                                  [--commands run,sweep,bench,list,api,signal,damage] [--near]
 
 Mutations: scene values (wrong types, NaN/inf/huge/zero numbers, wrong units, bad dates, long strings,
 non-UTF-8 bytes, deep nesting, integers past Python's digit limit; as file edits and as ``--set``;
@@ -15,6 +15,22 @@ objects of every type passed to ``run_scenario``.  Outcomes: ``error`` (exit 2, 
 (exit 3 with one error line, or a sweep's exit 1), and the bad ones: ``traceback``, ``hang``
 (timeout), ``killed`` (a signal), ``nan`` (exit 0 with a non-finite or missing result), ``noisy``
 (exit 2 with more than one line), ``other``.  Writes ``<out>/fuzz_cli.csv`` and prints the counts.
+
+``signal``: SIGINT or SIGTERM at a random moment of a checkpointed run (free_body on rk8), a run on REBOUND's
+orbits (moon_libration_rebound), a sweep, or a deep-time orbital-solution build; then the same command again
+(``--resume`` for a run).  Outcomes: ``interrupted`` (exit 130, one line, and the next command finishes: a run
+resumed, a solution continued bit for bit as a fresh one, a sweep's finished members kept, no staging left) or
+``finished`` (the signal came after the end), and the bad ones: ``hang`` (still running 60 s after the signal),
+``traceback``, ``not-continued`` (the next command failed), ``wrong`` (a continued solution differs from a
+fresh one), ``lost`` (a stopped sweep left its members in a hidden staging folder).
+
+``damage``: a file of every kind spinorbit writes, damaged (truncated, a byte flipped, emptied, garbage, a
+FIFO, a link to /dev/zero, a folder) and read again: an orbital solution (``orbit.file``), a run's checkpoint
+(``--resume``), a stored solution of the API, a generated kernel module, numba's index and data files of a
+kernel, a run directory's manifest and summary.  Outcomes: ``error`` (exit 2, one line), ``repaired`` (exit 0,
+the damage said in one line and the file rebuilt), ``ok`` (exit 0: the damage was in a part nothing reads, or
+the file is rewritten whole), and the bad ones as above.
+
 Not a test: each case pays the start-up of a process.
 """
 import argparse
@@ -23,6 +39,7 @@ import json
 import os
 import random
 import shutil
+import signal
 import socket
 import subprocess
 import sys
@@ -287,7 +304,176 @@ def case_api(rng, args, work):
     return label, *classify(done, work, False)
 
 
-CASES = {"run": case_run, "sweep": case_sweep, "bench": case_bench, "list": case_list, "api": case_api}
+CLI = [sys.executable, "-m", "spinorbit.cli", "--quiet"]
+DEEP = ["earth_deep_time", "--set", 'span.end="-3 kyr"', "--set", 'span.step="1 kyr"', "--set",
+        'integrator.step="100 yr"', "--set", "output.plots=false"]
+TARGETS = {
+    "run": lambda w: [*CLI, "run", "scenarios/free_body.toml", "--out", str(w / "out"), "--set", "span.end=400 d",
+                      "--set", "integrator.method=rk8", "--set", "integrator.step=0.002 d", "--set",
+                      "output.plots=false"],
+    "rebound run": lambda w: [*CLI, "run", "moon_libration_rebound", "--out", str(w / "out"), "--set",
+                              'span.start="1969-06-28T12:00:00"', "--set", "span.end=60 d", "--set",
+                              "output.plots=false"],
+    "sweep": lambda w: [*CLI, "sweep", "scenarios/free_body.toml", "--vary", "integrator.rtol=1e-8,1e-9,1e-10,1e-11",
+                        "--set", "span.end=1000 d", "--set", "output.plots=false", "--scheduler", "synchronous",
+                        "--out", str(w / "out")],
+    "solution build": lambda w: [*CLI, "run", *DEEP, "--set", f"orbit.file={w / 'solution.npz'}", "--out",
+                                 str(w / "out")],
+}
+DAMAGES = ["truncated", "byte flipped", "emptied", "garbage", "fifo", "link to /dev/zero", "folder"]
+
+
+def damage(path, how, rng):
+    """Damage the file at ``path`` as ``how`` says."""
+    data = path.read_bytes() if path.is_file() else b""
+    path.unlink()
+    if how == "truncated":
+        path.write_bytes(data[:rng.randrange(max(len(data), 1))])
+    elif how == "byte flipped":
+        at = rng.randrange(max(len(data), 1))
+        path.write_bytes(data[:at] + bytes([data[at] ^ (1 << rng.randrange(8))]) + data[at + 1:] if data else b"x")
+    elif how == "emptied":
+        path.write_bytes(b"")
+    elif how == "garbage":
+        path.write_bytes(bytes(rng.randrange(256) for _ in range(max(len(data) // 10, 64))))
+    elif how == "fifo":
+        os.mkfifo(path)
+    elif how == "link to /dev/zero":
+        os.symlink("/dev/zero", path)
+    else:
+        path.mkdir()
+
+
+def outcome_of(done, err, ok_words=("damaged", "refused", "rebuilt", "compiled again", "computing it again")):
+    """The outcome of a finished command (None: it did not finish)."""
+    if done is None:
+        return "hang"
+    lines = err.strip().splitlines()
+    if "Traceback" in err:
+        return "traceback"
+    if done.returncode == 130:
+        return "interrupted" if lines and lines[-1] == "interrupted" else "noisy"
+    if done.returncode == 2:
+        return "error" if len(lines) == 1 else "noisy"
+    if done.returncode == 0:
+        return "repaired" if any(w in err for w in ok_words) else "ok"
+    return "killed" if done.returncode < 0 else f"exit {done.returncode}"
+
+
+def fresh_solution(base):
+    """The orbital solution DEEP computes, once, uninterrupted (the reference a continued one must equal)."""
+    import numpy as np
+
+    path = base / "reference_solution.npz"
+    if not path.exists():
+        execute([*CLI, "run", *DEEP, "--set", f"orbit.file={path}", "--out", str(base / "reference_out")], 900)
+    with np.load(path) as data:
+        return data["eccentricity_vector"]
+
+
+def case_signal(rng, args, work):
+    import numpy as np
+
+    shutil.rmtree(work, ignore_errors=True)
+    work.mkdir(parents=True)
+    target = rng.choice(sorted(TARGETS))
+    sig = rng.choice([signal.SIGINT, signal.SIGTERM])
+    delay = rng.uniform(0.5, 12.0)
+    command = TARGETS[target](work)
+    process = subprocess.Popen(command, cwd=ROOT, stderr=subprocess.PIPE, env=ENV)
+    time.sleep(delay)
+    process.send_signal(sig)
+    label = f"{target} {signal.Signals(sig).name} at {delay:.1f} s"
+    try:
+        _, err = process.communicate(timeout=60)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        process.communicate()
+        return label, "hang", ""
+    err = err.decode(errors="replace")
+    first = outcome_of(process, err)
+    if first not in ("interrupted", "ok"):
+        return label, first, err.strip()[-300:]
+    if target == "sweep" and list(work.glob(".out.new-*")):
+        return label, "lost", "a staging folder left"
+    again = execute(command + (["--resume"] if target in ("run", "rebound run") else []), args.timeout)
+    second = outcome_of(again, again.stderr.decode(errors="replace") if again else "")
+    if second not in ("ok", "repaired"):
+        return label, "not-continued", (again.stderr.decode(errors="replace")[-300:] if again else "")
+    if target == "solution build":
+        with np.load(work / "solution.npz") as data:
+            if not np.array_equal(data["eccentricity_vector"], fresh_solution(work.parent)):
+                return label, "wrong", "a continued solution differs from a fresh one"
+    return label, "interrupted" if first == "interrupted" else "finished", err.strip().splitlines()[-1][:200] \
+        if err.strip() else ""
+
+
+def made_files(base):
+    """{kind: (a good file of that kind, the command that reads it)}, made once under ``base``."""
+    made = base / "made"
+    if not made.exists():
+        made.mkdir(parents=True)
+        cache = made / "cache"
+        env = {**ENV, "SPINORBIT_CACHE_DIR": str(cache)}
+        for command in ([*CLI, "run", *DEEP, "--set", f"orbit.file={made / 'solution.npz'}", "--out",
+                         str(made / "deep")],
+                        [*CLI, "run", "scenarios/free_body.toml", "--out", str(made / "run"), "--set",
+                         "span.end=100 d", "--set", "output.plots=false"],
+                        [sys.executable, "-c", "import spinorbit; from astropy.time import Time; "
+                                               "spinorbit.moon_librations(Time('2000-01-05', scale='tdb'))"]):
+            subprocess.run(command, cwd=ROOT, env=env, capture_output=True, check=False)
+        process = subprocess.Popen(TARGETS["run"](made), cwd=ROOT, env=env, stderr=subprocess.PIPE)
+        time.sleep(8)
+        process.send_signal(signal.SIGINT)
+        process.communicate()
+    return made
+
+
+def case_damage(rng, args, work):
+    base = made_files(work.parent)
+    shutil.rmtree(work, ignore_errors=True)
+    shutil.copytree(base, work, symlinks=True)
+    cache = work / "cache"
+    env = {**ENV, "SPINORBIT_CACHE_DIR": str(cache)}
+    kernels = sorted((cache / "kernels").glob("spinorbit_*.py"))
+    numba = sorted((cache / "kernels" / "numba").glob("*.nb*"))
+    kinds = {"orbital solution": (work / "solution.npz", [*CLI, "run", *DEEP, "--set",
+                                                          f"orbit.file={work / 'solution.npz'}", "--out",
+                                                          str(work / "deep")]),
+             "checkpoint": (work / "out.checkpoint.npz", TARGETS["run"](work) + ["--resume"]),
+             "stored solution": (next(iter(sorted((cache / "solutions").glob("*.npz"))), None),
+                                 [sys.executable, "-c", "import spinorbit; from astropy.time import Time; "
+                                                        "spinorbit.moon_librations(Time('2000-01-05', scale='tdb'))"]),
+             "kernel module": (rng.choice(kernels) if kernels else None,
+                               [*CLI, "run", "scenarios/free_body.toml", "--out", str(work / "run"), "--set",
+                                "span.end=100 d", "--set", "output.plots=false"]),
+             "numba file": (rng.choice(numba) if numba else None,
+                            [*CLI, "run", "scenarios/free_body.toml", "--out", str(work / "run"), "--set",
+                             "span.end=100 d", "--set", "output.plots=false"]),
+             "manifest": (work / "run" / ".spinorbit-manifest.json",
+                          [*CLI, "run", "scenarios/free_body.toml", "--out", str(work / "run"), "--set",
+                           "span.end=100 d", "--set", "output.plots=false"]),
+             "summary": (work / "run" / "summary.json",
+                         [*CLI, "run", "scenarios/free_body.toml", "--out", str(work / "run"), "--set",
+                          "span.end=100 d", "--set", "output.plots=false"])}
+    kind = rng.choice(sorted(kinds))
+    path, command = kinds[kind]
+    how = rng.choice(DAMAGES)
+    label = f"{kind} {how} {path.name if path else '(none made)'}"
+    if path is None or not os.path.lexists(path):
+        return label, "skipped", "no file of this kind was made"
+    damage(path, how, rng)
+    try:
+        done = subprocess.run(command, cwd=ROOT, env=env, capture_output=True, timeout=args.timeout, check=False)
+    except subprocess.TimeoutExpired:
+        return label, "hang", ""
+    err = done.stderr.decode(errors="replace")
+    return label, outcome_of(done, err), err.strip()[-300:]
+
+
+ENV = {**os.environ, "PYTHONPATH": str(ROOT), "SPINORBIT_QUIET": "1"}
+CASES = {"run": case_run, "sweep": case_sweep, "bench": case_bench, "list": case_list, "api": case_api,
+         "signal": case_signal, "damage": case_damage}
 
 
 def main():
