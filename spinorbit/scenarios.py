@@ -115,7 +115,9 @@ class Scenario:
         self.kind = kind
         self._options = self._integrator_options()
         self.t_start, self.t_end = self._span()
-        self.params = filled(_record_type(kind, self.schema), self.values, self.t_start, self.t_end)
+        options = {f"integrator.{name}": spec for name, spec in INTEGRATOR_OPTIONS.items()}
+        values = {**self.values, **{key: self._options.get(key.split(".")[1]) for key in options}}
+        self.params = filled(_record_type(kind, {**self.schema, **options}), values, self.t_start, self.t_end)
         self._check_counts()
         self._check_cycles()
         from .integrators import get_method
@@ -262,7 +264,7 @@ class Scenario:
         'rebound' (out from DE421's nearest epoch, then over the span)."""
         from .orbits.sources import rebound_days
 
-        counts = dict(self.scene.nbody_counts(self)) if self.scene.nbody_counts else {}
+        counts = dict(self.scene.nbody_counts(self.params)) if self.scene.nbody_counts else {}
         if self.values.get("orbit.source") == "rebound":
             counts["IAS15 days"] = rebound_days(self.t_start, self.t_end)
         return counts

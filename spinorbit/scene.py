@@ -100,7 +100,7 @@ class Scene:
     ``taylor``: every term a function of the state and the time, so heyoka's Taylor integrator takes it;
     ``sweep_figures(tables) -> {name: draw}``: figures over a sweep's members (e.g. a band over their curves);
     ``run(scenario) -> RunResult``: a scene that runs its own pipeline (each says why);
-    ``nbody_counts(scenario) -> {count: items}``: an N-body stage its run does first (NBODY_COSTS' counts), for
+    ``nbody_counts(p) -> {count: items}``: an N-body stage its run does first (NBODY_COSTS' counts), for
     the up-front estimate."""
 
     schema: dict

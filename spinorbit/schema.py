@@ -193,7 +193,8 @@ def dotted_items(table, prefix="", is_table=None):
 def record(name, keys):
     """The typed record of a scene's values: a frozen dataclass with one frozen dataclass per table, so that
     ``p.body.moments`` is the converted value of ``body.moments``; beside the tables, ``t_start`` and ``t_end``
-    (TDB days of the span) and ``bounds`` (earliest, latest).  Built from the keys, never by hand: every
+    (TDB days of the span) and ``bounds`` (earliest, latest); the [integrator] options are keys too
+    (``p.integrator.step``: None where the scenario leaves it to the method).  Built from the keys, never by hand: every
     scene's record alike, from a TOML file, ``--set`` or the API (they all go through the scenario's
     validation)."""
     tables = {}

@@ -16,12 +16,11 @@ precession), compared with ERFA's long-term precession over the first 2 kyr and 
 import time
 
 from ...errors import ScenarioError
+from ...scene import Model, Outcome, Scene
 from ...schema import Key
 from ...verdict import Check, Verdict
-from .. import common
 from .model import KYR_D, MYR_D
 
-BACKWARD = True
 MAX_SPAN_D = 100 * MYR_D
 # The physics La2004 is judged against (numerical keys, the ephemeris and the file may change).
 NOMINAL = {"model.Td": 1.0, "model.Ed": 1.0, "model.precession": "iau2006_rate", "model.tidal_tilt": True,
@@ -48,26 +47,26 @@ SCHEMA = {
     "model.tidal_tilt": Key(type=bool, default=True,
                             help="the tides' own obliquity rate (+2.4 mas/cy, Williams 1994)"),
 }
-ISSUE = ("project target, not a published accuracy: La93 with and without tides differ by 3° in ϖ̄ at -1 Myr "
-         "and 75° at -5 Myr (la93_tides_*), so La2004's own tidal model bounds what agreement can mean; 5e-4 in "
-         "e(cos ϖ̄, sin ϖ̄) is about 1° of ϖ̄ at today's e")
-VCW = ("Vondrák, Capitaine & Wallace 2011: their model is good to a few arcsec over the historical period; 1\" "
-       "and 5\" are project targets within that")
+ISSUE = ("project target, not a published accuracy: La93 with and without tides differ by 3° in ϖ̄ at "
+         "-1 Myr and 75° at -5 Myr (la93_tides_*), so La2004's own tidal model bounds what agreement can "
+         "mean; 5e-4 in e(cos ϖ̄, sin ϖ̄) is about 1° of ϖ̄ at today's e")
+VCW = ("Vondrák, Capitaine & Wallace 2011: their model is good to a few arcsec over the historical period; "
+       "1\" and 5\" are project targets within that")
 
 
-def verdict(scenario, comparison):
+def verdict(p, comparison):
     """ERFA over the first 2 kyr; La2004 over 1 and 10 Myr when the span covers them, for the nominal physics
     only (a variant is compared with La2004, not judged)."""
     checks = [Check("obliquity vs ERFA", "erfa_obliquity_max_arcsec", 1.0, "″", VCW),
               Check("mean equator vs ERFA", "erfa_equator_max_arcsec", 5.0, "″", VCW)]
-    nominal = all(scenario[key] == value for key, value in NOMINAL.items())
+    nominal = all(p[key] == value for key, value in NOMINAL.items())
     if nominal:
         for window, targets in (("1myr", (("obliquity_max_deg", 0.005, "°"),
                                           ("climatic_precession_vector_max", 5e-4, ""))),
                                 ("10myr", (("eccentricity_max", 0.002, ""), ("obliquity_max_deg", 0.05, "°"),
                                            ("climatic_precession_vector_max", 2e-3, "")))):
             span = float(window.removesuffix("myr")) * MYR_D
-            if abs(scenario.t_end - scenario.t_start) < span - 1.0:
+            if abs(p.t_end - p.t_start) < span - 1.0:
                 continue                                    # a span shorter than the window: not asked
             checks += [Check(f"{name.removesuffix('_max_deg').removesuffix('_max')} vs La2004 ({window})",
                              f"la2004_{name}_{window}", tol, unit, ISSUE, min_span_d=span - 1.0)
@@ -76,53 +75,60 @@ def verdict(scenario, comparison):
     return Verdict("ERFA long-term precession; La2004", tuple(checks), note)
 
 
-def check_span(scenario):
-    if abs(scenario.t_start) > 1e-6:
-        raise ScenarioError("span.start", scenario["span.start"], "J2000, '2000-01-01T12:00:00' (the solar "
+def check_span(p):
+    if abs(p.t_start) > 1e-6:
+        raise ScenarioError("span.start", p.span.start, "J2000, '2000-01-01T12:00:00' (the solar "
                             "system starts from DE421's state and the axis from IAU 2006's pole there)")
-    if abs(scenario.t_end) > MAX_SPAN_D:
-        raise ScenarioError("span.end", scenario["span.end"], "at most 100 Myr either way of J2000 (the "
+    if abs(p.t_end) > MAX_SPAN_D:
+        raise ScenarioError("span.end", p.span.end, "at most 100 Myr either way of J2000 (the "
                             "tidal law and the averaged Moon are not vouched for beyond; La2004 stops at "
                             "-101 Myr)")
-    if scenario["integrator.method"] != "rk8":
-        raise ScenarioError("integrator.method", scenario["integrator.method"],
-                            "rk8 (the compiled fixed step)")
-    step = scenario.integrator_options().get("step", 0.0)          # rk8's own default: 1 d
+    if p.integrator.method != "rk8":
+        raise ScenarioError("integrator.method", p.integrator.method, "rk8 (the compiled fixed step)")
+    step = p.integrator.step or 0.0                             # rk8's own default: 1 d
     if step > KYR_D:
         raise ScenarioError("integrator.step", step, "at most 1 kyr (26 steps a precession cycle)")
 
 
-def nbody_counts(scenario):
+def nbody_counts(p):
     """The N-body stage the up-front estimate counts: the orbital solution's steps not yet in the cache."""
     from .model import steps_to_compute
 
-    return {"WHFast steps": steps_to_compute(scenario)}
+    return {"WHFast steps": steps_to_compute(p)}
 
 
-def run(scenario):
+def build(p, times):
+    """The orbital solution (REBOUND, cached: orbits/solution.py) and the averaged spin on it (model.py)."""
+    from . import model
+
+    check_span(p)
+    started = time.perf_counter()
+    orbit = model.orbital_solution(p, "earth_deep_time: orbital solution")
+    orbit_wall = time.perf_counter() - started
+    spin = model.spin_model(p, orbit)
+    return Model(spin.system, spin=spin, orbit=orbit, orbit_wall=orbit_wall)
+
+
+def compare_run(p, run):
     from ...plots import deep_time as deep_time_plot
     from ...plots import deep_time_spectra
-    from . import compare, model, table
+    from . import compare, table
 
-    check_span(scenario)
-    started = time.perf_counter()
-    orbit = model.orbital_solution(scenario, f"{scenario.name}: orbital solution")
-    orbit_wall = time.perf_counter() - started
-    spin = model.spin_model(scenario, orbit)
-    t = scenario.output_times()
-    solution, point = common.simulate_scenario(scenario, spin.system, t)
-    q = table.quantities(t, solution.y, spin)
-    erfa, erfa_provenance = compare.erfa_metrics(scenario, spin)
+    t, spin, orbit = run.times, run.model.spin, run.model.orbit
+    q = table.quantities(t, run.solution.y, spin)
+    erfa, erfa_provenance = compare.erfa_metrics(p, spin)
     laskar, not_measured, la2004_provenance, la2004 = compare.laskar_metrics(t, q)
-    summary = {"comparison": {**erfa, **laskar}, "run": point, "model": spin.description,
-               "orbital_solution": {"file": str(orbit.path), "span_d": list(orbit.span),
-                                    "settings": orbit.record, **orbit.provenance,
-                                    "wall_s_this_run": orbit_wall},
-               "reference": {"erfa": erfa_provenance, "la2004": la2004_provenance}}
-    if not_measured:
-        summary["not_measured"] = not_measured
-    summary["metrics_explained"] = compare.EXPLAINED
+    sections = {"model": spin.description,
+                "orbital_solution": {"file": str(orbit.path), "span_d": list(orbit.span),
+                                     "settings": orbit.record, **orbit.provenance,
+                                     "wall_s_this_run": run.model.orbit_wall},
+                "reference": {"erfa": erfa_provenance, "la2004": la2004_provenance},
+                "metrics_explained": compare.EXPLAINED}
     x, ours, reference = compare.figure_series(q, la2004)
     figures = {"obliquity_climatic_precession": deep_time_plot(x, ours, reference, "La2004"),
                "spectra": deep_time_spectra(x, ours, reference, "La2004")}
-    return common.result(scenario, table.table(t, q), summary, figures, solution)
+    return Outcome({**erfa, **laskar}, figures=figures, sections=sections, not_measured=not_measured,
+                   table=table.table(t, q))
+
+
+SCENE = Scene(SCHEMA, build, compare_run, verdict, backward=True, nbody_counts=nbody_counts)

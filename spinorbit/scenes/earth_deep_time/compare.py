@@ -74,10 +74,11 @@ def laskar_metrics(t, q):
 
 
 EXPLAINED = {
-    "la2004_*": "the model minus La2004 (Laskar et al. 2004) over the window: e, obliquity, the climatic-precession "
-                "vector e(cos ϖ̄, sin ϖ̄) (max), ϖ̄ at the window's end",
+    "la2004_*": "the model minus La2004 (Laskar et al. 2004) over the window: e, obliquity, the "
+                "climatic-precession vector e(cos ϖ̄, sin ϖ̄) (max), ϖ̄ at the window's end",
     "la93_tides_*": "La93 with tides (La93_11) minus La93 without (La93_01), the same differences: how far "
-                    "Laskar's own solution moves with its tidal model, the scale a tidal law sets on agreement",
+                    "Laskar's own solution moves with its tidal model, the scale a tidal law sets on "
+                    "agreement",
     "la2004_minus_la93_*": "La2004 minus La93 (with tides): how far two of Laskar's solutions differ"}
 DIFFERENCES = ("eccentricity_max", "obliquity_max_deg", "climatic_precession_vector_max",
                "perihelion_longitude_end_deg")
