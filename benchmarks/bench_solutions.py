@@ -1,12 +1,13 @@
 """Answers from stored solutions (spinorbit.solutions) against runs, side by side in one run.
 
-    python benchmarks/bench_solutions.py [latency|agreement|extension|export|readme|all] [--before REV]
+    python benchmarks/bench_solutions.py [latency|agreement|extension|export|readme|all]
 
 * latency: a process asks for 100 dates spread over 2021-2041, its ends included (the store then holds the
   span); a new process asks
   ``earth_pole`` and ``moon_librations`` for 10^4 other dates there: the call's wall time (its first and a
-  second call; ``import spinorbit`` aside), this code beside the code at REV (default: the commit before the
-  solutions, which ran a scene per call), each with its own warm caches;
+  second call; ``import spinorbit`` aside), beside what the API did before it kept solutions -- a run of the
+  validated scene per call with the dates among its outputs (``SCENE_PER_CALL``, on this code's scenes) --
+  each with warm caches;
 * agreement: the API's values against direct scene runs over the same span (the Moon 2000-2020 started at
   J2000, the non-rigid Earth 1950-2050): the largest difference, uas;
 * extension: a stored Moon 2000-2050 extended to 2100, beside integrating 2050-2100 (simulate() of the same
@@ -14,7 +15,7 @@
 * export: the Moon 1900-2050 as a binary PCK (``spinorbit export moon_libration``): size, write time; read
   back by spiceypy and skyfield at 1000 dates against the solution (uas) and against DE421 (arcsec);
 * readme: the README's API example (ten dates of 2027, ``moon_librations`` and ``earth_pole``) from empty
-  caches (a fresh SPINORBIT_CACHE_DIR and NUMBA_CACHE_DIR), this code beside REV's.
+  caches (a fresh SPINORBIT_CACHE_DIR and NUMBA_CACHE_DIR), beside a scene per call.
 """
 import argparse
 import json
@@ -28,7 +29,6 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-BEFORE = "a324417"          # main before issue 31: each API call ran its scene
 SPAN_2021_2041 = (7670.5, 14975.5)      # TDB days from J2000
 
 
@@ -42,13 +42,32 @@ def python(code, tree, env=None):
     return json.loads(done.stdout.strip().splitlines()[-1])
 
 
-def checkout(rev):
-    """The package at ``rev`` in a temporary folder (git archive)."""
-    folder = Path(tempfile.mkdtemp(prefix=f"spinorbit-{rev}-"))
-    archive = subprocess.run(["git", "-C", str(ROOT), "archive", rev, "spinorbit", "scenarios"],
-                             capture_output=True, check=True).stdout
-    subprocess.run(["tar", "-x", "-C", str(folder)], input=archive, check=True)
-    return folder
+SCENE_PER_CALL = """
+import numpy as np
+from spinorbit.results import run_scenario
+from spinorbit.scenarios import load_scenario
+from spinorbit.schema import tdb_days_to_time
+
+def _run(scene, first, last, step, days):
+    start, end = tdb_days_to_time([first, last]).isot
+    scenario = load_scenario(scene, [f"span.start={start}", f"span.end={end}", f"span.step={step:.6g} d"])
+    scenario.extra_times = np.unique(days)
+    return run_scenario(scenario).table
+
+def _days(t):
+    return np.asarray(t.tdb.jd1 - 2451545.0 + t.tdb.jd2)
+
+class spinorbit:        # the API before solutions: the validated scene run with the dates among its outputs
+    @staticmethod
+    def moon_librations(t):
+        days = _days(t)
+        first, last = days.min() - 1.0, days.max() + 1.0
+        return _run("moon_libration", first, last, max(0.5, (last - first) / 2000.0), days)
+
+    @staticmethod
+    def earth_pole(t):
+        return _run("earth_precession_nutation_nonrigid", -18262.5, 18262.5, 2.0, _days(t))
+"""
 
 
 DATES = """
@@ -62,7 +81,8 @@ def dates(n, seed):
 LATENCY = DATES + """
 import json, time
 import spinorbit
-out = {}
+{api}
+out = {{}}
 for name in ("moon_librations", "earth_pole"):
     call, t = getattr(spinorbit, name), dates(10_000, 2)
     started = time.perf_counter(); call(t); first = time.perf_counter() - started
@@ -80,11 +100,11 @@ print(json.dumps({{}}))
 """.format(lo=SPAN_2021_2041[0], hi=SPAN_2021_2041[1])
 
 
-def latency(before):
+def latency():
     rows = {}
-    for label, tree in (("solutions (this code)", ROOT), (f"a scene per call ({before})", checkout(before))):
-        python(PREPARE, tree)
-        rows[label] = python(LATENCY, tree)
+    python(PREPARE, ROOT)
+    for label, api in (("solutions", ""), ("a scene per call", SCENE_PER_CALL)):
+        rows[label] = python(LATENCY.format(api=api), ROOT)
     print("\n## latency: 10^4 dates in 2021-2041, a new process (first call / second call, s)\n")
     print("| code | moon_librations | earth_pole |\n|---|---|---|")
     for label, row in rows.items():
@@ -205,19 +225,20 @@ README_EXAMPLE = """
 import json, time
 started = time.perf_counter()
 import spinorbit
+{api}
 from astropy.time import Time
-t = Time([f"2027-{month:02d}-15" for month in range(1, 11)])
+t = Time([f"2027-{{month:02d}}-15" for month in range(1, 11)])
 moon, pole = spinorbit.moon_librations(t), spinorbit.earth_pole(t)
-print(json.dumps({"wall_s": time.perf_counter() - started}))
+print(json.dumps({{"wall_s": time.perf_counter() - started}}))
 """
 
 
-def readme(before):
+def readme():
     rows = {}
-    for label, tree in (("solutions (this code)", ROOT), (f"a scene per call ({before})", checkout(before))):
+    for label, api in (("solutions", ""), ("a scene per call", SCENE_PER_CALL)):
         empty = tempfile.mkdtemp(prefix="empty-cache-")
-        rows[label] = python(README_EXAMPLE, tree, {"SPINORBIT_CACHE_DIR": f"{empty}/spinorbit",
-                                                     "NUMBA_CACHE_DIR": f"{empty}/numba"})["wall_s"]
+        rows[label] = python(README_EXAMPLE.format(api=api), ROOT, {"SPINORBIT_CACHE_DIR": f"{empty}/spinorbit",
+                                                                     "NUMBA_CACHE_DIR": f"{empty}/numba"})["wall_s"]
     print("\n## the README's API example from empty caches (s, import included)\n")
     print("| code | wall |\n|---|---|")
     for label, wall in rows.items():
@@ -228,12 +249,10 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("part", nargs="?", default="all",
                         choices=["latency", "agreement", "extension", "export", "readme", "all"])
-    parser.add_argument("--before", default=BEFORE)
     args = parser.parse_args()
     parts = ["latency", "agreement", "extension", "export", "readme"] if args.part == "all" else [args.part]
     for part in parts:
-        function = globals()[part]
-        function(args.before) if part in ("latency", "readme") else function()
+        globals()[part]()
         sys.stdout.flush()
 
 

@@ -38,10 +38,12 @@ class IauPole:
     name = "IAU 2006/2000A (ERFA)"
 
     def __call__(self, t_tdb_d):
+        import erfa
+
         t = np.atleast_1d(np.asarray(t_tdb_d, dtype=float))
-        x, y = cip_xy(t)
-        _, _, psi_bar, eps_a = mean_angles(t)
+        gamma_bar, phi_bar, psi_bar, eps_a = mean_angles(t)
         dpsi, deps = nutation(t)
+        x, y = erfa.fw2xy(gamma_bar, phi_bar, psi_bar + dpsi, eps_a + deps)     # = bpn2xy(pnm06a(t)), one nut06a
         return Comparable(t, {"cip_x_rad": x, "cip_y_rad": y, "psi_bar_rad": psi_bar, "eps_a_rad": eps_a,
                               "dpsi_rad": dpsi, "deps_rad": deps}, provenance())
 
