@@ -323,7 +323,7 @@ def deep_time_spectra(t_kyr, model, reference, name):
     span = abs(t_kyr[-1] - t_kyr[0])
     draw = partial(_deep_time_spectra, series=series, span=span, name=name)
     draw.figsize = (8, 8.5)
-    return titled(draw, "spectra, the astronomical periods marked")
+    return titled(draw, "spectra, the periods marked in kyr")
 
 
 def _deep_time_spectra(fig, series, span, name):
@@ -340,7 +340,6 @@ def _deep_time_spectra(fig, series, span, name):
             top = ax.secondary_xaxis("top")
             top.set_xticks(list(marked.values()), [f"{text}" for text in marked], fontsize=7)
             top.tick_params(which="minor", top=False, labeltop=False)
-            top.set_xlabel("marked: the astronomical periods [kyr]", fontsize=7)
         ax.set_ylabel(f"amplitude of {DEEP_TIME_LABELS[key]}")
         ax.legend(fontsize=8, loc="lower right")
         ax.grid(alpha=0.3, which="both")

