@@ -1,10 +1,8 @@
 """Work-precision of the integrators on one scene: ``spinorbit bench SCENE.toml``.
 
-A scene module that can be benchmarked defines ``build(scenario) -> (system,
-t_out, error)``: the System (spinorbit.models), the output times
-(TDB days) and ``error(solution)``, the maximum attitude error in rad against
-the scene's closed form or a converged run
-(:func:`spinorbit.analysis.ladder.converged_error`).
+A scene that can be benchmarked declares ``bench`` (spinorbit.scene.Scene): on the model its ``build``
+makes for the output times, ``error(solution)``, the maximum attitude error in rad against the scene's
+closed form or a converged run (:func:`spinorbit.analysis.ladder.converged_error`).
 
 Every registered method that ``supports`` the system is run on a ladder of
 settings: fixed-step and splitting methods at steps halving from a quarter of
@@ -160,25 +158,20 @@ def bench_scenario(path, methods=None, out=None, budget_s=10.0, overrides=(), fo
     ``force``); returns (rows, paths)."""
     from .rundir import RunDirectory
     from .scenarios import load_scenario, scenario_errors
-    from .scenes import scene_module as scenario_module
 
     if not isinstance(budget_s, (int, float)) or not 0 < budget_s <= MAX_BUDGET_S:
         raise ScenarioError("--budget", budget_s, f"seconds in (0, {MAX_BUDGET_S:g}]")
     scenario = load_scenario(path, overrides)
-    legacy = getattr(scenario_module(scenario.kind), "build", None) if scenario.scene.run else None
-    if scenario.scene.bench is None and legacy is None:
+    if scenario.scene.bench is None:
         raise ScenarioError("scene.kind", scenario.kind, "a scene kind that declares how to bench it "
                             f"(bench: {', '.join(bench_kinds())})")
     target = Path(out or Path("runs") / f"{scenario.name}-bench")
     with RunDirectory(target, force=force) as run_dir:     # refuses a bad --out before the ladder runs
         with scenario_errors(scenario):
-            if legacy is not None:
-                system, t_out, error = legacy(scenario)
-            else:
-                t_out = scenario.output_times()
-                model = scenario.scene.build(scenario.params, t_out)
-                system = model.system if model.system is not None else model.bench_system
-                error = scenario.scene.bench(scenario.params, model, t_out)
+            t_out = scenario.output_times()
+            model = scenario.scene.build(scenario.params, t_out)
+            system = model.system if model.system is not None else model.bench_system
+            error = scenario.scene.bench(scenario.params, model, t_out)
         command = " ".join(["spinorbit bench", str(path), *(f"--set {shlex.quote(o)}" for o in overrides),
                             *([f"--methods {','.join(methods)}"] if methods else [])])
         title = scenario["scene.title"] or scenario.name

@@ -15,8 +15,7 @@ import numpy as np
 from .errors import IntegrationError, ScenarioError
 from .run_result import RunResult, attitude_table
 from .scenarios import Scenario, load_scenario, scenario_errors
-from .scene import Run
-from .simulate import simulate
+from .scene import Run, integrate
 from .solutions import for_scenario
 
 
@@ -78,22 +77,6 @@ def run_scene(scenario):
     if outcome.not_measured:
         summary["not_measured"] = {**summary.get("not_measured", {}), **outcome.not_measured}
     return RunResult(scenario, table, summary, outcome.figures, run.solution)
-
-
-def integrate(scenario, system, times, part=None, method=None, options=None, estimate_error=None):
-    """simulate() with the scenario's [integrator] table (or ``method`` and ``options``): the main run
-    checkpointed when the command line gives a checkpoint, a further run ``part`` in a checkpoint of its own
-    and a progress bar named for it; its error estimated as the scenario says (or as ``estimate_error``; a run
-    with its own ``method``: not estimated, not checkpointed)."""
-    label = scenario.name if part is None else f"{scenario.name} ({part})"
-    if method is not None:
-        return simulate(system, times, method, options or {}, bool(estimate_error), None, label)
-    checkpoint = scenario.checkpoint
-    if checkpoint is not None and part is not None:
-        checkpoint = checkpoint.part(part)
-    estimate = scenario["integrator.estimate_error"] if estimate_error is None else estimate_error
-    return simulate(system, times, scenario["integrator.method"], scenario.integrator_options(), estimate,
-                    checkpoint, label)
 
 
 def mark_unmeasured(summary):

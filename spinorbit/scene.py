@@ -13,6 +13,8 @@ from dataclasses import dataclass, field
 from types import SimpleNamespace
 from typing import Callable
 
+from .simulate import simulate
+
 
 @dataclass(frozen=True)
 class Cost:
@@ -119,3 +121,19 @@ class Scene:
     def verdict_for(self, params, comparison):
         """The Verdict of a run with these parameters and this comparison (None: the scene declares none)."""
         return self.verdict(params, comparison or {}) if callable(self.verdict) else self.verdict
+
+
+def integrate(scenario, system, times, part=None, method=None, options=None, estimate_error=None):
+    """simulate() with the scenario's [integrator] table (or ``method`` and ``options``): the main run
+    checkpointed when the command line gives a checkpoint, a further run ``part`` in a checkpoint of its own
+    and a progress bar named for it; its error estimated as the scenario says (or as ``estimate_error``; a run
+    with its own ``method``: not estimated, not checkpointed)."""
+    label = scenario.name if part is None else f"{scenario.name} ({part})"
+    if method is not None:
+        return simulate(system, times, method, options or {}, bool(estimate_error), None, label)
+    checkpoint = scenario.checkpoint
+    if checkpoint is not None and part is not None:
+        checkpoint = checkpoint.part(part)
+    estimate = scenario["integrator.estimate_error"] if estimate_error is None else estimate_error
+    return simulate(system, times, scenario["integrator.method"], scenario.integrator_options(), estimate,
+                    checkpoint, label)

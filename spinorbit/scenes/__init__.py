@@ -7,7 +7,6 @@ scene loads nothing it does not use.
 from importlib import import_module
 
 from ..errors import ScenarioError
-from ..scene import Cost, Scene
 
 SCENES = {
     "free_body": "spinorbit.scenes.free_body",
@@ -40,22 +39,4 @@ def scene_module(kind):
 
 def scene_of(kind):
     """The Scene a kind declares."""
-    module = scene_module(kind)
-    return getattr(module, "SCENE", None) or _unmigrated(kind, module)
-
-
-# Scenes still writing their own run() (being moved onto the protocol): their costs and their declarations
-# read from the module's names.
-_COSTS = {"earth_moon_coupled": Cost(step_s=3e-4), "moon_libration": Cost(step_s=2e-4),
-          "earth_precession_nutation": Cost(step_s=3e-5, sample_bytes=300)}
-
-
-def _unmigrated(kind, module):
-    from .common import rigid_body_time_scales
-
-    choose = getattr(module, "verdict", None)
-    return Scene(schema=module.SCHEMA, verdict=choose or getattr(module, "VERDICT", None),
-                 cost=_COSTS.get(kind, Cost()), time_scales=rigid_body_time_scales(module.SCHEMA),
-                 backward=getattr(module, "BACKWARD", False), taylor=getattr(module, "TAYLOR", False),
-                 sweep_figures=getattr(module, "sweep_figures", None), run=module.run,
-                 nbody_counts=getattr(module, "nbody_counts", None))
+    return scene_module(kind).SCENE

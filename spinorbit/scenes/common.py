@@ -6,9 +6,7 @@ import numpy as np
 from ..bodies import RigidBody
 from ..errors import PhysicsError, ScenarioError
 from ..plots import plot_series  # scenes call common.plot_series
-from ..run_result import RunResult, attitude_table  # noqa: F401  (scenes call common.attitude_table)
 from ..scene import TimeScale
-from ..simulate import simulate
 
 
 def u():
@@ -52,21 +50,6 @@ def rigid_body_time_scales(schema):
         return scales
 
     return time_scales
-
-
-def simulate_scenario(scenario, system, t_out, part=None):
-    """simulate() with the scenario's [integrator] table: the scene's main run checkpointed (when the command
-    line gives a checkpoint), a further run ``part`` in a checkpoint of its own."""
-    checkpoint = scenario.checkpoint
-    if checkpoint is not None and part is not None:
-        checkpoint = checkpoint.part(part)
-    label = scenario.name if part is None else f"{scenario.name} ({part})"
-    return simulate(system, t_out, scenario["integrator.method"], scenario.integrator_options(),
-                    scenario["integrator.estimate_error"], checkpoint, label)
-
-
-def result(scenario, table, summary, figures, solution):
-    return RunResult(scenario, table, summary, figures, solution)
 
 
 def decimal_year(t):

@@ -22,14 +22,14 @@ models, whose collision ~1.5 Ga is the known failure the resonant ocean tide res
 """
 from ...errors import ScenarioError
 from ...models.tidal_history.calibration import ocean_fit
+from ...run_result import RunResult
+from ...scene import Scene
 from ...schema import Key
 from ...verdict import Check, Verdict
-from .. import common
 from .model import GYR_D
 
 _OCEAN = ocean_fit()
 
-BACKWARD = True
 MODELS = ("constant_time_lag", "constant_q", "global_ocean")
 SCHEMA = {
     "tides.model": Key(type=str, default="global_ocean", choices=MODELS,
@@ -120,7 +120,7 @@ def run(scenario):
     ages, series = figures.series(quantities)
     figs = {"distance_length_of_day": earth_moon_history(ages, series, figures.proxies()),
             "milankovitch_periods": milankovitch_periods(ages, series)}
-    return common.result(scenario, table.table(main.t, quantities[chosen]), summary, figs, main.solution)
+    return RunResult(scenario, table.table(main.t, quantities[chosen]), summary, figs, main.solution)
 
 
 def sweep_figures(tables):
@@ -134,3 +134,8 @@ def sweep_figures(tables):
     ages = {"first member": ages["member"]}
     return {"band_distance_length_of_day": earth_moon_history(ages, label, figures.proxies(), spread),
             "band_milankovitch_periods": milankovitch_periods(ages, label, spread)}
+
+
+# Its own run(): each tidal model's history stops at an event (the Roche limit, refined with the scenario's
+# integrator) and the models run in turn; the runner's one integration over the output times does not fit it.
+SCENE = Scene(SCHEMA, verdict=verdict, backward=True, sweep_figures=sweep_figures, run=run)

@@ -74,21 +74,20 @@ def tide(scenario, c, y0, model):
 def run(scenario, model, part=None):
     """The history of ``model`` over the scenario's output times (from J2000 back)."""
     from ...models.tidal_history import equations
-    from .. import common
+    from ...scene import integrate
 
     c = constants(scenario["moon.stop_distance"])
     y0 = today(c)
     system = equations.history(c, tide(scenario, c, y0, model), y0)
     t = scenario.output_times()
     try:
-        solution, point = common.simulate_scenario(scenario, system, t[1:], part)
+        solution, point = integrate(scenario, system, t[1:], part)
         reached = t.size
     except IntegrationError as exc:            # the stop: the rates run away at the Roche limit
         reached = 1 + exc.partial.t.size
         if reached < 3:
             raise
-        solution, point = common.simulate_scenario(scenario, system, t[1:reached],
-                                                   f"{part or model} to the stop")
+        solution, point = integrate(scenario, system, t[1:reached], f"{part or model} to the stop")
     y = np.vstack([y0, solution.y])
     outside = [k for k in range(y.shape[0]) if equations.stop(y[k], c)]
     if outside:                                 # frozen past the stop (the rhs is zero there)
