@@ -305,10 +305,10 @@ def case_api(rng, args, work):
 
 
 CLI = [sys.executable, "-m", "spinorbit.cli", "--quiet"]
-DEEP = ["earth_deep_time", "--set", 'span.end="-3 kyr"', "--set", 'span.step="1 kyr"', "--set",
+DEEP = ["earth_deep_time", "--set", 'span.end="-10 kyr"', "--set", 'span.step="1 kyr"', "--set",
         'integrator.step="100 yr"', "--set", "output.plots=false"]
 TARGETS = {
-    "run": lambda w: [*CLI, "run", "scenarios/free_body.toml", "--out", str(w / "out"), "--set", "span.end=400 d",
+    "run": lambda w: [*CLI, "run", "scenarios/free_body.toml", "--out", str(w / "out"), "--set", "span.end=4000 d",
                       "--set", "integrator.method=rk8", "--set", "integrator.step=0.002 d", "--set",
                       "output.plots=false"],
     "rebound run": lambda w: [*CLI, "run", "moon_libration_rebound", "--out", str(w / "out"), "--set",
@@ -378,9 +378,9 @@ def case_signal(rng, args, work):
     work.mkdir(parents=True)
     target = rng.choice(sorted(TARGETS))
     sig = rng.choice([signal.SIGINT, signal.SIGTERM])
-    delay = rng.uniform(0.5, 12.0)
+    delay = rng.uniform(0.3, 8.0)
     command = TARGETS[target](work)
-    process = subprocess.Popen(command, cwd=ROOT, stderr=subprocess.PIPE, env=ENV)
+    process = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=ENV)
     time.sleep(delay)
     process.send_signal(sig)
     label = f"{target} {signal.Signals(sig).name} at {delay:.1f} s"

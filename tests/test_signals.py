@@ -64,8 +64,9 @@ def staged_member(out):
 def test_sigterm_keeps_a_sweeps_finished_members(tmp_path):
     out = tmp_path / "sweep"
     process = subprocess.Popen([sys.executable, "-m", "spinorbit.cli", "--quiet", "sweep",
-                                "scenarios/free_body.toml", "--vary", "integrator.rtol=1e-8,1e-9,1e-10,1e-11,1e-12",
-                                "--set", "span.end=2000 d", "--set", "output.plots=false", "--scheduler",
+                                "scenarios/free_body.toml", "--vary",
+                                "integrator.rtol=1e-8,1e-9,1e-10,1e-11,1e-12,1e-13",
+                                "--set", "span.end=100 d", "--set", "output.plots=false", "--scheduler",
                                 "synchronous", "--out", str(out)], cwd=ROOT, env=ENV, stderr=subprocess.PIPE,
                                text=True)
     wait_for(lambda: staged_member(out), process)
