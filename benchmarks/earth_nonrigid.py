@@ -19,7 +19,6 @@ from spinorbit.analysis import nonrigid
 from spinorbit.analysis.precession import fit_pole, term_table
 from spinorbit.analysis.transfer import forms, mhb2000_table
 from spinorbit.analysis.transfer.models import IERS1996, MHB2000, MHB2000_MODES
-from spinorbit.bodies.earth import H_D
 from spinorbit.constants import JULIAN_CENTURY_D, MAS
 from spinorbit.references import arguments, erfa_pole, vlbi_pole
 from spinorbit.results import run_scenario
@@ -97,17 +96,17 @@ def print_terms(runs):
             print(f"| {term} | {part} | {v['rigid']:.3f} | {v['iau2000a']:.3f} | {diffs} |")
 
 
-def print_ren2000(t, z_rigid):
-    ren = parts(t, {"rigid": erfa_pole.about_mean_pole(t, z_rigid), "ren": ren2000_scaled(t, H_D, True)})
+def print_ren2000(t, z_rigid, h_d):
+    ren = parts(t, {"rigid": erfa_pole.about_mean_pole(t, z_rigid), "ren": ren2000_scaled(t, h_d, True)})
     print("\n| term | part | rigid | REN-2000 x H_d/H | rigid - REN |\n|---|---|---|---|---|")
     for term in TABLE_TERMS:
         for part in PARTS:
             v = ren[term][part]
             print(f"| {term} | {part} | {v['rigid']:.3f} | {v['ren']:.3f} | {v['rigid'] - v['ren']:+.3f} |")
     main = ren["18.6 yr"]["dpsi_in"]
-    ratio = main["rigid"] / (main["ren"] * mhb2000_table.RIGID_H / H_D)
+    ratio = main["rigid"] / (main["ren"] * mhb2000_table.RIGID_H / h_d)
     print(f"\n18.6-yr dpsi in phase: rigid / REN-2000 - 1 = {ratio - 1:.4e}, H_d / H_REN-2000 - 1 = "
-          f"{H_D / mhb2000_table.RIGID_H - 1:.4e}: rigid / (REN-2000 x H_d / H_REN) - 1 = "
+          f"{h_d / mhb2000_table.RIGID_H - 1:.4e}: rigid / (REN-2000 x H_d / H_REN) - 1 = "
           f"{main['rigid'] / main['ren'] - 1:+.1e}")
     print("full - gyroscopic, 2000-2010 (dpsi in, deps in, mas): " + "; ".join(
         f"{name} {a:+.4f} {b:+.4f}" for name, (a, b) in full_minus_gyroscopic().items()))
@@ -166,7 +165,7 @@ def main():
     iau = erfa_pole.IauPole()(t)
     print_cip(runs, rigid_summary, t, iau)
     print_terms(runs)
-    print_ren2000(t, z_rigid)
+    print_ren2000(t, z_rigid, rigid_summary["dynamical_ellipticity"]["h_d"])
     print_vlbi(runs["mhb2000"][0])
     print_form()
 
