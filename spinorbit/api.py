@@ -23,6 +23,8 @@ carries the expected accuracy (the validated scene's tolerance, whether it is an
 and "not compared" with the accuracy that applies where the reference has no data), the comparison at these
 dates, the solution's provenance and its fit's error.
 """
+import functools
+
 import numpy as np
 
 from .errors import InputError, tdb_dates
@@ -36,34 +38,58 @@ MOON_START = 0.0                          # J2000: where the Moon's and the Eart
 EARTH_PADDING_D = 20 * 365.25
 BEYOND_DE421 = ("not compared: DE421's lunar series (1899-12-04 to 2200-02-01) has no data at {dates}; the run is "
                 "integrated out from DE421's state at its nearest date on {source}'s orbits")
-EXPECTED = {
-    "moon": {"pole_arcsec": 0.1, "longitude_arcsec": 0.01,
-             "statistic": "a bound at every date: the largest difference from DE421 over 1900-2050",
+# What the answers' meta says beyond the tolerances (those are the validated scenes' own verdicts: expected()):
+# which statistic a tolerance bounds, what the validated runs measured (benchmarks/RESULTS.md), and the largest
+# difference one date of the Earth's century showed.
+ACCURACY = {
+    "moon": {"statistic": "a bound at every date: the largest difference from DE421 over 1900-2050",
              "basis": "the level-3 scene's tolerance against DE421 over 1900-2050 (measured 0.0036\" and 0.0005\")",
              "beyond_de421": "started at 2200 and run back to 1900 the Moon stays within 0.0036\" / 0.0006\" of "
                              "DE421 on DE421's orbits, and within 0.004\" / 0.21\" on DE440's (the longitude "
                              "follows the ephemeris's lunar orbit: DE440's differs from DE421's): expect the "
                              "ephemeris's own uncertainty there, not the integration's (benchmarks/RESULTS.md)"},
-    "earth": {"cip_rms_mas": 1.0, "cip_max_mas": 1.3,
+    "earth": {"cip_max_mas": 1.3,
               "statistic": "cip_rms_mas is the tolerance on the rms over 1950-2050 of X and of Y (measured 0.09 / "
                            "0.43 mas: H_d from the observed precession rate; Y is the obliquity rate's line), not a "
                            "bound at each date; cip_max_mas is what one date can differ by: the largest over "
                            "1950-2050 (measured 0.27 / 0.94 mas in X / Y)",
               "basis": "the non-rigid scene against IAU 2006/2000A over 1950-2050"},
-    "earth_rigid": {"cip_rms_mas": 40.0, "cip_max_mas": 60.0,
+    "earth_rigid": {"cip_max_mas": 60.0,
                     "statistic": "cip_rms_mas is the tolerance on the rms over 1950-2050 of X (Y: 25 mas; measured "
                                  "24.8 / 22.1 mas), not a bound at each date; cip_max_mas is what one date can "
                                  "differ by: the largest over 1950-2050 (measured 58.1 / 53.0 mas in X / Y)",
                     "basis": "the rigid Earth against IAU 2006/2000A: what it differs by is the real Earth's "
                              "non-rigid response"},
-    "earth_moon": {"moon_direction_arcsec": 1.0, "moon_range_km": 2.0, "pole_arcsec": 0.1, "longitude_arcsec": 1.0,
-                   "statistic": "a bound at every date: the largest difference from DE421 over 1950-2050",
+    "earth_moon": {"statistic": "a bound at every date: the largest difference from DE421 over 1950-2050",
                    "basis": "the coupled scene's tolerances against DE421 over 1950-2050 (measured 0.084\", 9.7 m, "
                             "0.0023\", 0.073\")",
                    "beyond_de421": "no reference judges these dates: what the validated century shows is the "
                                    "integration's drift over 100 years from its start (the figures above), to "
                                    "which the ephemeris's own uncertainty there adds"},
 }
+# answer -> (the validated built-in scene, {the answer's name: the metric its verdict judges})
+TOLERANCES = {
+    "moon": ("moon_libration", {"pole_arcsec": "pole_error_max_arcsec",
+                                "longitude_arcsec": "longitude_error_max_arcsec"}),
+    "earth": ("earth_precession_nutation_nonrigid", {"cip_rms_mas": "x_rms_mas"}),
+    "earth_rigid": ("earth_precession_nutation", {"cip_rms_mas": "x_rms_mas"}),
+    "earth_moon": ("earth_moon_coupled", {"moon_direction_arcsec": "moon_direction_error_max_arcsec",
+                                          "moon_range_km": "moon_range_error_max_km",
+                                          "pole_arcsec": "pole_error_max_arcsec",
+                                          "longitude_arcsec": "longitude_error_max_arcsec"}),
+}
+
+
+@functools.cache
+def expected(answer):
+    """The expected accuracy of an answer ("moon", "earth", "earth_rigid", "earth_moon"): the tolerances its
+    validated scene's verdict judges it by, and what ACCURACY says of them."""
+    scene, names = TOLERANCES[answer]
+    scenario = _scenario(scene, {})
+    checks = {c.metric: c.tolerance for c in scenario.scene.verdict_for(scenario.params, {}).checks}
+    return {**{name: checks[metric] for name, metric in names.items()}, **ACCURACY[answer]}
+
+
 MOON_COLUMNS = ("phi", "theta", "psi", "libration_longitude", "libration_latitude", "libration_node",
                 "sub_earth_longitude", "sub_earth_latitude", "pole_error", "longitude_error")
 EARTH_COLUMNS = ("cip_x", "cip_y", "cip_x_minus_erfa", "cip_y_minus_erfa", "precession_longitude", "obliquity",
@@ -85,12 +111,12 @@ def moon_librations(times, *, level=3, ephemeris=None, optical=False):
     _check_choice("level", level, (1, 2, 3, 4))
     first, last = min(t.min(), MOON_START) - 2.0, max(t.max(), MOON_START) + 2.0
     source, why = _ephemeris(ephemeris, t, (first, last))
-    solution = _solution("moon_libration", (f"orbit.source={source}", f"model.level={level}"), t, 1.0)
+    solution = _solution("moon_libration", {"orbit.source": source, "model.level": level}, t, 1.0)
     table = tables.moon(solution, t, source)
     columns = MOON_COLUMNS + (("optical_libration_longitude", "optical_libration_latitude") if optical else ())
     if optical:
         table = _with_optical(table, source)
-    return _answer(table, t, when, columns, _summary(solution, "moon_libration"), EXPECTED["moon"],
+    return _answer(table, t, when, columns, _summary(solution, "moon_libration"), expected("moon"),
                    {"source": source, "why": why})
 
 
@@ -109,12 +135,12 @@ def earth_pole(times, *, nonrigid=True, ephemeris=None):
                                                                              VALIDATED_EARTH[1])
     source, why = _ephemeris(ephemeris, t, (first - 1.0, last + 1.0))
     scene = "earth_precession_nutation_nonrigid" if nonrigid else "earth_precession_nutation"
-    sets = (f"orbit.source={source}",)
-    rigid = _solution(scene, sets, np.array([first, last]), 0.0)
-    layer = earth_layer.layer(rigid, _scenario(scene, sets), nonrigid)
+    values = {"orbit.source": source}
+    rigid = _solution(scene, values, np.array([first, last]), 0.0)
+    layer = earth_layer.layer(rigid, _scenario(scene, values), nonrigid)
     table = earth_layer.table(layer, t)
     return _answer(table, t, when, EARTH_COLUMNS, _summary(layer, scene),
-                   EXPECTED["earth" if nonrigid else "earth_rigid"], {"source": source, "why": why})
+                   expected("earth" if nonrigid else "earth_rigid"), {"source": source, "why": why})
 
 
 def earth_moon(times, *, ephemeris=None):
@@ -125,9 +151,9 @@ def earth_moon(times, *, ephemeris=None):
     t, when = tdb_days(times, "times")
     first, last = min(t.min(), MOON_START) - 2.0, max(t.max(), MOON_START) + 2.0
     source, why = _ephemeris(ephemeris, t, (first, last))
-    solution = _solution("earth_moon_coupled", (f"orbit.source={source}",), t, 1.0)
+    solution = _solution("earth_moon_coupled", {"orbit.source": source}, t, 1.0)
     return _answer(tables.earth_moon(solution, t), t, when, EARTH_MOON_COLUMNS,
-                   _summary(solution, "earth_moon_coupled"), EXPECTED["earth_moon"], {"source": source, "why": why})
+                   _summary(solution, "earth_moon_coupled"), expected("earth_moon"), {"source": source, "why": why})
 
 
 def tdb_days(times, name):
@@ -281,19 +307,20 @@ def _span_text(source):
         return "not installed"
 
 
-def _scenario(scene, sets):
+def _scenario(scene, values):
+    """The built-in scene ``scene`` with ``values`` (dotted key -> value) in place of its file's."""
     from .scenarios import load_scenario
 
-    return load_scenario(scene, list(sets))
+    return load_scenario(scene, values=values)
 
 
-def _solution(scene, sets, t, margin):
-    """The stored solution of ``scene`` with ``sets`` covering the dates ``t`` (TDB days) +- ``margin``."""
+def _solution(scene, values, t, margin):
+    """The stored solution of ``scene`` with ``values`` covering the dates ``t`` (TDB days) +- ``margin``."""
     from .errors import EphemerisRangeError, ScenarioError
     from .solutions import for_scenario
 
     try:
-        return for_scenario(_scenario(scene, sets), t.min() - margin, t.max() + margin)
+        return for_scenario(_scenario(scene, values), t.min() - margin, t.max() + margin)
     except ScenarioError as exc:                   # a scene key set from the arguments: say which argument
         argument = {"orbit.source": "ephemeris", "model.level": "level"}.get(exc.key, "times")
         raise InputError(argument, exc.given, exc.accepted) from None

@@ -199,6 +199,8 @@ class Scenario:
                 spec.check_range(key, finite_float(key, value), value)
             return value
         if spec.size:
+            if getattr(value, "isscalar", True) is False:      # an astropy Quantity array from the API
+                value = list(value)
             if not isinstance(value, list) or len(value) != spec.size:
                 raise ScenarioError(key, value, spec.accepted())
             vector = np.array([checked_float(key, v, spec) for v in value])
@@ -512,18 +514,28 @@ def apply_override(data, assignment):
         value = text
     except (ValueError, RecursionError) as exc:   # e.g. an integer over Python's digit limit, deep nesting
         raise ScenarioError(key, text, f"a TOML value Python can read ({_reason(exc)})") from None
+    set_value(data, key, value, assignment)
+
+
+def set_value(data, key, value, given=None):
+    """Put ``value`` (a TOML value, or a number, string, list or astropy Quantity from Python) at dotted ``key``
+    of a scenario's tables; the scenario's validation then checks it as it checks the file's."""
+    if not isinstance(key, str) or not key:
+        raise ScenarioError("values", key, "dotted scenario keys, e.g. 'orbit.source'")
     node = data
     parts = key.split(".")
     for part in parts[:-1]:
         node = node.setdefault(part, {})
         if not isinstance(node, dict):
-            raise ScenarioError(key, assignment, "a dotted path into the scenario's tables")
+            raise ScenarioError(key, given if given is not None else value, "a dotted path into the scenario's "
+                                                                            "tables")
     node[parts[-1]] = value
 
 
-def load_scenario(path, overrides=()):
+def load_scenario(path, overrides=(), values=None):
     """Read and validate a scenario file (a path, or a built-in scene's name: spinorbit.catalogue); ``overrides``
-    are ``key=value`` strings."""
+    are ``key=value`` strings (the command line's ``--set``), ``values`` a dict of dotted key -> value (Python's
+    values, e.g. the API's: no text to parse), applied after them."""
     from .catalogue import resolve
 
     if isinstance(path, bytes) or not isinstance(path, (str, os.PathLike)):
@@ -556,6 +568,8 @@ def load_scenario(path, overrides=()):
     in_file = dict(data.get("integrator", {})) if isinstance(data.get("integrator"), dict) else {}
     for assignment in overrides:
         apply_override(data, assignment)
+    for key, value in (values or {}).items():
+        set_value(data, key, value)
     notes = switch_method(data["integrator"], in_file, option_names(overrides)) \
         if isinstance(data.get("integrator"), dict) else []
     scenario = Scenario(data, path)

@@ -118,9 +118,11 @@ def tdb_days_to_time(t_days):
 
 
 def to_float(key, value, unit):
-    """A TOML value (number or quantity string) as a float in ``unit``."""
+    """A TOML value (number or quantity string), or an astropy Quantity, as a float in ``unit``."""
     import astropy.units as u
 
+    if isinstance(value, u.Quantity):
+        return _quantity_value(key, value, unit)
     if isinstance(value, bool) or not isinstance(value, (int, float, str)):
         raise ScenarioError(key, value, f"a quantity in '{unit}'" if unit else "a number")
     if isinstance(value, (int, float)):
@@ -160,6 +162,22 @@ def _quantity(text):
         if singular == text:
             raise
         return u.Quantity(singular)
+
+
+def _quantity_value(key, quantity, unit):
+    """An astropy Quantity (the API's values) as a float in ``unit``: converted, never written as text."""
+    import astropy.units as u
+
+    if not quantity.isscalar:
+        raise ScenarioError(key, str(quantity), f"a single quantity in '{unit}'")
+    angles = u.dimensionless_angles() if unit and "rad" in unit else []
+    try:
+        number = float(quantity.to_value(unit or u.dimensionless_unscaled, equivalencies=angles))
+    except (u.UnitsError, TypeError, ValueError):
+        raise ScenarioError(key, str(quantity), f"units convertible to '{unit or 'dimensionless'}'") from None
+    if not math.isfinite(number):
+        raise ScenarioError(key, str(quantity), "a finite quantity")
+    return number
 
 
 def finite_float(key, value):

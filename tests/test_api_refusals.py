@@ -104,7 +104,7 @@ def test_dates_where_de421_has_no_data_are_not_compared_and_quote_the_accuracy_t
     when = Time(2451545.0, days, format="jd", scale="tdb")
     why = "DE421 (1899-07-29 to 2053-10-09) does not cover the run: DE440 does"
     with pytest.warns(UserWarning, match="DE440 does"):             # the switch of ephemeris is said
-        out = api._answer(table, days, when, ("pole_error",), {}, api.EXPECTED["earth_moon"],
+        out = api._answer(table, days, when, ("pole_error",), {}, api.expected("earth_moon"),
                           {"source": "de440", "why": why})
     expected = out.meta["expected_accuracy"]
     assert expected["at_these_dates"].startswith("not compared: DE421's lunar series")
@@ -120,7 +120,7 @@ def test_dates_de421_covers_quote_its_tolerance_as_a_bound_at_every_date_and_war
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         out = api._answer(table, days, Time(2451545.0, days, format="jd", scale="tdb"), ("pole_error",), {},
-                          api.EXPECTED["moon"], {"source": "de421", "why": "DE421 covers the run"})
+                          api.expected("moon"), {"source": "de421", "why": "DE421 covers the run"})
     expected = out.meta["expected_accuracy"]
     assert "at_these_dates" not in expected and "beyond_de421" not in expected
     assert expected["statistic"].startswith("a bound at every date")
@@ -129,6 +129,6 @@ def test_dates_de421_covers_quote_its_tolerance_as_a_bound_at_every_date_and_war
 
 def test_the_earths_expected_accuracy_gives_the_rms_tolerance_and_the_largest_at_one_date():
     for key in ("earth", "earth_rigid"):
-        expected = api.EXPECTED[key]
+        expected = api.expected(key)
         assert expected["cip_max_mas"] > expected["cip_rms_mas"]         # one date can exceed the rms
         assert "rms" in expected["statistic"] and "not a bound at each date" in expected["statistic"]

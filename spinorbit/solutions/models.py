@@ -46,15 +46,15 @@ def stretch(scenario, lo, hi, t0):
     """``scenario`` over [lo, hi] TDB days started at t0 (the Moon's orbits are sampled from its start)."""
     import copy
 
-    from ..scenarios import Scenario, apply_override
+    from ..scenarios import Scenario, set_value
 
     start, end = iso([lo, hi])
-    sets = [f"span.start={start}", f"span.end={end}"]
+    values = {"span.start": start, "span.end": end}
     if scenario.kind == "moon_libration":
-        sets.append(f"model.start={iso(t0)[0]}")
+        values["model.start"] = iso(t0)[0]
     data = copy.deepcopy(scenario.data)
-    for assignment in sets:
-        apply_override(data, assignment)
+    for key, value in values.items():
+        set_value(data, key, value)
     return Scenario(data, scenario.path)
 
 

@@ -1,0 +1,77 @@
+"""The scene protocol (spinorbit.scene): typed parameters alike from a file, --set and Python values; one runner
+that builds a scene's model once; what a scene declares is read from its Scene, not restated above it."""
+import dataclasses
+import importlib
+
+import astropy.units as u
+import numpy as np
+import pytest
+
+from spinorbit import api
+from spinorbit.errors import ScenarioError
+from spinorbit.scenarios import load_scenario
+from spinorbit.scenes import SCENES, scene_of
+
+
+def test_the_typed_record_is_the_same_from_set_text_and_from_python_values():
+    by_text = load_scenario("free_body", ['span.step="6 h"', 'body.omega0=["0.1 rad/d", "2 rad/d", "0.1 rad/d"]'])
+    by_value = load_scenario("free_body", values={"span.step": 6 * u.h, "body.omega0": [0.1, 2, 0.1] * u.rad / u.d})
+    for p in (by_text.params, by_value.params):
+        assert p.span.step == 0.25                          # 6 h in days, exactly
+        assert isinstance(p.body.moments, np.ndarray) and p.body.moments.shape == (3,)
+        assert p["body.omega0"] is p.body.omega0
+        assert p.integrator.method == "dop853" and p.t_end > p.t_start
+    assert np.array_equal(by_text.params.body.omega0, by_value.params.body.omega0)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        by_value.params.body.omega0 = np.zeros(3)
+
+
+def test_a_python_value_in_the_wrong_unit_is_refused_in_one_line_naming_the_key():
+    with pytest.raises(ScenarioError) as info:
+        load_scenario("free_body", values={"span.step": 3 * u.km})
+    message = str(info.value)
+    assert message.startswith("span.step:") and "3.0 km" in message and "'d'" in message and "\n" not in message
+
+
+def test_every_scene_declares_a_scene_and_at_most_three_run_their_own_pipeline():
+    own = []
+    for kind, module in SCENES.items():
+        scene = importlib.import_module(module).SCENE
+        assert scene.schema and scene.verdict is not None, kind
+        if scene.run is not None:
+            own.append(kind)
+        else:
+            assert scene.build is not None and scene.compare is not None, kind
+    assert len(own) <= 3, own
+
+
+def test_the_runner_builds_a_scene_model_once(monkeypatch):
+    from spinorbit.results import run_scenario
+
+    scene = scene_of("free_body")
+    calls = []
+
+    def counted(p, times):
+        calls.append(times.size)
+        return scene.build(p, times)
+
+    monkeypatch.setattr("spinorbit.scenes.free_body.SCENE", dataclasses.replace(scene, build=counted))
+    result = run_scenario("free_body", ['span.end="5 d"'])
+    assert calls == [result.table["time"].size]
+    assert result.summary["verdict"]["result"] == "pass"
+
+
+def test_the_apis_tolerances_are_the_validated_scenes_verdicts():
+    for answer, (scene, names) in api.TOLERANCES.items():
+        scenario = load_scenario(scene)
+        checks = {c.metric: c.tolerance for c in scenario.scene.verdict_for(scenario.params, {}).checks}
+        assert {name: api.expected(answer)[name] for name in names} == {n: checks[m] for n, m in names.items()}
+    assert api.expected("moon")["pole_arcsec"] == 0.1        # level 3 against DE421 (moon_libration.TOLERANCES)
+
+
+def test_a_scenes_cost_and_time_scales_come_from_its_scene():
+    moon = load_scenario("moon_libration")
+    assert moon.cost() is scene_of("moon_libration").cost and moon.cost().step_s == 2e-4
+    with pytest.raises(ScenarioError) as info:            # the torque's time-scale sqrt(3 GM/s^3), declared
+        load_scenario("p93_bounded", ['orbit.radius="1 km"'])
+    assert str(info.value).startswith("orbit.radius:") and "sqrt(3 orbit.gm/orbit.radius^3)" in str(info.value)
