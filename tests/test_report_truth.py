@@ -112,13 +112,12 @@ def test_deep_time_titles_say_kyr_sources_and_the_ephemeris_it_starts_from():
     from spinorbit.provenance import ephemeris
     from spinorbit.results import span_label
     from spinorbit.scenarios import load_scenario
-    from spinorbit.scenes import earth_deep_time
     from spinorbit.scenes.earth_deep_time import compare
 
     scenario = load_scenario("earth_deep_time")
     assert span_label(scenario) == "0 to −1000 kyr from J2000"
     assert ephemeris(scenario)["name"].startswith("de421 (the solar system's state at J2000")
-    sources = {check.source for check in earth_deep_time.verdict(scenario, {}).checks}
+    sources = {check.source for check in scenario.scene.verdict_for(scenario.params, {}).checks}
     assert not any("issue" in source for source in sources)
     assert any("La93 with and without tides differ by 3°" in source for source in sources)
     assert set(compare.EXPLAINED) == {"la2004_*", "la93_tides_*", "la2004_minus_la93_*"}
