@@ -353,8 +353,9 @@ def outcome_of(done, err, ok_words=("damaged", "refused", "rebuilt", "compiled a
         return "traceback"
     if done.returncode == 130:
         return "interrupted" if lines and lines[-1] == "interrupted" else "noisy"
-    if done.returncode == 2:
-        return "error" if len(lines) == 1 else "noisy"
+    if done.returncode == 2:          # one error line, last (lines before it: notices of a --set's effect)
+        return "error" if [line.startswith("error:") for line in lines].count(True) == 1 and \
+            lines[-1].startswith("error:") else "noisy"
     if done.returncode == 0:
         return "repaired" if any(w in err for w in ok_words) else "ok"
     return "killed" if done.returncode < 0 else f"exit {done.returncode}"
