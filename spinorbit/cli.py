@@ -279,7 +279,7 @@ def _solution_lines(entries):
 def _show(scene):
     import textwrap
 
-    from .scenarios import key_table
+    from .key_table import key_table
 
     heading, rows = key_table(scene)
     width = _width()

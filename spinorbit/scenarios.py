@@ -2,7 +2,7 @@
 
 A scenario is a TOML file with a ``[scene]`` table naming its ``kind`` (one of
 ``spinorbit.scenes.SCENES``), a ``[span]`` table, an ``[integrator]`` table, and
-the tables its kind declares in its ``SCHEMA``.  Every key is checked: an
+the tables its kind's Scene declares in its ``schema``.  Every key is checked: an
 unknown key, a missing table, a wrong unit or an impossible value raises
 :class:`ScenarioError` naming the dotted key path, what was given and what is
 accepted.
@@ -15,14 +15,11 @@ Times are ISO strings in TDB; ``span.end`` may also be a duration from
 
 Beyond types and units, every number must be finite and inside its key's
 plausible range (``Key.min``/``Key.max``), tolerances inside [100 eps, 1e-3];
-a step over the span must not ask for more output rows, orbit samples or
-integrator steps than ``LIMITS`` allows, nor a rate for more than ``MAX_CYCLES``
-cycles; and the run's time and memory, estimated from the counts and the costs
-measured per item for its scene kind (its Scene's ``cost``: seconds per integrator step,
-bytes per row and per orbit sample), must fit ``limits.time`` (default 1 h) and
-``limits.memory`` (default half the machine's): the run is refused up front with
-the estimate, instead of hanging or filling the memory.  Files must be UTF-8, at
-most ``MAX_FILE_BYTES``, and nest at most ``MAX_DEPTH`` levels.
+what the run asks for (rows, samples, steps, cycles, time, memory) must fit its
+limits (spinorbit.budget).  Files must be UTF-8, at most ``MAX_FILE_BYTES``, and
+nest at most ``MAX_DEPTH`` levels.  Python's values (the API's) go in through
+``load_scenario(values=...)``, validated alike; a valid scenario carries them as
+its scene's typed record, ``scenario.params`` (schema.record).
 """
 import datetime
 import math
@@ -33,6 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import budget
 from .errors import EphemerisRangeError, InputError, ScenarioError
 from .schema import (
     INTEGRATOR_OPTIONS,
@@ -43,24 +41,14 @@ from .schema import (
     dotted_items,
     filled,
     finite_float,
+    has_key,
+    lookup,
     parse_tdb_days,
     record,
 )
 
 MAX_DEPTH = 8                  # nesting of tables and arrays in a scenario
 MAX_FILE_BYTES = 1 << 20       # a scenario file (a few kB; every string in it is at most schema.MAX_TEXT)
-# The most a step over the span may ask for, whatever the time and memory limits.
-LIMITS = {"output rows": 1_000_000, "orbit samples": 10_000_000, "integrator steps": 1_000_000_000,
-          "adaptive steps (at max_step)": 1_000_000}
-
-
-ADAPTIVE_STEP_S = 2e-4         # scipy's adaptive methods: Python between the stages of each step
-# The key an N-body stage's refusal names, and what would shorten it.
-NBODY_KEYS = {"WHFast steps": ("span.end", "a shorter span (an orbital solution once computed is kept in the "
-                                           "cache: a later run reads it)"),
-              "IAS15 days": ("orbit.source", "a span nearer DE421's (1899-2200: REBOUND starts from DE421's state "
-                                             "there and integrates out to the span), or an ephemeris that covers "
-                                             "it (orbit.source = 'de440')")}
 COMMON_SCHEMA = {
     "scene.kind": Key(type=str, help="what the scene runs (spinorbit.scenes.SCENES)"),
     "scene.title": Key(type=str, default="", help="one line for reports and `spinorbit list`"),
@@ -79,11 +67,6 @@ COMMON_SCHEMA = {
 }
 OPEN_TABLES = ("integrator",)     # [integrator] options go to the method, which checks their names
 MIN_SPAN_D = 1e-6              # shortest span, days (0.0864 s)
-# Cycles a run may have to follow: any rate key (rad/d) times the span, and the time-scales its scene declares
-# (a torque's sqrt(3 GM/s^3), Euler's equations' body-frame rates).  The fast-spin stress
-# scene follows 1e5 spin cycles (a compiled splitting method); dop853 costs ~10 ms per cycle
-# (p93 at orbit.rate = 1000 rad/d: 3200 cycles in 45 s), so 2e5 cycles is about half an hour.
-MAX_CYCLES = 2e5
 SPAN_END_ACCEPTED = ("an ISO date in TDB without a time zone (e.g. '2030-01-01' or '2030-01-01T12:00:00'), or a "
                      "finite duration from span.start (e.g. '100 yr', '2 d', '2 days', '-1 Myr')")
 
@@ -101,7 +84,7 @@ class Scenario:
         from .scenes import scene_of  # the scene registry (lazy imports)
 
         check_depth(data, str(self.path) if self.path else "scenario")
-        kind = _lookup(data, "scene.kind", Key(type=str))
+        kind = lookup(data, "scene.kind", Key(type=str))
         if not isinstance(kind, str):
             raise ScenarioError("scene.kind", kind, "a string naming a scene kind")
         self.scene = scene_of(kind)
@@ -118,8 +101,7 @@ class Scenario:
         options = {f"integrator.{name}": spec for name, spec in INTEGRATOR_OPTIONS.items()}
         values = {**self.values, **{key: self._options.get(key.split(".")[1]) for key in options}}
         self.params = filled(_record_type(kind, {**self.schema, **options}), values, self.t_start, self.t_end)
-        self._check_counts()
-        self._check_cycles()
+        budget.check(self)
         from .integrators import get_method
 
         with scenario_errors(self):
@@ -169,18 +151,18 @@ class Scenario:
             for name, _ in dotted_items(content, table + "."):
                 if name not in self.schema:
                     accepted = sorted(k for k in self.schema if k.startswith(table + "."))
-                    raise ScenarioError(name, _lookup(self.data, name, Key(type=object)),
+                    raise ScenarioError(name, lookup(self.data, name, Key(type=object)),
                                         f"one of the keys {accepted}{_nearest(name, accepted)}")
         for key, spec in self.schema.items():
-            if spec.default is REQUIRED and not _has(self.data, key):
+            if spec.default is REQUIRED and not has_key(self.data, key):
                 table = key.split(".")[0]
                 given = "(missing table)" if table not in self.data else "(missing)"
                 raise ScenarioError(key, given, spec.accepted())
 
     def _convert(self, key, spec):
-        if not _has(self.data, key):
+        if not has_key(self.data, key):
             return spec.default
-        value = _lookup(self.data, key, spec)
+        value = lookup(self.data, key, spec)
         if spec.choices:
             if not isinstance(value, str) or value not in spec.choices:
                 raise ScenarioError(key, value, spec.accepted())
@@ -252,120 +234,17 @@ class Scenario:
             raise ScenarioError("span.end", end_text, f"a span of at least {MIN_SPAN_D:g} d from span.start")
         return start, end
 
-    def counts(self):
-        """{count: items} the span asks for at each step key (output rows, orbit samples, integrator
-        steps ...), the largest where two keys count the same."""
-        counts = {}
-        for _, kind, step in self._count_keys():
-            counts[kind] = max(counts.get(kind, 0), abs(self.t_end - self.t_start) / step + 1)
-        return {**counts, **self.nbody_counts()}
-
-    def nbody_counts(self):
-        """{N-body count: items} the run integrates before its own: the scene's (``Scene.nbody_counts``: the
-        deep-time orbital solution's WHFast steps not yet in the cache) and the IAS15 days of orbit.source =
-        'rebound' (out from DE421's nearest epoch, then over the span)."""
-        from .orbits.sources import rebound_days
-
-        counts = dict(self.scene.nbody_counts(self.params)) if self.scene.nbody_counts else {}
-        if self.values.get("orbit.source") == "rebound":
-            counts["IAS15 days"] = rebound_days(self.t_start, self.t_end)
-        return counts
-
     def cost(self):
         """The measured per-item costs of this scene kind (its Scene's cost)."""
         return self.scene.cost
 
+    def counts(self):
+        """{count: items} the span asks for (spinorbit.budget.counts)."""
+        return budget.counts(self)
+
     def estimate(self):
-        """{"time_s", "memory_bytes"} of the run, from its counts and the kind's measured costs."""
-        counts, cost = self.counts(), self.cost()
-        memory = cost.base_bytes + sum(counts.get(kind, 0) * size for kind, size in cost.bytes_per.items())
-        time = sum(n * self._step_cost(kind) for kind, n in counts.items())
-        return {"time_s": time, "memory_bytes": memory}
-
-    def _step_cost(self, kind):
-        """Seconds per item of a count (0 for those that cost memory only)."""
-        from .scene import NBODY_COSTS
-
-        return {"integrator steps": self.cost().step_s, "adaptive steps (at max_step)": ADAPTIVE_STEP_S,
-                **NBODY_COSTS}.get(kind, 0.0)
-
-    def _count_keys(self):
-        """(key, count, step) of every step key that sets a count."""
-        steps = [(key, spec.count, self.values[key]) for key, spec in self.schema.items()
-                 if spec.count and self.values[key] is not None]
-        steps += [(f"integrator.{name}", INTEGRATOR_OPTIONS[name].count, value)
-                  for name, value in self._options.items()
-                  if name in INTEGRATOR_OPTIONS and INTEGRATOR_OPTIONS[name].count]
-        return steps
-
-    def _check_counts(self):
-        """Refuse a step that would ask for more rows, samples or steps than LIMITS, or a run the estimate
-        says takes longer than limits.time or more memory than limits.memory."""
-        span = abs(self.t_end - self.t_start)
-        for key, kind, step in self._count_keys():
-            n = span / step + 1
-            if n > LIMITS[kind]:
-                size = self.cost().bytes_per.get(kind, 0) * n
-                memory = f", ~{_bytes(size)} in memory" if size else ""
-                self._refuse(key, step, f"a step giving at most {LIMITS[kind]:,} {kind} over the "
-                                        f"{span:.6g} d span (this one gives {_count(n)}{memory}); lengthen "
-                                        f"{key} or shorten the span")
-        culprits = {kind: (key, step) for key, kind, step in self._count_keys()}
-        self._check_time(culprits)
-        self._check_memory(culprits)
-
-    def _check_time(self, culprits):
-        limit, estimate, counts = self["limits.time"], self.estimate()["time_s"], self.counts()
-        if estimate <= limit:
-            return
-        kind = max(counts, key=lambda k: counts[k] * self._step_cost(k))
-        if kind in NBODY_KEYS:
-            key, remedy = NBODY_KEYS[kind]
-            self._refuse(key, self.values.get(key), f"a run the estimate finishes within limits.time = "
-                                                    f"{_duration(limit)}: its N-body stage, {_count(counts[kind])} "
-                                                    f"{kind} at ~{self._step_cost(kind) * 1e6:.3g} us each "
-                                                    f"(measured), is ~{_duration(counts[kind] * self._step_cost(kind))}"
-                                                    f" (the whole run ~{_duration(estimate)}); {remedy}, or raise "
-                                                    "limits.time")
-        key, step = culprits[kind]
-        self._refuse(key, step, f"a run the estimate finishes within limits.time = {_duration(limit)}: "
-                                f"{_count(counts[kind])} {kind} at ~{self._step_cost(kind) * 1e6:.3g} us "
-                                f"each (measured for {self.kind}) is ~{_duration(estimate)}; lengthen {key}, "
-                                "shorten the span, or raise limits.time")
-
-    def _check_memory(self, culprits):
-        limit, estimate = self["limits.memory"] or physical_memory() / 2, self.estimate()["memory_bytes"]
-        if estimate <= limit:
-            return
-        cost, counts = self.cost(), self.counts()
-        kind = max(cost.bytes_per, key=lambda k: counts.get(k, 0) * cost.bytes_per[k])
-        if kind not in culprits or counts[kind] * cost.bytes_per[kind] < cost.base_bytes:
-            self._refuse("limits.memory", limit, f"at least the ~{_bytes(cost.base_bytes)} any run of "
-                                                 f"{self.kind} takes (measured)")
-        key, step = culprits[kind]
-        self._refuse(key, step, f"a run the estimate holds within limits.memory = {_bytes(limit)}: "
-                                f"{_count(counts[kind])} {kind} at ~{_bytes(cost.bytes_per[kind])} each "
-                                f"(measured for {self.kind}) is ~{_bytes(estimate)}; lengthen {key}, shorten "
-                                "the span, or raise limits.memory")
-
-    def _refuse(self, key, value, accepted):
-        raise ScenarioError(key, _lookup(self.data, key, Key()) if _has(self.data, key) else value, accepted)
-
-    def _check_cycles(self):
-        """Refuse rate keys, and the time-scales the scene declares, that would make the run follow over
-        MAX_CYCLES cycles."""
-        span = abs(self.t_end - self.t_start)
-        rates = [(key, float(np.linalg.norm(self.values[key])), "") for key, spec in self.schema.items()
-                 if spec.unit == "rad/d" and self.values[key] is not None]
-        if self.scene.time_scales is not None:
-            rates += [(s.key, s.rate, s.how) for s in self.scene.time_scales(self.params)]
-        for key, rate, how in rates:
-            cycles = rate * span / (2 * math.pi)
-            if cycles > MAX_CYCLES:
-                self._refuse(key, rate, f"a value giving at most {MAX_CYCLES:.0e} cycles over the {span:.6g} "
-                                        f"d span (this one gives {cycles:.3g}{how}); change {key} or shorten "
-                                        "the span")
-
+        """{"time_s", "memory_bytes"} of the run (spinorbit.budget.estimate)."""
+        return budget.estimate(self)
 
 _RECORDS = {}
 
@@ -427,29 +306,6 @@ def _iso(t_tdb_d):
     return tdb_days_to_time(t_tdb_d).isot[:16]
 
 
-def _bytes(n):
-    for unit in ("B", "kB", "MB", "GB", "TB"):
-        if n < 1000 or unit == "TB":
-            return f"{n:.3g} {unit}"
-        n /= 1000
-
-
-def _count(n):
-    return f"{n:,.0f}" if n < 1e15 else f"{n:.3g}"
-
-
-def _duration(seconds):
-    for unit, size in (("d", 86400), ("h", 3600), ("min", 60)):
-        if seconds >= size:
-            return f"{seconds / size:.3g} {unit}"
-    return f"{seconds:.3g} s"
-
-
-def physical_memory():
-    """Bytes of memory the machine has (POSIX sysconf)."""
-    return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-
-
 def backward_kinds():
     """Scene kinds that run a span backward (their Scene says ``backward``)."""
     from .scenes import SCENES, scene_of
@@ -471,24 +327,6 @@ def _toml_datetime_text(key, value):
         raise ScenarioError(key, value.isoformat(),
                             "a TDB time without a time-zone offset, e.g. 2000-01-01T12:00:00")
     return value.isoformat()
-
-
-def _has(data, key):
-    node = data
-    for part in key.split("."):
-        if not isinstance(node, dict) or part not in node:
-            return False
-        node = node[part]
-    return True
-
-
-def _lookup(data, key, spec):
-    node = data
-    for part in key.split("."):
-        if not isinstance(node, dict) or part not in node:
-            raise ScenarioError(key, "(missing)", spec.accepted())
-        node = node[part]
-    return node
 
 
 def _is_utf8(text):
@@ -590,35 +428,3 @@ def _reason(exc):
     if isinstance(exc, RecursionError):
         return "nesting too deep to parse"
     return str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-
-
-def key_table(scene):
-    """(heading, rows): the kind's docstring's first paragraph, and every key of ``scene``'s kind as a row of
-    texts, nothing cut (key, its file's value, the default, unit, range, meaning), the [integrator] options
-    among them; what ``spinorbit show`` prints."""
-    import math
-
-    from .integrators import METHODS, get_method
-    from .scenes import scene_module
-
-    scenario = load_scenario(scene)
-    path, kind = scenario.path, scenario["scene.kind"]
-    module = scene_module(kind)
-    given = dict(dotted_items(scenario.data))
-    method = given.get("integrator.method", COMMON_SCHEMA["integrator.method"].default)
-    options = get_method(method).options if method in METHODS else {}
-    summary = " ".join((module.__doc__ or "").strip().split("\n\n")[0].split())
-    rows = [("key", "value in the file", "default", "unit", "range", "meaning")]
-    options_keys = {f"integrator.{name}": spec for name, spec in INTEGRATOR_OPTIONS.items() if name in options}
-    for key, spec in {**COMMON_SCHEMA, **scenario.scene.schema, **options_keys}.items():
-        name = key.removeprefix("integrator.")
-        default = repr(options[name]) if key.startswith("integrator.") and name in options else \
-            "(required)" if spec.default is REQUIRED else repr(spec.default)
-        if spec.choices:
-            span = "|".join(map(str, spec.choices))
-        elif math.isfinite(spec.min) or math.isfinite(spec.max) or spec.positive:
-            span = f"{'>0' if spec.positive else f'{spec.min:g}'} .. {spec.max:g}"
-        else:
-            span = ""
-        rows.append((key, repr(given[key]) if key in given else "", default, spec.unit or "", span, spec.help))
-    return f"{path.stem} (kind {kind}): {summary}", rows

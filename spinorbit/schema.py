@@ -197,6 +197,26 @@ def checked_float(key, value, spec):
 
 
 
+def has_key(data, key):
+    """Whether dotted ``key`` is in the nested tables ``data``."""
+    node = data
+    for part in key.split("."):
+        if not isinstance(node, dict) or part not in node:
+            return False
+        node = node[part]
+    return True
+
+
+def lookup(data, key, spec):
+    """The value at dotted ``key`` of ``data``; ScenarioError (missing, what ``spec`` accepts) when absent."""
+    node = data
+    for part in key.split("."):
+        if not isinstance(node, dict) or part not in node:
+            raise ScenarioError(key, "(missing)", spec.accepted())
+        node = node[part]
+    return node
+
+
 def dotted_items(table, prefix="", is_table=None):
     """(dotted key, value) of every leaf of a nested dict (a TOML table, a summary):
     {"a": {"b": 1}} -> ("a.b", 1); a dict for which ``is_table(dict)`` is true is a leaf."""

@@ -18,9 +18,10 @@ import numpy as np
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from spinorbit.budget import LIMITS
 from spinorbit.cli import main
 from spinorbit.errors import ScenarioError
-from spinorbit.scenarios import LIMITS, Scenario, load_scenario
+from spinorbit.scenarios import Scenario, load_scenario
 from spinorbit.schema import dotted_items
 
 ROOT = Path(__file__).parents[1]

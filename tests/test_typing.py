@@ -98,7 +98,7 @@ def test_list_prints_every_title_whole_at_any_width(monkeypatch, capsys):
 
 
 def test_show_ends_the_scenes_sentence_and_prints_every_meaning_whole(monkeypatch, capsys):
-    from spinorbit.scenarios import key_table
+    from spinorbit.key_table import key_table
 
     heading, rows = key_table("earth_deep_time")
     assert heading.endswith("gives it.")                          # the docstring's first paragraph, whole
