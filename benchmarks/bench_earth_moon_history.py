@@ -3,7 +3,7 @@
     python benchmarks/bench_earth_moon_history.py numbers   # per model: today's rates, the Moon's age, the
                                                             # angular momentum, every proxy's residual
     python benchmarks/bench_earth_moon_history.py cost      # the scene end to end: first (empty numba and
-                                                            # kernel caches) and warm, both models
+                                                            # kernel caches) and warm, the three models
 
 Each prints Markdown for benchmarks/results_earth_moon_history.md.
 """
@@ -26,18 +26,23 @@ def numbers():
     from spinorbit.references.lunar_proxies import PROXIES
 
     print("| tidal model | fitted parameter | recession today cm/yr | LOD rate today ms/cy | de/dt today /Gyr "
-          "| Moon's age (Roche limit) Gyr | max abs(dL/L) over the history | integration error (a, rel) |\n"
-          "|---|---|---|---|---|---|---|---|")
+          "| Moon's age (Roche limit) Gyr | max abs(dL/L) over the history | obliquity rate today mas/cy "
+          "| integration error (a, rel) |\n|---|---|---|---|---|---|---|---|---|")
     residuals = {}
-    for model in ("constant_time_lag", "constant_q"):
+    for model in ("global_ocean", "constant_time_lag", "constant_q"):
         summary = run_scenario(str(SCENE), [f'tides.model="{model}"', "compare.models=false"]).summary
         c, m, run = summary["comparison"], summary["model"], summary["run"]
-        fitted = (f"k2 dt = {m['k2_time_lag_s']:.1f} s (dt = {m['time_lag_s_for_k2_0.30']:.0f} s at k2 = 0.30)"
-                  if "k2_time_lag_s" in m else f"k2/Q = {m['k2_over_q']:.5f} (Q = {m['q_for_k2_0.30']:.1f} at "
-                                                   "k2 = 0.30)")
+        if "ocean_depth_km" in m:
+            fitted = (f"depth {m['ocean_depth_km']:.4f} km, drag {m['ocean_drag_per_s']:.4g}/s (solid k2/Q "
+                      f"{m['solid_k2_over_q']:.5f})")
+        elif "k2_time_lag_s" in m:
+            fitted = f"k2 dt = {m['k2_time_lag_s']:.1f} s (dt = {m['time_lag_s_for_k2_0.30']:.0f} s at k2 = 0.30)"
+        else:
+            fitted = f"k2/Q = {m['k2_over_q']:.5f} (Q = {m['q_for_k2_0.30']:.1f} at k2 = 0.30)"
         print(f"| {model} | {fitted} | {c['recession_rate_today_cm_per_yr']:.4f} | "
               f"{c['length_of_day_rate_today_ms_per_cy']:.3f} | {c['eccentricity_rate_today_per_gyr']:.4f} | "
               f"{c['moon_age_gyr']:.4f} | {c['angular_momentum_relative_error_max']:.2g} | "
+              f"{c['obliquity_rate_today_mas_per_cy']:.2f} | "
               f"{run['integration_error_moon_semi_major_axis_rel']:.2g} |")
         residuals[model] = c
     print("\n| proxy | age Gyr | value | " + " | ".join(f"{m} residual (sigma)" for m in residuals)
