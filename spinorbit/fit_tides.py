@@ -25,16 +25,14 @@ COMMAND = "python -m spinorbit.fit_tides --write"
 def moon_age_gyr(depth_km):
     """(the age at which the global ocean's history of this depth reaches the Roche limit, Gyr; inf if it
     does not within 4.6 Gyr, the drag (rad/day))."""
-    from .models.tidal_history import response
-    from .scenarios import load_scenario
-    from .scenes.earth_moon_history import model
+    from .results import run_scenario
 
-    scenario = load_scenario(SCENE, ['tides.model="global_ocean"', f'tides.ocean_depth="{depth_km!r} km"',
-                                     "compare.models=false", "integrator.estimate_error=false",
-                                     'span.end="-4.6 Gyr"', f'tides.recession_rate="{RECESSION_CM_PER_YR} cm/yr"'])
-    history = model.run(scenario, "global_ocean")
-    age = math.inf if history.stop_t is None else -history.stop_t / model.GYR_D
-    return age, float(history.response[response.DRAG])
+    summary = run_scenario(SCENE, ['tides.model="global_ocean"', f'tides.ocean_depth="{depth_km!r} km"',
+                                   "compare.models=false", "integrator.estimate_error=false",
+                                   'span.end="-4.6 Gyr"', f'tides.recession_rate="{RECESSION_CM_PER_YR} cm/yr"'
+                                   ]).summary
+    age = summary["comparison"]["moon_age_gyr"]
+    return (math.inf if age is None else age), summary["model"]["ocean_drag_per_day"]
 
 
 def fit(bracket=BRACKET_KM, log=print):

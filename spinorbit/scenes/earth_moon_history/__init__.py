@@ -22,8 +22,7 @@ models, whose collision ~1.5 Ga is the known failure the resonant ocean tide res
 """
 from ...errors import ScenarioError
 from ...models.tidal_history.calibration import ocean_fit
-from ...run_result import RunResult
-from ...scene import Scene
+from ...scene import Model, Outcome, Scene
 from ...schema import Key
 from ...verdict import Check, Verdict
 from .model import GYR_D
@@ -61,17 +60,17 @@ OCEAN_NOTE = ("a global ocean: Farhat et al. (2022)'s hemispheric continent is n
               "(docs/TIDAL_HISTORY.md); the other proxies are reported in their own sigma")
 
 
-def verdict(scenario, comparison):
+def verdict(p, comparison):
     """Today's recession (the fitted one: tides.recession_rate), the angular momentum, today's periods; for
     the ocean, the Moon's age and Xiamaling's distance and length of day within 2 sigma."""
-    fitted = scenario["tides.recession_rate"]
+    fitted = p["tides.recession_rate"]
     checks = (
         Check("recession today", "recession_rate_today_cm_per_yr", 1e-6, " cm/yr", LLR, expected=fitted),
         Check("angular momentum", "angular_momentum_relative_error_max", 1e-9, "", EXACT),
         Check("obliquity period today", "obliquity_period_today_kyr", 0.05, " kyr", PERIODS, expected=41.0),
         Check("precession period today", "precession_period_today_kyr", 0.05, " kyr", PERIODS,
               expected=23.7))
-    if scenario["tides.model"] != "global_ocean":
+    if p["tides.model"] != "global_ocean":
         return Verdict("lunar laser ranging; La2004's periods", checks, NOT_JUDGED)
     checks += (Check("Moon's age", "moon_age_gyr", 0.025, " Gyr", AGE, expected=4.425,
                      min_span_d=4.45 * GYR_D),
@@ -82,45 +81,49 @@ def verdict(scenario, comparison):
     return Verdict("lunar laser ranging; the Moon's age; Xiamaling; La2004's periods", checks, OCEAN_NOTE)
 
 
-def check_span(scenario):
-    if abs(scenario.t_start) > 1e-6:
-        raise ScenarioError("span.start", scenario["span.start"], "J2000, '2000-01-01T12:00:00' (the history "
-                            "starts from today's Earth-Moon state)")
-    if scenario.t_end > scenario.t_start or scenario.t_end < -4.6 * GYR_D:
-        raise ScenarioError("span.end", scenario["span.end"], "a time before J2000, at most 4.6 Gyr back "
-                            "(e.g. '-4.5 Gyr'): the history runs back to the Moon's formation")
-    if scenario["integrator.method"] not in ("dop853", "rk45"):
-        raise ScenarioError("integrator.method", scenario["integrator.method"],
+def check_span(p):
+    if abs(p.t_start) > 1e-6:
+        raise ScenarioError("span.start", p.span.start, "J2000, '2000-01-01T12:00:00' (the history starts "
+                            "from today's Earth-Moon state)")
+    if p.t_end > p.t_start or p.t_end < -4.6 * GYR_D:
+        raise ScenarioError("span.end", p.span.end, "a time before J2000, at most 4.6 Gyr back (e.g. '-4.5 "
+                            "Gyr'): the history runs back to the Moon's formation")
+    if p.integrator.method not in ("dop853", "rk45"):
+        raise ScenarioError("integrator.method", p.integrator.method,
                             "dop853 or rk45 (adaptive: the rates grow ~a^-6.5 toward the Moon's formation)")
 
 
-def run(scenario):
+def build(p, times):
+    """Nothing for the runner's one integration: each tide's history ends where it stops (the Roche limit),
+    an edge a run cannot cross, so the comparison integrates each one through ``run.integrate``."""
+    check_span(p)
+    return Model(None)
+
+
+def compare_run(p, run):
     from ...plots import earth_moon_history, milankovitch_periods
     from ...references.lunar_proxies import provenance
     from . import compare, figures, model, table
 
-    check_span(scenario)
-    chosen = scenario["tides.model"]
-    histories = {chosen: model.run(scenario, chosen)}
-    if scenario["compare.models"]:
-        histories.update({name: model.run(scenario, name, part=name) for name in MODELS if name != chosen})
+    chosen = p["tides.model"]
+    names = [chosen] + ([m for m in MODELS if m != chosen] if p["compare.models"] else [])
+    histories = {name: model.run(p, name, run.times, run.integrate, None if name == chosen else name)
+                 for name in names}
     quantities = {name: compare.quantities(h) for name, h in histories.items()}
     main = histories[chosen]
     comparison, not_measured = compare.metrics(main, quantities[chosen])
-    summary = {"comparison": comparison, "run": main.point,
-               "model": {"tides": chosen, **figures.description(main)},
-               "stop": {"reason": main.stop_reason or "the span's end",
-                        "t_gyr": None if main.stop_t is None else main.stop_t / GYR_D},
-               "other_models": {name: {**compare.metrics(h, quantities[name])[0], **figures.description(h),
-                                       "stop": h.stop_reason or "the span's end"}
-                                for name, h in histories.items() if name != chosen},
-               "reference": provenance()}
-    if not_measured:
-        summary["not_measured"] = not_measured
+    sections = {"run": main.point, "model": {"tides": chosen, **figures.description(main)},
+                "stop": {"reason": main.stop_reason or "the span's end",
+                         "t_gyr": None if main.stop_t is None else main.stop_t / GYR_D},
+                "other_models": {name: {**compare.metrics(h, quantities[name])[0], **figures.description(h),
+                                        "stop": h.stop_reason or "the span's end"}
+                                 for name, h in histories.items() if name != chosen},
+                "reference": provenance()}
     ages, series = figures.series(quantities)
     figs = {"distance_length_of_day": earth_moon_history(ages, series, figures.proxies()),
             "milankovitch_periods": milankovitch_periods(ages, series)}
-    return RunResult(scenario, table.table(main.t, quantities[chosen]), summary, figs, main.solution)
+    return Outcome(comparison, figures=figs, sections=sections, not_measured=not_measured,
+                   table=table.table(main.t, quantities[chosen]))
 
 
 def sweep_figures(tables):
@@ -136,6 +139,4 @@ def sweep_figures(tables):
             "band_milankovitch_periods": milankovitch_periods(ages, label, spread)}
 
 
-# Its own run(): each tidal model's history stops at an event (the Roche limit, refined with the scenario's
-# integrator) and the models run in turn; the runner's one integration over the output times does not fit it.
-SCENE = Scene(SCHEMA, verdict=verdict, backward=True, sweep_figures=sweep_figures, run=run)
+SCENE = Scene(SCHEMA, build, compare_run, verdict, backward=True, sweep_figures=sweep_figures)

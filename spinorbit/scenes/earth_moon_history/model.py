@@ -3,6 +3,7 @@ rate), and the history run back through the integrator door until the span's end
 stop at (the Roche limit, or an unphysical state), with the reason."""
 import math
 from dataclasses import dataclass, replace
+from functools import partial
 
 import numpy as np
 
@@ -51,19 +52,19 @@ def today(c):
                            math.radians(OBLIQUITY_DEG), math.radians(moon.MEAN_INCLINATION_DEG))
 
 
-def tide(scenario, c, y0, model):
+def tide(p, c, y0, model):
     """The tidal response of ``model`` calibrated to tides.recession_rate (cm/yr): the one parameter of the
     simple tides, the global ocean's drag at tides.ocean_depth (its depth fitted with the Moon's age by
     ``python -m spinorbit.scenes.earth_moon_history.fit_ocean``)."""
     from ...errors import ScenarioError
     from ...models.tidal_history import calibration, equations, ocean, response
 
-    rate = scenario["tides.recession_rate"]
+    rate = p["tides.recession_rate"]
     if model != "global_ocean":
         return calibration.calibrated(c, response.MODELS[model], y0, rate)
     radius = c[equations.RADIUS]
     water = ocean.constants(c[equations.GM_EARTH] / radius**2, radius)
-    depth = scenario["tides.ocean_depth"]
+    depth = p["tides.ocean_depth"]
     drag = calibration.ocean_drag(c, y0, depth, rate, LOVE_K2 / SOLID_Q, water)
     if drag is None:
         raise ScenarioError("tides.ocean_depth", depth, f"a depth at which some drag gives the recession "
@@ -71,23 +72,22 @@ def tide(scenario, c, y0, model):
     return response.responses("global_ocean", LOVE_K2 / SOLID_Q, depth=depth, drag=drag, ocean=water)
 
 
-def run(scenario, model, part=None):
-    """The history of ``model`` over the scenario's output times (from J2000 back)."""
+def run(p, model, t, integrate, part=None):
+    """The history of ``model`` over the output times t (from J2000 back), integrated by the runner's
+    ``integrate(system, times, part, ...)`` (spinorbit.scene.Run)."""
     from ...models.tidal_history import equations
-    from ...scene import integrate
 
-    c = constants(scenario["moon.stop_distance"])
+    c = constants(p["moon.stop_distance"])
     y0 = today(c)
-    system = equations.history(c, tide(scenario, c, y0, model), y0)
-    t = scenario.output_times()
+    system = equations.history(c, tide(p, c, y0, model), y0)
     try:
-        solution, point = integrate(scenario, system, t[1:], part)
+        solution, point = integrate(system, t[1:], part)
         reached = t.size
     except IntegrationError as exc:            # the stop: the rates run away at the Roche limit
         reached = 1 + exc.partial.t.size
         if reached < 3:
             raise
-        solution, point = integrate(scenario, system, t[1:reached], f"{part or model} to the stop")
+        solution, point = integrate(system, t[1:reached], f"{part or model} to the stop")
     y = np.vstack([y0, solution.y])
     outside = [k for k in range(y.shape[0]) if equations.stop(y[k], c)]
     if outside:                                 # frozen past the stop (the rhs is zero there)
@@ -95,37 +95,36 @@ def run(scenario, model, part=None):
     elif reached == t.size:
         return History(t, y, c, system.params[1], point, solution=solution)
     t, y = t[:reached], y[:reached]
-    settings = (scenario["integrator.method"], scenario.integrator_options())
-    stop_t, reason = _stop(system, t[-1], y[-1], 2 * t[-1] - t[-2], c, settings)
+    refine = partial(integrate, part=f"{part or model} stop", estimate_error=False)
+    stop_t, reason = _stop(system, t[-1], y[-1], 2 * t[-1] - t[-2], c, refine)
     return History(t, y, c, system.params[1], point, reason, stop_t, solution)
 
 
-def _stop(system, t_last, y_last, t_next, c, settings, levels=2):
+def _stop(system, t_last, y_last, t_next, c, refine, levels=2):
     """(the time and the reason) the history stops between t_last and t_next, found to an output step over
-    STOP_REFINEMENT**levels with the scenario's integrator ``settings`` (method, options).
+    STOP_REFINEMENT**levels by ``refine(system, times) -> (solution, point)``.
 
     The equations are zero outside their domain; an adaptive step cannot cross that edge where the rates run
     away (the Moon at the Roche limit, ~a^-6.5), so there the run ends: the time is the last state reached,
     and the reason the Roche limit when the Moon is within twice its distance."""
     from ...models.tidal_history import equations
-    from ...simulate import simulate
 
     fine = np.linspace(t_last, t_next, STOP_REFINEMENT + 1)
     start = replace(system, t0=float(t_last), y0=np.asarray(y_last, dtype=float))
     try:
-        solution, _ = simulate(start, fine[1:], *settings, False)
+        solution, _ = refine(start, fine[1:])
     except IntegrationError as exc:
         solution = exc.partial
     times, states = [t_last, *solution.t], [np.asarray(y_last, dtype=float), *solution.y]
     for k, (tk, yk) in enumerate(zip(times, states)):
         if equations.stop(yk, c):
             if levels > 1 and k > 0:
-                return _stop(system, times[k - 1], states[k - 1], tk, c, settings, levels - 1)
+                return _stop(system, times[k - 1], states[k - 1], tk, c, refine, levels - 1)
             return float(tk), equations.stop(yk, c)
     if len(times) == fine.size:
         return float(times[-1]), ""
     if levels > 1:
-        return _stop(system, times[-1], states[-1], fine[len(times)], c, settings, levels - 1)
+        return _stop(system, times[-1], states[-1], fine[len(times)], c, refine, levels - 1)
     a = states[-1][0]
     if a < 2 * c[equations.STOP_A]:
         at_limit = np.array(states[-1])
