@@ -27,9 +27,13 @@ class Proxy:
 
 
 XIAMALING = "Meyers & Malinverno 2018, PNAS 115, 6363 (Xiamaling Fm., 1.4 Ga; 2-sigma values halved)"
+NANFEN = ("J. Geol. Soc. 2022, doi:10.1144/jgs2022-022 (Nanfen Fm., North China craton, ~1.1 Ga; its +- "
+          "taken as one sigma: the abstract does not say)")
 PROXIES = (
     Proxy("elatina_lod", 0.62, "length_of_day", 21.9, 0.4, 0.4,
           "Williams 2000, Rev. Geophys. 38, 37 (Elatina-Reynella tidal rhythmites, ~620 Ma)"),
+    Proxy("nanfen_distance", 1.1, "semi_major_axis", 343_000.0, 4_000.0, 4_000.0, NANFEN),
+    Proxy("nanfen_lod", 1.1, "length_of_day", 18.94, 0.39, 0.39, NANFEN),
     Proxy("xiamaling_distance", 1.4, "semi_major_axis", 340_900.0, 1_300.0, 1_300.0, XIAMALING),
     Proxy("xiamaling_lod", 1.4, "length_of_day", 18.68, 0.125, 0.125, XIAMALING),
     Proxy("xiamaling_precession_constant", 1.4, "precession_constant", 85.79, 1.36, 1.36, XIAMALING),
