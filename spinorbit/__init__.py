@@ -20,7 +20,7 @@ import sys as _sys
 from .private import NUMBA as _NUMBA
 from .private import numba_cache_refusal as _numba_cache_refusal
 
-__version__ = "0.1.0"
+from .version import __version__  # noqa: F401
 
 if _numba_cache_refusal() is not None:           # others could plant pickles there: numba never reads it
     _os.environ[_NUMBA] = ""                     # (the first kernel asked for refuses it in one line)

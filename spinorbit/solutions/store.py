@@ -50,13 +50,13 @@ def directory():
 @functools.cache
 def code_version():
     """spinorbit's version and the sha256 (16 hex digits) of every Python file of the package."""
-    import spinorbit
+    from ..version import __version__
 
-    package = Path(spinorbit.__file__).parent
+    package = Path(__file__).parents[1]
     digest = hashlib.sha256()
     for path in sorted(package.rglob("*.py")):
         digest.update(str(path.relative_to(package)).encode() + b"\0" + path.read_bytes())
-    return f"{spinorbit.__version__}+{digest.hexdigest()[:16]}"
+    return f"{__version__}+{digest.hexdigest()[:16]}"
 
 
 def record(scenario):
