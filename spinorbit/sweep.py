@@ -154,13 +154,29 @@ class _scheduler:
         else:
             raise ScenarioError("--scheduler", self.name,
                                 "'local', 'synchronous' or a scheduler address tcp://host:port")
-        return lambda *jobs: self.client.gather(self.client.compute(list(jobs)))
+        return self._gather
+
+    def _gather(self, *jobs):
+        """The members' records from the cluster; a member that took its workers down with it each time
+        (dask's allowed-failures) ends the sweep in one line, what finished kept (rundir)."""
+        from dask.distributed import KilledWorker
+
+        try:
+            return self.client.gather(self.client.compute(list(jobs)))
+        except KilledWorker as exc:
+            raise ScenarioError("--scheduler", self.name, "workers that outlive the members: one member's worker "
+                                f"died each time it ran ({_first_line(exc)}); the members that finished are "
+                                "kept") from None
 
     def __exit__(self, *exc):
         if self.client is not None:
             self.client.close()
         if self.cluster is not None:
             self.cluster.close()
+
+
+def _first_line(exc):
+    return str(exc).splitlines()[0][:120] if str(exc) else type(exc).__name__
 
 
 def _flat_metrics(summary):

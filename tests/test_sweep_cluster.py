@@ -81,6 +81,34 @@ def test_a_worker_killed_mid_sweep_costs_a_rerun_of_its_member_not_the_sweep(clu
     assert all(r["attitude_max_error_vs_closed_form_rad"] <= 1e-10 for r in records)
 
 
+@pytest.mark.slow
+def test_a_member_whose_worker_dies_each_time_stops_the_sweep_in_one_line(tmp_path):
+    """With dask's allowed-failures at 0, one dead worker is the member's last: the sweep ends in a
+    ScenarioError on --scheduler (the command line's one line, exit 2), not dask's traceback."""
+    import dask
+    from dask.distributed import Client, LocalCluster
+
+    from spinorbit.errors import ScenarioError
+
+    with dask.config.set({"distributed.scheduler.allowed-failures": 0}), \
+            LocalCluster(n_workers=1, threads_per_worker=1, processes=True, host="127.0.0.1", scheduler_port=0,
+                         dashboard_address=None) as local, Client(local.scheduler_address) as client:
+        (pid,) = client.run(os.getpid).values()
+
+        def kill_when_busy():
+            while not any(client.processing().values()):
+                time.sleep(0.05)
+            time.sleep(1.0)
+            os.kill(pid, signal.SIGKILL)
+
+        threading.Thread(target=kill_when_busy, daemon=True).start()
+        with pytest.raises(ScenarioError) as err:
+            run_sweep(FREE_BODY, {"integrator.rtol": ["1e-13"]}, tmp_path / "sweep", local.scheduler_address,
+                      ["output.plots=false"])
+    text = str(err.value)
+    assert err.value.key == "--scheduler" and "\n" not in text and "workers that outlive the members" in text
+
+
 def test_the_readmes_sweep_example_has_members_that_pass(tmp_path):
     line = next(line for line in (ROOT / "README.md").read_text().splitlines()
                 if line.startswith("spinorbit sweep "))
