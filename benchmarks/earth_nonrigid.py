@@ -10,7 +10,8 @@ Prints Markdown:
 * the rigid run against REN-2000 (scaled by H_d / H_REN-2000, with the model's geodesic nutation; the
   gyroscopic model's figure axis carries its third-order term itself), beside the full model (daily spin
   resolved) minus the gyroscopic one over 2000-2010;
-* the pole against VLBI's (IERS EOP 20 C04), with Lambert's FCN model and without;
+* the pole against VLBI's (IERS EOP 20 C04), with Lambert's FCN model and without, and per decade;
+* the rates' budget at J2000 (the H_d from the observed rate) beside P03's, DE421's tides band by band;
 * the MHB2000 resonance form against its table.
 """
 import numpy as np
@@ -19,9 +20,11 @@ from spinorbit.analysis import nonrigid
 from spinorbit.analysis.precession import fit_pole, term_table
 from spinorbit.analysis.transfer import forms, mhb2000_table
 from spinorbit.analysis.transfer.models import IERS1996, MHB2000, MHB2000_MODES
+from spinorbit.bodies import earth
 from spinorbit.constants import JULIAN_CENTURY_D, MAS
 from spinorbit.references import arguments, erfa_pole, vlbi_pole
 from spinorbit.results import run_scenario
+from spinorbit.scenes.earth_precession_nutation import tides
 from spinorbit.scenes.earth_precession_nutation.nonrigid import TABLE_TERMS, ren2000_scaled
 
 SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"
@@ -159,6 +162,30 @@ def print_form():
           f"{fewer['CW']:.4f}")
 
 
+P03_LONGITUDE = {"first_order_lunisolar_planets_j4_tilts": 5494.062986 * np.cos(np.radians(84381.406 / 3600))
+                 - 0.269430 + 0.031367 + 0.002600, "second_order": -0.046780, "geodesic": -1.919883,
+                 "nonlinear_mhb2000": -0.021050, "tides": 0.0, "total": 5038.481507}   # P03 Tables 3, 4
+P03_OBLIQUITY = {"planets_direct": -0.001400, "second_order": 0.0, "tides": 0.002400, "total": -0.025754}
+
+
+def print_budget(summary):
+    """The rates' rows at J2000 at IAU 2006's H_d (the summary's dynamical_ellipticity) beside P03's, "/cy, and
+    DE421's tides band by band."""
+    budget = summary["dynamical_ellipticity"]
+    print(f"\nH_d from the observed rate: {budget['h_d']:.8e} (IAU 2006's x (1 "
+          f"{budget['h_d_over_iau2006_minus_1']:+.3e}))\n\n| row | longitude model | P03 | obliquity model | P03 |"
+          "\n|---|---|---|---|---|")
+    psi, eps = (budget[f"{k}_rows_at_h_iau2006_arcsec_cy"] for k in ("longitude", "obliquity"))
+    for row in (*psi, *(k for k in eps if k not in psi)):
+        cells = [f"{d[row]:+.6f}" if row in d else "" for d in (psi, P03_LONGITUDE, eps, P03_OBLIQUITY)]
+        print(f"| {row} | " + " | ".join(cells) + " |")
+    love = earth.de421_tides()
+    bands = [tides.model_rates("de421", tuple(love[b] if b == band else (0.0, love[b][1]) for b in (0, 1, 2)))
+             for band in (0, 1, 2)]
+    print("DE421's tides by band (zonal, diurnal, semi-diurnal), mas/cy: psi " + ", ".join(
+        f"{1000 * b[0]:+.2f}" for b in bands) + "; eps " + ", ".join(f"{1000 * b[1]:+.2f}" for b in bands))
+
+
 def main():
     runs = {model: century(model) for model in MODELS}
     rigid_summary, t, z_rigid = century(None)
@@ -167,6 +194,7 @@ def main():
     print_terms(runs)
     print_ren2000(t, z_rigid, rigid_summary["dynamical_ellipticity"]["h_d"])
     print_vlbi(runs["mhb2000"][0])
+    print_budget(runs["mhb2000"][0])
     print_form()
 
 
