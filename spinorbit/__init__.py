@@ -19,7 +19,6 @@ import sys as _sys
 
 from .private import NUMBA as _NUMBA
 from .private import numba_cache_refusal as _numba_cache_refusal
-
 from .version import __version__  # noqa: F401
 
 if _numba_cache_refusal() is not None:           # others could plant pickles there: numba never reads it
