@@ -7,7 +7,7 @@ Each case runs a scene (its own settings: error estimate, plots) twice through t
 fresh processes with warm kernel caches,
 at two sizes of one count (integrator steps, output rows, orbit samples), and takes the slope:
 seconds per integrator step from the wall time, bytes per row or sample from the peak resident
-memory (VmHWM of the process image).  Printed beside each: what ``scenarios.COSTS`` holds and the estimate it
+memory (VmHWM of the process image).  Printed beside each: what the scene's ``Scene.cost`` holds and the estimate it
 gives for the larger run against the measured one.  The N-body stages (``nbody``) are timed in this process at
 two sizes each, wall and CPU time: the deep-time orbital solution per WHFast step (2 and 10 kyr back, fresh
 files), REBOUND's IAS15 run of orbit.source = 'rebound' per simulated day (integrated out 20 and 100 yr).
@@ -104,7 +104,7 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--only", nargs="*", help="scene kinds to measure")
     args = parser.parse_args()
-    print("| kind | count | measured | in COSTS | estimate vs measured, larger run |")
+    print("| kind | count | measured | in Scene.cost | estimate vs measured, larger run |")
     print("|---|---|---|---|---|")
     if args.only and "nbody" in args.only:
         nbody_costs()
