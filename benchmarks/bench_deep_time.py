@@ -75,7 +75,8 @@ def _moon_as_body(t, earth_j2):
     import rebound
     import reboundx
 
-    from spinorbit.bodies.de421_header import gm_km3_d2, header
+    from spinorbit.bodies.de421_header import header
+    from spinorbit.bodies.table import gm_km3_d2
     from spinorbit.orbits.kernel import JPLKernel
 
     names = ("sun", "mercury", "venus", "earth", "moon", "mars", "jupiter", "saturn", "uranus", "neptune",
@@ -141,10 +142,10 @@ def factors():
 def ladder(span_kyr=200.0):
     """Error against run time: WHFast steps against a 1-d run over ``span_kyr``, and RK8 steps of the spin
     against a 10-yr run over 1 Myr (both on the nominal model)."""
+    from spinorbit.integrators import simulate
     from spinorbit.orbits import solution
     from spinorbit.scenes.earth_deep_time import model as deep_time_model
     from spinorbit.scenes.earth_deep_time import table
-    from spinorbit.simulate import simulate
 
     def spin(orbit, t, step):
         scenario = {"model.precession": "iau2006_rate", "model.tidal_tilt": True, "orbit.moon": "ring",

@@ -145,8 +145,8 @@ def agreement():
 
 def extension():
     from spinorbit import solutions
+    from spinorbit.integrators import simulate
     from spinorbit.results import run_scenario
-    from spinorbit.simulate import simulate
     from spinorbit.solutions import models, store
 
     store.PLACE["directory"] = Path(tempfile.mkdtemp(prefix="solutions-"))

@@ -115,7 +115,7 @@ def started(name):
 
 
 def earth_moon():
-    from spinorbit.simulate import simulate
+    from spinorbit.integrators import simulate
 
     for name in ("closed Earth-Moon", "DE421's solar system"):
         system, t = started(name)

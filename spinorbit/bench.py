@@ -41,21 +41,11 @@ def time_scale(system):
     return 2 * math.pi / rate if rate > 0 else 1.0
 
 
-def ladder(cls, system, t_out, n=14):
-    """Settings for one method, coarse to fine: steps from a quarter of the time scale, halving.
-
-    Methods that land on every output time (all but rk8, which has dense output)
-    start at most at the output spacing, so that the step shown is the step taken.
-    """
-    if "rtol" in cls.options:
-        return [{"rtol": 10.0**-k, "atol": 10.0**-k * 1e-3} for k in range(3, 14)]
-    if "tolerance" in cls.options:               # heyoka's Taylor integrator
-        return [{"tolerance": 10.0**-k} for k in range(6, 18)]
-    h0 = time_scale(system) / 4
+def ladder(cls, system, t_out):
+    """Settings for one method, coarse to fine, as its class declares them (Integrator.ladder) for the motion's
+    time scale and the output spacing."""
     spacing = np.diff(t_out)
-    if getattr(cls, "DENSE", None) is None and spacing.size:
-        h0 = min(h0, float(np.median(spacing)))
-    return [{"step": h0 / 2**k} for k in range(n)]
+    return cls.ladder(time_scale(system), float(np.median(spacing)) if spacing.size else None)
 
 
 def run_method(name, system, t_out, error, budget_s=10.0, floor=1e-14):

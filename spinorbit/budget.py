@@ -52,11 +52,14 @@ def nbody_counts(scenario):
     """{N-body count: items} the run integrates before its own: the scene's (``Scene.nbody_counts``: the
     deep-time orbital solution's WHFast steps not yet in the cache) and the IAS15 days of orbit.source =
     'rebound' (out from DE421's nearest epoch, then over the span)."""
-    from .orbits.sources import rebound_days
+    from .orbits.sources import orbit_source
 
     counts = dict(scenario.scene.nbody_counts(scenario.params)) if scenario.scene.nbody_counts else {}
-    if scenario.values.get("orbit.source") == "rebound":
-        counts["IAS15 days"] = rebound_days(scenario.t_start, scenario.t_end)
+    source = scenario.values.get("orbit.source")
+    days = orbit_source(source).integration_days(scenario.t_start, scenario.t_end) if isinstance(source, str) \
+        and source else 0.0
+    if days:
+        counts["IAS15 days"] = days
     return counts
 
 

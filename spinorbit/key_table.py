@@ -17,7 +17,7 @@ def key_table(scene):
     module = scene_module(kind)
     given = dict(dotted_items(scenario.data))
     method = given.get("integrator.method", COMMON_SCHEMA["integrator.method"].default)
-    options = get_method(method).options if method in METHODS else {}
+    options = get_method(method).defaults() if method in METHODS else {}
     summary = " ".join((module.__doc__ or "").strip().split("\n\n")[0].split())
     rows = [("key", "value in the file", "default", "unit", "range", "meaning")]
     options_keys = {f"integrator.{name}": spec for name, spec in INTEGRATOR_OPTIONS.items() if name in options}

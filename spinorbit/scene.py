@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from types import SimpleNamespace
 from typing import Callable
 
-from .simulate import simulate
+from .integrators import simulate
 
 
 @dataclass(frozen=True)

@@ -14,6 +14,7 @@ import numpy as np
 
 from .constants import J2000_JD
 from .errors import ScenarioError
+from .integrators.options import OPTIONS
 
 REQUIRED = object()
 MAX_TEXT = 10_000              # characters in a string value
@@ -76,17 +77,11 @@ class Key:
         raise ScenarioError(key, given, what)
 
 
-# integrator.<option> keys are passed to the chosen method, which checks their names;
-# the known ones are checked here first.  scipy silently raises rtol below 100 eps, and
-# looser than 1e-3 (scipy's own default) an attitude run is nonsense (rtol 0.1 on
-# p93_bounded: zeta off by 62 deg); atol below 1e-20 is under the rounding of any state.
-INTEGRATOR_OPTIONS = {
-    "rtol": Key(unit="", min=100 * EPS, max=1e-3, help="relative tolerance"),
-    "atol": Key(unit="", min=1e-20, max=1e-3, help="absolute tolerance"),
-    "max_step": Key(unit="", positive=True, count="adaptive steps (at max_step)", help="largest step, days"),
-    "step": Key(unit="d", positive=True, count="integrator steps", help="fixed step"),
-    "tolerance": Key(unit="", min=1e-18, max=1e-6, help="Taylor (heyoka) tolerance, relative per step"),
-}
+# integrator.<option> keys: the chosen method's class says which it accepts; their meaning, unit and range are
+# declared once, with the integrators (spinorbit.integrators.options).
+INTEGRATOR_OPTIONS = {name: Key(unit=option.unit, min=option.min, max=option.max, positive=option.positive,
+                                count=option.count, help=option.help)
+                      for name, option in OPTIONS.items() if option.numeric}
 
 
 ISO_TDB = "an ISO date in TDB without a time zone, e.g. '2000-01-01' or '2000-01-01T12:00:00'"

@@ -12,12 +12,11 @@ from spinorbit.bodies import earth
 from spinorbit.checkpoint import Checkpoint, _content_hash, run_fingerprint
 from spinorbit.cli import main
 from spinorbit.errors import ScenarioError
-from spinorbit.integrators import rk8
+from spinorbit.integrators import rk8, simulate
 from spinorbit.models.assemblies.earth_moon import FIGURES, closed
 from spinorbit.models.figure import Figure
 from spinorbit.models.rotators import Rigid
 from spinorbit.models.system import System
-from spinorbit.simulate import simulate
 from tests.second_user import OTHER, chown_other, needs_root
 
 T_OUT = np.arange(0.0, 31.0)         # 31 outputs, one per chunk (integrators.base.output_chunks)

@@ -10,7 +10,8 @@ import math
 import numpy as np
 import pytest
 
-from spinorbit.constants import ARCSEC, GM_KM3_D2, JULIAN_CENTURY_D
+from spinorbit.bodies.table import gm_km3_d2
+from spinorbit.constants import ARCSEC, JULIAN_CENTURY_D
 from spinorbit.errors import InputError, ScenarioError
 from spinorbit.integrators.rk8 import fixed_step
 from spinorbit.models import deep_time
@@ -49,8 +50,8 @@ def test_solar_precession_is_eulers_p96_rate():
     ed, spin, eps = 3.27379448e-3, 2 * math.pi * 1.0027378, math.radians(23.44)
     alpha = deep_time.constant_from_ellipticity(ed, spin, AU_KM, 0.0) / (1 + deep_time.lunar_ratio(AU_KM))
     cc, aa = 1.0 - ed, 1.0
-    big_n = precession_constant(GM_KM3_D2["sun"], AU_KM, spin, aa, cc)
-    euler = SymmetricPrecession(spin, math.sqrt(GM_KM3_D2["sun"] / AU_KM**3), big_n, eps, ratio=aa / cc)
+    big_n = precession_constant(gm_km3_d2("sun"), AU_KM, spin, aa, cc)
+    euler = SymmetricPrecession(spin, math.sqrt(gm_km3_d2("sun") / AU_KM**3), big_n, eps, ratio=aa / cc)
     t = np.linspace(0.0, 50 * KYR_D, 51)
     states = fixed_step(deep_time.rhs, params(fixed_orbit(), alpha=alpha), 0.0,
                         deep_time.start_state([0.0, -math.sin(eps), math.cos(eps)]), t, 100 * YEAR_D)
@@ -137,7 +138,7 @@ def test_orbit_against_de421_over_its_span(tmp_path):
     t = orbit.t_d[inside]
     p, v = JPLKernel().relative_states("earth_moon_barycenter", "sun", t)
     h = np.cross(p, v)
-    mu = sum(GM_KM3_D2[b] for b in ("sun", "earth", "moon"))
+    mu = sum(gm_km3_d2(b) for b in ("sun", "earth", "moon"))
     ecc = np.cross(v, h) / mu - p / np.linalg.norm(p, axis=1)[:, None]
     normal = h / np.linalg.norm(h, axis=1)[:, None]
     assert np.arccos(np.clip(np.sum(normal * orbit.normal[inside], axis=1), -1, 1)).max() < 0.1 * arcsec

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from spinorbit.bodies import earth
-from spinorbit.constants import GM_KM3_D2
+from spinorbit.bodies.table import gm_km3_d2
 from spinorbit.references import erfa_pole
 from spinorbit.results import run_scenario
 from spinorbit.scenes.earth_precession_nutation import tides
@@ -98,8 +98,8 @@ def test_tidal_obliquity_rate_of_a_constant_lag_is_mignards():
     %) and its 18-29 deg inclination to the equator.  Measured 1.491."""
     k2, tau = earth.de421_tides()[1]
     _, eps_rate = tides.model_rates("de421", ((k2, tau),) * 3, sun=False)
-    a_m, gm_m = 384400e3, GM_KM3_D2["moon"] * 1e9 / 86400**2          # m, m^3/s^2
-    ratio, radius = GM_KM3_D2["moon"] / GM_KM3_D2["earth"], earth.EQUATORIAL_RADIUS_KM * 1e3
+    a_m, gm_m = 384400e3, gm_km3_d2("moon") * 1e9 / 86400**2          # m, m^3/s^2
+    ratio, radius = gm_km3_d2("moon") / gm_km3_d2("earth"), earth.EQUATORIAL_RADIUS_KM * 1e3
     eps, n_over_w = math.radians(23.44), 1.0 / 27.321661 / 1.0027379
     rate = (3 * k2 * gm_m * ratio * radius**3 * tau * 86400 * math.sin(eps) * (math.cos(eps) / 2 - n_over_w)
             / (earth.C_MR2 * a_m**6))                                   # rad/s

@@ -70,8 +70,9 @@ def direct_rhs(external, t, y):
     from l by the first-order Oppolzer term of the Moon's and the Sun's tidal tensor, its spin turned by the
     torques, the tides' reaction and the geodesic precession Omega x l, Omega = 3/2 GM_sun/(c^2 |x|^3) x x w.
     Returns (dy/dt, the Keplerian part of the orbit's acceleration)."""
-    from spinorbit.bodies.de421_header import gm_km3_d2, header
+    from spinorbit.bodies.de421_header import header
     from spinorbit.bodies.moon import de421
+    from spinorbit.bodies.table import gm_km3_d2
     from spinorbit.constants import DAY_S
     from spinorbit.models import distortion, gyroscopic, spin
     from spinorbit.models.assemblies.earth_moon import PLANETS

@@ -7,8 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from spinorbit.bodies.de421_header import gm_km3_d2, header
+from spinorbit.bodies.de421_header import header
 from spinorbit.bodies.earth import de421_tides
+from spinorbit.bodies.table import gm_km3_d2
 from spinorbit.models.interactions import point_mass, tides
 from tests.units import arcsec
 

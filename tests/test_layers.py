@@ -13,8 +13,7 @@ LAYERS = {
     "constants": 0, "errors": 0, "rotations": 0, "linker": 0, "progress": 0,
     "layout": 0, "files": 0, "private": 0,
     "bodies": 1, "orbits": 1,                       # bodies/de421_orientation.py: DE421's libration series
-    "models": 2, "integrators": 2, "theory": 2, "analysis": 2,
-    "simulate": 3,
+    "models": 2, "integrators": 2, "theory": 2, "analysis": 2,      # integrators/simulation.py: the one door
 }
 EDGE = 9          # scenarios, scenes, references, results, reports, cli, bench, sweep, checkpoint, ...
 EDGE_ONLY_LIBRARIES = {"astropy", "matplotlib", "dask", "distributed", "erfa", "skyfield"}

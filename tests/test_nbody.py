@@ -6,18 +6,9 @@ lunar acceleration), the lunar figure and asteroids, which REBOUND's run lacks: 
 physics missing from the N-body model, so the bounds sit above the measured values by the
 margin of that physics, not of rounding (IAS15 is at its floor, ~1e-15 per orbit).
 """
-import numpy as np
 
-from spinorbit.orbits.nbody import de421_gm, moon_drift
-from spinorbit.orbits.sources import gm_of
+from spinorbit.orbits.nbody import moon_drift
 from tests.units import arcsec
-
-
-def test_gm_from_the_de421_header_match_the_constants():
-    gm = de421_gm()
-    # constants.GM_KM3_D2's Jupiter and Saturn are not DE421's (differ by 2.4e-8, 1.1e-6)
-    names = ("sun", "earth", "moon", "mercury", "venus", "mars")
-    assert np.allclose([gm[n] for n in names], gm_of(names), rtol=1e-10)
 
 
 def test_rebound_moon_after_1_yr():

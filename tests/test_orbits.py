@@ -185,3 +185,45 @@ def test_two_body_sources_pass_through_the_de421_state(de421, kind):
     # after a day the two-body orbit has left DE421 by the solar perturbation, < 0.5 %
     drift = np.linalg.norm(orbits.positions([101.0])[0] - de421.relative_states("moon", "earth", [101.0])[0])
     assert drift < 0.005 * np.linalg.norm(truth)
+
+
+def test_each_source_says_what_it_covers_and_where_it_comes_from():
+    """DE421 covers 1899-07-29 to 2200 (Folkner et al. 2008: the .bsp to 2053, the de421 package's arrays
+    beyond), REBOUND any epoch, the analytic orbits read no ephemeris; the capabilities the scenes ask."""
+    from spinorbit.orbits.sources import orbit_source
+
+    de421, rebound, circular = orbit_source("de421"), orbit_source("rebound"), orbit_source("circular")
+    first, last = de421.span()
+    assert first == pytest.approx(-36680.5) and last == pytest.approx(73079.5)       # TDB days from J2000
+    assert de421.covers(0.0, 30000.0) and not de421.covers(0.0, 80000.0)
+    assert rebound.covers(-1e6, 1e6) and "DE421" in rebound.provenance()["name"]
+    assert "2200" in de421.provenance()["span"] and circular.provenance() is None
+    assert de421.lunar_angles and not rebound.lunar_angles and not orbit_source("de440").lunar_angles
+    assert circular.circular and circular.analytic and not orbit_source("kepler").circular
+    with pytest.raises(InputError, match="^source: got .circular."):
+        circular.barycentric(("sun",), 0.0, 10.0)
+
+
+def test_no_orbit_source_is_compared_by_name_outside_the_orbits():
+    """Scenes, provenance and the API ask the source object (orbit_source(name).circular, .lunar_angles,
+    .covers, .provenance()), never `source == "de421"`: a new source is one class in spinorbit.orbits."""
+    import ast
+    from pathlib import Path
+
+    names = {"de421", "de440", "circular", "kepler", "rebound"}
+    package = Path(__file__).parents[1] / "spinorbit"
+    found = []
+    for path in package.rglob("*.py"):
+        if "orbits" in path.relative_to(package).parts:
+            continue
+        text = path.read_text()
+        for node in ast.walk(ast.parse(text)):
+            if isinstance(node, ast.Compare):
+                sides = [node.left, *node.comparators]
+                constants = [s for s in sides if isinstance(s, ast.Constant) and s.value in names]
+                constants += [e for s in sides if isinstance(s, (ast.Tuple, ast.List, ast.Set)) for e in s.elts
+                              if isinstance(e, ast.Constant) and e.value in names]
+                if constants and ("source" in ast.get_source_segment(text, node)
+                                  or "ephemeris" in ast.get_source_segment(text, node)):
+                    found.append(f"{path.relative_to(package)}:{node.lineno}")
+    assert not found, found

@@ -4,7 +4,8 @@ import math
 import numpy as np
 from numba import njit
 
-from spinorbit.bodies.de421_header import gm_km3_d2, header
+from spinorbit.bodies.de421_header import header
+from spinorbit.bodies.table import gm_km3_d2
 from spinorbit.constants import JULIAN_YEAR_D
 from spinorbit.integrators.rk8 import fixed_step
 from spinorbit.models.assemblies.earth_moon import c_km_d

@@ -3,10 +3,11 @@ import numpy as np
 import pytest
 
 from spinorbit.bodies import earth
+from spinorbit.integrators import simulate
+from spinorbit.integrators.simulation import differences
 from spinorbit.models.assemblies.earth_moon import closed
 from spinorbit.models.start import earth_moon_de421
 from spinorbit.references.erfa_pole import cip_vector
-from spinorbit.simulate import differences, simulate
 
 KINDS = ("integration_error_attitude_arcsec", "integration_error_omega_rel", "integration_error_position_km",
          "integration_error_moon_v_rel")

@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from spinorbit import solutions
+from spinorbit.integrators import simulate
 from spinorbit.rotations import quat_angle
-from spinorbit.simulate import simulate
 from spinorbit.solutions import chebyshev, models, store
 from tests.units import arcsec
 

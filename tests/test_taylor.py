@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from spinorbit.errors import IntegrationError, ScenarioError
+from spinorbit.integrators import simulate
 from spinorbit.integrators.taylor import heyoka, scales
 from spinorbit.models.assemblies.earth_moon import closed
 from spinorbit.models.assemblies.idealised import free_body, under_point_masses
@@ -15,7 +16,6 @@ from spinorbit.orbits.analytic import CircularOrbits, KeplerOrbit
 from spinorbit.results import run_scenario
 from spinorbit.rotations import quat_angle, quat_from_euler313
 from spinorbit.scenarios import load_scenario, taylor_kinds
-from spinorbit.simulate import simulate
 
 SCENARIOS = Path(__file__).resolve().parent.parent / "scenarios"
 EPS = np.finfo(float).eps

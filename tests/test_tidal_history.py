@@ -8,11 +8,12 @@ import numpy as np
 import pytest
 
 from spinorbit.bodies import earth
-from spinorbit.constants import GM_KM3_D2, JULIAN_YEAR_D
+from spinorbit.bodies.table import gm_km3_d2
+from spinorbit.constants import JULIAN_YEAR_D
+from spinorbit.integrators import simulate
 from spinorbit.models.tidal_history import calibration, equations, response, secular
-from spinorbit.simulate import simulate
 
-GM_E, GM_M = GM_KM3_D2["earth"], GM_KM3_D2["moon"]
+GM_E, GM_M = gm_km3_d2("earth"), gm_km3_d2("moon")
 R = earth.EQUATORIAL_RADIUS_KM
 A = 384399.0
 SPIN = earth.ERA_RATE_RAD_D
@@ -116,7 +117,7 @@ def calibrated(c, y0, name):
 def test_angular_momentum_is_kept_over_the_moons_age():
     """Every tidal model, 4.5 Gyr back (or to the Roche limit), through simulate(): the angular momentum along
     the ecliptic normal with the solar share, X + Y + S, to rounding (issue 33's target: 1e-9)."""
-    c = constants(gm_sun=GM_KM3_D2["sun"])
+    c = constants(gm_sun=gm_km3_d2("sun"))
     y0 = equations.state(c, A, 0.0549, SPIN, math.radians(23.4393), math.radians(5.145))
     t = -np.linspace(0.0, 4.5 * GYR_D, 451)[1:]
     for name in response.MODELS:

@@ -7,7 +7,7 @@ ladder with their own settings and error functions.
 import numpy as np
 
 from ..errors import IntegrationError
-from ..integrators import get_method, integrate
+from ..integrators import get_method, simulate
 from ..rotations import quat_angle, vector_angle
 
 
@@ -24,7 +24,7 @@ def work_precision(system, t_out, settings, error, until=None):
     for method, options in settings:
         cls = get_method(method)
         try:
-            solution = cls(**options).solve(system, t_out)
+            solution, _ = simulate(system, t_out, cls, options, estimate_error=False)
         except IntegrationError as failure:
             row = {"method": cls.name, **options, "failed": str(failure)}
         else:
@@ -43,8 +43,8 @@ def converged_error(system, t_out, step, method="rk8"):
     difference between the runs at step and step/2, an upper bound of the
     reference's own error.
     """
-    a = integrate(system, t_out, method, step=step)
-    b = integrate(system, t_out, method, step=step / 2)
+    a, _ = simulate(system, t_out, method, {"step": step}, estimate_error=False)
+    b, _ = simulate(system, t_out, method, {"step": step / 2}, estimate_error=False)
     agreement = float(attitude_difference(a, b).max())
     return (lambda solution: float(attitude_difference(solution, b).max())), agreement
 

@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 
-from ..integrators import integrate
+from ..integrators import simulate
 from ..integrators.rk8 import fixed_step
 
 
@@ -68,8 +68,8 @@ def system_flow(system, interval, method="rk8", **options):
     """advance() for a System: each state integrated on its own from system.t0 + k interval."""
     def advance(k, pairs):
         t = system.t0 + k * interval
-        return np.array([[integrate(system.with_start(t, y), [t, t + interval], method,
-                                    **options).y[-1] for y in pair] for pair in pairs])
+        return np.array([[simulate(system.with_start(t, y), [t, t + interval], method, options,
+                                   estimate_error=False)[0].y[-1] for y in pair] for pair in pairs])
 
     return advance
 

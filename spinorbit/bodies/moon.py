@@ -13,7 +13,8 @@ from functools import cache
 import numpy as np
 
 from ..constants import J2000_JD
-from .de421_header import gm_km3_d2, header
+from .de421_header import header
+from .table import gm_km3_d2
 
 
 @dataclass(frozen=True)

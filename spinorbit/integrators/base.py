@@ -5,9 +5,12 @@ Contract for subclass authors (numbered so reviews can point at it):
 1. Class attributes: ``name`` (registry key), ``order`` (global order of
    accuracy, or None for adaptive methods whose order is not the point),
    ``kind`` ("adaptive", "fixed", "structure-preserving", "averaged") and
-   ``options`` (dict of accepted option names -> default values).
+   ``options`` (accepted option name -> :class:`~spinorbit.integrators.options.Option`, declared once with
+   the method's default, unit, range and how a more accurate run sets it).
 2. ``__init__(**options)`` accepts only the names in ``options``; anything else
-   raises InputError naming the option and the accepted names.
+   raises InputError naming the option and the accepted names.  ``refined(options)`` gives the options of a
+   markedly more accurate run (the error estimate's); ``ladder(time_scale, spacing)`` the settings, coarse to
+   fine, of the method's work-precision ladder (``spinorbit bench``).
 3. ``solve(system, t_out)`` integrates a System (spinorbit.models: ``rhs``,
    ``params``, ``t0``, ``y0`` and the state's ``layout``) from ``system.t0`` and
    returns a :class:`Solution` holding the state at every time in ``t_out``
@@ -71,14 +74,38 @@ class Integrator:
     options: dict = {}
     resumable = False
     checkpoint = None
+    LADDER_LENGTH = 14          # steps of a fixed-step method's work-precision ladder
 
     def __init__(self, **options):
         unknown = sorted(set(options) - set(self.options))
         if unknown:
             raise InputError(unknown[0], options[unknown[0]],
                                 f"one of {sorted(self.options)} for method '{self.name}'")
-        self.settings = {**self.options, **options}
+        self.settings = {**self.defaults(), **options}
         self.label = self.name                 # of its progress bar; None: no bar
+
+    @classmethod
+    def defaults(cls):
+        """{option: the method's default}."""
+        return {name: option.default for name, option in cls.options.items()}
+
+    @classmethod
+    def refined(cls, options):
+        """The settings (defaults filled in) of a run markedly more accurate than ``options``: each option as
+        its declaration refines it (a step halved, tolerances divided by 100 down to the library's floor)."""
+        settings = {**cls.defaults(), **options}
+        return {name: cls.options[name].refine(value) if cls.options[name].refine else value
+                for name, value in settings.items()}
+
+    @classmethod
+    def ladder(cls, time_scale, spacing):
+        """Settings of the work-precision ladder, coarse to fine: steps halving from a quarter of the motion's
+        ``time_scale``; a method that lands on every output starts at most at the output ``spacing`` (None:
+        one output), so that the step shown is the step taken."""
+        h0 = time_scale / 4
+        if getattr(cls, "DENSE", None) is None and spacing is not None:
+            h0 = min(h0, spacing)
+        return [{"step": h0 / 2**k} for k in range(cls.LADDER_LENGTH)]
 
     def supports(self, system):
         return True

@@ -23,6 +23,7 @@ from ..progress import progress
 from ..rotations import put
 from . import dop853_tableau as dop853
 from .base import Integrator, Solution, normalised, output_chunks
+from .options import MAX_STEPS, STEP
 
 rhs = free("rhs")    # bound by link()
 
@@ -175,7 +176,7 @@ class RK8(Integrator):
     """
 
     name, order, kind = "rk8", 8, "fixed"
-    options = {"step": 1.0, "max_steps": 10**9}
+    options = {"step": STEP(1.0), "max_steps": MAX_STEPS}
     resumable = True
     lands = False               # True: land on every output even where dense output would take fewer steps
     # Butcher tableau (methods as data): the 12-stage 8th-order part of DOP853,

@@ -11,6 +11,7 @@ from scipy.integrate import solve_ivp
 
 from ..errors import IntegrationError
 from .base import Integrator, Solution, check_finite, normalised
+from .options import ATOL, MAX_STEP, RTOL
 
 
 class ScipyIVP(Integrator):
@@ -18,7 +19,12 @@ class ScipyIVP(Integrator):
 
     kind = "adaptive"
     scipy_method = "DOP853"
-    options: ClassVar[dict] = {"rtol": 1e-12, "atol": 1e-14, "max_step": np.inf}
+    options: ClassVar[dict] = {"rtol": RTOL(1e-12), "atol": ATOL(1e-14), "max_step": MAX_STEP}
+
+    @classmethod
+    def ladder(cls, time_scale, spacing):
+        """rtol = 1e-3 ... 1e-13, atol = rtol / 1000."""
+        return [{"rtol": 10.0**-k, "atol": 10.0**-k * 1e-3} for k in range(3, 14)]
 
     def solve(self, system, t_out):
         t_out = self._check_times(system, t_out)
@@ -71,10 +77,10 @@ class DOP853(ScipyIVP):
 class Radau(ScipyIVP):
     """Radau IIA implicit Runge-Kutta (order 5), adaptive; for stiff problems."""
     name, order, scipy_method = "radau", 5, "Radau"
-    options: ClassVar[dict] = {"rtol": 1e-10, "atol": 1e-12, "max_step": np.inf}
+    options: ClassVar[dict] = {"rtol": RTOL(1e-10), "atol": ATOL(1e-12), "max_step": MAX_STEP}
 
 
 class RK45(ScipyIVP):
     """Dormand-Prince 5(4), adaptive."""
     name, order, scipy_method = "rk45", 5, "RK45"
-    options: ClassVar[dict] = {"rtol": 1e-9, "atol": 1e-12, "max_step": np.inf}
+    options: ClassVar[dict] = {"rtol": RTOL(1e-9), "atol": ATOL(1e-12), "max_step": MAX_STEP}

@@ -28,12 +28,13 @@ Free-flow splittings (option ``free_flow``):
     it fails for a fast, nearly symmetric spinner (measured in
     benchmarks/RESULTS.md and tests/test_integrators.py).
 
-Frame rate: where the body's equations hold in a frame turning at a constant
-rate ``Omega`` (rad/d, inertial axes) with respect to the axes of q (the Earth's
-geodesic precession: ``system.meta["frame_rate"]``), q' gains Omega q / 2.  Its flow
+Frame rate: where the body's equations hold in a frame turning at a rate ``Omega``
+(rad/d, inertial axes) with respect to the axes of q (the Earth's geodesic precession,
+which the System writes as ``system.frame_rate(t, y, p)``), q' gains Omega q / 2.  Its flow
 ``q <- exp(Omega h / 2) q`` is a left multiplication, which commutes with the free
 flow's right multiplications and leaves the body momentum alone, so the drift
-applies both exactly and the orders are unchanged.
+applies both exactly and the orders are unchanged; a rate that varies (the geodesic
+nutation's annual term) is taken at each sub-step's midpoint.
 
 Methods: ``strang`` (K(h/2) D(h) K(h/2), order 2), ``yoshida4`` (triple-jump
 composition of Strang, order 4, Yoshida 1990) and ``suzuki4`` (five-stage
@@ -52,8 +53,9 @@ from ..linker import free, link, template
 from ..progress import progress
 from ..rotations import put
 from .base import Integrator, Solution, output_chunks
+from .options import FREE_FLOW, MAX_STEPS, STEP
 
-torque = free("torque")    # bound by link()
+torque, frame_rate = free("torque", "frame_rate")    # bound by link()
 
 FREE_FLOWS = ("symmetric", "axes")
 
@@ -138,9 +140,8 @@ def _turn_frame(q, rate, h):
     q[3] = b0 * a3 + b1 * a2 - b2 * a1 + b3 * a0
 
 
-@template("torque")
-def split_loop(params, moments, t, q, l, lc, n_torque, t_out, y_out, h, gammas, symmetric, axes, frame_rate,
-               max_steps):
+@template("torque", "frame_rate")
+def split_loop(params, moments, t, q, l, lc, n_torque, t_out, y_out, h, gammas, symmetric, axes, max_steps):
     """Fixed steps of at most h landing on every output time (either direction), from time t.
 
     The state q, l (with its compensation lc) and the last torque n_torque are
@@ -149,6 +150,10 @@ def split_loop(params, moments, t, q, l, lc, n_torque, t_out, y_out, h, gammas, 
     """
     s, i, j = axes[0], axes[1], axes[2]
     y = np.empty(7)
+    for m in range(4):
+        y[m] = q[m]
+    for m in range(3):
+        y[4 + m] = l[m] / moments[m]
     nfev, steps = 0, 0
     for k in range(t_out.shape[0]):
         span = t_out[k] - t
@@ -161,7 +166,7 @@ def split_loop(params, moments, t, q, l, lc, n_torque, t_out, y_out, h, gammas, 
                 for m in range(3):
                     _add(l, lc, m, 0.5 * sub * n_torque[m])
                 _free_flow(q, l, lc, moments, sub, symmetric, s, i, j)
-                _turn_frame(q, frame_rate, sub)
+                _turn_frame(q, frame_rate(t + 0.5 * sub, y, params), sub)
                 t += sub
                 for m in range(4):
                     y[m] = q[m]
@@ -192,7 +197,7 @@ class Strang(Integrator):
     """Kick-drift-kick splitting, order 2; options ``step`` (days) and ``free_flow``."""
 
     name, order, kind = "strang", 2, "structure-preserving"
-    options = {"step": 1.0, "free_flow": "symmetric", "max_steps": 10**9}
+    options = {"step": STEP(1.0), "free_flow": FREE_FLOW, "max_steps": MAX_STEPS}
     gammas = np.array([1.0])
 
     def supports(self, system):
@@ -207,11 +212,10 @@ class Strang(Integrator):
         if flow not in FREE_FLOWS:
             raise InputError("free_flow", flow, f"one of {list(FREE_FLOWS)}")
         moments = np.asarray(system.moments, dtype=float)
-        frame_rate = np.asarray(system.meta.get("frame_rate", np.zeros(3)), dtype=float)
-        loop = link(split_loop, torque=system.torque)
+        loop = link(split_loop, torque=system.torque, frame_rate=system.frame_rate)
         t0, q, l, lc = float(system.t0), system.y0[:4].copy(), moments * system.y0[4:7], np.zeros(3)
         n_torque = system.torque(t0, system.y0[:7], system.params)     # compiles outside the timing
-        fixed = (h, self.gammas, flow == "symmetric", np.array(symmetric_axes(moments)), frame_rate)
+        fixed = (h, self.gammas, flow == "symmetric", np.array(symmetric_axes(moments)))
         max_steps = int(self.settings["max_steps"])
         y = np.empty((t_out.size, 7))
         loop(system.params, moments, t0, q, l, lc, n_torque, t_out[:0], y[:0], *fixed, max_steps)

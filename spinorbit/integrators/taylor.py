@@ -23,6 +23,7 @@ import numpy as np
 from ..errors import InputError, IntegrationError
 from ..progress import progress
 from .base import Integrator, Solution, normalised, output_chunks
+from .options import COMPACT_MODE, OPT_LEVEL, TOLERANCE
 
 
 @functools.cache
@@ -83,7 +84,12 @@ class Taylor(Integrator):
     get its compiled integrator."""
 
     name, order, kind = "taylor", None, "adaptive"
-    options = {"tolerance": 1e-15, "compact_mode": None, "opt_level": 2}
+    options = {"tolerance": TOLERANCE(1e-15), "compact_mode": COMPACT_MODE, "opt_level": OPT_LEVEL(2)}
+
+    @classmethod
+    def ladder(cls, time_scale, spacing):
+        """Tolerances 1e-6 ... 1e-17."""
+        return [{"tolerance": 10.0**-k} for k in range(6, 18)]
 
     def supports(self, system):
         return bool(getattr(system, "traceable", False))

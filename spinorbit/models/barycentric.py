@@ -85,8 +85,8 @@ class Barycentric(PairRelatives):
     gm_primary: float
     gm_secondary: float
     barycentre: str = "earth_moon_barycenter"
-    externals = None
-    barycentric = True
+    closed = True
+    carries_centres = True
 
     @property
     def names(self):
@@ -132,9 +132,15 @@ class Barycentric(PairRelatives):
         """Variables (x, w, mu): every body, barycentric, the pair last."""
         return "x_all", "w_all", code.param("gm_all", np.array([self.gm(n) for n in self.names]))
 
-    def eih_targets(self):
-        """The rows of :meth:`point_masses` whose EIH correction moves the state: all."""
+    def accelerated_rows(self):
+        """The rows of :meth:`point_masses` whose accelerations move the state: all."""
         return np.arange(len(self.names), dtype=np.int64)
+
+    def add_point_mass_accelerations(self, code, accelerations):
+        """Accelerations (n, 3) of every point mass: the free bodies' and the pair's barycentre's, and the pair's
+        difference on its relative orbit."""
+        self.add_centre_accelerations(code, accelerations)
+        super().add_point_mass_accelerations(code, accelerations)
 
     def add_force(self, code, body, force):
         if body in self.free:
@@ -144,7 +150,7 @@ class Barycentric(PairRelatives):
         code.line(f"bary_acc[{len(self.free)}] += {force} / {total}")
         super().add_force(code, body, force)
 
-    def add_barycentric_accelerations(self, code, accelerations):
+    def add_centre_accelerations(self, code, accelerations):
         """Accelerations (n, 3) of every body (rows of :meth:`point_masses`): the free bodies' and the pair's
         barycentre's; the relative orbit's share is added apart (add_relative_acceleration)."""
         code.line(f"bary_acc += {code.bind(shared)}({accelerations}, {code.param('pair_share', self.share)})")

@@ -35,7 +35,8 @@ import numpy as np
 from numba import njit
 
 from ..bodies import moon
-from ..constants import GM_KM3_D2, JULIAN_YEAR_D
+from ..bodies.table import gm_km3_d2
+from ..constants import JULIAN_YEAR_D
 from ..errors import InputError
 from ..layout import Layout
 from ..rotations import cross3, dot3
@@ -101,13 +102,13 @@ def rhs(t, y, p):
 def geodesic_rate(semi_major_axis_km, c_km_d):
     """(3/2) GM_sun n / (c^2 a), rad/day: the de Sitter precession of a spin on a circular heliocentric orbit
     (divided by 1 - e^2 for an ellipse)."""
-    gm = GM_KM3_D2["sun"]
+    gm = gm_km3_d2("sun")
     return 1.5 * gm * math.sqrt(gm / semi_major_axis_km**3) / (c_km_d**2 * semi_major_axis_km)
 
 
 def lunar_ratio(semi_major_axis_km):
     """The Moon's share of the precession constant over the Sun's (e = 0): GM_moon K a^3 / (GM_sun a_m^3)."""
-    return (GM_KM3_D2["moon"] / GM_KM3_D2["sun"] * moon.orbit_average_factor()
+    return (gm_km3_d2("moon") / gm_km3_d2("sun") * moon.orbit_average_factor()
             * (semi_major_axis_km / moon.MEAN_DISTANCE_KM) ** 3)
 
 
@@ -120,7 +121,7 @@ def constant_from_rate(psi_rate_rad_d, obliquity, geodesic):
 
 def constant_from_ellipticity(ellipticity, spin_rad_d, semi_major_axis_km, eccentricity):
     """alpha (rad/day) of the formula above from a dynamical ellipticity E_d = (C - A)/C and rotation rate."""
-    n2 = GM_KM3_D2["sun"] / semi_major_axis_km**3
+    n2 = gm_km3_d2("sun") / semi_major_axis_km**3
     solar = (1 - eccentricity**2) ** -1.5
     return 1.5 * ellipticity / spin_rad_d * n2 * (solar + lunar_ratio(semi_major_axis_km))
 
@@ -140,7 +141,7 @@ def parameters(grid, t0, h, alpha0, eccentricity0, semi_major_axis_km, c_km_d, s
         raise InputError("Ed", ed, "a positive factor of today's dynamical ellipticity")
     if not td >= 0:
         raise InputError("Td", td, "a factor >= 0 of today's tidal dissipation")
-    n_moon = math.sqrt((GM_KM3_D2["earth"] + GM_KM3_D2["moon"]) / moon.MEAN_DISTANCE_KM**3)
+    n_moon = math.sqrt((gm_km3_d2("earth") + gm_km3_d2("moon")) / moon.MEAN_DISTANCE_KM**3)
     constants = np.zeros(7)
     constants[ALPHA0] = alpha0 * ed
     constants[SOLAR0] = (1 - eccentricity0**2) ** -1.5
@@ -158,7 +159,7 @@ LAYOUT = Layout([("earth.spin", 3, "vector", "unit spin axis, inertial (GCRS) ax
 
 
 class AveragedSpin(Ode):
-    """The averaged equations as the integrator door runs them (spinorbit.simulate), from J2000; ``orbit(t)``
+    """The averaged equations as the integrator door runs them (integrators.simulate), from J2000; ``orbit(t)``
     gives the orbit's normal and eccentricity vector at output times as the rhs sees them."""
 
     def orbit(self, t):

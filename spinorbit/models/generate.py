@@ -174,6 +174,23 @@ def torque_source(system, name, params):
     return code.text("t, y, p", total or "np.zeros(3)"), code
 
 
+def frame_rate_source(system, name, params):
+    """(source, Code) of frame_rate(t, y, p): the rate (inertial axes, rad/d) of the frame in which the lone rigid
+    body ``name``'s equations hold (its geodesic precession), what a splitting integrator turns its attitude by,
+    written by the interactions that turn that frame; zeros where none does.  It reads the rhs's parameter record
+    ``params`` (it adds none)."""
+    known = list(params)
+    code = Code(system, "frame_rate", params)
+    turning = [interaction for interaction in system.interactions if name in interaction.frames()]
+    if any(interaction.reads_places for interaction in turning):
+        system.motion.prologue(code)
+    for interaction in turning:
+        interaction.emit(code)
+    if list(params) != known:
+        raise AssertionError(f"the frame rate added parameters the rhs lacks: {sorted(set(params) - set(known))}")
+    return code.text("t, y, p", code.frame_rates.get(name, "np.zeros(3)")), code
+
+
 def energy_source(system):
     """(source, Code) of energy(t, y, p): the closed System's total energy (G-scaled, km^5/d^4)."""
     code = Code(system, "energy")

@@ -9,9 +9,12 @@
   The relative acceleration is F_s / m_s - F_p / m_p; the pair's monopole is taken exactly and every other
   mass's pull as the difference of its pulls on the two (spinorbit.models.interactions.newton).
 
-Positions are km and velocities km/d in inertial axes (ICRF); t TDB days from J2000.
+Every motion follows :class:`Motion` (spinorbit.models.barycentric's too): interactions and rotators ask it what
+they need and branch on nothing else.  Positions are km and velocities km/d in inertial axes (ICRF); t TDB days
+from J2000.
 """
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 from numba import njit
@@ -44,6 +47,36 @@ def relative_rows(code, motion, a, others):
     return rows, code.param(f"gm_of_{'_'.join(others)}", np.array([motion.gm(b) for b in others], dtype=float))
 
 
+class Motion(Protocol):
+    """What a System's motion answers (the generated code's variables are named by the motion, never assumed).
+
+    Every motion:
+      ``names``, ``gm(name)``: the bodies it places and their GM (km^3/d^2);
+      ``closed``: True when nothing is read from an orbit source (a conserved energy and angular momentum);
+      ``slices()``: its state slices; ``moves(body)``: whether a force on ``body`` changes the state;
+      ``prologue(code)``, ``derivatives(code, dy)``: its lines at the start and end of the rhs;
+      ``relative(code, a, b)``: the variable holding b seen from a; ``rows(code, a, others)``: (rows (k, 3),
+      their GMs as a parameter); ``delayed(code, body, raiser, tau)``: the raiser seen from body tau ago;
+      ``kinetic_energy(code)``, ``angular_momentum(code)``: expressions; ``positions(t, states, a, others,
+      shift)``: the same places at the Python level.
+    A motion with a pair in the state (Pair, Barycentric) also: ``primary``, ``secondary``;
+      ``relative_velocity(code, a, b)``; ``add_force(code, body, force)``; ``add_relative_acceleration(code,
+      acceleration)``; ``point_masses(code)``: variables (x, w, mu), barycentric, the pair's primary and
+      secondary last; ``point_mass_names()``; ``accelerated_rows()``: the rows of the point masses whose
+      accelerations move the state, the pair's last; ``add_point_mass_accelerations(code, accelerations)``:
+      accelerations (k, 3) of those rows into the state (the relative orbit takes the pair's difference);
+      ``carries_centres``: True when the state holds every centre (then ``add_centre_accelerations(code,
+      accelerations)`` takes every point mass's barycentric acceleration; the relative orbit apart).
+    """
+
+    names: tuple
+    closed: bool
+
+    def gm(self, name): ...
+
+    def relative(self, code, a, b): ...
+
+
 @dataclass(frozen=True)
 class Centred:
     """Body ``origin`` at the origin; ``externals`` (an OrbitSource: names, gm, kernel(t, data) -> (n, 3),
@@ -51,7 +84,10 @@ class Centred:
 
     origin: str
     externals: object = None
-    barycentric = False          # no centre integrated (spinorbit.models.barycentric: every centre)
+
+    @property
+    def closed(self):
+        return self.externals is None
 
     @property
     def names(self):
@@ -158,6 +194,17 @@ class PairRelatives:
     def rows(self, code, a, others):
         return relative_rows(code, self, a, others)
 
+    def accelerated_rows(self):
+        """The rows of :meth:`point_masses` whose accelerations move the state: the pair's (the last two)."""
+        n = len(self.point_mass_names())
+        return np.array([n - 2, n - 1], dtype=np.int64)
+
+    def add_point_mass_accelerations(self, code, accelerations):
+        """Accelerations (k, 3) of :meth:`accelerated_rows` into the state: the pair's difference on its relative
+        orbit."""
+        k = len(self.accelerated_rows())
+        self.add_relative_acceleration(code, f"{accelerations}[{k - 1}] - {accelerations}[{k - 2}]")
+
 
 @dataclass(frozen=True)
 class Pair(PairRelatives):
@@ -171,7 +218,11 @@ class Pair(PairRelatives):
     gm_secondary: float
     barycentre: str | None = None
     externals: object = None
-    barycentric = False
+    carries_centres = False          # the pair's relative orbit only (spinorbit.models.barycentric: every centre)
+
+    @property
+    def closed(self):
+        return self.externals is None
 
     @property
     def names(self):

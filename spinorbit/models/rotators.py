@@ -275,11 +275,9 @@ class Gyroscopic(Rotator):
 
 
 def oppolzer_attractors(system, name):
-    """The point masses acting on body ``name``'s degree-2 figure (their tidal tensor sets its Oppolzer terms)."""
-    from .interactions.point_mass import PointMass
-
-    return tuple(b for i in system.interactions if isinstance(i, PointMass) and i.figure == name
-                 for b in i.attractors)
+    """The point masses whose tidal tensor acts on body ``name``'s degree-2 figure (its Oppolzer terms), as the
+    interactions on it say (``Interaction.tidal_attractors``)."""
+    return tuple(b for i in system.interactions for b in i.tidal_attractors(name))
 
 
 def _span(code, name):

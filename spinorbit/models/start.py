@@ -21,6 +21,7 @@ from numba import njit
 
 from ..bodies import de421_orientation
 from ..bodies.moon import de421
+from ..bodies.table import BODIES
 from ..constants import J2000_JD
 from ..layout import Layout
 from ..rotations import cross3, dot3, quat_from_matrix
@@ -52,7 +53,7 @@ def core_omega(momentum, pole, c_c, a_c):
 
 def core_de421(t_tdb_d):
     """DE421's fluid-core angular velocity at TDB day t, mantle axes, rad/d (module docstring)."""
-    from ..integrators import integrate
+    from ..integrators import simulate
 
     moon = de421()
     t0, c_c = moon.epoch_tdb_d, moon.core_c_over_c
@@ -68,7 +69,9 @@ def core_de421(t_tdb_d):
         momentum = a_c * wc + (c_c - a_c) * (pole0 @ wc) * pole0
         ode = Ode(core_rhs, (coefficients, start, length, moon.kv_over_c_per_d, c_c, a_c), t0, momentum,
                   Layout([("core.momentum", 3, "vector", "units of C, inertial")]), "DE421's core")
-        momentum = integrate(ode, [t_tdb_d], "rk4", step=abs(t_tdb_d - t0) / steps).y[-1]
+        carried, _ = simulate(ode, [t_tdb_d], "rk4", {"step": abs(t_tdb_d - t0) / steps}, estimate_error=False,
+                              label="DE421's core")
+        momentum = carried.y[-1]
         m_t, _ = de421_orientation.mantle(t_tdb_d, coefficients, start, length)
         wc = core_omega(momentum, np.ascontiguousarray(m_t[2]), c_c, a_c)
     m_t, _ = de421_orientation.mantle(t_tdb_d, coefficients, start, length)
@@ -171,14 +174,10 @@ def solar_system_de421(system, t0, earth_pole, spin_rate, sun_spin_rate=None, ot
     return {**start, **on_pole(system, "earth", t0, earth_pole, spin_rate, states=partial[None])}
 
 
-HEADER_KEYS = {"mercury": "1", "venus": "2", "mars": "4", "jupiter": "5", "saturn": "6", "uranus": "7",
-               "neptune": "8", "pluto": "9", "sun": "S", "earth_moon_barycenter": "B", "moon": "M"}
-
-
 def _de421_state(name, t0, h):
     """(position km, velocity km/d) of ``name`` (barycentric; the Moon geocentric) at t0 from DE421."""
     if t0 == h["JDEPOC"] - J2000_JD:
-        k = HEADER_KEYS[name]
+        k = BODIES[name].state_key
         return (np.array([h[f"X{k}"], h[f"Y{k}"], h[f"Z{k}"]]) * h["AU"],
                 np.array([h[f"XD{k}"], h[f"YD{k}"], h[f"ZD{k}"]]) * h["AU"])
     from ..orbits.kernel import open_ephemeris

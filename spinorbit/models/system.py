@@ -4,7 +4,8 @@ From the data the System derives its state layout (named slices, :mod:`~spinorbi
 parameter record (``parameters``: name -> value, passed to the compiled functions as the tuple ``params``) and
 its compiled functions, generated and cached on disk (:mod:`~spinorbit.models.generate`,
 :mod:`spinorbit.linker`): ``rhs(t, y, params)`` always; ``torque(t, y, params)`` for a lone rigid body (what
-splitting integrators kick with); ``energy`` and ``angular_momentum`` for a closed System.
+splitting integrators kick with) and ``frame_rate(t, y, params)``, the rate of the frame its equations hold in
+(what they turn its attitude by); ``energy`` and ``angular_momentum`` for a closed System.
 
     >>> system = System("free body", [Body("body", figure=Figure([2.0, 1.0, 2 / 3]), rotator=Rigid())],
     ...                 Centred("body"), [])                               # doctest: +SKIP
@@ -18,7 +19,7 @@ import numpy as np
 
 from ..layout import Layout
 from ..linker import link_source
-from .generate import angular_momentum_source, as_array, energy_source, rhs_source, torque_source
+from .generate import angular_momentum_source, as_array, energy_source, frame_rate_source, rhs_source, torque_source
 from .rotators import Gyroscopic, Rigid
 
 
@@ -40,12 +41,17 @@ class System:
         lone = self.lone_rigid_body
         if lone is not None:
             self.sources["torque"], torque_code = torque_source(self, lone, code.params)
+            self.sources["frame_rate"], frame_code = frame_rate_source(self, lone, code.params)
             code.bindings.update(torque_code.bindings)
         self.parameters = dict(code.params)
         self.params = tuple(as_array(value) for value in self.parameters.values())
         self.rhs = link_source("rhs", source, **_bindings(code, source))
-        self.torque = None if lone is None else link_source("torque", self.sources["torque"],
-                                                            **_bindings(torque_code, self.sources["torque"]))
+        self.torque = self.frame_rate = None
+        if lone is not None:
+            self.torque = link_source("torque", self.sources["torque"],
+                                      **_bindings(torque_code, self.sources["torque"]))
+            self.frame_rate = link_source("frame_rate", self.sources["frame_rate"],
+                                          **_bindings(frame_code, self.sources["frame_rate"]))
         self.y0 = None if start is None else self.layout.pack(start)
 
     def _check(self):

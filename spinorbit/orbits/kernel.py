@@ -11,17 +11,14 @@ from pathlib import Path
 
 import numpy as np
 
+from ..bodies.table import BODIES
 from ..constants import J2000_JD
 from ..errors import EphemerisRangeError, InputError, tdb_dates
 
 EPHEMERIDES_DIR = Path(__file__).resolve().parents[2] / "ephemerides"
 
 # Body name -> NAIF codes to try, first found wins (planet centre, else its barycentre).
-NAIF = {
-    "sun": (10,), "mercury": (199, 1), "venus": (299, 2), "earth": (399,), "moon": (301,),
-    "earth_moon_barycenter": (3,), "mars": (499, 4), "jupiter": (5,), "saturn": (6,),
-    "uranus": (7,), "neptune": (8,), "pluto": (9,), "solar_system_barycenter": (0,),
-}
+NAIF = {name: row.naif for name, row in BODIES.items()}
 
 
 def kernel_path(source):

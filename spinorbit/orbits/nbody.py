@@ -8,7 +8,8 @@ given as GM (km^3/day^2), DE421 values.
 """
 import numpy as np
 
-from ..bodies.de421_header import gm_km3_d2, header
+from ..bodies.de421_header import header
+from ..bodies.table import gm_km3_d2, integrated
 from ..constants import DAY_S, JULIAN_YEAR_D
 from ..errors import InputError
 from ..progress import progress
@@ -17,8 +18,7 @@ from .interpolant import HermiteOrbits, grid
 from .interrupts import python_sigint
 from .kernel import DE421Arrays, JPLKernel
 
-BODIES = ("sun", "mercury", "venus", "earth", "moon", "mars", "jupiter", "saturn", "uranus", "neptune",
-          "pluto")
+BODIES = integrated()
 EMB = "earth_moon_barycenter"           # the GM-weighted mean of the Earth and Moon particles
 OUT_CHUNK_D = 3652.5                    # integrating out from an epoch: a signal is handled every 10 yr
 

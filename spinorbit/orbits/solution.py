@@ -40,7 +40,8 @@ from pathlib import Path
 import numpy as np
 
 from ..bodies import moon
-from ..bodies.de421_header import gm_km3_d2, header
+from ..bodies.de421_header import header
+from ..bodies.table import gm_km3_d2, heliocentric_set
 from ..constants import DAY_S
 from ..errors import InputError
 from ..files import NotRegular, open_lock, open_regular, process_alive
@@ -48,9 +49,8 @@ from ..linker import cache
 from ..progress import progress
 from .interrupts import python_sigint
 
-BODIES = ("sun", "mercury", "venus", "earth_moon_barycenter", "mars", "jupiter", "saturn", "uranus",
-          "neptune", "pluto")
-SUN, EMB = 0, 3
+BODIES = heliocentric_set()
+SUN, EMB = BODIES.index("sun"), BODIES.index("earth_moon_barycenter")
 FORMAT = 2                      # the file's layout: every array covered by its hash
 SAVE_EVERY_S = 30.0
 POLL_S = 5.0

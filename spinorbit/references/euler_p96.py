@@ -5,7 +5,8 @@ import math
 
 import numpy as np
 
-from ..constants import ARCSEC, GM_KM3_D2
+from ..bodies.table import gm_km3_d2
+from ..constants import ARCSEC
 
 # Euler's circles: mean distance (km) and sidereal period (d) of the Moon and the Sun.
 CIRCLES = {"moon": (384400.0, 27.321661), "sun": (149597870.7, 365.256363)}
@@ -19,7 +20,7 @@ def circles():
 
     tilt = EPS0_ARCSEC * ARCSEC
     names = tuple(CIRCLES)
-    return CircularOrbits(names, [GM_KM3_D2[b] for b in names], [CIRCLES[b][0] for b in names],
+    return CircularOrbits(names, [gm_km3_d2(b) for b in names], [CIRCLES[b][0] for b in names],
                           [2 * math.pi / CIRCLES[b][1] for b in names], None, [tilt, tilt]), tilt
 
 
@@ -31,7 +32,7 @@ def precession_rate(moments, spin_rad_d, tilt_rad):
 
     rate = 0.0
     for name, (radius, period) in CIRCLES.items():
-        big_n = precession_constant(GM_KM3_D2[name], radius, spin_rad_d, moments[2], moments[0])
+        big_n = precession_constant(gm_km3_d2(name), radius, spin_rad_d, moments[2], moments[0])
         big_n *= moments[0] / moments[2]
         rate += SymmetricPrecession(spin_rad_d, 2 * math.pi / period, big_n, tilt_rad).precession_rate
     return rate

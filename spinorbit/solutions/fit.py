@@ -11,9 +11,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..constants import ARCSEC
+from ..integrators import simulate
 from ..layout import Layout
 from ..rotations import quat_angle, vector_angle
-from ..simulate import simulate
 from .chebyshev import Segments, grid_indices, interpolating
 
 

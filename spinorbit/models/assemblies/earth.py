@@ -17,7 +17,8 @@ import math
 import numpy as np
 
 from ...bodies import earth
-from ...constants import ARCSEC, GM_KM3_D2, JULIAN_CENTURY_D
+from ...bodies.table import gm_km3_d2
+from ...constants import ARCSEC, JULIAN_CENTURY_D
 from ...errors import PhysicsError
 from ..figure import Body, Field, Figure
 from ..interactions import GeodesicRate, Harmonics, PointMass
@@ -62,13 +63,11 @@ def rigid_earth(orbits, model="gyroscopic", h_d=earth.H_D, b_minus_a_over_c=0.0,
     if model == "gyroscopic" and b_minus_a_over_c:
         raise PhysicsError(f"the gyroscopic model needs an axisymmetric Earth (A = B), got (B - A)/C = "
                            f"{b_minus_a_over_c}; use the full model for a triaxial Earth")
-    gm = GM_KM3_D2["earth"]
+    gm = gm_km3_d2("earth")
     body = Body("earth", gm, figure(gm, h_d, b_minus_a_over_c, j2_rate, j4),
                 Gyroscopic() if model == "gyroscopic" else Rigid())
     names = tuple(orbits.names)
     interactions = [PointMass("earth", names)] + ([Harmonics("earth", names)] if j4 else [])
     if ecliptic_pole is not None:
         interactions.append(geodesic_precession(ecliptic_pole, geodesic_nutation))
-    meta = {"model": model, "frame_rate": interactions[-1].rate_rad_d.copy() if ecliptic_pole is not None
-            and not geodesic_nutation else np.zeros(3)}
-    return System(f"earth ({model})", [body], Centred("earth", orbits), interactions, t0, start, meta)
+    return System(f"earth ({model})", [body], Centred("earth", orbits), interactions, t0, start, {"model": model})

@@ -23,8 +23,9 @@ import math
 import numpy as np
 
 from ...bodies import earth
-from ...bodies.de421_header import gm_km3_d2, header
+from ...bodies.de421_header import header
 from ...bodies.moon import de421
+from ...bodies.table import gm_km3_d2, heliocentric_set
 from ...constants import DAY_S
 from ...errors import InputError
 from ..figure import Body, Field, Figure
@@ -33,9 +34,8 @@ from ..motion import Pair
 from ..rotators import Distortion, Gyroscopic, MantleCore, Rigid
 from ..system import System
 
-EXTERNAL = ("sun", "mercury", "venus", "earth_moon_barycenter", "mars", "jupiter", "saturn", "uranus", "neptune",
-            "pluto")
-PLANETS = ("mercury", "venus", "mars", "jupiter", "saturn", "uranus", "neptune", "pluto")
+EXTERNAL = heliocentric_set()
+PLANETS = tuple(name for name in EXTERNAL if name not in ("sun", "earth_moon_barycenter"))
 SWITCHES = {"relativity": "the EIH (1PN) point-mass correction on the orbit",
             "earth_tides": "the tides raised on the Earth by the Moon and the Sun (DE421's K2E, TAUE)",
             "moon_distortion": "the Moon's tidal and rotational distortion (DE421's K2M, TAUM)",

@@ -19,7 +19,8 @@ import math
 import numpy as np
 
 from ...bodies import sun
-from ...bodies.de421_header import gm_km3_d2, header
+from ...bodies.de421_header import header
+from ...bodies.table import gm_km3_d2, integrated
 from ..barycentric import Barycentric
 from ..figure import Body, Figure
 from ..interactions import Newton, PointMass, Relativity
@@ -28,7 +29,7 @@ from ..start import frame
 from ..system import System
 from . import earth_moon
 
-FREE = ("sun", "mercury", "venus", "mars", "jupiter", "saturn", "uranus", "neptune", "pluto")
+FREE = tuple(name for name in integrated() if name not in ("earth", "moon"))
 PLANETS = FREE[1:]
 SWITCHES = {**{name: text for name, text in earth_moon.SWITCHES.items() if name != "planets"},
             "sun_j2": "the Sun's J2 (DE421's J2SUN, the IAU pole) on every other body"}

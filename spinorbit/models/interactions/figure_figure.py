@@ -127,6 +127,10 @@ class FigureFigure(Interaction):
     def bodies(self):
         return (self.figure, self.attractor)
 
+    def tidal_attractors(self, name):
+        """None: a J2 on a degree-2 figure is not a point mass's tidal tensor; the figure axis leaves it out."""
+        return ()
+
     def _pole(self, code):
         """(pole variable (inertial), strength expression)."""
         if self.pole is None:

@@ -41,6 +41,13 @@ class Geodesic(Interaction):
     def bodies(self):
         return (self.body, self.sun)
 
+    def frames(self):
+        return (self.body,)
+
+    def tidal_attractors(self, name):
+        """None: it turns the frame, with no torque."""
+        return ()
+
     def emit(self, code):
         x = code.relative(self.sun, self.body)
         w = code.relative_velocity(self.sun, self.body)
@@ -58,8 +65,17 @@ class GeodesicRate(Interaction):
     annual: np.ndarray
     citation = "IERS Conventions 2010, §5.6.4; Fukushima 1991"
 
+    reads_places = False
+
     def bodies(self):
         return (self.body,)
+
+    def frames(self):
+        return (self.body,)
+
+    def tidal_attractors(self, name):
+        """None: it turns the frame, with no torque."""
+        return ()
 
     def emit(self, code):
         code.add_frame_rate(self.body, f"{code.bind(constant_rate)}({code.param('geodesic_rate', self.rate_rad_d)}, "

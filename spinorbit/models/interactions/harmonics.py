@@ -117,6 +117,11 @@ class Harmonics(Interaction):
     def bodies(self):
         return (self.figure, *self.attractors)
 
+    def tidal_attractors(self, name):
+        """None: the field beyond degree 2 does not move a gyroscopic body's figure axis here (its Oppolzer terms
+        come from the degree-2 tidal tensor alone)."""
+        return ()
+
     def _args(self, code, rows, gm):
         body = code.system.bodies[self.figure]
         field = body.figure.field

@@ -54,17 +54,20 @@ class Newton(Interaction):
     def emit(self, code):
         motion = code.system.motion
         x, _, mu = motion.point_masses(code)
-        if motion.barycentric:
-            code.line(f"newton = {code.bind(newtonian)}({x}, {mu})[0]")
-            motion.add_barycentric_accelerations(code, "newton")
-        motion.add_relative_acceleration(code, f"{code.bind(pair_acceleration)}({x}, {mu}, r)")
+        if motion.carries_centres:
+            newton = code.local("newton")
+            code.line(f"{newton} = {code.bind(newtonian)}({x}, {mu})[0]")
+            motion.add_centre_accelerations(code, newton)
+        r = motion.relative(code, motion.primary, motion.secondary)
+        motion.add_relative_acceleration(code, f"{code.bind(pair_acceleration)}({x}, {mu}, {r})")
 
     def energy(self, code):
         motion = code.system.motion
-        if motion.barycentric:
-            x, _, mu = motion.point_masses(code)
-            return f"{code.bind(potential_energy)}({x}, {mu}, r)"
-        if motion.externals is not None:
+        if not motion.closed:
             return super().energy(code)
-        product = motion.gm_primary * motion.gm_secondary
-        return f"-{code.param('gm_product', product)} / np.sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2])"
+        r = motion.relative(code, motion.primary, motion.secondary)
+        if motion.carries_centres:
+            x, _, mu = motion.point_masses(code)
+            return f"{code.bind(potential_energy)}({x}, {mu}, {r})"
+        product = motion.gm(motion.primary) * motion.gm(motion.secondary)
+        return f"-{code.param('gm_product', product)} / np.sqrt({r}[0] * {r}[0] + {r}[1] * {r}[1] + {r}[2] * {r}[2])"

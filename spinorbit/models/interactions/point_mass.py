@@ -107,6 +107,10 @@ class PointMass(Interaction):
     def bodies(self):
         return (self.figure, *self.attractors)
 
+    def tidal_attractors(self, name):
+        """Its attractors on ``figure`` (their tidal tensor is its torque); none on the attractors themselves."""
+        return self.attractors if name == self.figure else ()
+
     def emit(self, code):
         rows, gm = code.rows(self.figure, self.attractors)
         args = f"({code.rot(self.figure)}, {code.inertia(self.figure)}, {rows}, {gm})"

@@ -102,13 +102,7 @@ class Relativity(Interaction):
     def emit(self, code):
         motion = code.system.motion
         x, w, mu = motion.point_masses(code)
-        n = len(motion.point_mass_names())
-        barycentric = motion.barycentric
-        targets = motion.eih_targets() if barycentric else np.array([n - 2, n - 1], dtype=np.int64)
         correction = code.local("eih")
         code.line(f"{correction} = {code.bind(accelerations)}({x}, {w}, {mu}, {code.param('c_km_d', self.c_km_d)}, "
-                  f"{code.param('eih_targets', targets)})[1]")
-        if barycentric:
-            motion.add_barycentric_accelerations(code, correction)
-        k = len(targets)
-        motion.add_relative_acceleration(code, f"{correction}[{k - 1}] - {correction}[{k - 2}]")
+                  f"{code.param('eih_targets', motion.accelerated_rows())})[1]")
+        motion.add_point_mass_accelerations(code, correction)

@@ -152,6 +152,10 @@ class Tides(Interaction):
     def bodies(self):
         return (self.body, self.felt_by, self.sun)
 
+    def tidal_attractors(self, name):
+        """None: the figure axis leaves out the torque of the tidal bulge (a delayed response, not the figure's)."""
+        return ()
+
     def emit(self, code):
         motion = code.system.motion
         if (motion.primary, motion.secondary) != (self.body, self.felt_by):

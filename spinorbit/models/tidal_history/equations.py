@@ -152,7 +152,7 @@ def stop(y, c):
 
 
 class EarthMoonHistory(Ode):
-    """The averaged equations as the integrator door runs them (spinorbit.simulate)."""
+    """The averaged equations as the integrator door runs them (integrators.simulate)."""
 
     @property
     def constants(self):

@@ -14,8 +14,8 @@ ERFA_STEP_D = 10 * JULIAN_YEAR_D
 
 def erfa_metrics(scenario, model):
     """Obliquity and mean equator against ERFA's long-term precession over the span's first 2 kyr (arcsec)."""
+    from ...integrators import simulate
     from ...references.long_term_precession import LongTermPrecession
-    from ...simulate import simulate
 
     reach = min(ERFA_SPAN_D, abs(scenario.t_end))
     t = math.copysign(1.0, scenario.t_end) * np.arange(ERFA_STEP_D, reach + 1.0, ERFA_STEP_D)

@@ -51,7 +51,7 @@ def orbital_solution(scenario, label):
 
 @dataclass
 class SpinModel:
-    """The averaged equations on the orbit (``system``, run through spinorbit.simulate), where they start
+    """The averaged equations on the orbit (``system``, run through integrators.simulate), where they start
     (the spin axis and the orbit normal at J2000) and a record of their constants."""
 
     system: object

@@ -9,7 +9,7 @@ the rotating Earth, and the solid Earth; its drag fitted to today's recession at
 default was fitted to the Moon's age by ``python -m spinorbit.fit_tides``), "constant_time_lag" (Mignard
 1979) or "constant_q" (Goldreich 1966), their one parameter fitted to today's recession rate
 (tides.recession_rate, lunar laser ranging 3.830 +- 0.008 cm/yr, Williams & Boggs 2016).  Started from
-today's mean lunar orbit and the Earth's rotation at J2000; run back through spinorbit.simulate until the
+today's mean lunar orbit and the Earth's rotation at J2000; run back through integrators.simulate until the
 span's end or the Roche limit, where the history stops and gives the Moon's age.
 
 Out: the history every span.step (distance, eccentricity, length of day, obliquity, lunar inclination,

@@ -7,7 +7,8 @@ from functools import partial
 
 import numpy as np
 
-from ...constants import GM_KM3_D2, JULIAN_YEAR_D
+from ...bodies.table import gm_km3_d2
+from ...constants import JULIAN_YEAR_D
 from ...errors import IntegrationError
 
 GYR_D = 1e9 * JULIAN_YEAR_D
@@ -39,7 +40,7 @@ def constants(stop_radii):
     from ...models.tidal_history import equations
 
     radius = earth.EQUATORIAL_RADIUS_KM
-    return equations.constants(GM_KM3_D2["earth"], GM_KM3_D2["moon"], GM_KM3_D2["sun"], radius, earth.C_MR2,
+    return equations.constants(gm_km3_d2("earth"), gm_km3_d2("moon"), gm_km3_d2("sun"), radius, earth.C_MR2,
                                AU_KM, SUN_ECCENTRICITY, stop_radii * radius)
 
 

@@ -10,6 +10,7 @@ applies it (nonrigid.py; REN-2000 and VLBI's observed pole beside).
 from ...analysis.precession import RATE_MIN_SPAN_D
 from ...analysis.transfer.models import MODELS
 from ...bodies import earth
+from ...orbits.sources import orbit_source
 from ...references import euler_p96
 from ...scene import Cost, Model, Outcome, Scene
 from ...schema import SAMPLE_STEP, Key
@@ -57,7 +58,7 @@ _OBLIQUITY = ("H_d fitted to the psi rate, the obliquity rate is judged: P03's o
 
 def verdict(p, comparison):
     """What this Earth scene is compared for (see the module docstring)."""
-    if p["orbit.source"] == "circular":
+    if orbit_source(p["orbit.source"]).circular:
         return Verdict("Euler's P96 rate N cos n (§846)", (Check(
             "model − P96", "model_minus_p96_arcsec_cy", 0.05, "″/cy",
             "10^-5 of the rate: well below the smallest effect the model must resolve (planets' torques, "

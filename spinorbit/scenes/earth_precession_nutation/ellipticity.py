@@ -67,9 +67,9 @@ def from_observed_rate(source, planets, sample_step, j2_rate, j4, geodesic, geod
     from ...analysis import nonrigid
     from ...analysis.harmonics import fit_harmonics
     from ...analysis.precession import fit_pole
+    from ...integrators import simulate
     from ...models.assemblies.earth import rigid_earth
     from ...orbits.sources import gm_of, sample_orbits
-    from ...simulate import simulate
     from .nonrigid import ren2000_scaled
     from .start import PLANETS, ecliptic_pole, started
     from .tides import rates as tidal_rates

@@ -17,26 +17,30 @@ RIGID_START_STEP_D = 2.0              # rk8 step of the first gyroscopic run (co
 
 def orbits(scenario):
     """(orbit source, tilt of the circles' plane or None): DE421 sampled once, or Euler's circles."""
-    from ...orbits.sources import sample_orbits
+    from ...orbits.sources import orbit_source
 
-    if scenario["orbit.source"] == "circular":
+    source = orbit_source(scenario["orbit.source"])
+    if source.circular:
         return euler_p96.circles()
     margin = 1.0        # the figure axes reported difference the torque at t +- 1/64 d
     bodies = ("moon", "sun") + (PLANETS if scenario["orbit.planets"] else ())
     first, last = scenario.bounds
-    return sample_orbits(scenario["orbit.source"], "earth", bodies, first - margin, last + margin,
-                         scenario["orbit.sample_step"]), None
+    return source.relative("earth", bodies, first - margin, last + margin,
+                           scenario["orbit.sample_step"]), None
 
 
 def check(scenario):
     """Settings that cannot go together, refused on the key that sets them."""
-    if scenario["earth.hd"] != "iau2006" and scenario["orbit.source"] == "circular":
+    from ...orbits.sources import orbit_source
+
+    circular = orbit_source(scenario["orbit.source"]).circular
+    if scenario["earth.hd"] != "iau2006" and circular:
         raise ScenarioError("earth.hd", scenario["earth.hd"], '"iau2006" with orbit.source = "circular" (the '
                             'observed rate is IAU 2006\'s, on the real Moon and Sun)')
     if scenario["earth.hd"] != "iau2006" and scenario["earth.dynamical_ellipticity"] != earth.H_D:
         raise ScenarioError("earth.dynamical_ellipticity", scenario["earth.dynamical_ellipticity"],
                             f'{earth.H_D} (IAU 2006\'s) with earth.hd = "observed_rate", which sets it')
-    if scenario["earth.nonrigid"] and scenario["orbit.source"] == "circular":
+    if scenario["earth.nonrigid"] and circular:
         raise ScenarioError("earth.nonrigid", True,
                             'false with orbit.source = "circular" (the non-rigid '
                             'response is applied on the luni-solar arguments of DE421)')
@@ -114,8 +118,8 @@ def rigid_start(scenario, source, t0, pole, t):
     """IAU mean pole at t0 plus the rigid nutation there: the IAU pole + (rigid - IAU) fitted periodic
     terms."""
     from ...analysis.precession import fit_pole, periodic_part
+    from ...integrators import simulate
     from ...references import arguments, erfa_pole
-    from ...simulate import simulate
 
     gyro = started(earth_system(scenario, source, "gyroscopic", t0), t0, pole)
     run, _ = simulate(gyro, t, "rk8", {"step": RIGID_START_STEP_D}, estimate_error=False, label="rigid start")

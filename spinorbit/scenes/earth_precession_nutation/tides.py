@@ -21,7 +21,8 @@ import functools
 import numpy as np
 
 from ...bodies import earth
-from ...constants import ARCSEC, GM_KM3_D2, JULIAN_CENTURY_D, JULIAN_YEAR_D
+from ...bodies.table import gm_km3_d2
+from ...constants import ARCSEC, JULIAN_CENTURY_D, JULIAN_YEAR_D
 from ...references import erfa_pole
 
 CHOICES = ("none", "de421", "williams1994")
@@ -52,7 +53,7 @@ def model_rates(source, love, sun=True):
     t = np.arange(-NODE_CYCLE_D / 2, NODE_CYCLE_D / 2, STEP_D)
     ephemeris = open_ephemeris(source, t[0], t[-1])
     (r_moon, v_moon), (r_sun, v_sun) = (ephemeris.relative_states(b, "earth", t) for b in ("moon", "sun"))
-    gm_e, gm_m, gm_s = (GM_KM3_D2[b] for b in ("earth", "moon", "sun"))
+    gm_e, gm_m, gm_s = (gm_km3_d2(b) for b in ("earth", "moon", "sun"))
     p = np.array([gm_e, gm_m, gm_s if sun else 0.0, earth.EQUATORIAL_RADIUS_KM, *(k for k, _ in love),
                   *(tau for _, tau in love)])
     poles = erfa_pole.cip_vector(t)

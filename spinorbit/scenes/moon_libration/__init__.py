@@ -17,6 +17,7 @@ import numpy as np
 
 from ...constants import ARCSEC
 from ...models.assemblies.moon import LEVELS
+from ...orbits.sources import orbit_source
 from ...scene import Cost, Model, Outcome, Scene
 from ...schema import SAMPLE_STEP, Key
 from ...verdict import Check, Verdict
@@ -40,7 +41,7 @@ def verdict(p, comparison):
     if level == 1:
         notes.append("Euler's degree-2 Moon is held to the level-2 target; the Moon's degree-3 field it "
                      "lacks is what level 2 adds")
-    if source != "de421":
+    if not orbit_source(source).lunar_angles:
         from .compare import SOURCE_NOTES
         notes.append(SOURCE_NOTES.get(source, f"orbits from {source}: the libration follows that orbit's "
                                               "departure from DE421's"))

@@ -72,7 +72,7 @@ def error_vs_runtime(system, t_out, de421_mats):
     """LADDER's wall time and max attitude error vs a converged rk8 run and vs DE421, arcsec."""
     from ...analysis.ladder import work_precision
     from ...analysis.librations import attitude_error, icrf_to_body
-    from ...simulate import simulate
+    from ...integrators import simulate
 
     converged = icrf_to_body(simulate(system, t_out, *CONVERGED, estimate_error=False)[0].quaternion)
     errors = {"error_vs_converged_arcsec": attitude_error(converged),

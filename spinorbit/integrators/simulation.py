@@ -1,4 +1,8 @@
-"""Layer 3: system + output times + integrator -> Solution, with its own error estimate: the one integrator door.
+"""System + output times + integrator -> Solution, with its own error estimate: the one integrator door.
+
+Every integration goes through :func:`simulate` (the scenes, the starts of the models, the ladders and the
+Lyapunov flows of the analyses): it splits a span on both sides of t0 into runs away from it, hooks the
+progress bar and the checkpoint, and estimates the error.
 
 Every run reports a point on the error-against-run-time plane: the wall time of the solve and an estimate of
 its integration error, from a second run of the same method:
@@ -16,23 +20,10 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
-from .constants import ARCSEC
-from .errors import IntegrationError
-from .integrators import get_method
-from .rotations import quat_angle, vector_angle
-
-
-def refined_options(method_cls, options):
-    """Options for a run markedly more accurate than ``options`` with the same method."""
-    refined = {**method_cls.options, **options}
-    if "step" in refined:
-        refined["step"] = refined["step"] / 2
-    for tol in ("rtol", "atol"):
-        if tol in refined:
-            refined[tol] = max(refined[tol] / 100, 2.3e-14 if tol == "rtol" else 0.0)   # scipy floor: 100 eps
-    if "tolerance" in refined:                      # heyoka's: below eps it raises the order, the floor is rounding
-        refined["tolerance"] = max(refined["tolerance"] / 100, 1e-18)
-    return refined
+from ..constants import ARCSEC
+from ..errors import IntegrationError
+from ..rotations import quat_angle, vector_angle
+from .registry import get_method
 
 
 def error_estimate(method_cls, options, system, t_out):
@@ -42,7 +33,7 @@ def error_estimate(method_cls, options, system, t_out):
     outputs one step apart, it lands on them with no interpolation), the difference over
     2^p - 1.  Otherwise (or when twice the step is unstable) a refined run, the difference as it is.
     """
-    settings = {**method_cls.options, **options}
+    settings = {**method_cls.defaults(), **options}
     if "step" in settings and method_cls.order:
         try:
             coarse = method_cls(**{**settings, "step": 2 * settings["step"]})
@@ -52,7 +43,7 @@ def error_estimate(method_cls, options, system, t_out):
                     f"Richardson, run at twice the step, order {method_cls.order}")
         except IntegrationError:             # twice the step is unstable: refine instead
             pass
-    refined = method_cls(**refined_options(method_cls, options))
+    refined = method_cls(**method_cls.refined(options))
     refined.label = None
     return (refined.solve(system, t_out), slice(None), 1.0,
             "difference from a run at half the step or tolerances / 100")
@@ -127,10 +118,16 @@ def simulate(system, t_out, method="dop853", options=None, estimate_error=True, 
 
 
 def away_from(t0, t_out):
-    """Index arrays of ``t_out`` in the order of runs away from t0: the outputs at or after t0 ascending, then
-    those before it descending (one array when every output lies on one side in that order)."""
+    """Index arrays of ``t_out`` in the order of runs away from t0: the outputs after t0 ascending, then those
+    before it descending (one array when every output lies on one side in that order); outputs at t0 start the
+    run after it, or the run before it when there is none after."""
     order = np.argsort(t_out, kind="stable")
-    after, before = order[t_out[order] >= t0], order[t_out[order] < t0][::-1]
+    at = order[t_out[order] == t0]
+    after, before = order[t_out[order] > t0], order[t_out[order] < t0][::-1]
+    if after.size or not before.size:
+        after = np.concatenate([at, after])
+    else:
+        before = np.concatenate([at, before])
     return [rows for rows in (after, before) if rows.size] or [np.arange(t_out.size)]
 
 
