@@ -37,15 +37,16 @@ def gm_of(bodies):
 
 
 class OrbitSourceKind:
-    """What every source answers: ``name``; ``analytic`` (exact orbits, no ephemeris read); ``circular`` (every
-    orbit a circle: Euler's hypothesis); ``lunar_angles`` (the ephemeris the Moon's DE421 orientation belongs
-    to); ``span()`` (TDB days it covers, None: any epoch); ``covers(t0, t1)``; ``provenance()`` ({"name", "span"}
-    of the ephemeris read, None for analytic orbits); ``relative(center, bodies, t0, t1, step, measure)``;
+    """What every source answers: ``name``; ``jpl_kernel`` (a JPL ephemeris, which ``open`` reads);
+    ``analytic`` (exact orbits, no ephemeris read); ``circular`` (every orbit a circle: Euler's hypothesis);
+    ``lunar_angles`` (the ephemeris the Moon's DE421 orientation belongs to); ``span()`` (TDB days it covers,
+    None: any epoch); ``covers(t0, t1)``; ``provenance()`` ({"name", "span"} of the ephemeris read, None for
+    analytic orbits); ``relative(center, bodies, t0, t1, step, measure)``;
     ``barycentric(names, t0, t1, step_d)``; ``open(t0, t1)``: the ephemeris reader (JPL kernels only);
     ``integration_days(t0, t1)``: the N-body integration reading it costs (REBOUND), 0 for the others."""
 
     name = ""
-    analytic = circular = lunar_angles = False
+    analytic = circular = lunar_angles = jpl_kernel = False
 
     def span(self):
         return None
@@ -73,6 +74,8 @@ class OrbitSourceKind:
 
 class JPLEphemeris(OrbitSourceKind):
     """An SPK kernel read with jplephem (spinorbit.orbits.kernel): ``name`` as in :func:`kernel.kernel_path`."""
+
+    jpl_kernel = True
 
     def __init__(self, name):
         from pathlib import Path

@@ -37,8 +37,10 @@ def rates(choice, source):
         return 0.0, 0.0
     if choice == "williams1994":
         return 0.0, earth.TIDAL_OBLIQUITY_RATE_ARCSEC_CY
+    from ...orbits.sources import orbit_source
+
     love = earth.de421_tides()
-    ephemeris = "de421" if source in ("rebound", "circular", "kepler") else source   # averaged on a kernel
+    ephemeris = source if orbit_source(source).jpl_kernel else "de421"       # averaged on a kernel
     return model_rates(ephemeris, tuple(love[band] for band in (0, 1, 2)))
 
 
