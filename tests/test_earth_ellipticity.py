@@ -110,7 +110,7 @@ def test_tidal_obliquity_rate_of_a_constant_lag_is_mignards():
 
 def test_de421_tides_tilt_the_axis_less_than_williams():
     """DE421's tides (its bands' delays from lunar laser ranging, the Sun's pull too): the semi-diurnal band
-    tilts the axis away from the ecliptic pole, the diurnal and zonal toward it (Lambeck 1980), so the sum is
+    tilts the axis away from the ecliptic pole, the diurnal and zonal toward it (measured below), so the sum is
     below Williams' (1994) +2.4 mas/cy from ocean-tide models and above zero.  Measured +0.42 mas/cy (the
     diurnal band alone -0.43, the semi-diurnal +0.90)."""
     _, eps_rate = tides.rates("de421", "de421")
