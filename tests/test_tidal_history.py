@@ -209,6 +209,29 @@ def test_ocean_without_rotation_is_a_damped_oscillator():
         assert complex(*ocean.love_number(-2, w, 1e-12, depth, drag, p)) == pytest.approx(k, rel=1e-9)
 
 
+def test_rotating_ocean_limits_equilibrium_and_no_drag():
+    """With rotation: a very deep ocean (its gravity waves far faster than the tide) answers with the
+    equilibrium tide, k -> (1 + k'_2)(3 rho_o / 5 rho_bar) gamma_2 / (1 - alpha_2), within the first
+    non-equilibrium order w^2 R^2 / (g H); without drag nothing is dissipated (the Coriolis force does no
+    work): Im k vanishes linearly with the drag, at today's semi-diurnal and diurnal lunar tides."""
+    from spinorbit.models.tidal_history import ocean
+
+    p = ocean_constants()
+    g = p[ocean.GRAVITY]
+    gamma = 1 + ocean.BODY_NUMBERS[0] - ocean.BODY_NUMBERS[1]
+    alpha = 3 * ocean.SEAWATER_OVER_MEAN_DENSITY / 5 * (1 + ocean.LOAD_NUMBERS[0] - ocean.LOAD_NUMBERS[1])
+    equilibrium = (1 + ocean.LOAD_NUMBERS[0]) * 3 * ocean.SEAWATER_OVER_MEAN_DENSITY / 5 * gamma / (1 - alpha)
+    w = 2 * (SPIN - mean_motion())
+    for depth in (1e4, 1e5):
+        k = complex(*ocean.love_number(-2, w, SPIN, depth, 0.8, p))
+        assert abs(k / equilibrium - 1) <= w**2 * R**2 / (g * depth)
+    for m, frequency in ((-2, w), (-1, w / 2)):
+        weak = complex(*ocean.love_number(m, frequency, SPIN, 5.1, 1e-6, p))
+        weaker = complex(*ocean.love_number(m, frequency, SPIN, 5.1, 1e-9, p))
+        assert weaker.imag == pytest.approx(weak.imag * 1e-3, rel=1e-3)
+        assert abs(weaker.imag) <= 1e-8 * abs(weaker.real)
+
+
 def test_ocean_response_is_converged_in_degree():
     """The chain truncated at 60 degrees against 120, at today's semi-diurnal and diurnal lunar tides and at
     a 5-h day's: the same Love number to 1e-9."""
