@@ -136,8 +136,8 @@ def earth_pole(times, *, nonrigid=True, ephemeris=None):
     source, why = _ephemeris(ephemeris, t, (first - 1.0, last + 1.0))
     scene = "earth_precession_nutation_nonrigid" if nonrigid else "earth_precession_nutation"
     values = {"orbit.source": source}
-    rigid = _solution(scene, values, np.array([first, last]), 0.0)
-    layer = earth_layer.layer(rigid, _scenario(scene, values), nonrigid)
+    layer = earth_layer.stored(_scenario(scene, values), nonrigid, first, last) or earth_layer.layer(
+        _solution(scene, values, np.array([first, last]), 0.0), _scenario(scene, values), nonrigid)
     table = earth_layer.table(layer, t)
     return _answer(table, t, when, EARTH_COLUMNS, _summary(layer, scene),
                    expected("earth" if nonrigid else "earth_rigid"), {"source": source, "why": why})

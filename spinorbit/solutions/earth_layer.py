@@ -26,10 +26,24 @@ def layer(rigid, scenario, nonrigid):
     """The layer (a Solution over ``rigid``'s span) of the Earth scene ``scenario``, non-rigid or not."""
     from ..scenes.earth_precession_nutation import nonrigid as nr
 
-    rec = {**store.record(scenario), "scene": "earth_layer", "nonrigid": nonrigid,
-           "transfer_function": scenario["earth.transfer_function"] if nonrigid else None}
-    return store.solve(rec, *rigid.span, lambda _, lo, hi: _computed(rigid, nr.settings(scenario) if nonrigid
-                                                                     else None))
+    return store.solve(_record(scenario, nonrigid), *rigid.span,
+                       lambda _, lo, hi: _computed(rigid, nr.settings(scenario) if nonrigid else None))
+
+
+def stored(scenario, nonrigid, t_start, t_end):
+    """The stored layer when it covers [t_start, t_end] and was fitted over the whole stored rigid solution
+    (its span is the rigid one's: the solution is extended only at its ends), else None."""
+    rec = _record(scenario, nonrigid)
+    found = store.read(store.path_of(rec), rec)
+    rigid = store.entry_span(store.path_of(store.record(scenario)))
+    if found is None or rigid is None or tuple(found.span) != tuple(rigid) or not found.covers(t_start, t_end):
+        return None
+    return found
+
+
+def _record(scenario, nonrigid):
+    return {**store.record(scenario), "scene": "earth_layer", "nonrigid": nonrigid,
+            "transfer_function": scenario["earth.transfer_function"] if nonrigid else None}
 
 
 def _computed(rigid, settings):

@@ -2,9 +2,10 @@
 segment (the integrator's dense output where they fall inside its steps), the series fitted there, and the
 fit's error measured against the integrator at the points between them.
 
-What is fitted: the whole state (every slice of the System's layout) and, for a body turned by its spin
-(a Gyroscopic rotator), its figure axis ``<body>.pole`` (System.figure_axes: the spin's direction plus the
-Oppolzer terms, a function of the state and the torque, so it is fitted, not rebuilt).
+What is fitted: the whole state (every slice of the System's layout); for a body turned by its spin (a
+Gyroscopic rotator), its figure axis ``<body>.pole`` (System.figure_axes: the spin's direction plus the
+Oppolzer terms, a function of the state and the torque, so it is fitted, not rebuilt); for a System centred on
+one body, the first body its orbit source gives, as the run read it (``earth.from_moon``).
 """
 from dataclasses import dataclass
 
@@ -44,15 +45,32 @@ def poles(system):
     return [s.name.split(".")[0] for s in system.layout.slices if s.name.endswith(".spin")]
 
 
+def seen(system):
+    """(body, origin) of the first body a System centred on ``origin`` reads from its orbit source (the Earth
+    for the Moon, the Moon for the Earth), or None: its position is fitted too, so that what the scene derives
+    from it (the librations, the sub-Earth point) needs no ephemeris at the dates."""
+    externals, origin = getattr(system.motion, "externals", None), getattr(system.motion, "origin", None)
+    if externals is None or origin is None or not hasattr(externals, "positions") or not len(externals.names):
+        return None
+    return externals.names[0], origin
+
+
 def fitted_layout(system):
-    """The state's layout and a ``<body>.pole`` slice (unit vector, inertial) for each of :func:`poles`."""
+    """The state's layout, a ``<body>.pole`` slice (unit vector, inertial) for each of :func:`poles`, and
+    ``<body>.from_<origin>`` (km, the orbit source's) for :func:`seen`."""
     parts = [(s.name, s.stop - s.start, s.kind, s.unit) for s in system.layout.slices]
-    return Layout(parts + [(f"{body}.pole", 3, "vector", "") for body in poles(system)])
+    parts += [(f"{body}.pole", 3, "vector", "") for body in poles(system)]
+    if seen(system):
+        body, origin = seen(system)
+        parts.append((f"{body}.from_{origin}", 3, "vector", f"km, from {origin}, the orbit source's"))
+    return Layout(parts)
 
 
 def components(system, t, states):
     """The fitted components (n, fitted size) of ``states`` (n, state size) at TDB days ``t``."""
     extra = [system.figure_axes(body, t, states) for body in poles(system)]
+    if seen(system):
+        extra.append(np.asarray(system.motion.externals.positions(t))[:, 0])
     return np.hstack([states, *extra]) if extra else np.asarray(states)
 
 

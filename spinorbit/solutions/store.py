@@ -84,7 +84,8 @@ ARRAYS = ("coefficients", "grid", "layout", "provenance", "record", "end_start_t
 def _arrays(solution, rec):
     s = solution.segments
     layout = [[p.name, p.stop - p.start, p.kind, p.unit] for p in solution.layout.slices]
-    return {"coefficients": s.coefficients, "grid": np.array([s.origin_d, s.length_d, s.first], dtype=float),
+    grid = np.array([s.origin_d, s.length_d, s.first, len(s.coefficients)], dtype=float)
+    return {"coefficients": s.coefficients, "grid": grid,
             "layout": np.array(json.dumps(layout)), "provenance": np.array(json.dumps(solution.provenance)),
             "record": np.array(json.dumps(rec, sort_keys=True)),
             **{f"end_{name}_{part}": np.asarray(value, dtype=float) for name, (t, y) in solution.ends.items()
@@ -95,7 +96,8 @@ def content_hash(arrays):
     digest = hashlib.sha256()
     for name in ARRAYS:
         value = np.ascontiguousarray(arrays[name])
-        digest.update(name.encode() + str(value.dtype).encode() + str(value.shape).encode() + value.tobytes())
+        digest.update(name.encode() + str(value.dtype).encode() + str(value.shape).encode())
+        digest.update(value.data if value.dtype.kind != "U" else value.tobytes())
     return digest.hexdigest()
 
 
@@ -129,19 +131,34 @@ def load(path, rec):
         raise Refused("its arrays do not match their sha256")
     if json.loads(str(arrays["record"])) != json.loads(json.dumps(rec, sort_keys=True)):
         raise Refused("it was made with another model, keys or code version")
-    origin, length, first = arrays["grid"]
+    origin, length, first, count = arrays["grid"]
+    if count != len(arrays["coefficients"]):
+        raise Refused("its grid does not match its series")
     segments = Segments(float(origin), float(length), int(first), arrays["coefficients"])
     layout = Layout([tuple(p) for p in json.loads(str(arrays["layout"]))])
     ends = {name: (float(arrays[f"end_{name}_t"]), arrays[f"end_{name}_state"]) for name in ("start", "end")}
     return Solution(segments, layout, json.loads(str(arrays["provenance"])), ends)
 
 
+VERIFIED = {}          # path -> ((device, inode, size, mtime), Solution): files this process has checked
+
+
 def read(path, rec):
-    """The stored Solution, or None when there is none or it is refused (said in one line, then deleted)."""
-    if not os.path.lexists(path):
-        return None
+    """The stored Solution, or None when there is none or it is refused (said in one line, then deleted).  A
+    file this process has already read and checked, unchanged since (same inode, size and time), is not read
+    again."""
     try:
-        return load(path, rec)
+        info = os.lstat(path)
+    except FileNotFoundError:
+        return None
+    stamp = (info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns)
+    known = VERIFIED.get(str(path))
+    if known is not None and known[0] == stamp and known[2] == json.dumps(rec, sort_keys=True):
+        return known[1]
+    try:
+        solution = load(path, rec)
+        VERIFIED[str(path)] = (stamp, solution, json.dumps(rec, sort_keys=True))
+        return solution
     except Refused as exc:
         cache.say(f"the stored solution {path} was refused ({exc}); computing it again")
         path.unlink(missing_ok=True)
@@ -173,14 +190,24 @@ def solve(rec, t_start, t_end, extend):
     return solution
 
 
+def entry_span(path):
+    """(start, end) TDB days of the solution stored at ``path``, read from its grid alone (not checked), or
+    None."""
+    try:
+        with open_regular(path) as f, np.load(f, allow_pickle=False) as data:
+            origin, length, first, count = data["grid"]
+    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+        return None
+    return float(origin + first * length), float(origin + (first + count) * length)
+
+
 def entries():
     """[(path, scene, (start, end) TDB days, bytes)] of the stored solutions (unreadable ones: span None)."""
     out = []
     for path in sorted(directory().glob("*.npz")):
         try:
             with open_regular(path) as f, np.load(f, allow_pickle=False) as data:
-                origin, length, first = data["grid"]
-                count = data["coefficients"].shape[0]
+                origin, length, first, count = data["grid"]
                 scene = json.loads(str(data["record"]))["scene"]
             span = (origin + first * length, origin + (first + count) * length)
         except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):

@@ -13,7 +13,9 @@ def moon(solution, t, source):
     states = solution.states(t)
     mats = icrf_to_body(states.quaternion)
     de421, covered, _, _ = vs.against_de421(t, mats)
-    lib = eckhardt.physical_librations(t, mats, earth_from_moon(source, t))
+    earth = solution.part("earth.from_moon", t) if "earth.from_moon" in solution.layout else \
+        earth_from_moon(source, t)
+    lib = eckhardt.physical_librations(t, mats, earth)
     return vs.table(states, mats, de421, covered, lib)
 
 
