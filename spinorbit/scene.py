@@ -100,6 +100,8 @@ class Scene:
     (its ``system``, or ``bench_system`` where it has no main run; it may set the System's
     ``meta["reference_agreement_rad"]``); ``backward``: the span may run backward;
     ``taylor``: every term a function of the state and the time, so heyoka's Taylor integrator takes it;
+    ``restart(p, start) -> System``: the model started at a stored state ``start`` = (t0, y) instead of its own
+    start (what a continuous solution is extended with, spinorbit.solutions);
     ``sweep_figures(tables) -> {name: draw}``: figures over a sweep's members (e.g. a band over their curves);
     ``run(scenario) -> RunResult``: a scene that runs its own pipeline (each says why);
     ``nbody_counts(p) -> {count: items}``: an N-body stage its run does first (NBODY_COSTS' counts), for
@@ -114,6 +116,7 @@ class Scene:
     bench: Callable = None
     backward: bool = False
     taylor: bool = False
+    restart: Callable = None
     sweep_figures: Callable = None
     run: Callable = None
     nbody_counts: Callable = None

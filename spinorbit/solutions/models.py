@@ -73,56 +73,9 @@ def first_start(scenario):
 
 
 def system(scenario, start):
-    """The scene's System over the scenario's span, started at ``start`` = (t0, state), or at the scene's own
-    start (``start`` None)."""
-    build = {"moon_libration": _moon, "earth_precession_nutation": _earth,
-             "earth_moon_coupled": _earth_moon}[scenario.kind]
-    return build(scenario, start)
-
-
-def _moon(scenario, start):
-    from ..scenes.moon_libration.model import build_system
-
+    """The scene's System over the scenario's span, started at ``start`` = (t0, state) (its Scene's
+    ``restart``), or at the scene's own start (``start`` None: its ``build``)."""
+    scene, p = scenario.scene, scenario.params
     if start is None:
-        return build_system(scenario, scenario["orbit.source"])[0]
-    return _moon_from(scenario, start)
-
-
-def _moon_from(scenario, start):
-    """The Moon scene's System (its model.build_system) started at a stored state: the same model on orbits
-    sampled over the stretch, without the DE421 start (its core carried from DE421's epoch) it would replace."""
-    from ..models.assemblies.moon import LEVELS, moon
-    from ..orbits.sources import sample_orbits
-    from ..references.moon_de421 import earth_pole
-    from ..scenes.moon_libration.model import MARGIN_D
-
-    level, extra = LEVELS[scenario["model.level"]], tuple(scenario["model.terms"])
-    first = min(start[0], *scenario.bounds) - MARGIN_D
-    last = max(start[0], *scenario.bounds) + MARGIN_D
-    orbits = sample_orbits(scenario["orbit.source"], "moon", level.bodies, first, last, scenario["orbit.step"])
-    pole = earth_pole(first, last) if "earth_j2" in level.terms + extra else None
-    built = moon(scenario["model.level"], orbits, extra, scenario["model.tides"], pole, float(start[0]))
-    built.meta["source"] = scenario["orbit.source"]
-    return built.with_start(*start)
-
-
-def _earth(scenario, start):
-    from ..scenes.earth_precession_nutation import start as earth_start
-
-    if start is None:
-        return earth_start.build(scenario, scenario.output_times())[0]
-    earth_start.check(scenario)
-    built = earth_start.earth_system(scenario, earth_start.orbits(scenario), scenario["earth.model"],
-                                     float(start[0]))
-    return built.with_start(*start)
-
-
-def _earth_moon(scenario, start):
-    from ..models.assemblies.earth_moon import SWITCHES, solar_system
-    from ..scenes import earth_moon_coupled as scene
-
-    switches = tuple(name for name in SWITCHES if scenario[f"model.{name}"])
-    external, _ = scene.external_bodies(scenario)
-    if start is None:
-        return scene.system(scenario, external, switches)
-    return solar_system(external, switches, float(start[0])).with_start(*start)
+        return scene.build(p, scenario.output_times()).system
+    return scene.restart(p, start)

@@ -138,4 +138,12 @@ def compare_run(p, run):
     return Outcome(comparison, figures=figures, sections=sections, not_measured=not_measured, table=table)
 
 
-SCENE = Scene(SCHEMA, build, compare_run, verdict, Cost(step_s=3e-4))
+def restart(p, start):
+    """The Earth-Moon System of ``p`` started at a stored state ``start`` = (t0, y)."""
+    from ...models.assemblies.earth_moon import solar_system
+
+    switches = tuple(name for name in SWITCHES if getattr(p.model, name))
+    return solar_system(external_bodies(p)[0], switches, float(start[0])).with_start(*start)
+
+
+SCENE = Scene(SCHEMA, build, compare_run, verdict, Cost(step_s=3e-4), restart=restart)

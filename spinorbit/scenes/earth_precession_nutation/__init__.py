@@ -15,6 +15,7 @@ from ...references import euler_p96
 from ...scene import Cost, Model, Outcome, Scene
 from ...schema import SAMPLE_STEP, Key
 from ...verdict import Check, Verdict
+from .start import restarted
 
 SCHEMA = {
     "earth.model": Key(type=str, default="gyroscopic", choices=("full", "gyroscopic")),
@@ -144,4 +145,5 @@ def bench(p, model, times):
     return error
 
 
-SCENE = Scene(SCHEMA, build, compare_run, verdict, Cost(step_s=3e-5, sample_bytes=300), bench=bench)
+SCENE = Scene(SCHEMA, build, compare_run, verdict, Cost(step_s=3e-5, sample_bytes=300), bench=bench,
+              restart=restarted)

@@ -141,3 +141,10 @@ def a_axis(t0, z0):
     x_tirs = erfa_pole.terrestrial_x_axis(t0)
     lon = math.radians(earth.A_AXIS_LONGITUDE_DEG)
     return math.cos(lon) * x_tirs + math.sin(lon) * np.cross(z0, x_tirs)
+
+
+def restarted(p, start):
+    """The rigid Earth of ``p`` started at a stored state ``start`` = (t0, y) (a continuous solution's
+    extension, spinorbit.solutions)."""
+    check(p)
+    return earth_system(p, orbits(p), p["earth.model"], float(start[0])).with_start(*start)

@@ -129,4 +129,11 @@ def bench(p, model, times):
 
 
 # the DE lunar integrations run both ways from their epoch: a span may end before it starts
-SCENE = Scene(SCHEMA, build, compare_run, verdict, Cost(step_s=2e-4), bench=bench, backward=True)
+def restart(p, start):
+    from .model import started_at
+
+    return started_at(p, start)
+
+
+SCENE = Scene(SCHEMA, build, compare_run, verdict, Cost(step_s=2e-4), bench=bench, backward=True,
+              restart=restart)

@@ -61,3 +61,19 @@ def difference_driven_by(p, run, other, mats):
         raise ScenarioError("compare.source", other, exc.accepted) from None
     solution, _ = run.integrate(system, run.times, f"driven_by_{other}")
     return pole_and_longitude_difference(mats, icrf_to_body(solution.quaternion))
+
+
+def started_at(p, start):
+    """The lunar model of ``p`` started at a stored state ``start`` = (t0, y): the same model on orbits
+    sampled over the stretch, without the DE421 start (its core carried from DE421's epoch) it replaces."""
+    from ...models.assemblies.moon import moon
+    from ...orbits.sources import sample_orbits
+    from ...references.moon_de421 import earth_pole
+
+    level, extra = LEVELS[p["model.level"]], tuple(p["model.terms"])
+    first, last = min(start[0], *p.bounds) - MARGIN_D, max(start[0], *p.bounds) + MARGIN_D
+    orbits = sample_orbits(p["orbit.source"], "moon", level.bodies, first, last, p["orbit.step"])
+    pole = earth_pole(first, last) if "earth_j2" in level.terms + extra else None
+    built = moon(p["model.level"], orbits, extra, p["model.tides"], pole, float(start[0]))
+    built.meta["source"] = p["orbit.source"]
+    return built.with_start(*start)
