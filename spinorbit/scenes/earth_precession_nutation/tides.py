@@ -8,9 +8,11 @@ the Sun and answering late, are pulled on by both, and the torque turns the axis
   Moon and the Sun pulling on the tides both raise (DE421's eq. 32 keeps the Moon's pull only; the Sun's
   pull on the Moon's tide and the Moon's on the Sun's do not average out: both raise the K1 tide, at the
   same frequency), the axis held on the IAU 2006/2000A pole, averaged over the 18.6-yr node cycle centred on
-  J2000: the rates of the Fukushima-Williams angles.  The elastic part gives longitude; the delays give
-  obliquity, the semi-diurnal band tilting the axis away from the ecliptic pole, the diurnal and zonal
-  bands toward it;
+  J2000: the rates of the Fukushima-Williams angles, less those of the same tides answering at once.  That
+  elastic part (+1.97 mas/cy in longitude, 0 in obliquity: the tidal deformation's own precession, which P03
+  leaves inside its fitted H_d, Lambert & Capitaine 2004) belongs to the H_d fitted to the rate; the delays
+  give +0.08 mas/cy in longitude and +0.42 in obliquity, the semi-diurnal band tilting the axis away from the
+  ecliptic pole, the diurnal and zonal bands toward it;
 * ``"williams1994"``: Williams' (1994, AJ 108, 711) obliquity rate from tidal dissipation, +2.4 mas/cy (P03
   Table 3, tides (c); in longitude its tides rows are in t^2 only).
 
@@ -41,10 +43,12 @@ def rates(choice, source):
 
     love = earth.de421_tides()
     ephemeris = source if orbit_source(source).jpl_kernel else "de421"       # averaged on a kernel
-    return model_rates(ephemeris, tuple(love[band] for band in (0, 1, 2)))
+    delayed = model_rates(ephemeris, tuple(love[band] for band in (0, 1, 2)))
+    elastic = model_rates(ephemeris, tuple((love[band][0], 0.0) for band in (0, 1, 2)))
+    return tuple(d - e for d, e in zip(delayed, elastic))
 
 
-@functools.lru_cache(maxsize=2)
+@functools.lru_cache(maxsize=4)
 def model_rates(source, love, sun=True):
     """The delayed-tide model's rates, "/cy (see the module docstring), on the ephemeris ``source``: ``love``
     = ((k2, tau d) of the zonal, diurnal, semi-diurnal band); ``sun``: the Sun raises tides and pulls on them
