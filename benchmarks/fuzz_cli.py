@@ -344,6 +344,12 @@ def damage(path, how, rng):
         path.mkdir()
 
 
+def answer_ctrl_c():
+    """In the child: SIGINT at its default, as in a terminal (a job started in the background ignores it, and
+    Python then never installs its handler)."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def outcome_of(done, err, ok_words=("damaged", "refused", "rebuilt", "compiled again", "computing it again")):
     """The outcome of a finished command (None: it did not finish)."""
     if done is None:
@@ -381,7 +387,8 @@ def case_signal(rng, args, work):
     sig = rng.choice([signal.SIGINT, signal.SIGTERM])
     delay = rng.uniform(0.3, 8.0)
     command = TARGETS[target](work)
-    process = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=ENV)
+    process = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=ENV,
+                               preexec_fn=answer_ctrl_c)
     time.sleep(delay)
     process.send_signal(sig)
     label = f"{target} {signal.Signals(sig).name} at {delay:.1f} s"
@@ -423,7 +430,8 @@ def made_files(base):
                         [sys.executable, "-c", "import spinorbit; from astropy.time import Time; "
                                                "spinorbit.moon_librations(Time('2000-01-05', scale='tdb'))"]):
             subprocess.run(command, cwd=ROOT, env=env, capture_output=True, check=False)
-        process = subprocess.Popen(TARGETS["run"](made), cwd=ROOT, env=env, stderr=subprocess.PIPE)
+        process = subprocess.Popen(TARGETS["run"](made), cwd=ROOT, env=env, stderr=subprocess.PIPE,
+                                   preexec_fn=answer_ctrl_c)
         time.sleep(8)
         process.send_signal(signal.SIGINT)
         process.communicate()

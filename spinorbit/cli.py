@@ -394,6 +394,8 @@ def console():
     except BrokenPipeError:                  # `spinorbit list | head`: the reader left; say nothing more
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 141
+    if code == 130:                          # stopping: the same Ctrl-C delivered again (LLVM's handler, met
+        signal.signal(signal.SIGINT, signal.SIG_IGN)     # while compiling, raises it once more) ends as 130
     gc.freeze()
     return code
 

@@ -12,6 +12,12 @@ ROOT = Path(__file__).parents[1]
 ENV = {**os.environ, "PYTHONPATH": str(ROOT)}
 
 
+def answer_ctrl_c():
+    """In the child: SIGINT at its default, as in a terminal (a suite run in the background ignores it, and
+    Python then never installs its handler)."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def wait_for(condition, process, timeout=240.0):
     start = time.monotonic()
     while not condition():
@@ -37,7 +43,7 @@ def interrupted_after(call):
     """Exit code of a process sent SIGINT once ``call`` (a REBOUND run) has returned: 130 when Python's
     handler raised KeyboardInterrupt, a timeout when the signal went to REBOUND's."""
     process = subprocess.Popen([sys.executable, "-c", AFTER_REBOUND.format(call=call)], stdout=subprocess.PIPE,
-                               text=True, env=ENV)
+                               text=True, env=ENV, preexec_fn=answer_ctrl_c)
     assert process.stdout.readline().strip() == "ready"
     process.send_signal(signal.SIGINT)
     try:
