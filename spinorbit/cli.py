@@ -25,6 +25,7 @@ EXIT_VERDICT_FAIL = 4
 FORCE_HELP = ("write into an --out holding entries spinorbit did not write: they are kept, except files of "
               "the names the run writes, which it overwrites")
 MAX_LISTED_BYTES = 1 << 20          # `list` reads at most this much of a file (a scenario is a few kB)
+_COMMAND = False                     # this process is the spinorbit command (console), not a caller of main
 
 
 def main(argv=None):
@@ -98,6 +99,8 @@ def main(argv=None):
         print(f"error: {exc}", file=sys.stderr)
         return 3
     except KeyboardInterrupt:
+        if _COMMAND:
+            signal.signal(signal.SIGINT, signal.SIG_IGN)     # stopping: see _stopping
         print("interrupted", file=sys.stderr)
         return 130
     except SpinorbitError as exc:
@@ -127,8 +130,18 @@ def _sigterm_interrupts():
     previous = signal.signal(signal.SIGTERM, _interrupt)
     try:
         yield
+    except KeyboardInterrupt:
+        previous = _stopping(previous)
+        raise
     finally:
         signal.signal(signal.SIGTERM, previous)
+
+
+def _stopping(handler):
+    """The handler a stop signal keeps once the command is stopping: ignored when this process is the command,
+    so that the same stop delivered again (LLVM's handler, met while numba compiles, raises it once more) does
+    not kill it before it exits 130; ``handler`` when ``main`` runs inside another program."""
+    return signal.SIG_IGN if _COMMAND else handler
 
 
 def _interrupt(signum, frame):
@@ -389,13 +402,13 @@ def console():
     """The ``spinorbit`` command: :func:`main`, then ``gc.freeze()`` so that the interpreter's exit does not
     walk the million objects numba and astropy leave behind (0.4 s of the Moon's 6-s run).  Not in
     ``main``, which tests and notebooks call in their own process."""
+    global _COMMAND
+    _COMMAND = True
     try:
         code = main()
     except BrokenPipeError:                  # `spinorbit list | head`: the reader left; say nothing more
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 141
-    if code == 130:                          # stopping: the same Ctrl-C delivered again (LLVM's handler, met
-        signal.signal(signal.SIGINT, signal.SIG_IGN)     # while compiling, raises it once more) ends as 130
     gc.freeze()
     return code
 

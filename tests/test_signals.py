@@ -119,3 +119,31 @@ def test_an_interrupted_bench_keeps_the_methods_that_finished(tmp_path, monkeypa
     table = (kept / "work_precision.csv").read_text().splitlines()
     assert table[0].startswith("method") and len(table) > 1
     assert {line.split(",")[0] for line in table[1:]} == {"rk4"}
+
+
+REPEATED_STOP = """
+import os, signal, sys, threading, time
+from spinorbit import cli
+
+def stops():
+    time.sleep(0.5)
+    for _ in range(100):                    # the same stop, again and again while the command exits
+        os.kill(os.getpid(), signal.{name})
+        time.sleep(0.002)
+
+def slow_run(args):
+    threading.Thread(target=stops, daemon=True).start()
+    time.sleep(30)
+
+cli._run = slow_run
+cli.gc.freeze = lambda: time.sleep(0.3)      # the command's way out, long enough for the stops to reach it
+sys.argv = ["spinorbit", "run", "free_body"]
+sys.exit(cli.console())
+"""
+
+
+def test_a_stop_delivered_again_while_the_command_exits_still_ends_as_130():
+    for name in ("SIGINT", "SIGTERM"):
+        done = subprocess.run([sys.executable, "-c", REPEATED_STOP.format(name=name)], capture_output=True,
+                              text=True, env=ENV, timeout=60, preexec_fn=answer_ctrl_c)
+        assert done.returncode == 130 and done.stderr == "interrupted\n", (name, done.returncode, done.stderr)
