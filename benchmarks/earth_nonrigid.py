@@ -180,10 +180,11 @@ def print_budget(summary):
         cells = [f"{d[row]:+.6f}" if row in d else "" for d in (psi, P03_LONGITUDE, eps, P03_OBLIQUITY)]
         print(f"| {row} | " + " | ".join(cells) + " |")
     love = earth.de421_tides()
-    bands = [tides.model_rates("de421", tuple(love[b] if b == band else (0.0, love[b][1]) for b in (0, 1, 2)))
-             for band in (0, 1, 2)]
-    print("DE421's tides by band (zonal, diurnal, semi-diurnal), mas/cy: psi " + ", ".join(
-        f"{1000 * b[0]:+.2f}" for b in bands) + "; eps " + ", ".join(f"{1000 * b[1]:+.2f}" for b in bands))
+    one = lambda band, delay: tides.model_rates("de421", tuple(
+        (love[b][0] if b == band else 0.0, love[b][1] * delay) for b in (0, 1, 2)))
+    bands = [[d - e for d, e in zip(one(band, 1.0), one(band, 0.0))] for band in (0, 1, 2)]
+    print("The delays of DE421's tides by band (zonal, diurnal, semi-diurnal), mas/cy: psi " + ", ".join(
+        f"{1000 * b[0]:+.3f}" for b in bands) + "; eps " + ", ".join(f"{1000 * b[1]:+.3f}" for b in bands))
 
 
 def main():
