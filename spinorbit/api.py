@@ -50,9 +50,9 @@ ACCURACY = {
                              "ephemeris's own uncertainty there, not the integration's (benchmarks/RESULTS.md)"},
     "earth": {"cip_max_mas": 1.3,
               "statistic": "cip_rms_mas is the tolerance on the rms over 1950-2050 of X and of Y (measured 0.09 / "
-                           "0.43 mas: H_d from the observed precession rate; Y is the obliquity rate's line), not a "
-                           "bound at each date; cip_max_mas is what one date can differ by: the largest over "
-                           "1950-2050 (measured 0.27 / 0.94 mas in X / Y)",
+                           "0.19 mas: H_d from the observed precession rate; Y mostly the obliquity rate's line), "
+                           "not a bound at each date; cip_max_mas is what one date can differ by: the largest over "
+                           "1950-2050 (measured 0.27 / 0.52 mas in X / Y)",
               "basis": "the non-rigid scene against IAU 2006/2000A over 1950-2050"},
     "earth_rigid": {"cip_max_mas": 60.0,
                     "statistic": "cip_rms_mas is the tolerance on the rms over 1950-2050 of X (Y: 25 mas; measured "
