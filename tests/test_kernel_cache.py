@@ -100,7 +100,8 @@ def test_a_module_planted_in_the_cache_never_shadows_another(cache, tmp_path):
     assert done.returncode == 0 and not marker.exists() and "site-packages" in done.stdout.splitlines()[-1]
 
 
-@pytest.mark.parametrize("damage", ["truncated data", "garbage index", "a pickle that runs code"])
+@pytest.mark.parametrize("damage", ["truncated data", "garbage index", "a pickle that runs code",
+                                    "data a link to /dev/zero", "index a FIFO"])
 def test_a_damaged_numba_cache_file_is_never_unpickled_but_compiled_again(cache, tmp_path, damage):
     numba_dir = cache / "kernels" / "numba"
     (index,) = numba_dir.glob("spinorbit_rhs_*.nbi")
@@ -110,6 +111,12 @@ def test_a_damaged_numba_cache_file_is_never_unpickled_but_compiled_again(cache,
         data.write_bytes(data.read_bytes()[:-100])
     elif damage == "garbage index":
         index.write_bytes(b"\x00" * 64)
+    elif damage == "data a link to /dev/zero":          # read whole, it would never end
+        data.unlink()
+        os.symlink("/dev/zero", data)
+    elif damage == "index a FIFO":                      # opened to read, it would wait for a writer
+        index.unlink()
+        os.mkfifo(index)
     else:
         class Runs:
             def __reduce__(self):

@@ -39,6 +39,7 @@ from numba import njit
 from numba.core.caching import CompileResultCacheImpl, FunctionCache, IndexDataCacheFile, _CacheLocator
 
 from ..errors import InputError
+from ..files import NotRegular, open_regular
 from ..private import check_above, check_private, numba_cache_refusal
 
 ENVIRONMENT = "SPINORBIT_CACHE_DIR"
@@ -164,7 +165,7 @@ def remove_compiled(module_name):
     """Delete numba's cache files of a generated module's functions."""
     folder = kernels_dir() / "numba"
     for entry in os.scandir(folder):
-        if entry.name.startswith(module_name + ".") and entry.is_file(follow_symlinks=False):
+        if entry.name.startswith(module_name + ".") and not entry.is_dir(follow_symlinks=False):
             os.unlink(entry.path)
 
 
@@ -254,7 +255,11 @@ class _CheckedFile(IndexDataCacheFile):
         self._write_checked(self._data_path(name), self._dump(data))
 
     def _read_checked(self, path):
-        with open(path, "rb") as f:
+        try:
+            f = open_regular(path)
+        except NotRegular:
+            raise Damaged(f"{os.path.basename(path)} is not a regular file") from None
+        with f:
             content = f.read()
         head, _, rest = content.partition(b"\n")
         version, _, rest = rest.partition(b"\n")
@@ -277,7 +282,7 @@ class _CheckedFile(IndexDataCacheFile):
         """Delete this function's index and data files."""
         base = os.path.basename(self._index_path)[:-len(".nbi")]
         for entry in os.scandir(self._cache_path):
-            if entry.name.startswith(base + ".") and entry.is_file(follow_symlinks=False):
+            if entry.name.startswith(base + ".") and not entry.is_dir(follow_symlinks=False):
                 os.unlink(entry.path)
 
 
