@@ -89,10 +89,11 @@ def verdict(p, comparison):
 
 def build(p, times):
     """The rigid Earth on its orbits, started on the IAU pole (start.py)."""
-    from .start import build as build_system
+    from . import start
 
-    system, orbits, (z0, pole_ecl, plane_tilt) = build_system(p, times)
-    return Model(system, orbits=orbits, z0=z0, pole_ecl=pole_ecl, plane_tilt=plane_tilt)
+    system, orbits, (z0, pole_ecl, plane_tilt) = start.build(p, times)
+    twin = start.gyroscopic_twin(p, z0) if p.earth.model == "full" else None
+    return Model(system, orbits=orbits, twin=twin, pole_ecl=pole_ecl, plane_tilt=plane_tilt)
 
 
 def compare_run(p, run):
@@ -122,7 +123,7 @@ def compare_run(p, run):
     table, figures = vs.table(t, z, dx, dy, nutation), plots.earth_precession_nutation(
         t, dx, dy, nutation, iau, "non-rigid model" if nonrigid else "rigid model")
     if p.earth.model == "full":
-        comparison.update(vs.full_model_checks(p, run, m.z0, z))
+        comparison.update(vs.full_model_checks(p, run, m.twin, z))
         twin = comparison.pop("_full_minus_gyro_mas")
         figures["full_minus_gyroscopic"] = plots.full_minus_gyroscopic(t, twin)
     model = vs.model_summary(moments, m.orbits, geodesic, p.earth.j2_rate, p.earth.j4)

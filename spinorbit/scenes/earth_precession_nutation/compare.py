@@ -92,13 +92,11 @@ def rms(x):
     return float(np.sqrt(np.mean(np.square(x))))
 
 
-def full_model_checks(p, run, pole, z_full):
-    """The full model of ``run`` (spinorbit.scene.Run) against its gyroscopic twin on the same orbits and
-    start, and the free nutation it started (a dense run over ``comparison.free_nutation_span``)."""
-    from .start import earth_system, orbits, started
-
+def full_model_checks(p, run, twin, z_full):
+    """The full model of ``run`` (spinorbit.scene.Run) against its gyroscopic ``twin`` on the same orbits and
+    start (start.gyroscopic_twin), and the free nutation it started (a dense run over
+    ``comparison.free_nutation_span``)."""
     t, t0, system = run.times, p.t_start, run.model.system
-    twin = started(earth_system(p, orbits(p), "gyroscopic", t0), t0, pole)
     twin_run, _ = run.integrate(twin, t, "gyroscopic twin", "rk8", {"step": p.comparison.gyroscopic_step})
     t_dense = t0 + np.arange(0.0, min(p.comparison.free_nutation_span, t[-1] - t0), 0.125)
     dense, _ = run.integrate(system, t_dense, "free nutation", estimate_error=False)

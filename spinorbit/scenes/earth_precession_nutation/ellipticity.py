@@ -70,8 +70,7 @@ def from_observed_rate(source, planets, sample_step, j2_rate, j4, geodesic, geod
     from ...integrators import simulate
     from ...models.assemblies.earth import rigid_earth
     from ...orbits.sources import gm_of, sample_orbits
-    from .nonrigid import ren2000_scaled
-    from .start import PLANETS, ecliptic_pole, started
+    from .pole import PLANETS, ecliptic_pole, ren2000_scaled, started
     from .tides import rates as tidal_rates
 
     t = np.arange(-HALF_SPAN_D, HALF_SPAN_D + STEP_D / 2, STEP_D)

@@ -12,11 +12,10 @@ from ...analysis import nonrigid
 from ...analysis.precession import fit_pole, term_table
 from ...analysis.transfer import forms
 from ...analysis.transfer.models import MODELS, PUBLISHED_CHANDLER_CPSD, PUBLISHED_FCN_CPSD
-from ...bodies import earth
-from ...constants import ARCSEC, JULIAN_CENTURY_D, MAS
-from ...models.assemblies.earth import ORBIT_ECCENTRICITY, SUN_MEAN_ANOMALY_RAD
+from ...constants import MAS
 from ...references import arguments, erfa_pole, ren2000
 from . import vlbi as observed
+from .pole import geodesic_nutation, ren2000_scaled
 
 # Nutation terms of the tables: name -> multipliers of (l, l', F, D, Om).
 TABLE_TERMS = {"18.6 yr": (0, 0, 0, 0, 1), "9.3 yr": (0, 0, 0, 0, 2), "1 yr": (0, 1, 0, 0, 0),
@@ -31,15 +30,6 @@ def settings(scenario):
             "geodesic": scenario["earth.geodesic_nutation"] and scenario["earth.geodesic_precession"]}
 
 
-def geodesic_nutation(t_tdb_d):
-    """The model's geodesic nutation in longitude (rad) at TDB days: the annual term of its geodesic
-    precession (models.interactions.geodesic.GeodesicRate: Omega_gp (1 + 3 e cos l')) integrated,
-    -(3 e Omega_gp / n') sin l' (Fukushima 1991)."""
-    rate = earth.GEODESIC_PRECESSION_ARCSEC_CY * ARCSEC / JULIAN_CENTURY_D
-    l0, n = SUN_MEAN_ANOMALY_RAD
-    return -3.0 * ORBIT_ECCENTRICITY * rate / n * np.sin(l0 + n * np.asarray(t_tdb_d))
-
-
 def nonrigid_pole(t, z, model, h_d, geodesic):
     """Figure axes (n, 3) of the non-rigid Earth: the rigid nutation (x, y) = (dpsi sin eps_A, deps) about the
     IAU 2006 mean pole times the transfer function ``model`` (a name of MODELS) term by term, its geodesic
@@ -49,14 +39,6 @@ def nonrigid_pole(t, z, model, h_d, geodesic):
     phases, rates = arguments.phases(t, nonrigid.LUNISOLAR_ARGUMENTS)
     x, y = nonrigid.nonrigid_nutation(t, dpsi * sin_eps, deps, phases, rates, MODELS[model], h_d, kinematic)
     return erfa_pole.from_mean_pole(t, x / sin_eps + nonrigid.nonlinear_precession(t - t[0]), y)
-
-
-def ren2000_scaled(t, h_d, geodesic):
-    """REN-2000's (dpsi, deps), rad, on its tabulated constituents, times h_d / H_REN (a rigid Earth's
-    first-order nutation goes as H), plus the model's geodesic nutation if ``geodesic`` (REN-2000 has
-    none)."""
-    dpsi, deps = ren2000.nutation(t)
-    return dpsi * h_d / ren2000.H + (geodesic_nutation(t) if geodesic else 0.0), deps * h_d / ren2000.H
 
 
 def nonrigid_summary(t, z_rigid, z, iau, model, h_d, geodesic):

@@ -2,16 +2,15 @@
 DE421 or Euler's circles, started on the IAU 2006/2000A pole (ERFA) with forced initial conditions, or on
 the IAU mean pole plus the rigid model's own nutation there (found by a first gyroscopic run fitted on
 IAU 2000A's arguments)."""
-import math
 
 import numpy as np
 
 from ...bodies import earth
 from ...errors import ScenarioError
 from ...references import euler_p96
+from .pole import PLANETS, ecliptic_pole, ren2000_scaled, started
 
 # direct torques; Uranus, Neptune: GM/r^3 ~1e-3 of Jupiter's
-PLANETS = ("mercury", "venus", "mars", "jupiter", "saturn")
 RIGID_START_STEP_D = 2.0              # rk8 step of the first gyroscopic run (converged: RESULTS.md)
 
 
@@ -50,15 +49,6 @@ def check(scenario):
                                 'false with earth.model = "full" (it acts in the gyroscopic model)')
 
 
-def ecliptic_pole(tilt):
-    """The pole the geodesic precession turns about: the J2000 ecliptic's, or that of Euler's tilted
-    circles."""
-    from ...references import erfa_pole
-
-    return (erfa_pole.ecliptic_pole_j2000() if tilt is None
-            else np.array([0.0, -math.sin(tilt), math.cos(tilt)]))
-
-
 def earth_system(scenario, source, model, t0):
     """The rigid Earth of the scenario on ``source`` (orbit source, tilt), rotator ``model``, not yet
     started."""
@@ -71,16 +61,6 @@ def earth_system(scenario, source, model, t0):
     return rigid_earth(orbit, model, dynamical_ellipticity(scenario)[0],
                        scenario["earth.b_minus_a_over_c"], scenario["earth.j2_rate"], scenario["earth.j4"],
                        pole, scenario["earth.geodesic_nutation"], t0)
-
-
-def started(system, t0, pole, forced=True):
-    """``system`` with the Earth's figure axis at ``pole`` at t0 spinning at the Earth rotation angle's rate
-    (its body x axis toward the A axis, longitude -14.93 deg, for a triaxial Earth)."""
-    from ...models.start import on_pole
-
-    state = on_pole(system, "earth", t0, pole, earth.ERA_RATE_RAD_D, a_axis(t0, pole), forced)
-    system.y0 = system.layout.pack(state)
-    return system
 
 
 def build(scenario, t):
@@ -107,7 +87,6 @@ def ren2000_start(scenario, t0):
     (rigid_start) misses the terms it does not fit (0.1 mas in X in 1950)."""
     from ...references import erfa_pole
     from .ellipticity import dynamical_ellipticity
-    from .nonrigid import ren2000_scaled
 
     geodesic = scenario["earth.geodesic_nutation"] and scenario["earth.geodesic_precession"]
     t = np.array([t0])
@@ -134,17 +113,14 @@ def rigid_start(scenario, source, t0, pole, t):
                                             for a, m, r in zip((psi0, eps0), model, ref)))
 
 
-def a_axis(t0, z0):
-    """Direction of the body x axis at t0: the A axis (longitude -14.93 deg) for a triaxial Earth."""
-    from ...references import erfa_pole
-
-    x_tirs = erfa_pole.terrestrial_x_axis(t0)
-    lon = math.radians(earth.A_AXIS_LONGITUDE_DEG)
-    return math.cos(lon) * x_tirs + math.sin(lon) * np.cross(z0, x_tirs)
-
-
 def restarted(p, start):
     """The rigid Earth of ``p`` started at a stored state ``start`` = (t0, y) (a continuous solution's
     extension, spinorbit.solutions)."""
     check(p)
     return earth_system(p, orbits(p), p["earth.model"], float(start[0])).with_start(*start)
+
+
+def gyroscopic_twin(p, pole):
+    """The gyroscopic Earth on the same orbits and start as the full model (what the full model is checked
+    against)."""
+    return started(earth_system(p, orbits(p), "gyroscopic", p.t_start), p.t_start, pole)
