@@ -57,11 +57,8 @@ def run_scenario(scenario, overrides=()):
 
 def run_scene(scenario):
     """The scene's run: build its model once, integrate it over the output times, let the scene compare, make
-    the table (the attitude table and the scene's columns, or the scene's own) and the summary (a scene that
-    declares its own ``run`` aside)."""
+    the table (the attitude table and the scene's columns, or the scene's own) and the summary."""
     scene, p = scenario.scene, scenario.params
-    if scene.run is not None:
-        return scene.run(scenario)
     times = scenario.output_times()
     model = scene.build(p, times)
     run = Run(p, model, times, functools.partial(integrate, scenario))

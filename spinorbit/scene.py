@@ -103,7 +103,6 @@ class Scene:
     ``restart(p, start) -> System``: the model started at a stored state ``start`` = (t0, y) instead of its own
     start (what a continuous solution is extended with, spinorbit.solutions);
     ``sweep_figures(tables) -> {name: draw}``: figures over a sweep's members (e.g. a band over their curves);
-    ``run(scenario) -> RunResult``: a scene that runs its own pipeline (each says why);
     ``nbody_counts(p) -> {count: items}``: an N-body stage its run does first (NBODY_COSTS' counts), for
     the up-front estimate."""
 
@@ -118,7 +117,6 @@ class Scene:
     taylor: bool = False
     restart: Callable = None
     sweep_figures: Callable = None
-    run: Callable = None
     nbody_counts: Callable = None
 
     def verdict_for(self, params, comparison):
