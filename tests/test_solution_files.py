@@ -175,3 +175,12 @@ def test_a_fifo_in_the_store_of_solutions_is_refused_without_blocking(tmp_path):
                           text=True, timeout=60)
     assert done.stdout.split() == ["None", "False"], done.stdout + done.stderr
     assert "not a regular file" in done.stderr and done.stderr.count("\n") == 1
+
+
+def test_a_folder_in_place_of_a_stored_solution_is_refused_and_replaced(tmp_path, capsys):
+    from spinorbit.solutions import store
+
+    (tmp_path / "s.npz").mkdir()
+    (tmp_path / "s.npz" / "inside").write_text("x")
+    assert store.read(tmp_path / "s.npz", {"scene": "x"}) is None
+    assert not (tmp_path / "s.npz").exists() and capsys.readouterr().err.count("\n") == 1

@@ -19,6 +19,8 @@ import functools
 import hashlib
 import json
 import os
+import shutil
+import stat
 import sys
 import time
 import zipfile
@@ -161,7 +163,10 @@ def read(path, rec):
         return solution
     except Refused as exc:
         cache.say(f"the stored solution {path} was refused ({exc}); computing it again")
-        path.unlink(missing_ok=True)
+        if stat.S_ISDIR(info.st_mode):          # a folder in the private store, where a file belongs
+            shutil.rmtree(path, ignore_errors=True)
+        else:
+            path.unlink(missing_ok=True)
         return None
 
 
