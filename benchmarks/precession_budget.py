@@ -33,7 +33,7 @@ from spinorbit.orbits.kernel import open_ephemeris
 from spinorbit.orbits.sources import gm_of
 from spinorbit.references import arguments, erfa_pole
 from spinorbit.results import run_scenario
-from spinorbit.scenes.earth_precession_nutation.compare import torque_rates
+from spinorbit.starts.earth_ellipticity import torque_rates
 
 SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"
 EPS0 = 84381.406 * ARCSEC

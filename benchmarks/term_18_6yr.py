@@ -31,11 +31,11 @@ from spinorbit.analysis import nonrigid
 from spinorbit.analysis.spans import resolvable
 from spinorbit.analysis.transfer.models import IERS1996
 from spinorbit.bodies.earth import H_D
+from spinorbit.comparisons import earth_nonrigid
 from spinorbit.constants import ARCSEC, JULIAN_CENTURY_D, MAS
 from spinorbit.references import arguments, erfa_pole
 from spinorbit.results import run_scenario
-from spinorbit.scenes.earth_precession_nutation import compare as earth_vs_iau
-from spinorbit.scenes.earth_precession_nutation import nonrigid as earth_nonrigid
+from spinorbit.starts.earth_ellipticity import torque_rates
 
 SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"
 KSV_1996_OUT_MAS = (3.608, 1.543)      # KSV_1996_3, term (0 0 0 0 1): out-of-phase dpsi (cos), deps (sin)
@@ -68,7 +68,7 @@ def first_order_term(along):
     """18.6-yr (dpsi sin, dpsi cos, deps cos, deps sin), mas, of the first-order torque (DE421 Moon and Sun on
     the IAU 2006 mean pole, 1950-2050, integrated), the Moon's orbit turned by ``along`` (first_order_inputs)."""
     t, bodies, gm, phases = first_order_inputs(along)
-    rates = earth_vs_iau.torque_rates(t, mean_pole(t), bodies, gm)
+    rates = torque_rates(t, mean_pole(t), bodies, gm)
     (ps, pc, _), (es, ec, _) = (fit_om(t, integrated(t, r) * ARCSEC, phases, 3, False) for r in rates)
     return ps, pc, ec, es
 
@@ -86,7 +86,7 @@ def obliquity_drift(along):
         return a1, b
 
     held = erfa_pole.pole_from_angles(t, psi_bar, np.full_like(t, EPS0))
-    on_mean, on_held = (earth_vs_iau.torque_rates(t, z, bodies, gm)[0] for z in (mean_pole(t), held))
+    on_mean, on_held = (torque_rates(t, z, bodies, gm)[0] for z in (mean_pole(t), held))
     return fit(on_mean), fit(on_held), fit(on_mean, np.sin(eps_a))
 
 

@@ -202,7 +202,7 @@ def test_first_order_lunisolar_rate_of_de421_is_p03s():
     from spinorbit.orbits.kernel import open_ephemeris
     from spinorbit.orbits.sources import gm_of
     from spinorbit.references import arguments, erfa_pole
-    from spinorbit.scenes.earth_precession_nutation.compare import torque_rates
+    from spinorbit.starts.earth_ellipticity import torque_rates
 
     t = np.arange(-JULIAN_CENTURY_D, JULIAN_CENTURY_D, 1.0)
     ephemeris = open_ephemeris("de421", t[0], t[-1])

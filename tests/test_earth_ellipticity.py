@@ -1,4 +1,4 @@
-"""The Earth's H_d from the observed precession rate (scenes/earth_precession_nutation/ellipticity.py): the
+"""The Earth's H_d from the observed precession rate (spinorbit/starts/earth_ellipticity.py): the
 model's rate budget against P03's (Capitaine, Wallace & Chapront 2003, A&A 412, 567, Tables 3 and 4), and the
 non-rigid scene over the century with it against IAU 2006/2000A and VLBI's pole."""
 import math
@@ -10,8 +10,8 @@ from spinorbit.bodies import earth
 from spinorbit.bodies.table import gm_km3_d2
 from spinorbit.references import erfa_pole
 from spinorbit.results import run_scenario
-from spinorbit.scenes.earth_precession_nutation import tides
-from spinorbit.scenes.earth_precession_nutation.ellipticity import from_observed_rate
+from spinorbit.starts import earth_tides as tides
+from spinorbit.starts.earth_ellipticity import from_observed_rate
 from tests.units import arcsec, mas
 
 H_P03 = 3.27379448e-3            # IAU 2006's H_d (P03 Table 4)

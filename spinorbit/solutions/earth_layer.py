@@ -2,7 +2,7 @@
 and nutation about it, and IAU 2006/2000A's CIP beside them, as a Solution of their own.
 
 Each of these is a fit over a whole run (the Earth scene's: the transfer function applied term by term to the
-rigid nutation fitted on the luni-solar arguments, scenes.earth_precession_nutation.nonrigid; the mean pole
+rigid nutation fitted on the luni-solar arguments, comparisons.earth_nonrigid; the mean pole
 fitted with IAU 2000A's terms, its compare.precession_nutation), so the layer is computed once over the
 stored rigid solution's whole span, at its Chebyshev points, and fitted there like the rigid run; its
 provenance says over which span (``fit_over_tdb_d``).  It is stored beside the rigid solution and computed
@@ -24,7 +24,7 @@ CHECKED_EVERY = 10          # segments
 
 def layer(rigid, scenario, nonrigid):
     """The layer (a Solution over ``rigid``'s span) of the Earth scene ``scenario``, non-rigid or not."""
-    from ..scenes.earth_precession_nutation import nonrigid as nr
+    from ..comparisons import earth_nonrigid as nr
 
     return store.solve(_record(scenario, nonrigid), *rigid.span,
                        lambda _, lo, hi: _computed(rigid, nr.settings(scenario) if nonrigid else None))
@@ -47,9 +47,9 @@ def _record(scenario, nonrigid):
 
 
 def _computed(rigid, settings):
+    from ..comparisons import earth_iau as vs
+    from ..comparisons import earth_nonrigid as nr
     from ..references import erfa_pole
-    from ..scenes.earth_precession_nutation import compare as vs
-    from ..scenes.earth_precession_nutation import nonrigid as nr
 
     segments = rigid.segments
     count = len(segments.coefficients)

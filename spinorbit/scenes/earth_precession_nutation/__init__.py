@@ -1,11 +1,11 @@
 """The Earth's precession and nutation (Euler ch. 16 P91/P96) against IAU 2006/2000A (ERFA).
 
 A rigid oblate Earth (spinorbit.models.assemblies.earth, H_d IAU 2006's or from the observed precession
-rate: ellipticity.py) under the Moon's and Sun's torques (DE421, or Euler's circles), with the tides' secular
-rates if asked (tides.py), started on the IAU pole with forced initial conditions (start.py);
-the CIP X, Y, the fitted precession rate and nutation terms, Euler's P96 rate N cos n (§846) beside them
-(compare.py).  The rigid-minus-IAU nutation is the non-rigid response, not an error: ``earth.nonrigid``
-applies it (nonrigid.py; REN-2000 and VLBI's observed pole beside).
+rate: starts/earth_ellipticity.py) under the Moon's and Sun's torques (DE421, or Euler's circles), with the
+tides' secular rates if asked (starts/earth_tides.py), started on the IAU pole with forced initial
+conditions (starts/earth.py); the CIP X, Y, the fitted precession and nutation, Euler's P96 rate beside
+(comparisons/earth_iau.py).  The rigid-minus-IAU nutation is the non-rigid response, not an error:
+``earth.nonrigid`` applies it (comparisons/earth_nonrigid.py; REN-2000 and VLBI's observed pole beside).
 """
 from ...analysis.precession import RATE_MIN_SPAN_D
 from ...analysis.transfer.models import MODELS
@@ -14,8 +14,8 @@ from ...orbits.sources import orbit_source
 from ...references import euler_p96
 from ...scene import Cost, Model, Outcome, Scene
 from ...schema import SAMPLE_STEP, Key
+from ...starts.earth import restarted
 from ...verdict import Check, Verdict
-from .start import restarted
 
 SCHEMA = {
     "earth.model": Key(type=str, default="gyroscopic", choices=("full", "gyroscopic")),
@@ -32,7 +32,7 @@ SCHEMA = {
     "earth.j2_rate": Key(type=bool, default=True),
     "earth.j4": Key(type=bool, default=False, help="torques on the Earth's J4 (EGM2008; gyroscopic model)"),
     "earth.tides": Key(type=str, default="none", choices=("none", "de421", "williams1994"),
-                       help="the tides' secular rates (tides.py): DE421's tidal model's, or Williams'"),
+                       help="the tides' secular rates (starts.earth_tides): DE421's model's, or Williams'"),
     "earth.geodesic_nutation": Key(type=bool, default=False, help="the geodesic precession's annual term"),
     "earth.nonrigid": Key(type=bool, default=False, help="the rigid nutation times earth.transfer_function"),
     "earth.transfer_function": Key(type=str, default="mhb2000", choices=tuple(MODELS)),
@@ -88,8 +88,8 @@ def verdict(p, comparison):
 
 
 def build(p, times):
-    """The rigid Earth on its orbits, started on the IAU pole (start.py)."""
-    from . import start
+    """The rigid Earth on its orbits, started on the IAU pole (starts/earth.py)."""
+    from ...starts import earth as start
 
     system, orbits, (z0, pole_ecl, plane_tilt) = start.build(p, times)
     twin = start.gyroscopic_twin(p, z0) if p.earth.model == "full" else None
@@ -98,11 +98,11 @@ def build(p, times):
 
 def compare_run(p, run):
     from ... import plots
+    from ...comparisons import earth_iau as vs
+    from ...comparisons import earth_nonrigid as nr
     from ...references import erfa_pole
-    from . import compare as vs
-    from . import ellipticity as hd
-    from . import nonrigid as nr
-    from . import tides
+    from ...starts import earth_ellipticity as hd
+    from ...starts import earth_tides as tides
 
     t, system, m = run.times, run.model.system, run.model
     z = system.figure_axes("earth", t, run.solution.y)

@@ -8,14 +8,14 @@ the non-rigid pole, IAU 2000A and REN-2000 (scaled to the run's H_d) are tabled 
 """
 import numpy as np
 
-from ...analysis import nonrigid
-from ...analysis.precession import fit_pole, term_table
-from ...analysis.transfer import forms
-from ...analysis.transfer.models import MODELS, PUBLISHED_CHANDLER_CPSD, PUBLISHED_FCN_CPSD
-from ...constants import MAS
-from ...references import arguments, erfa_pole, ren2000
-from . import vlbi as observed
-from .pole import geodesic_nutation, ren2000_scaled
+from ..analysis import nonrigid
+from ..analysis.precession import fit_pole, term_table
+from ..analysis.transfer import forms
+from ..analysis.transfer.models import MODELS, PUBLISHED_CHANDLER_CPSD, PUBLISHED_FCN_CPSD
+from ..constants import MAS
+from ..references import arguments, erfa_pole, ren2000
+from ..starts.earth_pole import geodesic_nutation, ren2000_scaled
+from . import earth_vlbi as observed
 
 # Nutation terms of the tables: name -> multipliers of (l, l', F, D, Om).
 TABLE_TERMS = {"18.6 yr": (0, 0, 0, 0, 1), "9.3 yr": (0, 0, 0, 0, 2), "1 yr": (0, 1, 0, 0, 0),
@@ -24,7 +24,7 @@ TABLE_TERMS = {"18.6 yr": (0, 0, 0, 0, 1), "9.3 yr": (0, 0, 0, 0, 2), "1 yr": (0
 
 def settings(scenario):
     """The non-rigid layer's settings from an Earth scene: transfer function, run's H_d, geodesic nutation."""
-    from .ellipticity import dynamical_ellipticity
+    from ..starts.earth_ellipticity import dynamical_ellipticity
 
     return {"model": scenario["earth.transfer_function"], "h_d": dynamical_ellipticity(scenario)[0],
             "geodesic": scenario["earth.geodesic_nutation"] and scenario["earth.geodesic_precession"]}

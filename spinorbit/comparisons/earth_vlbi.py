@@ -10,8 +10,8 @@ span, beside the same span with it left in.
 """
 import numpy as np
 
-from ...constants import JULIAN_YEAR_D, MAS
-from ...references import fcn_lambert, vlbi_pole
+from ..constants import JULIAN_YEAR_D, MAS
+from ..references import fcn_lambert, vlbi_pole
 
 
 def vlbi_summary(t, dx_mas, dy_mas):

@@ -5,10 +5,10 @@ IAU 2000A's arguments)."""
 
 import numpy as np
 
-from ...bodies import earth
-from ...errors import ScenarioError
-from ...references import euler_p96
-from .pole import PLANETS, ecliptic_pole, ren2000_scaled, started
+from ..bodies import earth
+from ..errors import ScenarioError
+from ..references import euler_p96
+from .earth_pole import PLANETS, ecliptic_pole, ren2000_scaled, started
 
 # direct torques; Uranus, Neptune: GM/r^3 ~1e-3 of Jupiter's
 RIGID_START_STEP_D = 2.0              # rk8 step of the first gyroscopic run (converged: RESULTS.md)
@@ -16,7 +16,7 @@ RIGID_START_STEP_D = 2.0              # rk8 step of the first gyroscopic run (co
 
 def orbits(scenario):
     """(orbit source, tilt of the circles' plane or None): DE421 sampled once, or Euler's circles."""
-    from ...orbits.sources import orbit_source
+    from ..orbits.sources import orbit_source
 
     source = orbit_source(scenario["orbit.source"])
     if source.circular:
@@ -30,7 +30,7 @@ def orbits(scenario):
 
 def check(scenario):
     """Settings that cannot go together, refused on the key that sets them."""
-    from ...orbits.sources import orbit_source
+    from ..orbits.sources import orbit_source
 
     circular = orbit_source(scenario["orbit.source"]).circular
     if scenario["earth.hd"] != "iau2006" and circular:
@@ -52,11 +52,11 @@ def check(scenario):
 def earth_system(scenario, source, model, t0):
     """The rigid Earth of the scenario on ``source`` (orbit source, tilt), rotator ``model``, not yet
     started."""
-    from ...models.assemblies.earth import rigid_earth
+    from ..models.assemblies.earth import rigid_earth
 
     orbit, tilt = source
     pole = ecliptic_pole(tilt) if scenario["earth.geodesic_precession"] else None
-    from .ellipticity import dynamical_ellipticity
+    from .earth_ellipticity import dynamical_ellipticity
 
     return rigid_earth(orbit, model, dynamical_ellipticity(scenario)[0],
                        scenario["earth.b_minus_a_over_c"], scenario["earth.j2_rate"], scenario["earth.j4"],
@@ -66,7 +66,7 @@ def earth_system(scenario, source, model, t0):
 def build(scenario, t):
     """(System started, orbits, (start pole, ecliptic pole, tilt or None)); ``t``: the output times, which the
     rigid start reads (a first gyroscopic pass)."""
-    from ...references import erfa_pole
+    from ..references import erfa_pole
 
     check(scenario)
     source, t0 = orbits(scenario), scenario.t_start
@@ -85,8 +85,8 @@ def ren2000_start(scenario, t0):
     H_d / H_REN, with the model's geodesic nutation): the rigid run follows REN-2000 to < 0.06 mas in its main
     terms, and the non-rigid layer then lands on IAU 2006/2000A's pole to that, where the fitted start
     (rigid_start) misses the terms it does not fit (0.1 mas in X in 1950)."""
-    from ...references import erfa_pole
-    from .ellipticity import dynamical_ellipticity
+    from ..references import erfa_pole
+    from .earth_ellipticity import dynamical_ellipticity
 
     geodesic = scenario["earth.geodesic_nutation"] and scenario["earth.geodesic_precession"]
     t = np.array([t0])
@@ -96,9 +96,9 @@ def ren2000_start(scenario, t0):
 def rigid_start(scenario, source, t0, pole, t):
     """IAU mean pole at t0 plus the rigid nutation there: the IAU pole + (rigid - IAU) fitted periodic
     terms."""
-    from ...analysis.precession import fit_pole, periodic_part
-    from ...integrators import simulate
-    from ...references import arguments, erfa_pole
+    from ..analysis.precession import fit_pole, periodic_part
+    from ..integrators import simulate
+    from ..references import arguments, erfa_pole
 
     gyro = started(earth_system(scenario, source, "gyroscopic", t0), t0, pole)
     run, _ = simulate(gyro, t, "rk8", {"step": RIGID_START_STEP_D}, estimate_error=False, label="rigid start")

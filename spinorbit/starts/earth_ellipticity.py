@@ -14,7 +14,7 @@ F the rows that go as H (the first-order luni-solar torque with the tilts, the p
 torques on J4, which are in fact independent of H but at 2.6 mas/cy move H by < 1e-12 if scaled), S the
 second order (the nutation's feedback, as H^2), G the geodesic precession and N MHB2000's nonlinear rate
 (a row of the observed rate, as in P03, which the non-rigid layer adds: H_d is the Earth's, the same with the
-layer off) and T the tides' (``earth.tides``, tides.py; independent of H); H_d is the root.  The obliquity
+layer off) and T the tides' (``earth.tides``, earth_tides; independent of H); H_d is the root.  The obliquity
 rate's rows come from the same run (with the tides'): it is not fitted, and is what is judged with the
 nutation.
 
@@ -25,10 +25,9 @@ import math
 
 import numpy as np
 
-from ...bodies import earth
-from ...constants import ARCSEC, JULIAN_YEAR_D
-from ...references import arguments, erfa_pole
-from . import compare
+from ..bodies import earth
+from ..constants import ARCSEC, JULIAN_CENTURY_D, JULIAN_YEAR_D
+from ..references import arguments, erfa_pole
 
 HALF_SPAN_D = 50 * JULIAN_YEAR_D         # the run: J2000 +- 50 yr
 STEP_D = 2.0                             # rk8 step and output step (converged: RESULTS.md)
@@ -64,14 +63,14 @@ def summary(scenario):
 def from_observed_rate(source, planets, sample_step, j2_rate, j4, geodesic, geodesic_nutation, tidal="none"):
     """The H_d that gives the model IAU 2006's rate in longitude at J2000, and the model's budget in
     longitude and obliquity at H_0 (the rows, "/cy, by the run's torques; see the module docstring)."""
-    from ...analysis import nonrigid
-    from ...analysis.harmonics import fit_harmonics
-    from ...analysis.precession import fit_pole
-    from ...integrators import simulate
-    from ...models.assemblies.earth import rigid_earth
-    from ...orbits.sources import gm_of, sample_orbits
-    from .pole import PLANETS, ecliptic_pole, ren2000_scaled, started
-    from .tides import rates as tidal_rates
+    from ..analysis import nonrigid
+    from ..analysis.harmonics import fit_harmonics
+    from ..analysis.precession import fit_pole
+    from ..integrators import simulate
+    from ..models.assemblies.earth import rigid_earth
+    from ..orbits.sources import gm_of, sample_orbits
+    from .earth_pole import PLANETS, ecliptic_pole, ren2000_scaled, started
+    from .earth_tides import rates as tidal_rates
 
     t = np.arange(-HALF_SPAN_D, HALF_SPAN_D + STEP_D / 2, STEP_D)
     bodies = ("moon", "sun") + (PLANETS if planets else ())
@@ -93,11 +92,11 @@ def from_observed_rate(source, planets, sample_step, j2_rate, j4, geodesic, geod
     lunisolar, gm = [positions[:, 0], positions[:, 1]], gm_of(("moon", "sun"))
     rate_terms = arguments.named(t, {str(m): m for m in nonrigid.LUNISOLAR_ARGUMENTS})
     at_j2000 = lambda series: fit_harmonics(t, series, rate_terms, degree=2).poly[0]
-    on_axis, on_mean = (compare.torque_rates(t, z, lunisolar, gm) for z in (axis, mean))
+    on_axis, on_mean = (torque_rates(t, z, lunisolar, gm) for z in (axis, mean))
     second = [at_j2000(a - m) for a, m in zip(on_axis, on_mean)]
     planet_rows = [0.0, 0.0]
     if planets:
-        planet_rates = compare.torque_rates(t, mean, [positions[:, k] for k in range(2, len(bodies))],
+        planet_rates = torque_rates(t, mean, [positions[:, k] for k in range(2, len(bodies))],
                                             gm_of(PLANETS))
         planet_rows = [at_j2000(r) for r in planet_rates]
     geodesic_row = -earth.GEODESIC_PRECESSION_ARCSEC_CY if geodesic else 0.0
@@ -122,3 +121,15 @@ def from_observed_rate(source, planets, sample_step, j2_rate, j4, geodesic, geod
             "obliquity_rate_p03_arcsec_cy": P03_OBLIQUITY_RATE_ARCSEC_CY,
             "tides": tidal}
 
+
+def torque_rates(t, poles, positions, gm, h_d=earth.H_D):
+    """(dpsi/dt, deps/dt), "/cy, of the Fukushima-Williams angles of the axes ``poles`` (n, 3, GCRS) under the
+    point masses' torque alone, H_d (T z) x z / omega (the axes held where they are: the first-order rate);
+    ``positions``: per body (n, 3) km, geocentric GCRS; ``gm``: km^3/d^2 per body."""
+    zdot = np.zeros_like(poles)
+    for r, g in zip(positions, gm):
+        dist = np.linalg.norm(r, axis=1)
+        tz = (3.0 * g * np.einsum("ij,ij->i", r, poles) / dist**5)[:, None] * r
+        zdot += h_d * np.cross(tz, poles) / earth.ERA_RATE_RAD_D
+    plus, minus = erfa_pole.pole_angles(t, poles + zdot), erfa_pole.pole_angles(t, poles - zdot)
+    return tuple((p - m) / 2.0 * JULIAN_CENTURY_D / ARCSEC for p, m in zip(plus, minus))

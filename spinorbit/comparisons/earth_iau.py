@@ -1,15 +1,15 @@
 """An Earth run against IAU 2006/2000A (ERFA): the residuals, the fitted precession and nutation, the full
-model's own checks, and the output table (the non-rigid layer and its references: nonrigid.py).
+model's own checks, and the output table (the non-rigid layer and its references: earth_nonrigid.py).
 
 Edge module (astropy, ERFA through references.erfa_pole); the Earth scene declares, this compares.
 """
 
 import numpy as np
 
-from ...analysis.precession import compare_with_iau, free_nutation_amplitude
-from ...bodies import earth
-from ...constants import ARCSEC, JULIAN_CENTURY_D, MAS
-from ...references import arguments, erfa_pole
+from ..analysis.precession import compare_with_iau, free_nutation_amplitude
+from ..bodies import earth
+from ..constants import MAS
+from ..references import arguments, erfa_pole
 
 
 def model_summary(moments, orbits, geodesic_arcsec_cy, j2_rate, j4):
@@ -49,25 +49,13 @@ def precession_nutation(t, z, iau):
     return comparison, not_measured, nutation
 
 
-def torque_rates(t, poles, positions, gm, h_d=earth.H_D):
-    """(dpsi/dt, deps/dt), "/cy, of the Fukushima-Williams angles of the axes ``poles`` (n, 3, GCRS) under the
-    point masses' torque alone, H_d (T z) x z / omega (the axes held where they are: the first-order rate);
-    ``positions``: per body (n, 3) km, geocentric GCRS; ``gm``: km^3/d^2 per body."""
-    zdot = np.zeros_like(poles)
-    for r, g in zip(positions, gm):
-        dist = np.linalg.norm(r, axis=1)
-        tz = (3.0 * g * np.einsum("ij,ij->i", r, poles) / dist**5)[:, None] * r
-        zdot += h_d * np.cross(tz, poles) / earth.ERA_RATE_RAD_D
-    plus, minus = erfa_pole.pole_angles(t, poles + zdot), erfa_pole.pole_angles(t, poles - zdot)
-    return tuple((p - m) / 2.0 * JULIAN_CENTURY_D / ARCSEC for p, m in zip(plus, minus))
-
 
 def table(t, z, dx, dy, nutation):
     """The CIP X, Y and their residuals (mas); on DE421 the model's mean pole and nutation about it."""
     import astropy.units as u
     from astropy.table import QTable
 
-    from ...schema import tdb_days_to_time
+    from ..schema import tdb_days_to_time
 
     columns = {"time": tdb_days_to_time(t), "cip_x": (z[:, 0] * u.rad).to(u.arcsec),
                "cip_y": (z[:, 1] * u.rad).to(u.arcsec), "cip_x_minus_erfa": dx * u.mas,

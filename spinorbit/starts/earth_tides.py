@@ -22,10 +22,10 @@ import functools
 
 import numpy as np
 
-from ...bodies import earth
-from ...bodies.table import gm_km3_d2
-from ...constants import ARCSEC, JULIAN_CENTURY_D, JULIAN_YEAR_D
-from ...references import erfa_pole
+from ..bodies import earth
+from ..bodies.table import gm_km3_d2
+from ..constants import ARCSEC, JULIAN_CENTURY_D, JULIAN_YEAR_D
+from ..references import erfa_pole
 
 CHOICES = ("none", "de421", "williams1994")
 NODE_CYCLE_D = 18.6 * JULIAN_YEAR_D
@@ -39,7 +39,7 @@ def rates(choice, source):
         return 0.0, 0.0
     if choice == "williams1994":
         return 0.0, earth.TIDAL_OBLIQUITY_RATE_ARCSEC_CY
-    from ...orbits.sources import orbit_source
+    from ..orbits.sources import orbit_source
 
     love = earth.de421_tides()
     ephemeris = source if orbit_source(source).jpl_kernel else "de421"       # averaged on a kernel
@@ -53,8 +53,8 @@ def model_rates(source, love, sun=True):
     """The delayed-tide model's rates, "/cy (see the module docstring), on the ephemeris ``source``: ``love``
     = ((k2, tau d) of the zonal, diurnal, semi-diurnal band); ``sun``: the Sun raises tides and pulls on them
     (else the Moon alone)."""
-    from ...models.interactions import tides
-    from ...orbits.kernel import open_ephemeris
+    from ..models.interactions import tides
+    from ..orbits.kernel import open_ephemeris
 
     t = np.arange(-NODE_CYCLE_D / 2, NODE_CYCLE_D / 2, STEP_D)
     ephemeris = open_ephemeris(source, t[0], t[-1])

@@ -1,15 +1,15 @@
 """The Earth model's pieces that do not depend on the choice of H_d: the planets it may add, the pole its
 geodesic precession turns about, a start on a pole, and the rigid nutation REN-2000 gives (with the model's
-geodesic nutation) -- what the start (start.py), the observed-rate H_d (ellipticity.py) and the non-rigid
-layer (nonrigid.py) share."""
+geodesic nutation) -- what the start (earth.py), the observed-rate H_d (earth_ellipticity.py) and
+the non-rigid layer (comparisons/earth_nonrigid.py) share."""
 import math
 
 import numpy as np
 
-from ...bodies import earth
-from ...constants import ARCSEC, JULIAN_CENTURY_D
-from ...models.assemblies.earth import ORBIT_ECCENTRICITY, SUN_MEAN_ANOMALY_RAD
-from ...references import ren2000
+from ..bodies import earth
+from ..constants import ARCSEC, JULIAN_CENTURY_D
+from ..models.assemblies.earth import ORBIT_ECCENTRICITY, SUN_MEAN_ANOMALY_RAD
+from ..references import ren2000
 
 PLANETS = ("mercury", "venus", "mars", "jupiter", "saturn")
 
@@ -17,7 +17,7 @@ PLANETS = ("mercury", "venus", "mars", "jupiter", "saturn")
 def ecliptic_pole(tilt):
     """The pole the geodesic precession turns about: the J2000 ecliptic's, or that of Euler's tilted
     circles."""
-    from ...references import erfa_pole
+    from ..references import erfa_pole
 
     return (erfa_pole.ecliptic_pole_j2000() if tilt is None
             else np.array([0.0, -math.sin(tilt), math.cos(tilt)]))
@@ -26,7 +26,7 @@ def ecliptic_pole(tilt):
 def started(system, t0, pole, forced=True):
     """``system`` with the Earth's figure axis at ``pole`` at t0 spinning at the Earth rotation angle's rate
     (its body x axis toward the A axis, longitude -14.93 deg, for a triaxial Earth)."""
-    from ...models.start import on_pole
+    from ..models.start import on_pole
 
     state = on_pole(system, "earth", t0, pole, earth.ERA_RATE_RAD_D, a_axis(t0, pole), forced)
     system.y0 = system.layout.pack(state)
@@ -35,7 +35,7 @@ def started(system, t0, pole, forced=True):
 
 def a_axis(t0, z0):
     """Direction of the body x axis at t0: the A axis (longitude -14.93 deg) for a triaxial Earth."""
-    from ...references import erfa_pole
+    from ..references import erfa_pole
 
     x_tirs = erfa_pole.terrestrial_x_axis(t0)
     lon = math.radians(earth.A_AXIS_LONGITUDE_DEG)
