@@ -24,8 +24,8 @@ from ...errors import ScenarioError
 from ...models.tidal_history.calibration import ocean_fit
 from ...scene import Model, Outcome, Scene
 from ...schema import Key
+from ...starts.earth_moon_history import GYR_D
 from ...verdict import Check, Verdict
-from .model import GYR_D
 
 _OCEAN = ocean_fit()
 
@@ -101,9 +101,11 @@ def build(p, times):
 
 
 def compare_run(p, run):
+    from ...comparisons import earth_moon_history as compare
     from ...plots import earth_moon_history, milankovitch_periods
     from ...references.lunar_proxies import provenance
-    from . import compare, figures, model, table
+    from ...starts import earth_moon_history as model
+    from . import figures, table
 
     chosen = p["tides.model"]
     names = [chosen] + ([m for m in MODELS if m != chosen] if p["compare.models"] else [])

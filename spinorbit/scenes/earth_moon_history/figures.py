@@ -38,7 +38,7 @@ def description(history):
     """The tide's fitted parameter and the run's stop, for the summary."""
     from ...models.tidal_history import response
     from ...models.tidal_history.calibration import time_lag_s
-    from .model import LOVE_K2
+    from ...starts.earth_moon_history import LOVE_K2
 
     strength = float(history.response[response.STRENGTH])
     if history.response[response.MODEL] == response.GLOBAL_OCEAN:

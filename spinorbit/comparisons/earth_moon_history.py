@@ -5,12 +5,12 @@ import math
 
 import numpy as np
 
-from .model import GYR_D
+from ..starts.earth_moon_history import GYR_D
 
 
 def quantities(history):
     """The table's columns (see table.COLUMNS) of a History, in the table's units."""
-    from ...models.tidal_history import calibration, equations, milankovitch
+    from ..models.tidal_history import calibration, equations, milankovitch
 
     c = history.constants
     el = equations.elements(history.y, c)
@@ -32,8 +32,8 @@ def quantities(history):
 
 def metrics(history, q):
     """{metric: value} and {"comparison.<metric>": why not measured}."""
-    from ...models.tidal_history import calibration
-    from ...references.lunar_proxies import PROXIES
+    from ..models.tidal_history import calibration
+    from ..references.lunar_proxies import PROXIES
 
     rates = calibration.today_rates(history.constants, history.response, history.y[0])
     out = {"recession_rate_today_cm_per_yr": rates["recession_rate_cm_per_yr"],
@@ -81,8 +81,8 @@ def laplace_radius(rotation, c):
     (1 - e_sun^2)^(3/2) M_earth/M_sun), inside which the Moon's orbit precesses about the Earth's equator
     rather than the ecliptic: where this model's averaging over the node about the ecliptic stops holding.
     J2 follows the rotation hydrostatically (~ Omega^2) from today's."""
-    from ...bodies import earth
-    from ...models.tidal_history import equations
+    from ..bodies import earth
+    from ..models.tidal_history import equations
 
     j2 = earth.J2 * (np.asarray(rotation) / earth.ERA_RATE_RAD_D) ** 2
     return (j2 * c[equations.RADIUS] ** 2 * c[equations.SUN_A] ** 3 * (1 - c[equations.SUN_E2]) ** 1.5

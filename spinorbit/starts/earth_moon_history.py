@@ -7,9 +7,9 @@ from functools import partial
 
 import numpy as np
 
-from ...bodies.table import gm_km3_d2
-from ...constants import JULIAN_YEAR_D
-from ...errors import IntegrationError
+from ..bodies.table import gm_km3_d2
+from ..constants import JULIAN_YEAR_D
+from ..errors import IntegrationError
 
 GYR_D = 1e9 * JULIAN_YEAR_D
 AU_KM = 1.495978707e8                  # IAU 2012 Resolution B2
@@ -36,8 +36,8 @@ class History:
 
 
 def constants(stop_radii):
-    from ...bodies import earth
-    from ...models.tidal_history import equations
+    from ..bodies import earth
+    from ..models.tidal_history import equations
 
     radius = earth.EQUATORIAL_RADIUS_KM
     return equations.constants(gm_km3_d2("earth"), gm_km3_d2("moon"), gm_km3_d2("sun"), radius, earth.C_MR2,
@@ -46,8 +46,8 @@ def constants(stop_radii):
 
 def today(c):
     """The state at J2000: the Moon's mean orbit (bodies.moon), the Earth's rotation, IAU 2006's obliquity."""
-    from ...bodies import earth, moon
-    from ...models.tidal_history import equations
+    from ..bodies import earth, moon
+    from ..models.tidal_history import equations
 
     return equations.state(c, moon.MEAN_DISTANCE_KM, moon.MEAN_ECCENTRICITY, earth.ERA_RATE_RAD_D,
                            math.radians(OBLIQUITY_DEG), math.radians(moon.MEAN_INCLINATION_DEG))
@@ -57,8 +57,8 @@ def tide(p, c, y0, model):
     """The tidal response of ``model`` calibrated to tides.recession_rate (cm/yr): the one parameter of the
     simple tides, the global ocean's drag at tides.ocean_depth (its depth fitted with the Moon's age by
     ``python -m spinorbit.scenes.earth_moon_history.fit_ocean``)."""
-    from ...errors import ScenarioError
-    from ...models.tidal_history import calibration, equations, ocean, response
+    from ..errors import ScenarioError
+    from ..models.tidal_history import calibration, equations, ocean, response
 
     rate = p["tides.recession_rate"]
     if model != "global_ocean":
@@ -76,7 +76,7 @@ def tide(p, c, y0, model):
 def run(p, model, t, integrate, part=None):
     """The history of ``model`` over the output times t (from J2000 back), integrated by the runner's
     ``integrate(system, times, part, ...)`` (spinorbit.scene.Run)."""
-    from ...models.tidal_history import equations
+    from ..models.tidal_history import equations
 
     c = constants(p["moon.stop_distance"])
     y0 = today(c)
@@ -108,7 +108,7 @@ def _stop(system, t_last, y_last, t_next, c, refine, levels=2):
     The equations are zero outside their domain; an adaptive step cannot cross that edge where the rates run
     away (the Moon at the Roche limit, ~a^-6.5), so there the run ends: the time is the last state reached,
     and the reason the Roche limit when the Moon is within twice its distance."""
-    from ...models.tidal_history import equations
+    from ..models.tidal_history import equations
 
     fine = np.linspace(t_last, t_next, STOP_REFINEMENT + 1)
     start = replace(system, t0=float(t_last), y0=np.asarray(y_last, dtype=float))
