@@ -144,8 +144,8 @@ def ladder(span_kyr=200.0):
     against a 10-yr run over 1 Myr (both on the nominal model)."""
     from spinorbit.integrators import simulate
     from spinorbit.orbits import solution
-    from spinorbit.scenes.earth_deep_time import model as deep_time_model
     from spinorbit.scenes.earth_deep_time import table
+    from spinorbit.starts import earth_deep_time as deep_time_model
 
     def spin(orbit, t, step):
         scenario = {"model.precession": "iau2006_rate", "model.tidal_tilt": True, "orbit.moon": "ring",

@@ -230,7 +230,7 @@ def test_scene_refuses_what_it_cannot_vouch_for_in_one_line(tmp_path, override, 
 
 def test_obliquity_at_j2000_is_iau_2006s_within_the_osculating_ecliptic(tmp_path):
     # The axis starts on IAU 2006's mean pole; the osculating ecliptic of DE421 sits 0.25" from the mean one.
-    from spinorbit.scenes.earth_deep_time import model as deep_time_model
+    from spinorbit.starts import earth_deep_time as deep_time_model
 
     class Scenario(dict):
         pass

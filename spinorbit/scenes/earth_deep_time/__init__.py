@@ -18,8 +18,8 @@ import time
 from ...errors import ScenarioError
 from ...scene import Model, Outcome, Scene
 from ...schema import Key
+from ...starts.earth_deep_time import KYR_D, MYR_D
 from ...verdict import Check, Verdict
-from .model import KYR_D, MYR_D
 
 MAX_SPAN_D = 100 * MYR_D
 # The physics La2004 is judged against (numerical keys, the ephemeris and the file may change).
@@ -92,14 +92,15 @@ def check_span(p):
 
 def nbody_counts(p):
     """The N-body stage the up-front estimate counts: the orbital solution's steps not yet in the cache."""
-    from .model import steps_to_compute
+    from ...starts.earth_deep_time import steps_to_compute
 
     return {"WHFast steps": steps_to_compute(p)}
 
 
 def build(p, times):
-    """The orbital solution (REBOUND, cached: orbits/solution.py) and the averaged spin on it (model.py)."""
-    from . import model
+    """The orbital solution (REBOUND, cached: orbits/solution.py) and the averaged spin on it
+    (starts/earth_deep_time.py)."""
+    from ...starts import earth_deep_time as model
 
     check_span(p)
     started = time.perf_counter()
@@ -110,9 +111,10 @@ def build(p, times):
 
 
 def compare_run(p, run):
+    from ...comparisons import earth_deep_time as compare
     from ...plots import deep_time as deep_time_plot
     from ...plots import deep_time_spectra
-    from . import compare, table
+    from . import table
 
     t, spin, orbit = run.times, run.model.spin, run.model.orbit
     q = table.quantities(t, run.solution.y, spin)

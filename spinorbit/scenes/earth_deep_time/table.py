@@ -2,7 +2,7 @@
 day) at the output times, with units."""
 import numpy as np
 
-from .model import KYR_D
+from ...starts.earth_deep_time import KYR_D
 
 
 def quantities(t, states, model):

@@ -4,8 +4,8 @@ import math
 
 import numpy as np
 
-from ...constants import ARCSEC, JULIAN_YEAR_D
-from .model import ERFA_SPAN_D, KYR_D
+from ..constants import ARCSEC, JULIAN_YEAR_D
+from ..starts.earth_deep_time import ERFA_SPAN_D, KYR_D
 
 WINDOWS_MYR = (1, 10)                 # the spans the issue sets targets over
 CHAOS_MYR = 50.0                      # La2004: "age calibrations of paleoclimatic data over 40 to 50 Myr"
@@ -14,8 +14,8 @@ ERFA_STEP_D = 10 * JULIAN_YEAR_D
 
 def erfa_metrics(scenario, model):
     """Obliquity and mean equator against ERFA's long-term precession over the span's first 2 kyr (arcsec)."""
-    from ...integrators import simulate
-    from ...references.long_term_precession import LongTermPrecession
+    from ..integrators import simulate
+    from ..references.long_term_precession import LongTermPrecession
 
     reach = min(ERFA_SPAN_D, abs(scenario.t_end))
     t = math.copysign(1.0, scenario.t_end) * np.arange(ERFA_STEP_D, reach + 1.0, ERFA_STEP_D)
@@ -34,7 +34,7 @@ def erfa_metrics(scenario, model):
 def laskar_metrics(t, q):
     """Against La2004 over each window and the span up to CHAOS_MYR, with La93's tidal variants' spread beside
     it where La93 reaches: (metrics, not_measured, provenance, La2004's series at t or None)."""
-    from ...references import laskar
+    from ..references import laskar
 
     reason = laskar.available()
     kyr = t / KYR_D

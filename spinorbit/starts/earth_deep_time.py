@@ -5,8 +5,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...constants import ARCSEC, DAY_S, JULIAN_CENTURY_D, JULIAN_YEAR_D
-from ...errors import InputError, ScenarioError
+from ..constants import ARCSEC, DAY_S, JULIAN_CENTURY_D, JULIAN_YEAR_D
+from ..errors import InputError, ScenarioError
 
 KYR_D = 1000 * JULIAN_YEAR_D
 MYR_D = 1000 * KYR_D
@@ -17,7 +17,7 @@ ORBIT_KEYS = {"step": "orbit.step", "output": "orbit.output", "moon": "orbit.moo
 
 def settings(scenario):
     """The orbital solution's Settings from the scenario's orbit keys."""
-    from ...orbits.solution import Settings
+    from ..orbits.solution import Settings
 
     return Settings(ephemeris=scenario["orbit.ephemeris"], step_d=scenario["orbit.step"],
                     output_d=scenario["orbit.output"], relativity=scenario["orbit.relativity"],
@@ -31,7 +31,7 @@ def orbit_end(scenario):
 
 def steps_to_compute(scenario):
     """The WHFast steps of the orbital solution this run still has to compute (none when it is cached)."""
-    from ...orbits import solution
+    from ..orbits import solution
 
     return solution.steps_to_compute(settings(scenario), scenario.t_start, orbit_end(scenario),
                                      path=scenario["orbit.file"] or None)
@@ -39,7 +39,7 @@ def steps_to_compute(scenario):
 
 def orbital_solution(scenario, label):
     """The solution covering the span (and at least 2 kyr of it), from the cache or orbit.file."""
-    from ...orbits import solution
+    from ..orbits import solution
 
     end = orbit_end(scenario)
     try:
@@ -64,11 +64,11 @@ def spin_model(scenario, orbit):
     """The averaged spin equations' parameters on ``orbit``, the axis started on IAU 2006's mean pole."""
     import erfa
 
-    from ...bodies import earth
-    from ...bodies.de421_header import header
-    from ...models import deep_time
-    from ...orbits.solution import MOON
-    from ...references.erfa_pole import PSI_A_RATE_ARCSEC_CY
+    from ..bodies import earth
+    from ..bodies.de421_header import header
+    from ..models import deep_time
+    from ..orbits.solution import MOON
+    from ..references.erfa_pole import PSI_A_RATE_ARCSEC_CY
 
     grid = np.column_stack([orbit.normal, orbit.eccentricity_vector])
     j2000 = int(np.searchsorted(orbit.t_d, 0.0))
