@@ -1,13 +1,14 @@
 """The Earth's answer layer on a stored rigid solution: the non-rigid pole (or the rigid one), the model's mean pole
 and nutation about it, and IAU 2006/2000A's CIP beside them, as a Solution of their own.
 
-Each of these is a fit over a whole run (the Earth scene's: the transfer function applied term by term to the
-rigid nutation fitted on the luni-solar arguments, comparisons.earth_nonrigid; the mean pole
-fitted with IAU 2000A's terms, its compare.precession_nutation), so the layer is computed once over the
-stored rigid solution's whole span, at its Chebyshev points, and fitted there like the rigid run; its
-provenance says over which span (``fit_over_tdb_d``).  It is stored beside the rigid solution and computed
-again when that is extended.  IAU's CIP is fitted too (ERFA takes ~0.35 ms a date): the fit's error,
-measured at a tenth of the segments' in-between points, is in ``fit_error``.
+Each of these is the Earth scene's own (the tides' secular turn, starts.earth_tides; the transfer function
+applied term by term to the rigid nutation fitted on the luni-solar arguments, comparisons.earth_nonrigid;
+the mean pole fitted with IAU 2000A's terms, comparisons.earth_iau.precession_nutation), a fit over a run,
+so the layer is computed once over the stored rigid solution's whole span, at its Chebyshev points, and
+fitted there like the rigid run; its provenance says over which span (``fit_over_tdb_d``).  It is stored
+beside the rigid solution and computed again when that is extended.  IAU's CIP is fitted too (ERFA takes
+~0.2 ms a date): the fit's error, measured at a tenth of the segments' in-between points, is in
+``fit_error``.
 """
 import numpy as np
 
@@ -25,9 +26,13 @@ CHECKED_EVERY = 10          # segments
 def layer(rigid, scenario, nonrigid):
     """The layer (a Solution over ``rigid``'s span) of the Earth scene ``scenario``, non-rigid or not."""
     from ..comparisons import earth_nonrigid as nr
+    from ..starts import earth_tides as tides
 
-    return store.solve(_record(scenario, nonrigid), *rigid.span,
-                       lambda _, lo, hi: _computed(rigid, nr.settings(scenario) if nonrigid else None))
+    def computed(_, lo, hi):
+        rates = tides.rates(scenario["earth.tides"], scenario["orbit.source"])
+        return _computed(rigid, nr.settings(scenario) if nonrigid else None, rates)
+
+    return store.solve(_record(scenario, nonrigid), *rigid.span, computed)
 
 
 def stored(scenario, nonrigid, t_start, t_end):
@@ -46,20 +51,25 @@ def _record(scenario, nonrigid):
             "transfer_function": scenario["earth.transfer_function"] if nonrigid else None}
 
 
-def _computed(rigid, settings):
+def _computed(rigid, settings, tide_rates):
+    """The layer over the rigid solution's span; the tides' secular turn (``tide_rates``, "/cy) and MHB2000's
+    nonlinear precession accumulate from the solution's start, as the scene's from its span's."""
     from ..comparisons import earth_iau as vs
     from ..comparisons import earth_nonrigid as nr
     from ..references import erfa_pole
+    from ..starts import earth_tides as tides
 
     segments = rigid.segments
     count = len(segments.coefficients)
     nodes, checks = segments.nodes(segments.first, count)
     t = np.concatenate([nodes.ravel(), checks[::CHECKED_EVERY].ravel()])
     order = np.argsort(t, kind="stable")
-    ts = t[order]
-    z = rigid.part("earth.pole", ts)
+    start = rigid.provenance["runs"][0]["start_tdb_d"]
+    ts = np.concatenate([[start], t[order]])                 # the turns below count from ts[0]
+    z = tides.tilted(ts, rigid.part("earth.pole", ts), *tide_rates)
     if settings is not None:
         z = nr.nonrigid_pole(ts, z, **settings)
+    ts, z = ts[1:], z[1:]
     iau = erfa_pole.IauPole()(ts)
     _, _, nutation = vs.precession_nutation(ts, z, iau)
     values = np.empty((t.size, LAYOUT.size))
