@@ -39,7 +39,7 @@ SPLITTINGS = {"suzuki4": (2.0, 1.0, 0.5, 0.25, 0.125), "yoshida4": (2.0, 1.0, 0.
 
 def build(years):
     from spinorbit.scenarios import load_scenario
-    from spinorbit.scenes.moon_libration.model import build_system
+    from spinorbit.starts.moon import build_system
 
     scenario = load_scenario(SCENARIO, [f'span.end="{years} yr"', f'span.step="{CADENCE_D} d"',
                                         f"model.level={LEVEL[0]}"])

@@ -16,7 +16,7 @@ SCENARIOS = Path(__file__).parent.parent / "scenarios"
 def test_moon_rigid_levels_expose_the_torque_of_their_rhs():
     """Levels 1-2: system.torque is the rhs's torque (Euler's equations §813 with it give the rhs); level 3:
     none."""
-    from spinorbit.scenes.moon_libration.model import build_system
+    from spinorbit.starts.moon import build_system
 
     scenario = load_scenario(SCENARIOS / "moon_libration.toml", ['span.end="4 d"', "model.level=2"])
     system, _ = build_system(scenario, "de421")

@@ -4,11 +4,11 @@ import numpy as np
 
 
 def moon(solution, t, source):
-    """The Moon scene's table (moon_libration.compare.table) at TDB days ``t``: the JPL angles, their
+    """The Moon scene's table (comparisons.moon_de421.table) at TDB days ``t``: the JPL angles, their
     differences from DE421 where its series has data, the physical librations and the sub-Earth point."""
     from ..analysis.librations import icrf_to_body
+    from ..comparisons import moon_de421 as vs
     from ..references import eckhardt
-    from ..scenes.moon_libration import compare as vs
 
     states = solution.states(t)
     mats = icrf_to_body(states.quaternion)

@@ -1,11 +1,11 @@
 """The Moon's physical libration, integrated from DE421's state and compared with DE421.
 
 The Moon starts from DE421's state at span.start (or, outside DE421's lunar series, at its nearest epoch,
-and is integrated out: model.py) and turns under the interactions of its level
+and is integrated out: starts/moon.py) and turns under the interactions of its level
 (spinorbit.models.assemblies.moon; Euler ch. 16 P91, §815) driven by the chosen orbit source.  Nothing is
 fitted.  Outputs: the JPL angles and their residuals against DE421 where it has data (pole = tilt of the
 body z axis, longitude = rotation about it), the physical librations and the sub-Earth point, the main
-longitude terms beside Eckhardt's (compare.py).
+longitude terms beside Eckhardt's (comparisons/moon_de421.py).
 
 Verdict: max pole and longitude error against DE421 at the level's target (TOLERANCES); level 1 is held
 to level 2's and fails it.  Driven by REBOUND the run fails too (REBOUND's lunar orbit drifts from
@@ -42,7 +42,7 @@ def verdict(p, comparison):
         notes.append("Euler's degree-2 Moon is held to the level-2 target; the Moon's degree-3 field it "
                      "lacks is what level 2 adds")
     if not orbit_source(source).lunar_angles:
-        from .compare import SOURCE_NOTES
+        from ...comparisons.moon_de421 import SOURCE_NOTES
         notes.append(SOURCE_NOTES.get(source, f"orbits from {source}: the libration follows that orbit's "
                                               "departure from DE421's"))
     checks = (Check("pole", "pole_error_max_arcsec", pole, "″", why),
@@ -71,8 +71,8 @@ ZOOM_D = 730.5                      # days
 
 
 def build(p, times):
-    """The lunar model of the level, driven by orbit.source, started from DE421's state (model.py)."""
-    from .model import build_system
+    """The lunar model of the level, driven by orbit.source, started from DE421's state (starts/moon.py)."""
+    from ...starts.moon import build_system
 
     system, orbits = build_system(p, p.orbit.source)
     return Model(system, orbits=orbits)
@@ -81,10 +81,10 @@ def build(p, times):
 def compare_run(p, run):
     from ... import plots
     from ...analysis.librations import icrf_to_body
+    from ...comparisons import moon_de421 as vs
     from ...references import eckhardt
     from ...references.moon_de421 import FREE_LIBRATION_LONGITUDE_PERIOD_D
-    from . import compare as vs
-    from .model import difference_driven_by
+    from ...starts.moon import difference_driven_by
 
     solution, system, orbits, level = run.solution, run.model.system, run.model.orbits, p.model.level
     t, mats = solution.t, icrf_to_body(solution.quaternion)
@@ -130,7 +130,7 @@ def bench(p, model, times):
 
 # the DE lunar integrations run both ways from their epoch: a span may end before it starts
 def restart(p, start):
-    from .model import started_at
+    from ...starts.moon import started_at
 
     return started_at(p, start)
 

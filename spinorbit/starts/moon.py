@@ -3,8 +3,8 @@ DE421's state (orientation, rates, core) at span.start -- or, for a span DE421's
 (another ephemeris, e.g. DE440's 1550-2650), at the nearest epoch it does, integrated out from there."""
 import numpy as np
 
-from ...errors import InputError, ScenarioError
-from ...models.assemblies.moon import LEVELS, TERMS
+from ..errors import InputError, ScenarioError
+from ..models.assemblies.moon import LEVELS, TERMS
 
 MARGIN_D = 1.0          # orbit samples beyond the outputs: the tide looks back tau (0.1 d)
 
@@ -12,8 +12,8 @@ MARGIN_D = 1.0          # orbit samples beyond the outputs: the tide looks back 
 def start_epoch(p):
     """model.start (default span.start), or the nearest epoch of DE421's lunar series (TDB days) when it lies
     outside."""
-    from ...bodies.de421_orientation import span
-    from ...schema import parse_tdb_days
+    from ..bodies.de421_orientation import span
+    from ..schema import parse_tdb_days
 
     first, last = span()
     given = p["model.start"]
@@ -24,10 +24,10 @@ def start_epoch(p):
 def build_system(p, source):
     """(System of the lunar model at the scenario's level, its terms + ``model.terms``, driven by ``source``;
     the orbits); ``p`` the scene's parameters (or a Scenario)."""
-    from ...models.assemblies.moon import moon
-    from ...models.start import moon_de421
-    from ...orbits.sources import sample_orbits
-    from ...references.moon_de421 import earth_pole
+    from ..models.assemblies.moon import moon
+    from ..models.start import moon_de421
+    from ..orbits.sources import sample_orbits
+    from ..references.moon_de421 import earth_pole
 
     level, extra = LEVELS[p["model.level"]], p["model.terms"]
     if not isinstance(extra, list) or any(not isinstance(n, str) or n not in TERMS or n in level.terms
@@ -51,7 +51,7 @@ def build_system(p, source):
 
 def difference_driven_by(p, run, other, mats):
     """(pole, longitude) differences, rad, of this run from the same run driven by orbit source ``other``."""
-    from ...analysis.librations import icrf_to_body, pole_and_longitude_difference
+    from ..analysis.librations import icrf_to_body, pole_and_longitude_difference
 
     try:
         system, _ = build_system(p, other)
@@ -66,9 +66,9 @@ def difference_driven_by(p, run, other, mats):
 def started_at(p, start):
     """The lunar model of ``p`` started at a stored state ``start`` = (t0, y): the same model on orbits
     sampled over the stretch, without the DE421 start (its core carried from DE421's epoch) it replaces."""
-    from ...models.assemblies.moon import moon
-    from ...orbits.sources import sample_orbits
-    from ...references.moon_de421 import earth_pole
+    from ..models.assemblies.moon import moon
+    from ..orbits.sources import sample_orbits
+    from ..references.moon_de421 import earth_pole
 
     level, extra = LEVELS[p["model.level"]], tuple(p["model.terms"])
     first, last = min(start[0], *p.bounds) - MARGIN_D, max(start[0], *p.bounds) + MARGIN_D

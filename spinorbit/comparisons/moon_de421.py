@@ -5,7 +5,7 @@ Edge module (astropy units); the Moon scene declares, this compares.
 """
 import numpy as np
 
-from ...constants import ARCSEC
+from ..constants import ARCSEC
 
 LADDER = ([("rk8", {"step": h}) for h in (4.0, 2.0, 1.0, 0.5)]          # report.error_vs_runtime
           + [("dop853", {"rtol": r, "atol": r * 1e-2}) for r in (1e-8, 1e-10, 1e-12)])
@@ -22,10 +22,10 @@ SOURCE_NOTES = {"rebound": (
 def against_de421(t, mats):
     """(DE421's orientation on the outputs its series covers (a Comparable, or None), the covered rows (mask),
     the comparison's metrics, {metric: why not measured}): outside DE421's span nothing is compared."""
-    from ...analysis.librations import residual_metrics
-    from ...bodies.de421_orientation import span
-    from ...errors import tdb_dates
-    from ...references.moon_de421 import Orientation
+    from ..analysis.librations import residual_metrics
+    from ..bodies.de421_orientation import span
+    from ..errors import tdb_dates
+    from ..references.moon_de421 import Orientation
 
     first, last = span()
     covered = (t >= first) & (t <= last)
@@ -45,9 +45,9 @@ def table(solution, mats, de421, covered, lib):
     librations and the sub-Earth point."""
     import astropy.units as u
 
-    from ...analysis.librations import pole_and_longitude_difference
-    from ...rotations import euler313_from_matrix
-    from ...run_result import attitude_table
+    from ..analysis.librations import pole_and_longitude_difference
+    from ..rotations import euler313_from_matrix
+    from ..run_result import attitude_table
 
     table, angles = attitude_table(solution), euler313_from_matrix(mats)
     arcsec = lambda x: x / ARCSEC * u.arcsec
@@ -70,9 +70,9 @@ def table(solution, mats, de421, covered, lib):
 
 def error_vs_runtime(system, t_out, de421_mats):
     """LADDER's wall time and max attitude error vs a converged rk8 run and vs DE421, arcsec."""
-    from ...analysis.ladder import work_precision
-    from ...analysis.librations import attitude_error, icrf_to_body
-    from ...integrators import simulate
+    from ..analysis.ladder import work_precision
+    from ..analysis.librations import attitude_error, icrf_to_body
+    from ..integrators import simulate
 
     converged = icrf_to_body(simulate(system, t_out, *CONVERGED, estimate_error=False)[0].quaternion)
     errors = {"error_vs_converged_arcsec": attitude_error(converged),
