@@ -57,7 +57,7 @@ def run(with_asteroids):
 
 def against_de421(t, positions):
     """{body: max |x - DE421| km} and the Moon's direction (mas) and range (m) against DE421."""
-    from spinorbit.scenes.solar_system.compare import orbit_errors, planet_errors
+    from spinorbit.comparisons.solar_system_de421 import orbit_errors, planet_errors
 
     errors = {name: float(e.max()) for name, e in planet_errors(t, {k: v for k, v in positions.items()
                                                                      if k != "moon"}).items()}

@@ -96,8 +96,8 @@ print(json.dumps(out))
 IMPORTS = ("numba", "astropy.table", "astropy.units", "erfa", "jplephem.spk", "spinorbit.scenarios",
            "spinorbit.results", "spinorbit.columns", "spinorbit.solutions.tables", "spinorbit.solutions.earth_layer",
            "spinorbit.analysis.librations", "spinorbit.references.eckhardt", "spinorbit.references.moon_de421",
-           "spinorbit.references.erfa_pole", "spinorbit.scenes.moon_libration.compare",
-           "spinorbit.scenes.earth_precession_nutation.compare", "spinorbit.scenes.earth_precession_nutation.nonrigid")
+           "spinorbit.references.erfa_pole", "spinorbit.comparisons.moon_de421",
+           "spinorbit.comparisons.earth_iau", "spinorbit.comparisons.earth_nonrigid")
 
 PREPARE = """
 import json, numpy as np, spinorbit

@@ -124,8 +124,8 @@ def test_deep_time_titles_say_kyr_sources_and_the_ephemeris_it_starts_from():
 
 
 def test_the_solar_system_table_carries_the_moons_angles():
+    from spinorbit.comparisons import solar_system_de421 as compare
     from spinorbit.rotations import matrix_from_euler313
-    from spinorbit.scenes.solar_system import compare
 
     angles = np.array([[0.1, 0.4, 1.3], [2.0, 0.3, 5.0]])               # phi, theta, psi in [0, 2 pi)
     mats = np.array([matrix_from_euler313(*a) for a in angles])

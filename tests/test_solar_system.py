@@ -95,7 +95,7 @@ def test_de421s_solar_system_stays_with_de421_over_a_year():
     the Moon within 0.5 mas and 5 cm of DE421, the lunar pole and longitude within 1 mas (the issue's targets
     over a century are 1 mas and 0.1 m; measured 0.19 mas, 2.7 cm, 0.7 and 0.5 mas over 1968-1972), and the
     inner planets within 100 m (DE421's asteroids move the Earth by ~60 m in 1968-1972; Mars by 1.8 km)."""
-    from spinorbit.scenes.solar_system import compare
+    from spinorbit.comparisons import solar_system_de421 as compare
 
     system = started(solar_system(t0=T0))
     t = T0 + np.arange(1.0, 366.0, 1.0)

@@ -20,8 +20,8 @@ def moon(solution, t, source):
 
 
 def earth_moon(solution, t):
-    """The coupled scene's table (earth_moon_coupled.compare.table) at TDB days ``t``."""
-    from ..scenes.earth_moon_coupled import compare as vs
+    """The coupled scene's table (comparisons.earth_moon_de421.table) at TDB days ``t``."""
+    from ..comparisons import earth_moon_de421 as vs
 
     r, q = solution.part("moon.r", t), solution.part("moon.q", t)
     direction, distance = vs.orbit_errors(t, r)

@@ -5,10 +5,10 @@ every interaction acts with its reaction; the Sun, the planets and the Earth-Moo
 DE421 (spinorbit.models.assemblies.earth_moon), or with ``orbit.source = "rebound"`` from a REBOUND N-body
 run started from DE421 a day before the span (for epochs no ephemeris covers).  Started from DE421's state
 at span.start (the Moon's orbit, orientation, rates and core), the Earth on its forced motion about the
-IAU 2006/2000A pole at the Earth rotation angle's rate; nothing fitted.  Compared with DE421 (compare.py):
-the Moon's direction and range, the lunar pole and longitude; the Earth's axis against the CIP (reported,
-not judged: DE421 turned its Earth by IAU 1976 precession, which the CIP leaves by 99 mas over the
-century).
+IAU 2006/2000A pole at the Earth rotation angle's rate; nothing fitted.  Compared with DE421
+(comparisons/earth_moon_de421.py): the Moon's direction and range, the lunar pole and longitude; the Earth's
+axis against the CIP (reported, not judged: DE421 turned its Earth by IAU 1976 precession, which the CIP
+leaves by 99 mas over the century).
 
 ``compare.tides_off``: the same run again without the Earth's tides; the difference gives the Moon's tidal
 secular acceleration (n_dot, "/cy^2) and recession (mm/yr), judged against lunar laser ranging (Williams &
@@ -109,7 +109,7 @@ def build(p, times):
 
 
 def compare_run(p, run):
-    from . import compare as vs
+    from ...comparisons import earth_moon_de421 as vs
 
     t, solution, m = run.times, run.solution, run.model
     direction, distance = vs.orbit_errors(t, solution.part("moon.r"))

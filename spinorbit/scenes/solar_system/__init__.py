@@ -4,9 +4,10 @@ Every centre in one state with the Moon's mantle and core and the Earth's spin (
 solar_system): DE421's model, every constant from its header, started from DE421's initial conditions at its
 epoch JDEPOC (1969-06-28; ``start.epoch = "span"``: DE421's states at span.start) and integrated both ways,
 the Earth on its forced motion about the IAU 2006/2000A pole; nothing fitted.  INPOP05 did the same with
-DE405 (Fienga et al. 2008, A&A 477, 315, Table 2).  Compared with DE421 (compare.py): the Moon's direction
-and range, the lunar pole and longitude, every planet's heliocentric position.  DE421 integrated 343
-asteroids this does not; what they move in each planet is stated beside its figure (compare.ASTEROIDS_KM).
+DE405 (Fienga et al. 2008, A&A 477, 315, Table 2).  Compared with DE421 (comparisons/solar_system_de421.py):
+the Moon's direction and range, the lunar pole and longitude, every planet's heliocentric position.  DE421
+integrated 343 asteroids this does not; what they move in each planet is stated beside its figure
+(comparisons.solar_system_de421.ASTEROIDS_KM).
 Runs with the Taylor integrator (``integrator.method = "taylor"``) or any other.
 """
 from ...models.assemblies.solar_system import SWITCHES
@@ -23,18 +24,19 @@ SCHEMA = {
 }
 TARGET = ("the issue's target (INPOP05 re-integrated DE405 to 0.17 mas and 0.034 m over 100 yr, Fienga et "
           "al. 2008); DE421's asteroids, absent here, move the Moon by 2.3 mas and 0.54 m "
-          "(compare.ASTEROIDS_MOON)")
+          "(comparisons.solar_system_de421.ASTEROIDS_MOON)")
 
 
 def verdict(p, comparison):
     """The Moon against DE421 (direction, range, pole, longitude); each planet against what asteroids move."""
-    from .compare import ASTEROIDS_KM
+    from ...comparisons.solar_system_de421 import ASTEROIDS_KM
 
     checks = [Check("Moon direction", "moon_direction_error_max_mas", 1.0, " mas", TARGET),
               Check("Moon range", "moon_range_error_max_m", 0.1, " m", TARGET),
               Check("lunar pole", "pole_error_max_mas", 1.0, " mas", TARGET),
               Check("libration longitude", "longitude_error_max_mas", 1.0, " mas", TARGET)]
-    largest = "2x what DE421's largest asteroids move it, scaled by mass (compare.ASTEROIDS_KM)"
+    largest = ("2x what DE421's largest asteroids move it, scaled by mass "
+               "(comparisons.solar_system_de421.ASTEROIDS_KM)")
     checks += [Check(name, f"{name}_heliocentric_error_max_km", 2 * km, " km", largest)
                for name, km in ASTEROIDS_KM.items()]
     return Verdict("DE421", tuple(checks))
@@ -68,7 +70,7 @@ def system(scenario):
 
 
 def compare_run(p, run):
-    from . import compare as vs
+    from ...comparisons import solar_system_de421 as vs
 
     t, solution, model = run.times, run.solution, run.model.system
     direction, distance = vs.orbit_errors(t, solution.part("moon.r"))

@@ -6,8 +6,8 @@ Edge module (astropy units); the scene declares, this compares.
 """
 import numpy as np
 
-from ...constants import ARCSEC, JULIAN_CENTURY_D
-from ...rotations import vector_angle
+from ..constants import ARCSEC, JULIAN_CENTURY_D
+from ..rotations import vector_angle
 
 MAS = ARCSEC / 1000.0
 
@@ -15,7 +15,7 @@ MAS = ARCSEC / 1000.0
 def covered(t):
     """The outputs DE421 has data at (its lunar series, 1899-12-04 to 2200-02-01 TDB; its orbits reach as
     far)."""
-    from ...bodies.de421_orientation import span
+    from ..bodies.de421_orientation import span
 
     first, last = span()
     return (t >= first) & (t <= last)
@@ -24,7 +24,7 @@ def covered(t):
 def orbit_errors(t, r):
     """(direction (rad), range (km)) of the integrated geocentric Moon r (n, 3) against DE421's at TDB days t,
     NaN where DE421 has no data."""
-    from ...orbits.kernel import open_ephemeris
+    from ..orbits.kernel import open_ephemeris
 
     direction, distance, inside = np.full(len(t), np.nan), np.full(len(t), np.nan), covered(t)
     if inside.any():
@@ -37,7 +37,7 @@ def orbit_errors(t, r):
 
 def earth_axis_error(t, axis):
     """Angle (rad) of the Earth's spin axis (n, 3) from the IAU 2006/2000A CIP (ERFA) at TDB days t."""
-    from ...references.erfa_pole import cip_vector
+    from ..references.erfa_pole import cip_vector
 
     return vector_angle(axis, cip_vector(t))
 
@@ -47,7 +47,7 @@ def metrics(t, direction, distance, lunar, earth_axis):
     data at; {metric: why not measured} where it has none)."""
     inside = covered(t)
     if not inside.any():
-        from ...errors import tdb_dates
+        from ..errors import tdb_dates
 
         why = ("DE421's lunar series covers 1899-12-04 to 2200-02-01 TDB; "
                f"the span is {tdb_dates((t[0], t[-1]))}")
@@ -96,8 +96,8 @@ def tidal_acceleration(t, r_on, r_off, v_off):
 def lunar_errors(t, q):
     """(ICRF-to-body matrices, DE421's provenance, pole and longitude differences (rad, NaN where DE421 has no
     data), their metrics) of the Moon's attitudes q (n, 4)."""
-    from ...analysis.librations import icrf_to_body, pole_and_longitude_difference, residual_metrics
-    from ...references.moon_de421 import Orientation, provenance
+    from ..analysis.librations import icrf_to_body, pole_and_longitude_difference, residual_metrics
+    from ..references.moon_de421 import Orientation, provenance
 
     mats, inside = icrf_to_body(q), covered(t)
     pole, longitude, metrics_ = np.full(len(t), np.nan), np.full(len(t), np.nan), {}
@@ -115,8 +115,8 @@ def table(t, r, mats, errors, earth_axis):
     import astropy.units as u
     from astropy.table import QTable
 
-    from ...rotations import euler313_from_matrix
-    from ...schema import tdb_days_to_time
+    from ..rotations import euler313_from_matrix
+    from ..schema import tdb_days_to_time
 
     out = QTable()
     out["time"] = tdb_days_to_time(t)

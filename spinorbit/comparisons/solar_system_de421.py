@@ -5,9 +5,9 @@ Edge module (astropy units); the scene declares, this compares.
 """
 import numpy as np
 
-from ...constants import MAS
-from ...models.assemblies.solar_system import PLANETS
-from ..earth_moon_coupled.compare import lunar_errors, orbit_errors
+from ..constants import MAS
+from ..models.assemblies.solar_system import PLANETS
+from .earth_moon_de421 import lunar_errors, orbit_errors
 
 HELIOCENTRIC = (*PLANETS[:2], "earth", *PLANETS[2:])
 
@@ -31,7 +31,7 @@ def heliocentric(system, solution):
 
 def planet_errors(t, positions):
     """{body: |x - x_DE421| (n,), km} of heliocentric positions {body: (n, 3)} at TDB days t."""
-    from ...orbits.kernel import open_ephemeris
+    from ..orbits.kernel import open_ephemeris
 
     ephemeris = open_ephemeris("de421", float(np.min(t)), float(np.max(t)))
     return {name: np.linalg.norm(x - ephemeris.relative_states(name, "sun", t)[0], axis=1)
@@ -58,8 +58,8 @@ def table(t, r, mats, errors, planets):
     import astropy.units as u
     from astropy.table import QTable
 
-    from ...rotations import euler313_from_matrix
-    from ...schema import tdb_days_to_time
+    from ..rotations import euler313_from_matrix
+    from ..schema import tdb_days_to_time
 
     out = QTable()
     out["time"] = tdb_days_to_time(t)
