@@ -16,6 +16,7 @@ import math
 
 import numpy as np
 
+from ...analysis.figure_axis import fit_angles
 from ...constants import ARCSEC
 from ...errors import ResonanceError, ScenarioError
 from ...models.assemblies.idealised import under_point_masses
@@ -23,7 +24,6 @@ from ...scene import Model, Outcome, Scene
 from ...schema import ANGLE, DISTANCE, GM, RATE, SPIN, Key
 from ...verdict import Check, Verdict
 from .. import common
-from .angles import fit_angles
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments cc = cc < aa (symmetric, oblate)"),

@@ -20,6 +20,7 @@ import math
 
 import numpy as np
 
+from ...analysis.figure_axis import figure_axis, fit_angles
 from ...analysis.ladder import work_precision
 from ...models.assemblies.idealised import under_point_masses
 from ...rotations import quat_angle
@@ -27,7 +28,6 @@ from ...scene import Model, Outcome, Scene
 from ...schema import ANGLE, SPIN, Key
 from ...verdict import Check, Verdict
 from .. import common
-from ..p96_precession.angles import figure_axis, fit_angles
 from .runs import label, options, winner
 
 

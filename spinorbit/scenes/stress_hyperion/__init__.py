@@ -3,9 +3,8 @@
 Planar spin-orbit on a Kepler ellipse (e = 0.1, (B - A)/C = 0.26; Wisdom, Peale
 & Mignard 1984) and the full 3-D rigid body (Euler ch. 15 §808 + ch. 16 P91).
 
-Method: analysis.lyapunov (Benettin et al. 1980), a reference and a neighbour d0 apart in the scaled
-phase space (theta, theta'/n) -- in 3-D (2 q, omega/n) -- renormalised every orbital period T;
-lambda in units of 1/T.
+Method: analysis.lyapunov (Benettin et al. 1980), a reference and a neighbour d0 apart in the scaled phase
+space (theta, theta'/n) -- in 3-D (2 q, omega/n) -- renormalised every orbital period T; lambda in 1/T.
 
 The scene checks (a) a regular orbit (small (B - A)/C, synchronous start) whose lambda falls like
 ln t/t (halves from T to 2T) below ``lyapunov.regular_max``; (b) the nominal Hyperion start: lambda
@@ -23,12 +22,17 @@ import math
 import numpy as np
 
 from ...analysis.lyapunov import ensemble_mean
+from ...analysis.planar_spin_orbit import (
+    kepler_orbit,
+    planar_lyapunov,
+    planar_vs_rigid_body,
+    rigid_body_lyapunov,
+)
 from ...models.planar import planar_params
 from ...scene import Model, Outcome, Scene
 from ...schema import DISTANCE, GM, Key
 from ...verdict import Check, Verdict
 from .. import common
-from ..planar_spin_orbit import kepler_orbit, planar_lyapunov, planar_vs_rigid_body, rigid_body_lyapunov
 from .maps import lyapunov_map
 
 

@@ -3,7 +3,7 @@ import math
 
 import numpy as np
 
-from ..planar_spin_orbit import planar_lyapunov
+from ...analysis.planar_spin_orbit import planar_lyapunov
 
 
 def lyapunov_map(p, planar, period):

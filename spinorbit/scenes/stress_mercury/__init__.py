@@ -23,13 +23,18 @@ import math
 
 import numpy as np
 
+from ...analysis.planar_spin_orbit import (
+    forcing_coefficients,
+    kepler_orbit,
+    rigid_body_system,
+    theta_from_quaternions,
+)
 from ...analysis.spans import refusals, resolvable
 from ...constants import ARCSEC
 from ...scene import Model, Outcome, Scene
 from ...schema import DISTANCE, GM, Key
 from ...verdict import Check, Verdict
 from .. import common
-from ..planar_spin_orbit import forcing_coefficients, kepler_orbit, rigid_body_system, theta_from_quaternions
 
 MARGOT_2007_ARCSEC = (35.8, 2.0)
 RADAR_NOT_INDEPENDENT = ("Margot et al. (2007)'s 35.8\" radar amplitude is not compared: the (B - A)/C used "

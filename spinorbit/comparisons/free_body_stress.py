@@ -1,14 +1,14 @@
-"""The torque-free body's stress cases (module docstring of the scene): each runs its methods through
+"""The torque-free body's stress cases (scenes/stress_free_body): each runs its methods through
 analysis.ladder.work_precision and returns (comparison, details)."""
 import math
 
 import numpy as np
 
-from ...analysis.invariants import invariant_drift, kinetic_energy
-from ...analysis.ladder import settings, work_precision
-from ...models.assemblies.idealised import free_body, under_point_masses
-from ...rotations import quat_angle, quat_from_rotation_vector
-from ...theory import FreeRigidBody, axisymmetric_attitude
+from ..analysis.invariants import invariant_drift, kinetic_energy
+from ..analysis.ladder import settings, work_precision
+from ..models.assemblies.idealised import free_body, under_point_masses
+from ..rotations import quat_angle, quat_from_rotation_vector
+from ..theory import FreeRigidBody, axisymmetric_attitude
 
 Q0 = np.array([1.0, 0.0, 0.0, 0.0])
 # |L| after N rounded rotations random-walks by ~ eps sqrt(N): suzuki4, 1e7 steps = 2e8 rotations
@@ -49,7 +49,7 @@ def flip(p):
 
 
 def degenerate(p):
-    from ...orbits.analytic import CircularOrbits
+    from ..orbits.analytic import CircularOrbits
     orbit = CircularOrbits(("F",), [1.0], [1.0], [0.7], inclination=[0.4])
     omega0 = np.array([0.3, -0.2, 2.0])
     t = np.linspace(0.0, 100.0, 201)

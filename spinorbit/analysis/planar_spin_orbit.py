@@ -9,12 +9,12 @@ import math
 
 import numpy as np
 
-from ..analysis.lyapunov import benettin, compiled_flow, displaced, scipy_flow, system_flow
 from ..integrators import simulate
 from ..models.assemblies.idealised import under_point_masses
 from ..models.planar import anomaly_and_distance, planar_ode, planar_rhs
 from ..orbits.analytic import KeplerOrbit
 from ..rotations import matrix_from_quat
+from .lyapunov import benettin, compiled_flow, displaced, scipy_flow, system_flow
 
 
 def kepler_orbit(gm, a, e, t0):
