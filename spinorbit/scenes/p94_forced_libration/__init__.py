@@ -8,13 +8,13 @@ with the full 3-D rigid body.  The neglected terms are O(alpha beta^2, n zeta^3)
 """
 import numpy as np
 
+from ...analysis.planar_libration import planar_system, zeta_from_solution
 from ...constants import ARCSEC
 from ...errors import ScenarioError
 from ...scene import Model, Outcome, Scene
 from ...schema import ANGLE, DISTANCE, GM, RATE, Key
 from ...verdict import Check, Verdict
 from .. import common
-from ..p93_planar_libration import planar_system, zeta_from_solution
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A < B <= C, any unit"),

@@ -15,13 +15,13 @@ import math
 import numpy as np
 
 from ...analysis.ladder import settings, work_precision
+from ...analysis.planar_libration import crossing_times, planar_system, zeta_from_solution
 from ...errors import ScenarioError
 from ...integrators import METHODS
 from ...scene import Model, Outcome, Scene
 from ...schema import DISTANCE, GM, RATE, Key
 from ...verdict import Check, Verdict
 from .. import common
-from ..p93_planar_libration import crossing_times, planar_system, zeta_from_solution
 
 
 def verdict(p, comparison):
