@@ -284,7 +284,7 @@ def _solution_lines(entries):
     """One line per stored solution: the scene, its span (Julian years), its size, its file."""
     lines = []
     for path, scene, span, size in entries:
-        years = "unreadable" if span is None else "–".join(f"{2000.0 + t / 365.25:.2f}" for t in span)
+        years = "span unreadable" if span is None else "–".join(f"{2000.0 + t / 365.25:.2f}" for t in span)
         lines.append(f"  solution {scene}: {years}, {size / 1e6:.3g} MB ({path.name})")
     return lines
 

@@ -207,16 +207,21 @@ def entry_span(path):
 
 
 def entries():
-    """[(path, scene, (start, end) TDB days, bytes)] of the stored solutions (unreadable ones: span None)."""
+    """[(path, scene, (start, end) TDB days, bytes)] of the stored solutions: a file of another code version
+    says so after its scene (no run of this code reads it; `spinorbit cache clear` removes it), an unreadable
+    one has span None."""
     out = []
     for path in sorted(directory().glob("*.npz")):
+        scene, span = "unreadable", None
         try:
             with open_regular(path) as f, np.load(f, allow_pickle=False) as data:
+                rec = json.loads(str(data["record"]))
+                scene = rec["scene"] if rec.get("code") == code_version() else \
+                    f"{rec['scene']} (code {rec.get('code')}, not this one's)"
                 origin, length, first, count = data["grid"]
-                scene = json.loads(str(data["record"]))["scene"]
             span = (origin + first * length, origin + (first + count) * length)
         except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
-            scene, span = "unreadable", None
+            pass
         out.append((path, scene, span, path.stat().st_size))
     return out
 
