@@ -16,19 +16,12 @@ the precession rate fitted over the span (§847) against the closed form, first 
 Passes when the reference's figure axis agrees with the best other run to
 ``stress.reference_agreement_max`` rad and every full-span rate is within ``stress.rate_rel_tol``.
 """
-import math
-
-import numpy as np
-
-from ...analysis.figure_axis import figure_axis, fit_angles
-from ...analysis.ladder import work_precision
+from ...comparisons.fast_spin_p96 import compare_run
 from ...models.assemblies.idealised import under_point_masses
-from ...rotations import quat_angle
-from ...scene import Model, Outcome, Scene
+from ...scene import Model, Scene
 from ...schema import ANGLE, SPIN, Key
 from ...verdict import Check, Verdict
 from .. import common
-from .runs import label, options, winner
 
 
 def verdict(p, comparison):
@@ -76,61 +69,6 @@ def build(p, times):
     orbit = CircularOrbits(("F",), [gm], [RADIUS], [delta], phase=[-delta * t0])
     system = under_point_masses(body.moments, orbit, q0, omega0, t0, "fast spinner, slow orbit")
     return Model(None, spinner=system, theory=theory, delta=delta)
-
-
-def precession_rate(solution, t0, delta, eps_f):
-    """Mean regression rate of the figure axis (rad/d), from p96_precession.fit_angles."""
-    return float(-fit_angles(solution, t0, delta, eps_f)[3][1])
-
-
-def compare_run(p, run):
-    system, theory, delta = run.model.spinner, run.model.theory, run.model.delta
-    t, t0, span = run.times, p.t_start, p.t_end - p.t_start
-    closed_form = theory.precession_rate
-    ref_method, ref_opts, _ = options(p["stress.reference"][0], "stress.reference")
-    reference = run.integrate(system, t, "reference", ref_method, ref_opts)[0]
-    ref_axis, reference_rate = figure_axis(reference), precession_rate(reference, t0, delta, theory.eps_f)
-    rows = []
-    for entry in p["stress.runs"]:
-        method, opts, fraction = options(entry)
-        keep, full = t <= t0 + fraction * span * (1 + 1e-12), fraction >= 1.0
-
-        def errors(sol):
-            rate = precession_rate(sol, t0, delta, theory.eps_f) if full else math.nan
-            attitude_error = quat_angle(sol.quaternion, reference.quaternion[keep])
-            axis_error = np.linalg.norm(figure_axis(sol) - ref_axis[keep], axis=1)
-            return {"error_vs_converged_rad": float(attitude_error.max()),
-                    "axis_error_vs_converged_rad": float(axis_error.max()),
-                    "precession_rate_rel_error": rate / closed_form - 1,
-                    "precession_rate_rel_diff_vs_converged": rate / reference_rate - 1}
-
-        row = work_precision(system, t[keep], [(method, opts)], errors)[0]
-        span_d = float(t[keep][-1] - t0)
-        rows.append({"run": label(method, opts), "span_d": span_d, **row,
-                     "wall_s_per_orbit": row.get("wall_s", math.nan) / span_d * 2 * math.pi / delta})
-    full_rows = [r for r in rows if r["span_d"] >= span * (1 - 1e-9) and "failed" not in r]
-    agreement = min(r["axis_error_vs_converged_rad"] for r in full_rows)
-    rate_errors = [abs(r["precession_rate_rel_error"]) for r in full_rows]
-    comparison = {
-        "checks": "fast spinner (eps/delta = stress.spin_over_orbit) on a slow circle: per integrator cost "
-                  "and max attitude error vs a converged run, and the fitted precession rate vs P96's "
-                  "N cos n cc/aa; passes if the reference agrees with the best run to "
-                  "stress.reference_agreement_max and every full-span rate is within stress.rate_rel_tol",
-        "spin_over_orbit": p["stress.spin_over_orbit"],
-        "precession_rate_closed_form_rad_per_d": closed_form,
-        "precession_rate_reference_rel_error": reference_rate / closed_form - 1,
-        "reference": label(ref_method, ref_opts),
-        "reference_agreement_axis_rad": agreement,
-        "reference_agreement_attitude_rad": min(r["error_vs_converged_rad"] for r in full_rows),
-        "precession_rate_rel_error_max": max(rate_errors),
-        "winner_axis_error": winner(full_rows, "axis_error_vs_converged_rad", (1e-6, 1e-8, 1e-10)),
-        "winner_attitude_error": winner(full_rows, "error_vs_converged_rad", (1e-4, 1e-6, 1e-7)),
-        "passed": bool(agreement < p["stress.reference_agreement_max"]
-                       and not any("failed" in r for r in rows)
-                       and max(rate_errors) < p["stress.rate_rel_tol"]),
-    }
-    return Outcome(comparison, sections={"details": {"runs": rows},
-                                         "run": {"method": ",".join(r["run"] for r in rows)}})
 
 
 SCENE = Scene(SCHEMA, build, compare_run, verdict, time_scales=common.rigid_body_time_scales(SCHEMA))
