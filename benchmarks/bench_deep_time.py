@@ -142,9 +142,9 @@ def factors():
 def ladder(span_kyr=200.0):
     """Error against run time: WHFast steps against a 1-d run over ``span_kyr``, and RK8 steps of the spin
     against a 10-yr run over 1 Myr (both on the nominal model)."""
+    from spinorbit.comparisons import earth_deep_time_table as table
     from spinorbit.integrators import simulate
     from spinorbit.orbits import solution
-    from spinorbit.scenes.earth_deep_time import table
     from spinorbit.starts import earth_deep_time as deep_time_model
 
     def spin(orbit, t, step):

@@ -102,10 +102,11 @@ def build(p, times):
 
 def compare_run(p, run):
     from ...comparisons import earth_moon_history as compare
+    from ...comparisons import earth_moon_history_figures as figures
+    from ...comparisons import earth_moon_history_table as table
     from ...plots import earth_moon_history, milankovitch_periods
     from ...references.lunar_proxies import provenance
     from ...starts import earth_moon_history as model
-    from . import figures, table
 
     chosen = p["tides.model"]
     names = [chosen] + ([m for m in MODELS if m != chosen] if p["compare.models"] else [])
@@ -131,8 +132,8 @@ def compare_run(p, run):
 def sweep_figures(tables):
     """A sweep's members as a band (spinorbit sweep: e.g. tides.recession_rate over LLR's +-1 sigma) on the
     distance and length of day with the proxies, and on the precession constant and periods."""
+    from ...comparisons import earth_moon_history_figures as figures
     from ...plots import earth_moon_history, milankovitch_periods
-    from . import figures
 
     spread, (ages, first) = figures.band(tables)
     label = {"first member": first["member"]}

@@ -18,7 +18,7 @@ def table(t, q):
     import astropy.units as u
     from astropy.table import QTable
 
-    from ...schema import tdb_days_to_time
+    from ..schema import tdb_days_to_time
 
     out = QTable()
     out["time"] = tdb_days_to_time(t)

@@ -2,16 +2,16 @@
 day) at the output times, with units."""
 import numpy as np
 
-from ...starts.earth_deep_time import KYR_D
+from ..starts.earth_deep_time import KYR_D
 
 
 def quantities(t, states, model):
     """La2004's quantities and the rest of the table at times t from the spin states and the orbit."""
     import erfa
 
-    from ...bodies import moon
-    from ...models import deep_time
-    from ...orbits.solution import elements
+    from ..bodies import moon
+    from ..models import deep_time
+    from ..orbits.solution import elements
 
     normal, eccentricity_vector = model.system.orbit(t)
     angles = deep_time.climate_angles(states[:, :3], normal, eccentricity_vector, model.spin_axis0,
@@ -42,7 +42,7 @@ def table(t, q):
     import astropy.units as u
     from astropy.table import QTable
 
-    from ...schema import tdb_days_to_time
+    from ..schema import tdb_days_to_time
 
     out = QTable()
     out["time"] = tdb_days_to_time(t)

@@ -5,7 +5,7 @@ import numpy as np
 
 def series(quantities):
     """({model: age (Gyr before present)}, {model: {distance (Earth radii), length_of_day, periods...}})."""
-    from ...bodies import earth
+    from ..bodies import earth
 
     ages = {name: -q["t_gyr"] for name, q in quantities.items()}
     out = {name: {"distance": q["semi_major_axis"] / earth.EQUATORIAL_RADIUS_KM,
@@ -17,8 +17,8 @@ def series(quantities):
 
 def proxies():
     """{"distance" | "length_of_day": [(age, value, below, above, label)]} in Earth radii and hours."""
-    from ...bodies import earth, moon
-    from ...references.lunar_proxies import PROXIES
+    from ..bodies import earth, moon
+    from ..references.lunar_proxies import PROXIES
 
     scale = {"semi_major_axis": ("distance", 1.0 / earth.EQUATORIAL_RADIUS_KM),
              "distance_ratio": ("distance", moon.MEAN_DISTANCE_KM / earth.EQUATORIAL_RADIUS_KM),
@@ -36,9 +36,9 @@ def proxies():
 
 def description(history):
     """The tide's fitted parameter and the run's stop, for the summary."""
-    from ...models.tidal_history import response
-    from ...models.tidal_history.calibration import time_lag_s
-    from ...starts.earth_moon_history import LOVE_K2
+    from ..models.tidal_history import response
+    from ..models.tidal_history.calibration import time_lag_s
+    from ..starts.earth_moon_history import LOVE_K2
 
     strength = float(history.response[response.STRENGTH])
     if history.response[response.MODEL] == response.GLOBAL_OCEAN:
