@@ -15,7 +15,7 @@ LAYERS = {
     "bodies": 1, "orbits": 1,                       # bodies/de421_orientation.py: DE421's libration series
     "models": 2, "integrators": 2, "theory": 2, "analysis": 2,      # integrators/simulation.py: the one door
 }
-EDGE = 9          # scenarios, scenes, references, results, reports, cli, bench, sweep, checkpoint, ...
+EDGE = 9          # scenarios, scenes, starts, comparisons, references, results, reports, cli, bench, ...
 EDGE_ONLY_LIBRARIES = {"astropy", "matplotlib", "dask", "distributed", "erfa", "skyfield"}
 
 
@@ -153,6 +153,15 @@ def test_scene_lines_are_at_most_110_characters(path):
     lines = enumerate(path.read_text().splitlines(), 1)
     long = [f"{k}: {len(line)}" for k, line in lines if len(line) > MAX_LINE_CHARS]
     assert not long, f"lines over {MAX_LINE_CHARS} characters (line: length): {', '.join(long)}"
+
+
+MAX_SCENES_LINES = 2000         # issue 32: the scenes declare; starts/, comparisons/, analysis/ do the work
+
+
+def test_the_scenes_are_declarations_within_2000_lines():
+    """All of spinorbit/scenes/ within 2 000 lines: a scene's comparison, start and table live below it."""
+    total = sum(len(path.read_text().splitlines()) for path in SCENE_MODULES)
+    assert SCENE_MODULES and total <= MAX_SCENES_LINES, f"spinorbit/scenes/ holds {total} lines"
 
 
 # --- compiled right-hand sides -------------------------------------------------------------------------

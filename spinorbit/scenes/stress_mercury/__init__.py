@@ -23,27 +23,15 @@ import math
 
 import numpy as np
 
-from ...analysis.planar_spin_orbit import (
-    forcing_coefficients,
-    kepler_orbit,
-    rigid_body_system,
-    theta_from_quaternions,
-)
-from ...analysis.spans import refusals, resolvable
-from ...constants import ARCSEC
-from ...scene import Model, Outcome, Scene
+from ...analysis.planar_spin_orbit import kepler_orbit, rigid_body_system
+from ...comparisons.mercury_libration import compare_run, libration_theory
+from ...scene import Model, Scene
 from ...schema import DISTANCE, GM, Key
 from ...verdict import Check, Verdict
 from .. import common
 
-MARGOT_2007_ARCSEC = (35.8, 2.0)
 RADAR_NOT_INDEPENDENT = ("Margot et al. (2007)'s 35.8\" radar amplitude is not compared: the (B - A)/C used "
                          "here was inferred from it, so agreement would be circular")
-HARMONICS = 6          # fitted harmonics of M; the initial rate sums the linear forced solution to k = 24
-# comparison key -> the fitted term it comes from (k - 1 for the harmonic k, HARMONICS the free libration)
-FITTED_FROM = {"libration_88d_measured_arcsec": 0, "libration_88d_rel_error_vs_linear": 0,
-               "libration_88d_rel_error_vs_series": 0, "libration_88d_cos_term_arcsec": 0, "passed": 0,
-               "libration_44d_measured_arcsec": 1, "free_libration_fitted_arcsec": HARMONICS}
 
 
 def verdict(p, comparison):
@@ -65,26 +53,6 @@ SCHEMA = {
 }
 
 
-def libration_theory(gamma, e):
-    """{amplitude_linear, amplitude_series, w0_over_n, coefficients g_k} of the forced gamma (rad)."""
-    s, h = forcing_coefficients(e, 24)
-    w0_over_n2 = 3 * gamma * h
-    k = np.arange(1, s.size + 1)
-    g = 1.5 * gamma * s / (k**2 - w0_over_n2)
-    return {"g": g, "w0_over_n": math.sqrt(w0_over_n2), "amplitude_linear": float(g[0]),
-            "amplitude_series": 1.5 * gamma * (1 - 11 * e**2 + 959 * e**4 / 48), "S1": float(s[0]), "H": h}
-
-
-def design(t, n, w0, keep):
-    """Columns [1, (sin kM, cos kM) for the harmonics k = 1..HARMONICS kept, sin w0 t, cos w0 t] with M = n t;
-    t and t^2 in place of the free libration when the span cannot resolve it (``keep[-1]`` false)."""
-    m = n * t
-    columns = [np.ones_like(t)]
-    for k in np.flatnonzero(keep[:-1]) + 1:
-        columns += [np.sin(k * m), np.cos(k * m)]
-    return np.column_stack(columns + ([np.sin(w0 * t), np.cos(w0 * t)] if keep[-1] else [t, t * t]))
-
-
 def build(p, times):
     """The body in the 3:2 state on its linear forced solution (gamma(0) = 0 at periapsis)."""
     body = common.rigid_body(p)
@@ -97,51 +65,6 @@ def build(p, times):
     system = rigid_body_system(body.moments, kepler_orbit(o.gm, o.a, o.e, p.t_start), p.t_start, 0.0,
                                1.5 * n + gamma_dot0)
     return Model(system, gamma=gamma, n=n, theory=theory)
-
-
-def compare_run(p, run):
-    solution, gamma, n, theory, e = run.solution, run.model.gamma, run.model.n, run.model.theory, p.orbit.e
-    dt = solution.t - p.t_start
-    lib = theta_from_quaternions(solution.quaternion) - 1.5 * n * dt
-    w0 = theory["w0_over_n"] * n
-    names = [f"{2 * math.pi / (k * n):.3g}-d term" for k in range(1, HARMONICS + 1)] + ["free libration"]
-    keep = resolvable(np.append(n * np.arange(1, HARMONICS + 1), w0), abs(dt[-1]))
-    columns = design(dt, n, w0, keep)
-    coef = np.linalg.lstsq(columns, lib, rcond=None)[0]
-    pairs = dict(zip(np.flatnonzero(keep[:-1]) + 1, coef[1:].reshape(-1, 2)))      # k -> (sin, cos)
-    measured = math.copysign(math.hypot(*pairs[1]), pairs[1][0]) if 1 in pairs else None
-    rel_linear = None if measured is None else measured / theory["amplitude_linear"] - 1
-    rel_series = None if measured is None else measured / theory["amplitude_series"] - 1
-    comparison = {
-        "checks": "88-d (sin M) term of theta - 3/2 M fitted to the 3-D rigid body started in 3:2, vs the "
-                  "linear forced solution (quadrature S_1, w0 correction) within stress.linear_rel_tol and "
-                  "vs Margot et al. 2007's (3/2)(B-A)/C (1 - 11e^2 + 959e^4/48) within stress.series_rel_tol",
-        "b_minus_a_over_c": gamma,
-        "libration_88d_measured_arcsec": None if measured is None else measured / ARCSEC,
-        "libration_88d_linear_theory_arcsec": theory["amplitude_linear"] / ARCSEC,
-        "libration_88d_margot_series_arcsec": theory["amplitude_series"] / ARCSEC,
-        "libration_88d_rel_error_vs_linear": rel_linear,
-        "libration_88d_rel_error_vs_series": rel_series,
-        "libration_88d_cos_term_arcsec": pairs[1][1] / ARCSEC if 1 in pairs else None,
-        "libration_44d_measured_arcsec": float(math.hypot(*pairs[2]) / ARCSEC) if 2 in pairs else None,
-        "libration_44d_linear_theory_arcsec": float(abs(theory["g"][1]) / ARCSEC),
-        "free_libration_fitted_arcsec": float(math.hypot(coef[-2], coef[-1]) / ARCSEC) if keep[-1] else None,
-        "free_libration_period_linear_yr": 2 * math.pi / w0 / 365.25,
-        "S1_quadrature": theory["S1"], "S1_series_e4": 1 - 11 * e**2 + 959 * e**4 / 48,
-        "H_quadrature": theory["H"],
-        "margot_2007_radar_arcsec": MARGOT_2007_ARCSEC[0],
-        "margot_2007_radar_sigma_arcsec": MARGOT_2007_ARCSEC[1],
-        "margot_2007_radar_independent": False,
-        "fit_residual_rms_arcsec": float(np.std(lib - columns @ coef) / ARCSEC),
-        "passed": None if measured is None else bool(abs(rel_linear) < p.stress.linear_rel_tol
-                                                     and abs(rel_series) < p.stress.series_rel_tol),
-    }
-    refused = refusals(names, np.append(n * np.arange(1, HARMONICS + 1), w0), abs(dt[-1]))
-    not_measured = {f"comparison.{key}": f"not fitted: the {names[k]} {refused[names[k]]}"
-                    for key, k in FITTED_FROM.items() if names[k] in refused}
-    figures = {"libration": common.plot_series(dt[dt < 440], lib[dt < 440] / ARCSEC, "days from periapsis",
-                                               "theta - 3/2 M [arcsec]")}
-    return Outcome(comparison, {"libration": lib * common.u().rad}, figures, not_measured=not_measured)
 
 
 SCENE = Scene(SCHEMA, build, compare_run, verdict, time_scales=common.rigid_body_time_scales(SCHEMA))
