@@ -4,8 +4,9 @@ and nutation about it, and IAU 2006/2000A's CIP beside them, as a Solution of th
 Each of these is the Earth scene's own (the tides' secular turn, starts.earth_tides; the transfer function
 applied term by term to the rigid nutation fitted on the luni-solar arguments, comparisons.earth_nonrigid;
 the mean pole fitted with IAU 2000A's terms, comparisons.earth_iau.precession_nutation), a fit over a run,
-so the layer is computed once over the stored rigid solution's whole span, at its Chebyshev points, and
-fitted there like the rigid run; its provenance says over which span (``fit_over_tdb_d``).  It is stored
+so the layer is computed once over the stored rigid solution's whole span -- the non-rigid fit on the scene's
+own output grid, continued over the span (_grid, _nonrigid), the rest at the solution's Chebyshev points --
+and fitted there like the rigid run; its provenance says over which span (``fit_over_tdb_d``).  It is stored
 beside the rigid solution and computed again when that is extended.  IAU's CIP is fitted too (ERFA takes
 ~0.2 ms a date): the fit's error, measured at a tenth of the segments' in-between points, is in
 ``fit_error``.
@@ -30,7 +31,7 @@ def layer(rigid, scenario, nonrigid):
 
     def computed(_, lo, hi):
         rates = tides.rates(scenario["earth.tides"], scenario["orbit.source"])
-        return _computed(rigid, nr.settings(scenario) if nonrigid else None, rates)
+        return _computed(rigid, nr.settings(scenario) if nonrigid else None, rates, _grid(rigid, scenario))
 
     return store.solve(_record(scenario, nonrigid), *rigid.span, computed)
 
@@ -51,11 +52,56 @@ def _record(scenario, nonrigid):
             "transfer_function": scenario["earth.transfer_function"] if nonrigid else None}
 
 
-def _computed(rigid, settings, tide_rates):
-    """The layer over the rigid solution's span; the tides' secular turn (``tide_rates``, "/cy) and MHB2000's
-    nonlinear precession accumulate from the solution's start, as the scene's from its span's."""
-    from ..comparisons import earth_iau as vs
+def _grid(rigid, scenario):
+    """The scene's own output times, continued at its step over the rest of the stored span: where the
+    non-rigid layer's fit is made (as the scene makes it)."""
+    t, step = np.sort(scenario.output_times()), scenario["span.step"]
+    lo, hi = rigid.span
+    before = np.arange(t[0] - step, lo - 1e-9, -step)[::-1]
+    return np.concatenate([before, t[(t >= lo) & (t <= hi)], np.arange(t[-1] + step, hi + 1e-9, step)])
+
+
+def _counted_from(start, t):
+    """``t`` with ``start`` before it, unless it begins there: the scene's turns count from its first time."""
+    return t if t[0] == start else np.concatenate([[start], t])
+
+
+def _nonrigid(t, z, grid, pole_at, settings, start):
+    """The non-rigid poles at ``t`` (n, 3) from the rigid ones ``z``: the scene's non-rigid layer
+    (comparisons.earth_nonrigid.nonrigid_pole) applied on ``grid`` (``pole_at(times)``: the rigid poles), and
+    its change to the nutation -- a sum of circular terms on the luni-solar arguments, what the transfer
+    function and MHB2000's add-on terms make of the fitted ones -- refitted on those terms and evaluated at
+    ``t``; MHB2000's nonlinear precession counted from ``start``."""
+    from ..analysis import nonrigid
     from ..comparisons import earth_nonrigid as nr
+    from ..references import arguments, erfa_pole
+
+    fit_t = _counted_from(start, grid)
+    z_grid = pole_at(grid)
+    changed = nr.nonrigid_pole(fit_t, pole_at(fit_t), **settings)[fit_t.size - grid.size:]
+
+    def basis(times):
+        phases, _ = arguments.phases(times, nonrigid.LUNISOLAR_ARGUMENTS)
+        return np.hstack([np.exp(1j * phases).T, np.exp(-1j * phases).T])
+
+    def offsets(times, poles):
+        return np.array(erfa_pole.about_mean_pole(times, poles)), np.sin(erfa_pole.mean_angles(times)[3])
+
+    (before, sin_grid), (after, _) = offsets(grid, z_grid), offsets(grid, changed)
+    precession = nonrigid.nonlinear_precession(grid - start)
+    dz = (after[0] - before[0] - precession) * sin_grid + 1j * (after[1] - before[1])
+    terms = np.linalg.lstsq(basis(grid), dz, rcond=None)[0]
+    (dpsi, deps), sin_t = offsets(t, z)
+    dz_t = basis(t) @ terms
+    return erfa_pole.from_mean_pole(t, dpsi + dz_t.real / sin_t + nonrigid.nonlinear_precession(t - start),
+                                    deps + dz_t.imag)
+
+
+def _computed(rigid, settings, tide_rates, grid):
+    """The layer over the rigid solution's span; the tides' secular turn (``tide_rates``, "/cy) and MHB2000's
+    nonlinear precession accumulate from the solution's start, as the scene's from its span's; the non-rigid
+    layer's fit is made on ``grid`` (_nonrigid)."""
+    from ..comparisons import earth_iau as vs
     from ..references import erfa_pole
     from ..starts import earth_tides as tides
 
@@ -65,11 +111,15 @@ def _computed(rigid, settings, tide_rates):
     t = np.concatenate([nodes.ravel(), checks[::CHECKED_EVERY].ravel()])
     order = np.argsort(t, kind="stable")
     start = rigid.provenance["runs"][0]["start_tdb_d"]
-    ts = np.concatenate([[start], t[order]])                 # the turns below count from ts[0]
-    z = tides.tilted(ts, rigid.part("earth.pole", ts), *tide_rates)
+
+    def tilted(times):
+        counted = np.concatenate([[start], times])                 # the turn counts from the start
+        return tides.tilted(counted, rigid.part("earth.pole", counted), *tide_rates)[1:]
+
+    ts = t[order]
+    z = tilted(ts)
     if settings is not None:
-        z = nr.nonrigid_pole(ts, z, **settings)
-    ts, z = ts[1:], z[1:]
+        z = _nonrigid(ts, z, grid, tilted, settings, start)
     iau = erfa_pole.IauPole()(ts)
     _, _, nutation = vs.precession_nutation(ts, z, iau)
     values = np.empty((t.size, LAYOUT.size))
