@@ -409,6 +409,8 @@ def console():
     except BrokenPipeError:                  # `spinorbit list | head`: the reader left; say nothing more
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 141
+    for stop in (signal.SIGINT, signal.SIGTERM):     # the work is done and said: a stop now changes nothing
+        signal.signal(stop, signal.SIG_IGN)
     gc.freeze()
     return code
 

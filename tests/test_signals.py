@@ -126,14 +126,15 @@ import os, signal, sys, threading, time
 from spinorbit import cli
 
 def stops():
-    time.sleep(0.5)
-    for _ in range(100):                    # the same stop, again and again while the command exits
+    time.sleep({delay})
+    for _ in range(100):                    # a stop, again and again while the command exits
         os.kill(os.getpid(), signal.{name})
         time.sleep(0.002)
 
 def slow_run(args):
     threading.Thread(target=stops, daemon=True).start()
-    time.sleep(30)
+    time.sleep({run_s})
+    return 0
 
 cli._run = slow_run
 cli.gc.freeze = lambda: time.sleep(0.3)      # the command's way out, long enough for the stops to reach it
@@ -144,6 +145,14 @@ sys.exit(cli.console())
 
 def test_a_stop_delivered_again_while_the_command_exits_still_ends_as_130():
     for name in ("SIGINT", "SIGTERM"):
-        done = subprocess.run([sys.executable, "-c", REPEATED_STOP.format(name=name)], capture_output=True,
-                              text=True, env=ENV, timeout=60, preexec_fn=answer_ctrl_c)
+        done = subprocess.run([sys.executable, "-c", REPEATED_STOP.format(name=name, delay=0.5, run_s=30)],
+                              capture_output=True, text=True, env=ENV, timeout=60, preexec_fn=answer_ctrl_c)
         assert done.returncode == 130 and done.stderr == "interrupted\n", (name, done.returncode, done.stderr)
+
+
+def test_a_stop_after_the_work_is_done_leaves_the_commands_exit_code():
+    """The run finished and was written: a Ctrl-C or SIGTERM while the process exits changes nothing."""
+    for name in ("SIGINT", "SIGTERM"):
+        done = subprocess.run([sys.executable, "-c", REPEATED_STOP.format(name=name, delay=0.15, run_s=0.0)],
+                              capture_output=True, text=True, env=ENV, timeout=60, preexec_fn=answer_ctrl_c)
+        assert done.returncode == 0 and done.stderr == "", (name, done.returncode, done.stderr)
