@@ -69,6 +69,10 @@ class Segments:
         basis = np.polynomial.chebyshev.chebvander(2.0 * (t - mid) / self.length_d, self.degree)
         return np.matmul(self.coefficients[k - self.first], basis[:, :, None])[:, :, 0]
 
+    def at_points(self, x):
+        """Values (count, components, len(x)) at the same normalised points ``x`` of every segment."""
+        return self.coefficients @ np.polynomial.chebyshev.chebvander(np.asarray(x, dtype=float), self.degree).T
+
     def nodes(self, first, count):
         """(interpolation times (count, n + 1), check times (count, n + 1)) of segments first..first+count-1."""
         mids = self.origin_d + (np.arange(first, first + count) + 0.5) * self.length_d
