@@ -41,3 +41,15 @@ def test_without_an_estimate_no_error_is_reported(coupled):
     _, point = simulate(system, t[:3], "rk8", {"step": 1.0}, estimate_error=False)
     assert not any(key.startswith("integration_error") for key in point)
     assert point["method"] == "rk8" and point["steps"] == 4 and point["rhs_evaluations"] == 12 * 4
+
+
+def test_repeated_output_times_on_a_backward_span_are_one_run():
+    """Equal output times before t0 (a backward span asked twice at one date) split into one run away from t0:
+    the rows come back in the order given (the split once recursed for ever on them)."""
+    from spinorbit.integrators.simulation import away_from
+
+    t_out = np.array([-1.0, -2.0, -2.0, -3.0])
+    sides = away_from(0.0, t_out)
+    assert len(sides) == 1 and sides[0].tolist() == [0, 1, 2, 3]
+    both = away_from(0.0, np.array([2.0, -1.0, -1.0, 1.0, 2.0]))
+    assert [side.tolist() for side in both] == [[3, 0, 4], [1, 2]]

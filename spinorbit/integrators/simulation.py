@@ -122,8 +122,9 @@ def away_from(t0, t_out):
     before it descending (one array when every output lies on one side in that order); outputs at t0 start the
     run after it, or the run before it when there is none after."""
     order = np.argsort(t_out, kind="stable")
+    descending = np.argsort(-t_out, kind="stable")       # equal times keep their order on both sides
     at = order[t_out[order] == t0]
-    after, before = order[t_out[order] > t0], order[t_out[order] < t0][::-1]
+    after, before = order[t_out[order] > t0], descending[t_out[descending] < t0]
     if after.size or not before.size:
         after = np.concatenate([at, after])
     else:
