@@ -191,3 +191,29 @@ def test_forward_then_backward_returns_to_the_start(method, options, torqued):
     assert attitude < 1e-9                                            # rad
     assert np.abs(returned.y[-1, 4:7] - system.y0[4:7]).max() < 1e-9 * np.abs(system.y0[4:7]).max()
     assert np.allclose(returned.y[::-1], there.y, rtol=0, atol=1e-8)  # the same path both ways
+
+
+@njit
+def _positions_blow_up_before(t, data):
+    """One mass at ``data`` (3,) after t = -5, nowhere (NaN) before it."""
+    out = np.empty((1, 3))
+    for k in range(3):
+        out[0, k] = np.nan if t < -5.0 else data[k]
+    return out
+
+
+class BlowingUpBefore(BlowingUp):
+    kernel = staticmethod(_positions_blow_up_before)
+
+
+@pytest.mark.parametrize("method", ["rk8", "rk4", "strang", "dop853"])
+def test_a_backward_failure_reports_where_it_happened(method):
+    """Integrated backward, the failure is reported at the last finite time reached (-5), not at the start."""
+    system = under_point_masses(HLW_MOMENTS, BlowingUpBefore(), [1.0, 0, 0, 0], HLW_OMEGA0)
+    t = np.linspace(0.0, -10.0, 11)
+    options = {"step": 0.1} if method != "dop853" else {}
+    with pytest.raises(IntegrationError) as info:
+        simulate(system, t, method, options, estimate_error=False)[0]
+    err = info.value
+    assert -6.0 <= err.t <= -5.0 + 1e-9 and err.y.shape == (7,)
+    assert err.t <= err.partial.t[-1] <= -4.0 and np.all(np.isfinite(err.partial.y))

@@ -30,14 +30,15 @@ class ScipyIVP(Integrator):
         t_out = self._check_times(system, t_out)
         rhs, params = system.rhs, system.params
         nfev = [0]
-        last_finite = [system.t0, system.y0, False]   # latest (t, y) with a finite rhs; saw a NaN?
+        last_finite = [system.t0, system.y0, False]   # farthest (t, y) from t0 with a finite rhs; saw a NaN?
+        direction = 1.0 if t_out[-1] >= system.t0 else -1.0
 
         def fun(t, y):
             nfev[0] += 1
             dy = rhs(t, y, params)
             if not np.all(np.isfinite(dy)):
                 last_finite[2] = True
-            elif t >= last_finite[0]:
+            elif direction * (t - last_finite[0]) >= 0.0:
                 last_finite[:2] = t, y
             return dy
 
