@@ -56,7 +56,7 @@ def today(c):
 def tide(p, c, y0, model):
     """The tidal response of ``model`` calibrated to tides.recession_rate (cm/yr): the one parameter of the
     simple tides, the global ocean's drag at tides.ocean_depth (its depth fitted with the Moon's age by
-    ``python -m spinorbit.scenes.earth_moon_history.fit_ocean``)."""
+    ``python -m spinorbit.fit_tides``)."""
     from ..errors import ScenarioError
     from ..models.tidal_history import calibration, equations, ocean, response
 
