@@ -117,6 +117,15 @@ def matrix_from_quat(q):
     ])
 
 
+def matrices_from_quats(q):
+    """Body-to-inertial matrices (..., 3, 3) of quaternions (..., 4), for Python callers: the compiled
+    ``matrix_from_quat``'s own source applied to whole arrays.  Python never calls the compiled function itself:
+    row by row it is slow, and a compiled function boxed for Python and loaded from numba's cache beside kernels
+    compiled in another process can fail to return its array ("'descr' is NULL")."""
+    columns = np.moveaxis(np.asarray(q, dtype=float), -1, 0)
+    return np.moveaxis(matrix_from_quat.py_func(columns), (0, 1), (-2, -1))
+
+
 def quat_from_matrix(m):
     """Unit quaternion (w >= 0) of a body-to-inertial rotation matrix (Shepperd's method)."""
     tr = m[0, 0] + m[1, 1] + m[2, 2]
@@ -205,7 +214,7 @@ def quat_from_euler313(phi, theta, psi):
 
 def euler313_from_quat(q):
     """JPL 3-1-3 angles (rad) of a body-to-inertial quaternion."""
-    return euler313_from_matrix(matrix_from_quat(np.asarray(q, dtype=float)).T)
+    return euler313_from_matrix(np.swapaxes(matrices_from_quats(q), -1, -2))
 
 
 def quat_angle(q_a, q_b):

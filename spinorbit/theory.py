@@ -12,8 +12,8 @@ from scipy.special import ellipj, ellipk, ellipkinc, elliprf, elliprj
 
 from .errors import PhysicsError, ResonanceError
 from .rotations import (
+    matrices_from_quats,
     matrix_from_euler313,
-    matrix_from_quat,
     quat_from_matrix,
     quat_from_rotation_vector,
     quat_multiply,
@@ -116,7 +116,7 @@ class FreeRigidBody:
             self._coef = 0.0                     # steady rotation about a principal axis
         self._q_perm = np.eye(3)[self.perm]      # v_xyz = Pm v_body
         m0 = self._euler_matrix(self.omega(0.0)[0], 0.0)
-        self._m_l = matrix_from_quat(self.q0) @ self._q_perm.T @ m0
+        self._m_l = matrices_from_quats(self.q0) @ self._q_perm.T @ m0
 
     def _euler_matrix(self, omega, phi):
         """L-frame -> relabelled body frame, M = Rz(psi) Rx(theta) Rz(phi) with l = L_xyz/|L|."""
@@ -424,4 +424,4 @@ def p96_initial_state(n, eps, x0, y0):
     e_p, e_lam = np.array([math.cos(n), 0.0, -math.sin(n)]), np.array([0.0, 1.0, 0.0])
     omega_inertial = eps * a_hat + np.cross(a_hat, eps * (-y0 * e_p + x0 * e_lam))
     q0 = np.array([math.cos(n / 2), 0.0, math.sin(n / 2), 0.0])
-    return q0, matrix_from_quat(q0).T @ omega_inertial
+    return q0, matrices_from_quats(q0).T @ omega_inertial

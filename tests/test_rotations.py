@@ -123,3 +123,16 @@ def test_vectorised_euler_angles_match_one_at_a_time():
     omega = omega_body_from_euler313_rates(angles, rates)
     for i in range(5):
         np.testing.assert_array_equal(omega[i], omega_body_from_euler313_rates(angles[i], rates[i]))
+
+
+def test_matrices_of_many_quaternions_are_scipys():
+    """matrices_from_quats (what Python callers use) against scipy's rotation matrices, for (n, 4) and (4,)."""
+    from scipy.spatial.transform import Rotation
+
+    from spinorbit.rotations import matrices_from_quats
+
+    q = np.random.default_rng(7).normal(size=(50, 4))
+    expected = Rotation.from_quat(q[:, [1, 2, 3, 0]]).as_matrix()           # scipy: scalar last
+    assert np.max(np.abs(matrices_from_quats(q) - expected)) < 1e-14
+    assert np.max(np.abs(matrices_from_quats(q[3]) - expected[3])) < 1e-14
+    assert matrices_from_quats(q.reshape(5, 10, 4)).shape == (5, 10, 3, 3)

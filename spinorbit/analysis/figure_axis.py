@@ -1,12 +1,12 @@
 """The figure axis of a P96 run (ZA, XZA) and the least-squares fit of Euler's terms to them (§846-849)."""
 import numpy as np
 
-from ..rotations import matrix_from_quat
+from ..rotations import matrices_from_quats
 
 
 def figure_axis(solution):
     """Unit vectors (n, 3) of the body's z axis in inertial axes."""
-    return np.array([matrix_from_quat(q)[:, 2] for q in solution.quaternion])
+    return matrices_from_quats(solution.quaternion)[:, :, 2]
 
 
 def figure_axis_angles(solution):

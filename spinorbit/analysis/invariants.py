@@ -5,7 +5,7 @@ momentum L = R(q) I w (inertial axes) are constant; their drift over a run measu
 """
 import numpy as np
 
-from ..rotations import matrix_from_quat
+from ..rotations import matrices_from_quats
 
 
 def kinetic_energy(moments, omega):
@@ -16,7 +16,7 @@ def kinetic_energy(moments, omega):
 def angular_momentum_inertial(moments, q, omega):
     """Angular momentum in inertial axes, R(q) I w, for arrays of states (..., 4), (..., 3)."""
     q, omega = np.atleast_2d(q), np.atleast_2d(omega)
-    return np.array([matrix_from_quat(qi) @ (moments * wi) for qi, wi in zip(q, omega)])
+    return np.einsum("nij,nj->ni", matrices_from_quats(q), moments * omega)
 
 
 def invariant_drift(moments, q, omega):

@@ -5,7 +5,7 @@ import math
 import numpy as np
 
 from ..models.assemblies.idealised import under_point_masses
-from ..rotations import matrix_from_quat
+from ..rotations import matrices_from_quats
 
 
 def planar_system(moments, orbit, t0, zeta0, zeta_dot0, delta):
@@ -17,7 +17,8 @@ def planar_system(moments, orbit, t0, zeta0, zeta_dot0, delta):
 
 def zeta_from_solution(solution, f_longitude):
     """zeta = longitude of F - longitude of the body's A axis, unwrapped (rad)."""
-    lam = np.array([math.atan2(r[1, 0], r[0, 0]) for r in map(matrix_from_quat, solution.quaternion)])
+    m = matrices_from_quats(solution.quaternion)
+    lam = np.arctan2(m[:, 1, 0], m[:, 0, 0])
     return np.unwrap(f_longitude - lam)
 
 

@@ -13,7 +13,7 @@ from ..integrators import simulate
 from ..models.assemblies.idealised import under_point_masses
 from ..models.planar import anomaly_and_distance, planar_ode, planar_rhs
 from ..orbits.analytic import KeplerOrbit
-from ..rotations import matrix_from_quat
+from ..rotations import matrices_from_quats
 from .lyapunov import benettin, compiled_flow, displaced, scipy_flow, system_flow
 
 
@@ -32,7 +32,8 @@ def rigid_body_system(moments, orbit, t0, theta0, theta_dot0):
 
 def theta_from_quaternions(q):
     """Unwrapped angle (rad) of the body's A axis from the inertial x axis, projected on the x-y plane."""
-    return np.unwrap(np.array([math.atan2(m[1, 0], m[0, 0]) for m in map(matrix_from_quat, q)]))
+    m = matrices_from_quats(q)
+    return np.unwrap(np.arctan2(m[:, 1, 0], m[:, 0, 0]))
 
 
 def forcing_coefficients(e, k_max=8, samples=4096):

@@ -127,13 +127,13 @@ class System:
     def figure_axes(self, name, t, states):
         """Figure axes (n, 3, inertial) of body ``name`` at TDB days t: a Gyroscopic body's from its spin to third
         order in the Oppolzer terms (spinorbit.models.start.oppolzer_axes), an attitude's third column otherwise."""
-        from ..rotations import matrix_from_quat
+        from ..rotations import matrices_from_quats
         from .start import oppolzer_axes
 
         states = np.atleast_2d(states)
         if isinstance(self.bodies[name].rotator, Gyroscopic):
             return oppolzer_axes(self, name, t, self.state(states, f"{name}.spin"), states)
-        return np.array([matrix_from_quat(q)[:, 2] for q in self.state(states, f"{name}.q")])
+        return matrices_from_quats(self.state(states, f"{name}.q"))[:, :, 2]
 
     def __repr__(self):
         return f"System({self.name!r}, {self.layout}, {len(self.interactions)} interactions)"
