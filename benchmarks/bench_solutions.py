@@ -44,7 +44,7 @@ def python(code, tree, env=None, args=()):
 
 SCENE_PER_CALL = """
 import numpy as np
-from spinorbit.results import run_scenario
+from spinorbit.runner import run_scenario
 from spinorbit.scenarios import load_scenario
 from spinorbit.schema import tdb_days_to_time
 
@@ -94,7 +94,7 @@ for name in ("moon_librations", "earth_pole"):
 print(json.dumps(out))
 """
 IMPORTS = ("numba", "astropy.table", "astropy.units", "erfa", "jplephem.spk", "spinorbit.scenarios",
-           "spinorbit.results", "spinorbit.columns", "spinorbit.solutions.tables", "spinorbit.solutions.earth_layer",
+           "spinorbit.runner", "spinorbit.columns", "spinorbit.solutions.tables", "spinorbit.solutions.earth_layer",
            "spinorbit.analysis.librations", "spinorbit.references.eckhardt", "spinorbit.references.moon_de421",
            "spinorbit.references.erfa_pole", "spinorbit.comparisons.moon_de421",
            "spinorbit.comparisons.earth_iau", "spinorbit.comparisons.earth_nonrigid")
@@ -130,8 +130,8 @@ def latency():
 def agreement():
     import spinorbit
     from spinorbit.constants import ARCSEC
-    from spinorbit.results import run_scenario
     from spinorbit.rotations import matrix_from_euler313
+    from spinorbit.runner import run_scenario
 
     moon = run_scenario("moon_libration", ["span.start=2000-01-01T12:00:00", "span.end=2020-01-01T12:00:00",
                                            "model.start=2000-01-01T12:00:00", "output.plots=false"])
@@ -157,7 +157,7 @@ def agreement():
 def extension():
     from spinorbit import solutions
     from spinorbit.integrators import simulate
-    from spinorbit.results import run_scenario
+    from spinorbit.runner import run_scenario
     from spinorbit.solutions import models, store
 
     store.PLACE["directory"] = Path(tempfile.mkdtemp(prefix="solutions-"))

@@ -14,7 +14,7 @@ import numpy as np
 
 from spinorbit.constants import JULIAN_CENTURY_D, MAS
 from spinorbit.references import erfa_pole
-from spinorbit.results import run_scenario
+from spinorbit.runner import run_scenario
 
 SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"
 OVERRIDES = ["orbit.source=de440", "span.start=1550-01-01T00:00:00", "span.end=2650-01-01T00:00:00",

@@ -24,7 +24,7 @@ from spinorbit.bodies import earth
 from spinorbit.comparisons.earth_nonrigid import TABLE_TERMS, ren2000_scaled
 from spinorbit.constants import JULIAN_CENTURY_D, MAS
 from spinorbit.references import arguments, erfa_pole, vlbi_pole
-from spinorbit.results import run_scenario
+from spinorbit.runner import run_scenario
 from spinorbit.starts import earth_tides as tides
 
 SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"

@@ -32,7 +32,7 @@ from spinorbit.constants import ARCSEC, JULIAN_CENTURY_D
 from spinorbit.orbits.kernel import open_ephemeris
 from spinorbit.orbits.sources import gm_of
 from spinorbit.references import arguments, erfa_pole
-from spinorbit.results import run_scenario
+from spinorbit.runner import run_scenario
 from spinorbit.starts.earth_ellipticity import torque_rates
 
 SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"

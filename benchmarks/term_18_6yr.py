@@ -34,7 +34,7 @@ from spinorbit.bodies.earth import H_D
 from spinorbit.comparisons import earth_nonrigid
 from spinorbit.constants import ARCSEC, JULIAN_CENTURY_D, MAS
 from spinorbit.references import arguments, erfa_pole
-from spinorbit.results import run_scenario
+from spinorbit.runner import run_scenario
 from spinorbit.starts.earth_ellipticity import torque_rates
 
 SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"

@@ -36,7 +36,7 @@ def load_scenario(path, overrides=()):
 
 def run_scenario(scenario, overrides=()):
     """Run a scenario (path or Scenario) and return a RunResult with .table and .summary."""
-    from .results import run_scenario as _run
+    from .runner import run_scenario as _run
 
     return _run(scenario, overrides)
 

@@ -151,8 +151,8 @@ def _interrupt(signum, frame):
 def _run(args):
     from .checkpoint import Checkpoint
     from .reports import painter, write_run
-    from .results import run_scenario
     from .rundir import RunDirectory
+    from .runner import run_scenario
     from .scenarios import load_scenario
 
     scenario = load_scenario(args.scenario, args.overrides)

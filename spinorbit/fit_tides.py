@@ -25,7 +25,7 @@ COMMAND = "python -m spinorbit.fit_tides --write"
 def moon_age_gyr(depth_km):
     """(the age at which the global ocean's history of this depth reaches the Roche limit, Gyr; inf if it
     does not within 4.6 Gyr, the drag (rad/day))."""
-    from .results import run_scenario
+    from .runner import run_scenario
 
     summary = run_scenario(SCENE, ['tides.model="global_ocean"', f'tides.ocean_depth="{depth_km!r} km"',
                                    "compare.models=false", "integrator.estimate_error=false",

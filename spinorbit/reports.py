@@ -268,7 +268,7 @@ def _jsonable(value):
         return _jsonable(value.tolist())
     if isinstance(value, (np.floating, float)):
         value = float(value)
-        return value if math.isfinite(value) else None     # results.mark_unmeasured says why
+        return value if math.isfinite(value) else None     # runner.mark_unmeasured says why
     if isinstance(value, np.integer):
         return int(value)
     if isinstance(value, np.bool_):

@@ -1,7 +1,7 @@
 """What a scene's run returns: a RunResult (table, summary, figures) and the attitude table.
 
 Edge module (imports astropy), below ``scenes``: scenes build their result here, and
-``results.run_scenario`` completes its summary.
+``runner.run_scenario`` completes its summary.
 """
 from dataclasses import dataclass, field
 from typing import Callable
@@ -15,7 +15,7 @@ class RunResult:
     ``summary``: JSON-ready dict whose metric keys carry their unit in the name;
     ``figures``: name -> function(matplotlib Figure) drawing one plot; ``states``: the integrator's states at
     the outputs (integrators.base.Solution); ``continuous``: a function giving the run's continuous Solution
-    (set by results.run_scenario; see ``solution``)."""
+    (set by runner.run_scenario; see ``solution``)."""
 
     scenario: object
     table: object
@@ -31,7 +31,7 @@ class RunResult:
         from .errors import InputError
 
         if self.continuous is None:
-            raise InputError("solution", self.scenario.kind, "a run of results.run_scenario")
+            raise InputError("solution", self.scenario.kind, "a run of runner.run_scenario")
         return self.continuous()
 
 

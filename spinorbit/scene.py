@@ -1,4 +1,4 @@
-"""What a scene declares, for the one runner (``results.run_scenario``) to run.
+"""What a scene declares, for the one runner (``runner.run_scenario``) to run.
 
 A scene module defines ``SCENE = Scene(...)``: its keys, how it builds the System it integrates, what it
 compares, its verdict, its cost and the time-scales its run follows.  The runner does the rest for every

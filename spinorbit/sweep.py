@@ -66,8 +66,8 @@ def run_member(scenario_path, overrides, staged, out_dir):
     flat record (never raises on bad input or a failed write)."""
     from .errors import SpinorbitError
     from .reports import write_run
-    from .results import run_scenario
     from .rundir import write_whole
+    from .runner import run_scenario
 
     record = {"overrides": overrides, "out": str(out_dir)}
     try:
@@ -115,7 +115,7 @@ def _sweep_figures(scenario_path, overrides, records, staged):
     from astropy.table import QTable
 
     from .reports import write_plots
-    from .results import span_label
+    from .runner import span_label
     from .scenarios import load_scenario
 
     scenario = load_scenario(scenario_path, overrides)

@@ -6,7 +6,7 @@ from pathlib import Path
 import pytest
 
 from spinorbit.errors import ScenarioError
-from spinorbit.results import run_scenario
+from spinorbit.runner import run_scenario
 from spinorbit.scenarios import load_scenario
 
 SCENARIOS = Path(__file__).parent.parent / "scenarios"

@@ -3,7 +3,7 @@ import pytest
 
 from spinorbit import catalogue
 from spinorbit.columns import COLUMNS
-from spinorbit.results import run_scenario
+from spinorbit.runner import run_scenario
 
 # One short run of every scene kind that writes a table (its own span shortened where the scene allows).
 SHORT = {"free_body": ["span.end=20 d"], "p92_general": [], "p93_bounded": [], "p94_moonlike": [],

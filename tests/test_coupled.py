@@ -238,7 +238,7 @@ def test_the_stress_scene_reports_the_drifts_and_judges_only_a_decade():
     (4 eps sqrt(N), N = 400 steps), and a span under 10 yr is not judged."""
     from pathlib import Path
 
-    from spinorbit.results import run_scenario
+    from spinorbit.runner import run_scenario
 
     path = Path(__file__).parents[1] / "scenarios" / "stress" / "coupled_conservation.toml"
     summary = run_scenario(path, ['span.end="20 d"', "output.plots=false"]).summary

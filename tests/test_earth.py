@@ -17,7 +17,7 @@ from spinorbit.integrators import simulate
 from spinorbit.models.assemblies.earth import SUN_MEAN_ANOMALY_RAD, geodesic_precession, rigid_earth
 from spinorbit.models.start import on_pole
 from spinorbit.orbits.analytic import CircularOrbits
-from spinorbit.results import run_scenario
+from spinorbit.runner import run_scenario
 from spinorbit.theory import SymmetricPrecession
 from tests.units import arcsec, mas
 

@@ -9,7 +9,7 @@ import pytest
 from spinorbit.bodies import earth
 from spinorbit.bodies.table import gm_km3_d2
 from spinorbit.references import erfa_pole
-from spinorbit.results import run_scenario
+from spinorbit.runner import run_scenario
 from spinorbit.starts import earth_tides as tides
 from spinorbit.starts.earth_ellipticity import from_observed_rate
 from tests.units import arcsec, mas

@@ -266,7 +266,7 @@ def test_rebound_externals_move_the_moon_no_more_than_their_departure_from_de421
 def test_the_scene_writes_the_moon_and_judges_it():
     """scenarios/earth_moon_coupled.toml over 60 days: the geocentric Moon and the angles in the table, the
     four DE421 checks judged; asking for the tidal acceleration on a short span is not judged."""
-    from spinorbit.results import run_scenario
+    from spinorbit.runner import run_scenario
 
     path = Path(__file__).parents[1] / "scenarios" / "earth_moon_coupled.toml"
     result = run_scenario(path, ['span.end="1950-03-02T00:00:00"', "compare.tides_off=true",

@@ -15,7 +15,7 @@ LAYERS = {
     "bodies": 1, "orbits": 1,                       # bodies/de421_orientation.py: DE421's libration series
     "models": 2, "integrators": 2, "theory": 2, "analysis": 2,      # integrators/simulation.py: the one door
 }
-EDGE = 9          # scenarios, scenes, starts, comparisons, references, results, reports, cli, bench, ...
+EDGE = 9          # scenarios, scenes, starts, comparisons, references, runner, reports, cli, bench, ...
 EDGE_ONLY_LIBRARIES = {"astropy", "matplotlib", "dask", "distributed", "erfa", "skyfield"}
 
 

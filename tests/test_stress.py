@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from spinorbit.cli import main
-from spinorbit.results import run_scenario
+from spinorbit.runner import run_scenario
 
 STRESS = Path(__file__).parent.parent / "scenarios" / "stress"
 FREE_BODY = Path(__file__).parent.parent / "scenarios" / "free_body.toml"

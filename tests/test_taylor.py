@@ -13,8 +13,8 @@ from spinorbit.integrators.taylor import heyoka, scales
 from spinorbit.models.assemblies.earth_moon import closed
 from spinorbit.models.assemblies.idealised import free_body, under_point_masses
 from spinorbit.orbits.analytic import CircularOrbits, KeplerOrbit
-from spinorbit.results import run_scenario
 from spinorbit.rotations import quat_angle, quat_from_euler313
+from spinorbit.runner import run_scenario
 from spinorbit.scenarios import load_scenario, taylor_kinds
 
 SCENARIOS = Path(__file__).resolve().parent.parent / "scenarios"

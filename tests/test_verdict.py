@@ -7,7 +7,7 @@ import pytest
 
 from spinorbit.cli import EXIT_VERDICT_FAIL, main
 from spinorbit.reports import write_run
-from spinorbit.results import base_summary, run_scenario
+from spinorbit.runner import base_summary, run_scenario
 from spinorbit.scenarios import load_scenario
 from spinorbit.verdict import Check, Verdict, evaluate
 

@@ -5,7 +5,7 @@ from pathlib import Path
 
 import pytest
 
-from spinorbit.results import run_scenario
+from spinorbit.runner import run_scenario
 
 ROOT = Path(__file__).parents[1]
 

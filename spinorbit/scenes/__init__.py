@@ -1,7 +1,7 @@
 """Scene kinds: ``scene.kind`` in a scenario -> the module that declares it.
 
 Each scene module defines ``SCENE`` (a spinorbit.scene.Scene: its keys, model, comparison, verdict, cost);
-the runner (spinorbit.results) does the rest.  Modules are imported only when a scenario names them, so a
+the runner (spinorbit.runner) does the rest.  Modules are imported only when a scenario names them, so a
 scene loads nothing it does not use.
 """
 from importlib import import_module
