@@ -81,3 +81,19 @@ def describe(table):
         else:
             missing.append(name)
     return missing
+
+
+def quantity_table(t, values, columns):
+    """A QTable of the TDB ``time`` at t (days from J2000) and each of ``columns`` ({name: (unit, description)})
+    taken from ``values`` ({name: array}) with its unit and description."""
+    import astropy.units as u
+    from astropy.table import QTable
+
+    from .schema import tdb_days_to_time
+
+    out = QTable()
+    out["time"] = tdb_days_to_time(t)
+    for name, (unit, text) in columns.items():
+        out[name] = values[name] * u.Unit(unit) if unit else values[name]
+        out[name].info.description = text
+    return out

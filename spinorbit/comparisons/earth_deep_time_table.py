@@ -2,6 +2,7 @@
 day) at the output times, with units."""
 import numpy as np
 
+from ..columns import quantity_table
 from ..starts.earth_deep_time import KYR_D
 
 
@@ -39,14 +40,4 @@ COLUMNS = {  # name: (unit, description)
 
 
 def table(t, q):
-    import astropy.units as u
-    from astropy.table import QTable
-
-    from ..schema import tdb_days_to_time
-
-    out = QTable()
-    out["time"] = tdb_days_to_time(t)
-    for name, (unit, text) in COLUMNS.items():
-        out[name] = q[name] * u.Unit(unit) if unit else q[name]
-        out[name].info.description = text
-    return out
+    return quantity_table(t, q, COLUMNS)

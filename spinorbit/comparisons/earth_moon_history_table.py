@@ -1,4 +1,5 @@
 """earth_moon_history's table: the history at the output times, with units."""
+from ..columns import quantity_table
 
 COLUMNS = {  # name: (unit, description)
     "t_gyr": ("Gyr", "time from J2000 (TDB), negative in the past"),
@@ -15,14 +16,4 @@ COLUMNS = {  # name: (unit, description)
 
 
 def table(t, q):
-    import astropy.units as u
-    from astropy.table import QTable
-
-    from ..schema import tdb_days_to_time
-
-    out = QTable()
-    out["time"] = tdb_days_to_time(t)
-    for name, (unit, text) in COLUMNS.items():
-        out[name] = q[name] * u.Unit(unit) if unit else q[name]
-        out[name].info.description = text
-    return out
+    return quantity_table(t, q, COLUMNS)
