@@ -123,18 +123,48 @@ def _quote_hint(argv, extra):
 
 @contextlib.contextmanager
 def _sigterm_interrupts():
-    """SIGTERM (a batch scheduler's stop) interrupts as Ctrl-C does, so that a run's checkpoint is kept."""
+    """SIGTERM (a batch scheduler's stop) interrupts as Ctrl-C does, so that a run's checkpoint is kept; either
+    is heard at least once (:class:`_Stop`).  A Ctrl-C the shell has the command ignore stays ignored."""
     if threading.current_thread() is not threading.main_thread():      # only the main thread sets handlers
         yield
         return
-    previous = signal.signal(signal.SIGTERM, _interrupt)
+    stop = _Stop()
+    previous = {signum: signal.signal(signum, stop.handler) for signum in (signal.SIGINT, signal.SIGTERM)
+                if signal.getsignal(signum) is not signal.SIG_IGN}
     try:
         yield
     except KeyboardInterrupt:
-        previous = _stopping(previous)
+        stop.heard()
+        previous = {signum: _stopping(handler) for signum, handler in previous.items()}
         raise
     finally:
-        signal.signal(signal.SIGTERM, previous)
+        stop.heard()
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+
+
+class _Stop:
+    """A stop signal raises KeyboardInterrupt in the main thread.  Python drops an exception raised inside a
+    ctypes callback (llvmlite calls one while numba compiles), which would lose the stop: the signal is sent
+    again every REPEAT_S until the command has heard it."""
+
+    REPEAT_S = 0.5
+
+    def __init__(self):
+        self.done, self.repeating = threading.Event(), False
+
+    def handler(self, signum, frame):
+        if not self.repeating:
+            self.repeating = True
+            threading.Thread(target=self._repeat, args=(signum,), daemon=True).start()
+        raise KeyboardInterrupt
+
+    def _repeat(self, signum):
+        while not self.done.wait(self.REPEAT_S):
+            os.kill(os.getpid(), signum)
+
+    def heard(self):
+        self.done.set()
 
 
 def _stopping(handler):
@@ -142,10 +172,6 @@ def _stopping(handler):
     so that the same stop delivered again (LLVM's handler, met while numba compiles, raises it once more) does
     not kill it before it exits 130; ``handler`` when ``main`` runs inside another program."""
     return signal.SIG_IGN if _COMMAND else handler
-
-
-def _interrupt(signum, frame):
-    raise KeyboardInterrupt
 
 
 def _run(args):

@@ -156,3 +156,32 @@ def test_a_stop_after_the_work_is_done_leaves_the_commands_exit_code():
         done = subprocess.run([sys.executable, "-c", REPEATED_STOP.format(name=name, delay=0.15, run_s=0.0)],
                               capture_output=True, text=True, env=ENV, timeout=60, preexec_fn=answer_ctrl_c)
         assert done.returncode == 0 and done.stderr == "", (name, done.returncode, done.stderr)
+
+
+SWALLOWED_STOP = """
+import ctypes, os, signal, sys, time
+from spinorbit import cli
+
+def inside_a_callback():                      # as llvmlite's object-cache callback while numba compiles
+    os.kill(os.getpid(), signal.{name})
+    for _ in range(100000):
+        pass                                  # the handler's KeyboardInterrupt is raised here, and dropped
+
+callback = ctypes.CFUNCTYPE(None)(inside_a_callback)
+
+def run(args):
+    callback()
+    time.sleep(20)
+    return 0
+
+cli._run = run
+sys.argv = ["spinorbit", "run", "free_body"]
+sys.exit(cli.console())
+"""
+
+
+def test_a_stop_dropped_inside_a_ctypes_callback_is_heard_again():
+    for name in ("SIGINT", "SIGTERM"):
+        done = subprocess.run([sys.executable, "-c", SWALLOWED_STOP.format(name=name)], capture_output=True,
+                              text=True, env=ENV, timeout=60, preexec_fn=answer_ctrl_c)
+        assert done.returncode == 130 and done.stderr.splitlines()[-1] == "interrupted", (name, done.stderr)
