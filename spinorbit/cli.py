@@ -146,7 +146,8 @@ def _sigterm_interrupts():
 class _Stop:
     """A stop signal raises KeyboardInterrupt in the main thread.  Python drops an exception raised inside a
     ctypes callback (llvmlite calls one while numba compiles), which would lose the stop: the signal is sent
-    again every REPEAT_S until the command has heard it."""
+    again every REPEAT_S until the command has heard it.  While a KeyboardInterrupt is being handled (a
+    checkpoint or a partial output being saved) a stop raises nothing: the work of stopping is not stopped."""
 
     REPEAT_S = 0.5
 
@@ -157,7 +158,8 @@ class _Stop:
         if not self.repeating:
             self.repeating = True
             threading.Thread(target=self._repeat, args=(signum,), daemon=True).start()
-        raise KeyboardInterrupt
+        if not isinstance(sys.exc_info()[1], KeyboardInterrupt):
+            raise KeyboardInterrupt
 
     def _repeat(self, signum):
         while not self.done.wait(self.REPEAT_S):

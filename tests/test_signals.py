@@ -185,3 +185,33 @@ def test_a_stop_dropped_inside_a_ctypes_callback_is_heard_again():
         done = subprocess.run([sys.executable, "-c", SWALLOWED_STOP.format(name=name)], capture_output=True,
                               text=True, env=ENV, timeout=60, preexec_fn=answer_ctrl_c)
         assert done.returncode == 130 and done.stderr.splitlines()[-1] == "interrupted", (name, done.stderr)
+
+
+STOP_DURING_CLEANUP = """
+import os, signal, sys, time
+from pathlib import Path
+from spinorbit import cli
+
+def run(args):
+    try:
+        os.kill(os.getpid(), signal.SIGTERM)
+        time.sleep(20)
+    except BaseException:
+        for _ in range(30):                      # a 1.5-s save of what the run has, as a checkpoint is saved
+            time.sleep(0.05)
+        Path(os.environ["SAVED"]).write_text("saved")
+        raise
+    return 0
+
+cli._run = run
+sys.argv = ["spinorbit", "run", "free_body"]
+sys.exit(cli.console())
+"""
+
+
+def test_the_stops_sent_again_never_interrupt_the_saving_of_a_stopped_run(tmp_path):
+    saved = tmp_path / "saved"
+    done = subprocess.run([sys.executable, "-c", STOP_DURING_CLEANUP], capture_output=True, text=True,
+                          env={**ENV, "SAVED": str(saved)}, timeout=60, preexec_fn=answer_ctrl_c)
+    assert done.returncode == 130 and done.stderr == "interrupted\n", done.stderr
+    assert saved.read_text() == "saved"
