@@ -432,7 +432,7 @@ def made_files(base):
             subprocess.run(command, cwd=ROOT, env=env, capture_output=True, check=False)
         process = subprocess.Popen(TARGETS["run"](made), cwd=ROOT, env=env, stderr=subprocess.PIPE,
                                    preexec_fn=answer_ctrl_c)
-        time.sleep(8)
+        time.sleep(3)                          # within the run (about 7 s): its checkpoint is kept
         process.send_signal(signal.SIGINT)
         process.communicate()
     return made
