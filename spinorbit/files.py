@@ -8,10 +8,12 @@ class NotRegular(OSError):
     """A path that names something other than a regular file."""
 
 
-def open_regular(path, mode="rb"):
-    """``path`` opened for reading (binary ``rb`` or text ``r``), links followed, if it is a regular file;
-    NotRegular otherwise (an OSError, as a missing file is)."""
-    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)        # a FIFO opens without a writer
+def open_regular(path, mode="rb", follow_links=True):
+    """``path`` opened for reading (binary ``rb`` or text ``r``) if it is a regular file, links followed unless
+    ``follow_links`` is false (then a link is refused: ELOOP); NotRegular otherwise (an OSError, as a missing
+    file is)."""
+    nofollow = 0 if follow_links else os.O_NOFOLLOW
+    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC | nofollow)   # a FIFO opens without a writer
     try:
         info = os.fstat(fd)
         if not stat.S_ISREG(info.st_mode):

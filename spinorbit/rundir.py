@@ -32,7 +32,6 @@ No name given by the user is used as a pattern.
 
 Edge module.
 """
-import errno
 import fcntl
 import hashlib
 import json
@@ -45,6 +44,7 @@ import sys
 from pathlib import Path
 
 from .errors import ScenarioError
+from .files import open_regular
 
 MANIFEST = ".spinorbit-manifest.json"
 MAX_MANIFEST_BYTES = 64 << 20
@@ -300,7 +300,7 @@ class RunDirectory:
 def read_manifest(directory):
     """The manifest of a run directory ({} if there is none, or not a regular file spinorbit can read)."""
     try:
-        with _open_regular(Path(directory) / MANIFEST) as f:
+        with open_regular(Path(directory) / MANIFEST, follow_links=False) as f:
             manifest = json.loads(f.read(MAX_MANIFEST_BYTES))
     except (OSError, ValueError):
         return {}
@@ -309,7 +309,7 @@ def read_manifest(directory):
 
 def record(path):
     """A manifest entry: size and sha256 of a file spinorbit wrote."""
-    with _open_regular(path) as f:
+    with open_regular(path, follow_links=False) as f:
         return {"size": os.fstat(f.fileno()).st_size, "sha256": _sha256(f)}
 
 
@@ -396,19 +396,10 @@ def _unchanged(path, info, recorded):
     if not isinstance(recorded, str):
         return False
     try:
-        with _open_regular(path) as f:
+        with open_regular(path, follow_links=False) as f:
             return _sha256(f) == recorded
     except OSError:
         return False                                  # unreadable: not provably ours
-
-
-def _open_regular(path):
-    """A regular file opened for reading without following a link or blocking on a FIFO."""
-    fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK | os.O_CLOEXEC)
-    if not stat.S_ISREG(os.fstat(fd).st_mode):
-        os.close(fd)
-        raise OSError(errno.EINVAL, "not a regular file", str(path))
-    return os.fdopen(fd, "rb")
 
 
 def _sha256(f):
