@@ -31,6 +31,7 @@ import numpy as np
 from ..files import open_lock, open_regular
 from ..layout import Layout
 from ..linker import cache
+from ..orbits.solution import arrays_hash
 from .chebyshev import Segments
 from .solution import Solution
 
@@ -95,12 +96,8 @@ def _arrays(solution, rec):
 
 
 def content_hash(arrays):
-    digest = hashlib.sha256()
-    for name in ARRAYS:
-        value = np.ascontiguousarray(arrays[name])
-        digest.update(name.encode() + str(value.dtype).encode() + str(value.shape).encode())
-        digest.update(value.data if value.dtype.kind != "U" else value.tobytes())
-    return digest.hexdigest()
+    """sha256 of the stored arrays (each name, dtype, shape and bytes), as the orbital solutions are hashed."""
+    return arrays_hash({name: arrays[name] for name in ARRAYS})
 
 
 def save(solution, rec, path):
