@@ -21,8 +21,9 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from ..constants import ARCSEC
-from ..errors import IntegrationError
+from ..errors import InputError, IntegrationError
 from ..rotations import quat_angle, vector_angle
+from .base import Solution, normalised
 from .registry import get_method
 
 
@@ -31,10 +32,11 @@ def error_estimate(method_cls, options, system, t_out):
 
     Fixed-step methods of known order: a run at twice the step to every other output (with
     outputs one step apart, it lands on them with no interpolation), the difference over
-    2^p - 1.  Otherwise (or when twice the step is unstable) a refined run, the difference as it is.
+    2^p - 1.  Otherwise (when twice the step is unstable, or every other output is t0 itself) a refined run, the
+    difference as it is.
     """
     settings = {**method_cls.defaults(), **options}
-    if "step" in settings and method_cls.order:
+    if "step" in settings and method_cls.order and np.any(t_out[::2] != system.t0):
         try:
             coarse = method_cls(**{**settings, "step": 2 * settings["step"]})
             coarse.label = None
@@ -79,9 +81,11 @@ def simulate(system, t_out, method="dop853", options=None, estimate_error=True, 
     """Integrate; return (solution, {method, wall_s, rhs_evaluations, steps, integration_error_*, ...}), the
     solution's rows in the order of ``t_out``.
 
-    Outputs may lie on both sides of ``system.t0``, or run toward it (a span that a start outside it reaches):
-    each side is integrated away from t0 in its own run (spinorbit.integrators' contract) and the rows put back
-    in order; only a run in one direction is checkpointed.
+    Outputs may come in any order, repeat, lie on both sides of ``system.t0`` or run toward it: each side's
+    distinct times are integrated away from t0 in a run of their own (spinorbit.integrators' contract) and the
+    rows put back in order; an output at t0 is the start state (with no other output, nothing is integrated and
+    the error is zero).  Only a run asked as the method takes it (one side, distinct times, away from t0) is
+    checkpointed; a failing run's IntegrationError holds that run's partial solution.
 
     ``checkpoint`` (spinorbit.checkpoint.Checkpoint or None) is offered the outputs as the run goes, by a method
     that can resume (rk8 landing on its outputs; the others run without one); ``label`` names the progress bar
@@ -90,10 +94,19 @@ def simulate(system, t_out, method="dop853", options=None, estimate_error=True, 
     adds little to the wall time; ``wall_s`` is the main run's own.
     """
     t_out = np.asarray(t_out, dtype=float)
-    sides = away_from(system.t0, t_out)
-    if len(sides) > 1 or not np.array_equal(sides[0], np.arange(t_out.size)):
-        runs = [simulate(system, t_out[rows], method, options, estimate_error, None, label) for rows in sides]
-        return _merged(t_out, sides, runs)
+    if t_out.ndim != 1 or not t_out.size or not np.all(np.isfinite(t_out)):
+        raise InputError("t_out", f"{t_out.size} output times in {t_out.ndim} dimensions"
+                         + ("" if np.all(np.isfinite(t_out)) else ", not all finite"),
+                         "a non-empty 1-d array of finite times")
+    runs = away_from(system.t0, t_out)
+    if len(runs) == 1 and np.array_equal(runs[0], t_out):
+        return _run(system, t_out, method, options, estimate_error, checkpoint, label)
+    done = [_run(system, times, method, options, estimate_error, None, label) for times in runs]
+    return _gathered(system, t_out, runs, done, method, options, estimate_error)
+
+
+def _run(system, t_out, method, options, estimate_error, checkpoint, label):
+    """(solution, point) of one run away from t0 over distinct times (the method's contract)."""
     method_cls = get_method(method)
     options = options or {}
     integrator = method_cls(**options)
@@ -118,33 +131,36 @@ def simulate(system, t_out, method="dop853", options=None, estimate_error=True, 
 
 
 def away_from(t0, t_out):
-    """Index arrays of ``t_out`` in the order of runs away from t0: the outputs after t0 ascending, then those
-    before it descending (one array when every output lies on one side in that order); outputs at t0 start the
-    run after it, or the run before it when there is none after."""
-    order = np.argsort(t_out, kind="stable")
-    descending = np.argsort(-t_out, kind="stable")       # equal times keep their order on both sides
-    at = order[t_out[order] == t0]
-    after, before = order[t_out[order] > t0], descending[t_out[descending] < t0]
-    if after.size or not before.size:
-        after = np.concatenate([at, after])
-    else:
-        before = np.concatenate([at, before])
-    return [rows for rows in (after, before) if rows.size] or [np.arange(t_out.size)]
+    """The runs that give every output: the distinct times after t0 ascending, then those before it descending,
+    an output at t0 heading the first of them (it aligns a fixed step's Richardson run); none when every output
+    is at t0."""
+    times = np.unique(t_out)
+    runs = [side for side in (times[times > t0], times[times < t0][::-1]) if side.size]
+    if runs and np.any(times == t0):
+        runs[0] = np.concatenate([[t0], runs[0]])
+    return runs
 
 
-def _merged(t_out, sides, runs):
-    """One (solution, point) from the runs of each side, rows back in the order of t_out."""
-    from dataclasses import replace
-
-    y = np.empty((t_out.size, runs[0][0].y.shape[1]))
-    for rows, (solution, _) in zip(sides, runs):
-        y[rows] = solution.y
-    first, point = runs[0]
-    merged = replace(first, t=t_out.copy(), y=y, nfev=sum(s.nfev for s, _ in runs),
-                     nsteps=None if any(s.nsteps is None for s, _ in runs) else sum(s.nsteps for s, _ in runs),
-                     wall_s=sum(s.wall_s for s, _ in runs))
-    point = {**point, "wall_s": merged.wall_s, "rhs_evaluations": merged.nfev, "steps": merged.nsteps}
-    for key in point:
-        if key.startswith("integration_error_") and isinstance(point[key], float):
-            point[key] = max(p.get(key, 0.0) for _, p in runs)
+def _gathered(system, t_out, runs, done, method, options, estimate_error):
+    """One (solution, point) from the runs of each side (the start state at t0), rows in the order of t_out:
+    costs summed, each integration error the largest of the runs' (zero with no run)."""
+    method_cls = get_method(method)
+    start = normalised(system, system.y0[None, :])
+    times = np.concatenate([[system.t0], *runs])
+    states = np.concatenate([start, *(solution.y for solution, _ in done)])
+    distinct, first = np.unique(times, return_index=True)
+    y = states[first[np.searchsorted(distinct, t_out)]]
+    solutions = [solution for solution, _ in done]
+    steps = [solution.nsteps for solution in solutions]
+    merged = Solution(t_out.copy(), y, method_cls.name, sum(s.nfev for s in solutions),
+                      None if None in steps else sum(steps), sum(s.wall_s for s in solutions),
+                      dict(solutions[0].options if solutions else {**method_cls.defaults(), **(options or {})}),
+                      system.layout)
+    point = {**(done[0][1] if done else {"method": method_cls.name}),
+             "wall_s": merged.wall_s, "rhs_evaluations": merged.nfev, "steps": merged.nsteps}
+    if estimate_error:
+        for key, value in differences(system.layout, start, start, 1.0).items():
+            point[key] = max([value, *(p[key] for _, p in done if key in p)])
+        if not done:
+            point["integration_error_method"] = "none: every output is the start state"
     return merged, point
