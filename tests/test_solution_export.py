@@ -1,6 +1,9 @@
 """A Solution exported as SPICE kernels and read back by spiceypy and skyfield: the Moon's orientation (binary PCK
-type 2 + frame kernel) and the integrated geocentric Moon (SPK type 2) reproduce the solution within 1 uas and
-1 mm."""
+type 2 + frame kernel) and the positions of an integrated system's bodies (SPK type 2: the closed Earth-Moon's
+Moon and Earth about their barycentre; the solar system's every body, about 0 and the Earth-Moon barycentre)
+reproduce the solution within 1 uas and 1 mm -- or, for a barycentric outer planet, within what two sums of
+the same series in doubles can differ by; the solar system's read back against DE421 within its scene's
+tolerances."""
 import numpy as np
 import pytest
 
@@ -12,6 +15,8 @@ from tests.units import arcsec
 
 spiceypy = pytest.importorskip("spiceypy")
 uas = arcsec * 1e-6
+mm = 1e-6                                   # km
+DE421_EPOCH = -11144.5                      # TDB days: DE421's JDEPOC, where the solar system's solution starts
 
 
 @pytest.fixture
@@ -68,17 +73,169 @@ def test_the_moon_read_back_by_skyfield_matches_the_solution(moon_kernels):
     assert rotation_angle(read, expected).max() < 1 * uas + rounding
 
 
-def test_the_integrated_moons_position_read_back_by_spiceypy_matches_the_solution(place):
+def exact_dates(span, count, seed):
+    """``count`` TDB days in ``span`` whose seconds (x 86400) are exact doubles: SPICE and the solution are read at
+    the same instant (a day count rounded to its last bit moves Mercury by up to 4 mm far from J2000)."""
+    t = np.round(np.random.default_rng(seed).uniform(*span, count) * 2 ** 20) / 2 ** 20
+    assert np.array_equal(t * DAY_S / DAY_S, t)
+    return np.clip(t, *span)
+
+
+def summing_floor(r, degree):
+    """km: what two sums of one Chebyshev series of degree ``degree`` in doubles can differ by at values of size
+    |r| ((degree + 1) roundings of the largest term), or 1 mm where that is less."""
+    return np.maximum(1 * mm, (degree + 1) * np.finfo(float).eps * np.linalg.norm(r, axis=1).max())
+
+
+def segments_of(path):
+    """{(centre, target): jplephem segment} of an SPK."""
+    from jplephem.spk import SPK
+
+    with SPK.open(str(path)) as kernel:
+        return {(s.center, s.target): (s.frame, s.data_type, s.start_second, s.end_second) for s in kernel.segments}
+
+
+def test_the_closed_earth_moon_read_back_by_spiceypy_and_skyfield_matches_the_solution(place):
+    """The Moon and the Earth about their barycentre (3), as DE421 writes them: their difference is the
+    integrated geocentric Moon, within 1 mm by either reader (the barycentre's own orbit is DE421's: a reader
+    wanting either about 0 loads de421.bsp beside it)."""
+    from skyfield.api import load
+    from skyfield.jpllib import SpiceKernel
+
     solution = solutions.solve("earth_moon_coupled", [], 0.0, 40.0)
     written = solution.export(place / "out")
+    bsp = next(f for f in written["files"] if f.endswith(".bsp"))
+    first, last = (d * DAY_S for d in solution.span)
+    assert segments_of(bsp) == {(3, 301): (1, 2, first, last), (3, 399): (1, 2, first, last)}
+    t = exact_dates(solution.span, 100, 7)
+    truth = solution.part("moon.r", t)
     try:
         for path in written["files"]:
             spiceypy.furnsh(path)
-        t = np.random.default_rng(7).uniform(*solution.span, 100)
-        read = np.array([spiceypy.spkpos("301", ti * DAY_S, "J2000", "NONE", "399")[0] for ti in t])
-        assert np.linalg.norm(read - solution.part("moon.r", t), axis=1).max() < 1e-6      # km: 1 mm
+        read = np.array([spiceypy.spkpos("MOON", ti * DAY_S, "J2000", "NONE", "EARTH")[0] for ti in t])
+        assert np.linalg.norm(read - truth, axis=1).max() < 1 * mm
     finally:
         spiceypy.kclear()
+    moon, earth = (next(s for s in SpiceKernel(bsp).segments if s.target == code) for code in (301, 399))
+    by_skyfield = (moon - earth).at(load.timescale().tdb_jd(2451545.0, t)).position.km.T   # both about 3
+    assert np.linalg.norm(by_skyfield - truth, axis=1).max() < 1 * mm
+
+
+@pytest.fixture(scope="module")
+def solar_system(tmp_path_factory):
+    """The solar system's solution over 60 days about DE421's epoch, exported; the store kept for the module."""
+    place = tmp_path_factory.mktemp("solar")
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setitem(store.PLACE, "directory", place / "store")
+        (place / "store").mkdir()
+        solution = solutions.solve("solar_system", [], DE421_EPOCH - 20.0, DE421_EPOCH + 40.0)
+        written = solution.export(place / "out")
+        yield solution, written, place
+    spiceypy.kclear()
+
+
+def carried(solution, t):
+    """{NAIF code: (n, 3) km about the solar-system barycentre} of every body the solution carries: the free ones
+    as integrated, the Earth and the Moon from their barycentre by the model's own mass ratio (its System's)."""
+    from spinorbit.scenarios import load_scenario
+    from spinorbit.solutions import models
+
+    share = models.system(load_scenario("solar_system", []), solution.ends["start"]).motion.share
+    codes = {"sun": 10, "mercury": 1, "venus": 2, "mars": 4, "jupiter": 5, "saturn": 6, "uranus": 7,
+             "neptune": 8, "pluto": 9, "earth_moon_barycenter": 3}
+    out = {code: solution.part(f"{name}.r", t) for name, code in codes.items()}
+    moon = solution.part("moon.r", t)
+    out.update({301: out[3] + (1 - share) * moon, 399: out[3] - share * moon})
+    return out
+
+
+def furnished(files):
+    for path in files:
+        spiceypy.furnsh(path)
+
+
+def test_the_solar_system_is_stored_from_de421s_epoch(solar_system):
+    from spinorbit.bodies.de421_header import header
+    from spinorbit.constants import J2000_JD
+    from spinorbit.schema import parse_tdb_days
+    from spinorbit.solutions.models import KINDS
+
+    solution, _, _ = solar_system
+    assert float(parse_tdb_days("anchor", KINDS["solar_system"].anchor)) == header()["JDEPOC"] - J2000_JD
+    assert [run["start_tdb_d"] for run in solution.provenance["runs"]] == [DE421_EPOCH]
+
+
+def test_the_solar_systems_spk_is_laid_out_as_de421s(solar_system):
+    """Every body about the barycentre (0), the Moon and the Earth about theirs (3); J2000 (1), type 2, the
+    solution's span in TDB seconds past J2000; the comment area names the scene, its keys and the code."""
+    solution, written, _ = solar_system
+    bsp = next(f for f in written["files"] if f.endswith(".bsp"))
+    first, last = (d * DAY_S for d in solution.span)
+    expected = {(0, code) for code in (10, 1, 2, 4, 5, 6, 7, 8, 9, 3)} | {(3, 301), (3, 399)}
+    assert segments_of(bsp) == {pair: (1, 2, first, last) for pair in expected}
+    handle = spiceypy.dafopr(bsp)
+    try:
+        text = " ".join(spiceypy.dafec(handle, 100, 1000)[1])
+    finally:
+        spiceypy.dafcls(handle)
+    assert "'solar_system' scene" in text and store.code_version() in text and '"start.epoch": "de421"' in text
+
+
+def test_the_solar_system_read_back_by_spiceypy_matches_the_solution(solar_system):
+    solution, written, _ = solar_system
+    t = exact_dates(solution.span, 200, 9)
+    furnished(written["files"])
+    try:
+        for code, truth in carried(solution, t).items():
+            read = np.array([spiceypy.spkpos(str(code), ti * DAY_S, "J2000", "NONE", "0")[0] for ti in t])
+            assert np.linalg.norm(read - truth, axis=1).max() < summing_floor(truth, solution.segments.degree), code
+        moon = np.array([spiceypy.spkpos("MOON", ti * DAY_S, "J2000", "NONE", "EARTH")[0] for ti in t])
+        assert np.linalg.norm(moon - solution.part("moon.r", t), axis=1).max() < 1 * mm
+    finally:
+        spiceypy.kclear()
+
+
+def test_the_solar_system_read_back_by_skyfield_matches_the_solution(solar_system):
+    from skyfield.api import load
+    from skyfield.jpllib import SpiceKernel
+
+    solution, written, _ = solar_system
+    kernel = SpiceKernel(next(f for f in written["files"] if f.endswith(".bsp")))
+    t = exact_dates(solution.span, 200, 10)
+    at = load.timescale().tdb_jd(2451545.0, t)
+    for code, truth in carried(solution, t).items():
+        read = kernel[code].at(at).position.km.T
+        assert np.linalg.norm(read - truth, axis=1).max() < summing_floor(truth, solution.segments.degree), code
+    moon = (kernel["moon"] - kernel["earth"]).at(at).position.km.T
+    assert np.linalg.norm(moon - solution.part("moon.r", t), axis=1).max() < 1 * mm
+
+
+def test_the_solar_system_read_back_agrees_with_de421_within_its_scenes_tolerances(solar_system):
+    """Started from DE421's initial conditions: 60 days on, the Moon read back within the scene's 1 mas and
+    0.1 m, the lunar pole and longitude within 1 mas, each planet within twice what DE421's asteroids move it."""
+    from spinorbit.analysis.librations import pole_and_longitude_difference
+    from spinorbit.comparisons import earth_moon_de421, solar_system_de421
+    from spinorbit.references.moon_de421 import Orientation
+    from tests.units import mas
+
+    solution, written, _ = solar_system
+    t = exact_dates(solution.span, 60, 11)
+    furnished(written["files"])
+    try:
+        moon = np.array([spiceypy.spkpos("MOON", ti * DAY_S, "J2000", "NONE", "EARTH")[0] for ti in t])
+        mats = np.array([spiceypy.pxform("J2000", "MOON_PA_SPINORBIT", ti * DAY_S) for ti in t])
+        planets = {name: np.array([spiceypy.spkpos(str(code), ti * DAY_S, "J2000", "NONE", "SUN")[0]
+                                   for ti in t])
+                   for name, code in (("mercury", 1), ("venus", 2), ("earth", 399), ("mars", 4), ("jupiter", 5),
+                                      ("saturn", 6), ("uranus", 7), ("neptune", 8), ("pluto", 9))}
+    finally:
+        spiceypy.kclear()
+    direction, distance = earth_moon_de421.orbit_errors(t, moon)
+    assert direction.max() < 1 * mas and np.abs(distance).max() < 1e-4           # km: 0.1 m
+    pole, longitude = pole_and_longitude_difference(mats, Orientation()(t)["icrf_to_body"])
+    assert np.abs(pole).max() < 1 * mas and np.abs(longitude).max() < 1 * mas
+    for name, error in solar_system_de421.planet_errors(t, planets).items():
+        assert error.max() < 2 * solar_system_de421.ASTEROIDS_KM[name], name
 
 
 def test_spinorbit_export_writes_the_scenes_kernels(place, capsys):
@@ -89,3 +246,17 @@ def test_spinorbit_export_writes_the_scenes_kernels(place, capsys):
                      "--set", "span.end=2000-01-21T12:00:00", "--out", str(out)]) == 0
     assert sorted(p.name for p in out.iterdir()) == ["moon_libration_moon.bpc", "moon_libration_moon.tf"]
     assert "fit errors" in capsys.readouterr().out
+
+
+def test_spinorbit_export_writes_the_solar_systems_kernels_from_its_store(solar_system, capsys):
+    from spinorbit import cli
+
+    _, _, place = solar_system
+    out = place / "kernels"
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setitem(store.PLACE, "directory", place / "store")
+        assert cli.main(["export", "solar_system", "--set", "span.start=1969-06-28T00:00:00",
+                         "--set", "span.end=1969-07-28T00:00:00", "--out", str(out)]) == 0
+    assert sorted(p.name for p in out.iterdir()) == ["solar_system.bsp", "solar_system_moon.bpc",
+                                                     "solar_system_moon.tf"]
+    assert "solar_system solution" not in capsys.readouterr().err              # read from the store: no run

@@ -15,7 +15,7 @@ from ..constants import ARCSEC
 from ..integrators import simulate
 from ..layout import Layout
 from ..rotations import quat_angle, vector_angle
-from .chebyshev import Segments, grid_indices, interpolating, second_kind
+from .chebyshev import Segments, grid_indices, interpolating_at
 
 
 @dataclass(frozen=True)
@@ -87,8 +87,9 @@ def integrate(system, grid, t_start, t_end, method, options, label=None):
     values = components(system, t_out, states)
     layout, n = fitted_layout(system), nodes.size
     at_nodes = values[:n].reshape(count, grid.degree + 1, -1).transpose(0, 2, 1)
-    segments = Segments(grid.origin_d, grid.length_d, first, interpolating(at_nodes))
-    at_checks = segments.at_points(second_kind(grid.degree)).transpose(0, 2, 1).reshape(-1, layout.size)
+    coefficients = interpolating_at(at_nodes, empty.normalised(nodes, first))
+    segments = Segments(grid.origin_d, grid.length_d, first, coefficients)
+    at_checks = segments.at_normalised(empty.normalised(checks, first)).reshape(-1, layout.size)
     fit, truth = layout.normalise(at_checks), values[n:]
     lo, hi = n + int(np.argmin(t_out[n:])), n + int(np.argmax(t_out[n:]))
     ends = {"start": (float(t_out[lo]), states[lo].copy()), "end": (float(t_out[hi]), states[hi].copy())}

@@ -13,6 +13,7 @@ from .chebyshev import grid_indices
 from .fit import Grid
 
 J2000_ISO = "2000-01-01T12:00:00"
+DE421_EPOCH_ISO = "1969-06-28T00:00:00"      # DE421's JDEPOC, 2440400.5 TDB: where its initial conditions hold
 
 
 @dataclass(frozen=True)
@@ -33,7 +34,8 @@ class Kind:
 
 KINDS = {"moon_libration": Kind("moon_libration", Grid(0.0, 4.0, 13), J2000_ISO),
          "earth_precession_nutation": Kind("earth_precession_nutation", Grid(0.0, 8.0, 14), None),
-         "earth_moon_coupled": Kind("earth_moon_coupled", Grid(0.0, 4.0, 13), J2000_ISO)}
+         "earth_moon_coupled": Kind("earth_moon_coupled", Grid(0.0, 4.0, 13), J2000_ISO),
+         "solar_system": Kind("solar_system", Grid(0.0, 4.0, 13), DE421_EPOCH_ISO)}
 
 
 def iso(t):
@@ -60,7 +62,8 @@ def stretch(scenario, lo, hi, t0):
 
 def first_start(scenario):
     """(t0, state) where the kind's first run starts: the scene's start at the anchor (the Earth: at its own
-    span.start, with the start its own span gives it)."""
+    span.start, with the start its own span gives it; the solar system: at DE421's epoch, where the scene starts
+    by default, from DE421's initial conditions, or with ``start.epoch = "span"`` from DE421's states there)."""
     from ..schema import parse_tdb_days
 
     anchor = KINDS[scenario.kind].anchor

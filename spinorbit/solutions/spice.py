@@ -6,24 +6,44 @@
   frame kernel naming its frame (``<BODY>_PA_SPINORBIT``, class 2: a PCK frame), as JPL's ``moon_080317.tf``.
   The angles are refitted on the solution's own grid at its Chebyshev points; the difference of the rotation
   they give from the solution's, measured between those points, is returned.
-* The positions of the integrated bodies (every ``<body>.r`` slice: barycentric, or from the primary its unit
-  names): an SPK of type 2 (Chebyshev positions; SPK Required Reading), the series the solution already holds.
+* The positions of the integrated bodies: an SPK of type 2 (Chebyshev positions; SPK Required Reading), the
+  series the solution already holds, in the frame J2000 (ICRF), time in TDB seconds past J2000 (SPICE's ET).
+  A barycentric ``<body>.r`` is a segment of the body about the solar-system barycentre (centre 0); the Moon
+  seen from the Earth (``moon.r``, as the ephemerides carry the pair) is written as DE421 writes it, the Moon
+  (301) and the Earth (399) about the Earth-Moon barycentre (3), (1 - mu) r and -mu r with mu = GM_moon /
+  (GM_earth + GM_moon) of the body table -- the solar system's own barycentre (3 about 0) completes the chain;
+  the Earth-Moon scene's is DE421's, so its kernel is read beside ``de421.bsp`` or as a difference of the two.
+  Codes (spinorbit.bodies.table): a point mass carrying a planet's system is that system's barycentre (Mercury
+  1 ... Pluto 9, as DE421's segments about 0), the Sun 10, the Moon 301, the Earth 399.
 
-Read back by spiceypy (``furnsh``; ``pxform("J2000", frame, et)``, ``spkezr``) or skyfield
-(``PlanetaryConstants.read_text`` / ``read_binary`` / ``build_frame_named``; ``load(...)`` for the SPK).
+Every kernel's comment area names what made it: the scene, every key, the ephemeris, the integrator, the code's
+version, the span, the grid and the fit's error.  Read back by spiceypy (``furnsh``; ``pxform("J2000", frame,
+et)``, ``spkezr`` / ``spkpos``) or skyfield (``PlanetaryConstants.read_text`` / ``read_binary`` /
+``build_frame_named``; ``load_file`` / ``SpiceKernel`` for the SPK).
 """
+import json
 import os
 from pathlib import Path
 
 import numpy as np
 
+from ..bodies.table import BODIES, EMB, gm_km3_d2
 from ..constants import ARCSEC, DAY_S
 from ..errors import InputError
-from .chebyshev import interpolating, second_kind
+from .chebyshev import Segments, interpolating_at
 
-NAIF_IDS = {"sun": 10, "mercury": 199, "venus": 299, "earth_moon_barycenter": 3, "earth": 399, "moon": 301,
-            "mars": 4, "jupiter": 5, "saturn": 6, "uranus": 7, "neptune": 8, "pluto": 9}
 FRAME_BASE = 1_400_000          # NAIF's range for frames users define: 1 400 000 to 2 000 000
+COMMENT_LINE = 1000             # SPICE's longest comment line
+
+
+def body_code(body):
+    """The NAIF code of a body's own centre (the planet, not its system): the first of the table's codes."""
+    return BODIES[body].naif[0]
+
+
+def position_code(body):
+    """The NAIF code of what an integrated point mass is: its system's barycentre (the table's last code)."""
+    return BODIES[body].naif[-1]
 
 
 def frame_name(body):
@@ -31,7 +51,7 @@ def frame_name(body):
 
 
 def frame_id(body):
-    return FRAME_BASE + NAIF_IDS[body]
+    return FRAME_BASE + body_code(body)
 
 
 def export(solution, directory):
@@ -45,14 +65,14 @@ def export(solution, directory):
     name = solution.provenance.get("scene", "solution")
     files, error = [], {}
     attitudes = [s.name.split(".")[0] for s in solution.layout.slices if s.kind == "quaternion"]
-    positions = [s for s in solution.layout.slices if s.name.endswith(".r")]
+    positions = any(s.name.endswith(".r") for s in solution.layout.slices)
     for body in attitudes:
         coefficients, error[f"{body}_angles_arcsec"] = angle_series(solution, body)
         files.append(_written(directory / f"{name}_{body}.bpc",
                               lambda path, b=body, c=coefficients: _pck(spiceypy, solution, b, c, path)))
         files.append(_written(directory / f"{name}_{body}.tf", lambda path, b=body: path.write_text(frame_kernel(b))))
     if positions:
-        files.append(_written(directory / f"{name}.bsp", lambda path: _spk(spiceypy, solution, positions, path)))
+        files.append(_written(directory / f"{name}.bsp", lambda path: _spk(spiceypy, solution, path)))
     return {"files": [str(f) for f in files], "fit_error": error}
 
 
@@ -67,12 +87,12 @@ def angle_series(solution, body):
     nodes, checks = segments.nodes(segments.first, count)
     angles = euler313_from_matrix(icrf_to_body(solution.part(f"{body}.q", nodes.ravel())))
     angles = np.unwrap(angles.reshape(count, degree + 1, 3), axis=1)         # continuous within a segment
-    coefficients = interpolating(angles.transpose(0, 2, 1))
+    coefficients = interpolating_at(angles.transpose(0, 2, 1), segments.normalised(nodes, segments.first))
     turns = np.round(coefficients[:, :, 0] / (2 * np.pi))
     coefficients[:, :, 0] -= 2 * np.pi * turns                               # the same rotation, small values
-    x = second_kind(degree)
-    fitted = np.polynomial.chebyshev.chebval(x, coefficients.transpose(2, 0, 1))   # (segments, 3, points)
-    mats = matrix_from_euler313(*np.moveaxis(fitted.transpose(0, 2, 1).reshape(-1, 3), -1, 0))
+    series = Segments(segments.origin_d, segments.length_d, segments.first, coefficients)
+    fitted = series.at_normalised(segments.normalised(checks, segments.first)).reshape(-1, 3)
+    mats = matrix_from_euler313(*np.moveaxis(fitted, -1, 0))
     truth = icrf_to_body(solution.part(f"{body}.q", checks.ravel()))
     difference = np.linalg.norm(mats - truth, axis=(1, 2)) / np.sqrt(2.0)     # the angle, for small angles
     return coefficients, float(difference.max() / ARCSEC)
@@ -84,38 +104,78 @@ def frame_kernel(body):
     return (f"KPL/FK\n\n{name}: the principal axes of {body} integrated by spinorbit (a binary PCK of type 2 "
             f"gives its 3-1-3 angles relative to J2000).\n\n\\begindata\n\n"
             f"    FRAME_{name} = {code}\n    FRAME_{code}_NAME = '{name}'\n    FRAME_{code}_CLASS = 2\n"
-            f"    FRAME_{code}_CLASS_ID = {code}\n    FRAME_{code}_CENTER = {NAIF_IDS[body]}\n\n\\begintext\n")
+            f"    FRAME_{code}_CLASS_ID = {code}\n    FRAME_{code}_CENTER = {body_code(body)}\n\n\\begintext\n")
 
 
 def _seconds(solution):
-    """(first, last, segment length, first segment's start) in TDB seconds from J2000."""
-    s = solution.segments
+    """(first, last, segment length) in TDB seconds from J2000."""
     first, last = solution.span
-    return first * DAY_S, last * DAY_S, s.length_d * DAY_S, first * DAY_S
+    return first * DAY_S, last * DAY_S, solution.segments.length_d * DAY_S
+
+
+def comments(solution, what):
+    """The comment area's lines: what the kernel holds and what made it (the solution's provenance)."""
+    p = solution.provenance
+    lo, hi = solution.span
+    made = {key: p.get(key) for key in ("scene", "keys", "ephemeris", "integrator", "code_version", "grid",
+                                        "fit_error")}
+    text = [f"spinorbit {p.get('code_version')}: {what} of the solution of the '{p.get('scene')}' scene",
+            f"span: {lo:.6f} to {hi:.6f} TDB days from J2000 ({lo * DAY_S:.3f} to {hi * DAY_S:.3f} TDB s), "
+            f"Chebyshev segments of {solution.segments.length_d:g} d, degree {solution.segments.degree}",
+            "made with (JSON):"]
+    body = json.dumps(made, default=str, sort_keys=True)
+    text += [body[k:k + COMMENT_LINE - 1] for k in range(0, len(body), COMMENT_LINE - 1)]
+    return [line.encode("ascii", "replace").decode() for line in text]
 
 
 def _pck(spiceypy, solution, body, coefficients, path):
-    first, last, length, begin = _seconds(solution)
-    handle = spiceypy.pckopn(str(path), f"spinorbit {body}", 0)
+    first, last, length = _seconds(solution)
+    lines = comments(solution, f"the orientation of {body} (frame {frame_name(body)})")
+    handle = spiceypy.pckopn(str(path), f"spinorbit {body}", sum(len(line) + 1 for line in lines))
     try:
-        spiceypy.pckw02(handle, frame_id(body), "J2000", first, last, f"spinorbit {body} orientation", length,
-                        len(coefficients), solution.segments.degree, np.ascontiguousarray(coefficients).ravel(),
-                        begin)
+        spiceypy.dafac(handle, lines)
+        spiceypy.pckw02(handle, frame_id(body), "J2000", first, last, f"spinorbit {body} orientation"[:40],
+                        length, len(coefficients), solution.segments.degree,
+                        np.ascontiguousarray(coefficients).ravel(), first)
     finally:
         spiceypy.pckcls(handle)
 
 
-def _spk(spiceypy, solution, slices, path):
-    first, last, length, begin = _seconds(solution)
-    handle = spiceypy.spkopn(str(path), "spinorbit", 0)
+def position_segments(solution):
+    """[(target code, centre code, name, coefficients (segments, 3, degree + 1) km)] of the solution's
+    ``<body>.r`` slices: barycentric ones about 0; the Moon seen from the Earth as the Moon and the Earth about
+    their barycentre (module docstring); another body seen from another, about it."""
+    out = []
+    for part in solution.layout.slices:
+        if not part.name.endswith(".r"):
+            continue
+        body, coefficients = part.name[:-2], solution.segments.coefficients[:, part.index, :]
+        if "barycentric" in part.unit:
+            out.append((position_code(body), 0, body, coefficients))
+            continue
+        primary = part.unit.split("from ")[1].split(",")[0]
+        if (primary, body) == ("earth", "moon"):
+            mu = gm_km3_d2("moon") / (gm_km3_d2("earth") + gm_km3_d2("moon"))
+            out += [(body_code("moon"), position_code(EMB), "moon", (1.0 - mu) * coefficients),
+                    (body_code("earth"), position_code(EMB), "earth", -mu * coefficients)]
+        else:
+            out.append((position_code(body), position_code(primary), body, coefficients))
+    return out
+
+
+def _spk(spiceypy, solution, path):
+    first, last, length = _seconds(solution)
+    segments = position_segments(solution)
+    names = ", ".join(f"{name} ({target} about {centre})" for target, centre, name, _ in segments)
+    lines = comments(solution, f"the positions of {names}")
+    handle = spiceypy.spkopn(str(path), f"spinorbit {solution.provenance.get('scene')}"[:60],
+                             sum(len(line) + 1 for line in lines))
     try:
-        for part in slices:
-            body = part.name.split(".")[0]
-            center = 0 if "barycentric" in part.unit else NAIF_IDS[part.unit.split("from ")[1].split(",")[0]]
-            coefficients = solution.segments.coefficients[:, part.index, :]
-            spiceypy.spkw02(handle, NAIF_IDS[body], center, "J2000", first, last, f"spinorbit {body}", length,
-                            len(coefficients), solution.segments.degree, np.ascontiguousarray(coefficients).ravel(),
-                            begin)
+        spiceypy.dafac(handle, lines)
+        for target, centre, name, coefficients in segments:
+            spiceypy.spkw02(handle, target, centre, "J2000", first, last, f"spinorbit {name}"[:40], length,
+                            len(coefficients), solution.segments.degree,
+                            np.ascontiguousarray(coefficients).ravel(), first)
     finally:
         spiceypy.spkcls(handle)
 

@@ -46,6 +46,17 @@ def build(p, times):
     return Model(system(p))
 
 
+def switches(p):
+    return tuple(name for name in SWITCHES if p[f"model.{name}"])
+
+
+def restart(p, start):
+    """The solar system of ``p`` started at a stored state ``start`` = (t0, y)."""
+    from ...models.assemblies.solar_system import solar_system
+
+    return solar_system(switches(p), float(start[0])).with_start(*start)
+
+
 def bench(p, model, times):
     """The lunar attitude's error against a converged RK8 run, rad."""
     from ...analysis.ladder import converged_error
@@ -64,7 +75,7 @@ def system(scenario):
     from ...references.erfa_pole import cip_vector
 
     t0 = header()["JDEPOC"] - J2000_JD if scenario["start.epoch"] == "de421" else scenario.t_start
-    built = solar_system(tuple(name for name in SWITCHES if scenario[f"model.{name}"]), t0)
+    built = solar_system(switches(scenario), t0)
     built.y0 = built.layout.pack(solar_system_de421(built, t0, cip_vector(t0), earth.ERA_RATE_RAD_D))
     return built
 
@@ -90,4 +101,4 @@ def compare_run(p, run):
 
 
 # every term a function of the state: heyoka's Taylor integrator takes it; from DE421's epoch both ways
-SCENE = Scene(SCHEMA, build, compare_run, verdict, bench=bench, backward=True, taylor=True)
+SCENE = Scene(SCHEMA, build, compare_run, verdict, bench=bench, backward=True, taylor=True, restart=restart)
