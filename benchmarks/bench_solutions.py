@@ -12,8 +12,10 @@
   J2000, the non-rigid Earth 1950-2050): the largest difference, uas;
 * extension: a stored Moon 2000-2050 extended to 2100, beside integrating 2050-2100 (simulate() of the same
   System to the scene's 2-d outputs, with its error estimate) and a scene run of 2050-2100;
-* export: the Moon 1900-2050 as a binary PCK (``spinorbit export moon_libration``): size, write time; read
-  back by spiceypy and skyfield at 1000 dates against the solution (uas) and against DE421 (arcsec);
+* export: each kind with SPICE kernels over its scene's span (``spinorbit export SCENE``: the Moon 1900-2050 as a
+  binary PCK; the coupled Earth-Moon and the solar system 1950-2050 as an SPK and the Moon's PCK): solve and
+  write times, sizes; read back by spiceypy and skyfield at 1000 dates against the solution (uas, mm) and
+  against DE421 (mas, m, km);
 * readme: the README's API example (ten dates of 2027, ``moon_librations`` and ``earth_pole``) from empty
   caches (a fresh SPINORBIT_CACHE_DIR and NUMBA_CACHE_DIR), beside a scene per call.
 """
@@ -187,7 +189,54 @@ def extension():
     print(f"\nruns: {json.dumps(extended.provenance['runs'])}")
 
 
+EXPORTED = ("moon_libration", "earth_moon_coupled", "solar_system")    # each scene's own span (1900/1950-2050)
+DE421_BOUND = "2x what DE421's asteroids move it"
+
+
 def export():
+    """Each kind exported over its scene's span: solve (store or run), write, read back at 1000 dates."""
+    import spiceypy
+
+    from spinorbit.scenarios import load_scenario
+    from spinorbit.solutions import for_scenario
+
+    for scene in EXPORTED:
+        started = time.perf_counter()
+        solution = for_scenario(load_scenario(scene, []))
+        solve_s = time.perf_counter() - started
+        out = Path(tempfile.mkdtemp(prefix=f"export-{scene}-"))
+        started = time.perf_counter()
+        written = solution.export(out)
+        write_s = time.perf_counter() - started
+        sizes = ", ".join(f"{Path(f).name} {Path(f).stat().st_size / 1e6:.3g} MB" for f in written["files"])
+        lo, hi = (2000.0 + d / 365.25 for d in solution.span)
+        print(f"\n## {scene} {lo:.0f}-{hi:.0f} exported\n")
+        fit = {"attitude": f"{solution.fit_error['fit_error_attitude_arcsec'] * 1e6:.3g} uas"}
+        if "fit_error_position_km" in solution.fit_error:
+            fit["positions"] = f"{solution.fit_error['fit_error_position_km'] * 1e6:.3g} mm"
+        print(f"solve {solve_s:.1f} s (from the store, or integrated when it lacks the span); write {write_s:.2f} s;"
+              f" {sizes}; angles refit {written['fit_error']['moon_angles_arcsec']:.2g}\"; the solution's fit "
+              f"error: {', '.join(f'{k} {v}' for k, v in fit.items())}")
+        t = exact_dates(solution.span, 1000, 8)
+        for path in written["files"]:
+            spiceypy.furnsh(path)
+        try:
+            orientation_rows(solution, written, t)
+            if any(f.endswith(".bsp") for f in written["files"]):
+                position_rows(solution, written, t)
+        finally:
+            spiceypy.kclear()
+        sys.stdout.flush()
+
+
+def exact_dates(span, count, seed):
+    """TDB days in ``span`` whose seconds are exact doubles: SPICE, skyfield and the solution read the same
+    instant (a day count rounded to its last bit moves Mercury by up to 4 mm far from J2000)."""
+    t = np.round(np.random.default_rng(seed).uniform(*span, count) * 2 ** 20) / 2 ** 20
+    return np.clip(t, *span)
+
+
+def orientation_rows(solution, written, t):
     import spiceypy
     from skyfield.api import load
     from skyfield.functions import mxm, rot_x, rot_z
@@ -196,21 +245,9 @@ def export():
     from spinorbit.analysis.librations import icrf_to_body, pole_and_longitude_difference
     from spinorbit.constants import ARCSEC, DAY_S
     from spinorbit.references.moon_de421 import Orientation
-    from spinorbit.scenarios import load_scenario
-    from spinorbit.solutions import for_scenario
 
-    started = time.perf_counter()
-    solution = for_scenario(load_scenario("moon_libration", []))
-    solve_s = time.perf_counter() - started
-    out = Path(tempfile.mkdtemp(prefix="export-"))
-    started = time.perf_counter()
-    written = solution.export(out)
-    write_s = time.perf_counter() - started
     pck, frame = (next(f for f in written["files"] if f.endswith(suffix)) for suffix in (".bpc", ".tf"))
-    t = np.random.default_rng(8).uniform(-36520.0, 18262.0, 1000)               # 1900-2050
     truth = icrf_to_body(solution.part("moon.q", t))
-    for path in written["files"]:
-        spiceypy.furnsh(path)
     by_spice = np.array([spiceypy.pxform("J2000", "MOON_PA_SPINORBIT", ti * DAY_S) for ti in t])
     constants = PlanetaryConstants()
     constants.read_text(load.open(frame))
@@ -218,20 +255,72 @@ def export():
     segment = constants.build_frame_named("MOON_PA_SPINORBIT")._segment
     by_skyfield = np.array([mxm(rot_z(-w), mxm(rot_x(-d), rot_z(-r)))
                             for r, d, w in (segment.compute(2451545.0, ti, False) for ti in t)])
-    de421 = Orientation()(t)["icrf_to_body"]
 
     def uas(a):
         return np.linalg.norm(a - truth, axis=(1, 2)).max() / np.sqrt(2) / ARCSEC * 1e6
 
-    pole, longitude = (np.abs(x).max() / ARCSEC for x in pole_and_longitude_difference(by_spice, de421))
-    print("\n## the Moon 1900-2050 exported (binary PCK type 2 + frame kernel)\n")
-    print(f"solve {solve_s:.1f} s (from the store, or integrated when it lacks the span); write {write_s:.2f} s; "
-          f"{Path(pck).stat().st_size / 1e6:.3g} MB; angles refit {written['fit_error']['moon_angles_arcsec']:.2g}\"")
-    print("\n| read back by | vs the solution, uas | vs DE421: pole, longitude (tolerance 0.1\", 0.01\") |")
+    pole, longitude = (np.abs(x).max() / ARCSEC for x in
+                       pole_and_longitude_difference(by_spice, Orientation()(t)["icrf_to_body"]))
+    print("\n| the Moon's orientation (PCK) read back by | vs the solution, uas | vs DE421: pole, longitude |")
     print("|---|---|---|")
-    print(f"| spiceypy pxform | {uas(by_spice):.3g} | {pole:.4f}\", {longitude:.4f}\" |")
+    print(f"| spiceypy pxform | {uas(by_spice):.3g} | {pole * 1e3:.3g} mas, {longitude * 1e3:.3g} mas |")
     print(f"| skyfield (two-part TDB) | {uas(by_skyfield):.3g} | |")
-    spiceypy.kclear()
+
+
+def carried(solution, t):
+    """{(name, NAIF code): (n, 3) km about the kernel's origin (the barycentre; the Earth-Moon barycentre for a
+    solution without barycentric bodies)} of every body the SPK holds, from the solution (the Earth and the Moon
+    from their barycentre by the body table's mass ratio)."""
+    from spinorbit.bodies.table import EMB, gm_km3_d2
+    from spinorbit.solutions.spice import position_segments
+
+    values = {part.name[:-2]: solution.part(part.name, t) for part in solution.layout.slices
+              if part.name.endswith(".r") and "barycentric" in part.unit}
+    mu = gm_km3_d2("moon") / (gm_km3_d2("earth") + gm_km3_d2("moon"))
+    moon, centre = solution.part("moon.r", t), values.get(EMB, 0.0)
+    values.update(moon=centre + (1 - mu) * moon, earth=centre - mu * moon)
+    return {(name, target): values[name] for target, _, name, _ in position_segments(solution)}
+
+
+def position_rows(solution, written, t):
+    import spiceypy
+    from skyfield.api import load
+    from skyfield.jpllib import SpiceKernel
+
+    from spinorbit.comparisons import earth_moon_de421, solar_system_de421
+    from spinorbit.constants import ARCSEC, DAY_S
+
+    barycentric = any("barycentric" in part.unit for part in solution.layout.slices)
+    origin = "0" if barycentric else "3"
+    kernel = SpiceKernel(next(f for f in written["files"] if f.endswith(".bsp")))
+    at = load.timescale().tdb_jd(2451545.0, t)
+    print(f"\n| body (NAIF code) about {origin} | spiceypy spkpos vs the solution, mm | skyfield vs the solution, mm "
+          f"| vs DE421 (heliocentric; the Moon geocentric) | scene's bound |\n|---|---|---|---|---|")
+    segments = {s.target: s for s in kernel.segments}
+    heliocentric = {}
+    for (name, code), truth in carried(solution, t).items():
+        by_spice = np.array([spiceypy.spkpos(str(code), ti * DAY_S, "J2000", "NONE", origin)[0] for ti in t])
+        read = kernel[code] if barycentric else segments[code]
+        by_skyfield = read.at(at).position.km.T
+        de421, bound = "", ""
+        if barycentric and name not in ("sun", "moon", "earth_moon_barycenter"):
+            heliocentric[name] = np.array([spiceypy.spkpos(str(code), ti * DAY_S, "J2000", "NONE", "SUN")[0]
+                                           for ti in t])
+            error = solar_system_de421.planet_errors(t, {name: heliocentric[name]})[name].max()
+            de421, bound = f"{error:.3g} km", f"{2 * solar_system_de421.ASTEROIDS_KM[name]:.3g} km ({DE421_BOUND})"
+        print(f"| {name} ({code}) | {mm(by_spice, truth):.3g} | {mm(by_skyfield, truth):.3g} | {de421} | {bound} |")
+    moon = np.array([spiceypy.spkpos("MOON", ti * DAY_S, "J2000", "NONE", "EARTH")[0] for ti in t])
+    moon_sky = (segments[301] - segments[399]).at(at).position.km.T
+    direction, distance = earth_moon_de421.orbit_errors(t, moon)
+    tolerance = "1 mas, 0.1 m" if barycentric else "1\", 2 km"
+    print(f"| the Moon from the Earth (301 - 399) | {mm(moon, solution.part('moon.r', t)):.3g} "
+          f"| {mm(moon_sky, solution.part('moon.r', t)):.3g} "
+          f"| {np.nanmax(direction) / ARCSEC * 1e3:.3g} mas, {np.nanmax(np.abs(distance)) * 1e3:.3g} m "
+          f"| {tolerance} (the scene's) |")
+
+
+def mm(read, truth):
+    return np.linalg.norm(read - truth, axis=1).max() * 1e6
 
 
 README_EXAMPLE = """

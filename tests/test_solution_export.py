@@ -260,3 +260,15 @@ def test_spinorbit_export_writes_the_solar_systems_kernels_from_its_store(solar_
     assert sorted(p.name for p in out.iterdir()) == ["solar_system.bsp", "solar_system_moon.bpc",
                                                      "solar_system_moon.tf"]
     assert "solar_system solution" not in capsys.readouterr().err              # read from the store: no run
+
+
+def test_a_solution_with_nothing_spice_holds_is_refused_in_one_line(tmp_path):
+    from spinorbit.errors import InputError
+    from spinorbit.layout import Layout
+    from spinorbit.solutions.chebyshev import Segments
+
+    pole = solutions.Solution(Segments(0.0, 8.0, 0, np.zeros((1, 3, 15))), Layout([("earth.pole", 3, "vector", "")]),
+                              {"scene": "earth_precession_nutation"}, {})
+    with pytest.raises(InputError, match="earth_precession_nutation.*earth.pole.*an attitude"):
+        pole.export(tmp_path / "out")
+    assert not (tmp_path / "out").exists()

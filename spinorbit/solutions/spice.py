@@ -60,12 +60,15 @@ def export(solution, directory):
         import spiceypy
     except ImportError:
         raise InputError("export", "spiceypy not installed", 'pip install "spinorbit[spice]"') from None
-    directory = Path(directory)
-    directory.mkdir(parents=True, exist_ok=True)
     name = solution.provenance.get("scene", "solution")
-    files, error = [], {}
     attitudes = [s.name.split(".")[0] for s in solution.layout.slices if s.kind == "quaternion"]
     positions = any(s.name.endswith(".r") for s in solution.layout.slices)
+    if not attitudes and not positions:
+        raise InputError("scene", f"{name} (its solution holds {', '.join(solution.layout.names)})",
+                         "a solution with an attitude (<body>.q) or integrated positions (<body>.r)")
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    files, error = [], {}
     for body in attitudes:
         coefficients, error[f"{body}_angles_arcsec"] = angle_series(solution, body)
         files.append(_written(directory / f"{name}_{body}.bpc",
