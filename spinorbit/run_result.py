@@ -13,26 +13,18 @@ from .schema import tdb_days_to_time
 class RunResult:
     """``scenario``: the Scenario run; ``table``: QTable (``time`` column TDB + unit-carrying columns);
     ``summary``: JSON-ready dict whose metric keys carry their unit in the name;
-    ``figures``: name -> function(matplotlib Figure) drawing one plot; ``states``: the integrator's states at
-    the outputs (integrators.base.Solution); ``continuous``: a function giving the run's continuous Solution
-    (set by runner.run_scenario; see ``solution``)."""
+    ``figures``: name -> function(matplotlib Figure) drawing one plot; ``states``: the main run's states at
+    the outputs (integrators.base.Solution; evaluated from ``solution`` where there is one); ``solution``: the
+    main run as a continuous Solution (spinorbit.solutions) for a scene kept as one, the one integration the
+    table was evaluated from, else None with ``solution_absent`` saying why."""
 
     scenario: object
     table: object
     summary: dict
     figures: dict[str, Callable] = field(default_factory=dict)
     states: object = None
-    continuous: Callable | None = None
-
-    @property
-    def solution(self):
-        """The run's model over its span as a continuous Solution (spinorbit.solutions), from the solution
-        store: integrated on first use where the store lacks it; InputError for a scene not kept as one."""
-        from .errors import InputError
-
-        if self.continuous is None:
-            raise InputError("solution", self.scenario.kind, "a run of runner.run_scenario")
-        return self.continuous()
+    solution: object = None
+    solution_absent: str | None = None
 
 
 def attitude_table(solution):

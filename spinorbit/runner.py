@@ -2,13 +2,15 @@
 the one runner of every scene.
 
 Edge module (imports astropy): loads the scenario, then for its scene (spinorbit.scene.Scene) builds the model,
-integrates it, has the scene compare, makes the table, and completes the
-:class:`~spinorbit.run_result.RunResult` with the summary every run has (span, integrator, verdict,
+integrates it once (a scene kept as a solution: into a continuous Solution, spinorbit.solutions, whose states
+at the output times the scene compares), has the scene compare, makes the table, and completes the
+:class:`~spinorbit.run_result.RunResult` with the summary every run has (span, integrator, the solution, verdict,
 provenance; NaN turned into "not measured").
 """
 import functools
 import math
 import re
+from dataclasses import replace
 
 import numpy as np
 
@@ -16,7 +18,7 @@ from .errors import IntegrationError, ScenarioError
 from .run_result import RunResult, attitude_table
 from .scenarios import Scenario, load_scenario, scenario_errors
 from .scene import Run, integrate
-from .solutions import for_scenario
+from .solutions import for_run, keep
 
 
 def run_scenario(scenario, overrides=()):
@@ -46,7 +48,6 @@ def run_scenario(scenario, overrides=()):
                                   span_label(scenario), summary.get("not_measured"))
     summary["provenance"] = provenance(scenario)
     result.summary = summary
-    result.continuous = functools.partial(for_scenario, scenario)
     if result.table is not None:
         from .columns import describe
 
@@ -56,24 +57,51 @@ def run_scenario(scenario, overrides=()):
 
 
 def run_scene(scenario):
-    """The scene's run: build its model once, integrate it over the output times, let the scene compare, make
-    the table (the attitude table and the scene's columns, or the scene's own) and the summary."""
+    """The scene's run: build its model once, integrate it (:func:`main_run`), let the scene compare the states
+    at the output times, make the table (the attitude table and the scene's columns, or the scene's own) and the
+    summary."""
     scene, p = scenario.scene, scenario.params
     times = scenario.output_times()
     model = scene.build(p, times)
     run = Run(p, model, times, functools.partial(integrate, scenario))
+    solution, section = None, {"kept": False, "why": "the scene has no main run (nothing of its own integrated)"}
     if model.system is not None:
-        run.solution, run.point = run.integrate(model.system, times)
+        solution, run.solution, run.point, section = main_run(scenario, model.system, times)
     outcome = scene.compare(p, run)
     table = outcome.table
     if table is None and run.solution is not None and run.solution.layout.quaternions:
         table = attitude_table(run.solution)
         for name, column in outcome.columns.items():
             table[name] = column
-    summary = {"comparison": outcome.comparison, "run": run.point, **outcome.sections}
+    summary = {"comparison": outcome.comparison, "run": run.point, "solution": section, **outcome.sections}
     if outcome.not_measured:
         summary["not_measured"] = {**summary.get("not_measured", {}), **outcome.not_measured}
-    return RunResult(scenario, table, summary, outcome.figures, run.solution)
+    return RunResult(scenario, table, summary, outcome.figures, run.solution, solution,
+                     None if solution is not None else section["why"])
+
+
+def main_run(scenario, system, times):
+    """(Solution or None, states at the output times, the run's point, summary["solution"]): a scene kept as a
+    solution integrated once into a Solution (solutions.for_run: its fit's error within the run's own) and kept
+    in the store where it is the stored model (solutions.keep), its states at the outputs evaluated from it;
+    any other run integrated to the outputs (checkpointed as the scenario says), the reason in the section."""
+    solution, why = for_run(scenario, system)
+    if solution is None:
+        states, point = integrate(scenario, system, times)
+        return None, states, point, {"kept": False, "why": why}
+    run = solution.provenance["runs"][0]
+    point = {k: v for k, v in run.items() if k not in ("span_tdb_d", "start_tdb_d")}
+    section = {"kept": True, "span_tdb_d": list(solution.span), "segments": len(solution.segments.coefficients),
+               "segment_d": solution.segments.length_d, "degree": solution.segments.degree,
+               **solution.fit_error, **{k: v for k, v in point.items() if k.startswith("integration_error_")}}
+    try:
+        section["stored"] = str(keep(scenario, solution) or "") or None
+    except OSError as exc:                       # the run's result stands without the store
+        section["stored"] = None
+        section["not_stored_because"] = f"{type(exc).__name__}: {exc}"
+    states = replace(solution.states(times), nfev=run.get("rhs_evaluations", 0), nsteps=run.get("steps"),
+                     wall_s=run.get("wall_s", 0.0))
+    return solution, states, point, section
 
 
 def mark_unmeasured(summary):
@@ -110,7 +138,8 @@ def partial_result(scenario, exc):
     from .provenance import provenance
 
     summary = {**base_summary(scenario), "run": run, "status": "failed", "provenance": provenance(scenario)}
-    return RunResult(scenario, table, mark_unmeasured(summary), {}, partial)
+    return RunResult(scenario, table, mark_unmeasured(summary), {}, partial,
+                     solution_absent=f"the integration failed at {exc.t} TDB days")
 
 
 def base_summary(scenario):

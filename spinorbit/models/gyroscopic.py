@@ -12,7 +12,7 @@ with N the point masses' degree-2 torque (C - A)(T ell) x ell from their tidal t
 (Euler ch. 16 P91, §815, summed over the masses; Oppolzer's terms, Woolard 1953; each order follows from the
 last by dz/dt = lam ell x z on the slow solution).  The right-hand side takes z to first order (the second moves
 the torque by 4e-10 of itself); the figure axes reported take three orders (the third moves the Earth's
-13.66-d nutation by 0.1 mas: (nu/lam)^3 of it, nu its frequency).
+13.66-d nutation by 0.1 mas: (nu/lam)^3 of it, nu its frequency; models.start.oppolzer_axes).
 """
 import math
 
@@ -56,18 +56,4 @@ def figure_axis(spin, tensor, a, c_minus_a):
     ell = spin / norm
     n0 = c_minus_a * cross3(matvec3(tensor, ell), ell) / (norm * norm / a)
     z = ell - cross3(ell, n0)
-    return z / math.sqrt(dot3(z, z))
-
-
-@njit(cache=True, nogil=True)
-def figure_axis_third_order(spin, tensor, tensor_rate, tensor_acceleration, a, c_minus_a):
-    """:func:`figure_axis` with the second- and third-order terms (module docstring) from the tensor's first
-    and second time derivatives (1/d^3, 1/d^4)."""
-    norm = math.sqrt(dot3(spin, spin))
-    ell = spin / norm
-    lam = norm / a
-    n0 = c_minus_a * cross3(matvec3(tensor, ell), ell) / (norm * lam)
-    n_dot = c_minus_a * cross3(matvec3(tensor_rate, ell), ell) / (norm * lam * lam)
-    n_ddot = c_minus_a * cross3(matvec3(tensor_acceleration, ell), ell) / (norm * lam * lam * lam)
-    z = ell - cross3(ell, n0) - n_dot + cross3(ell, n_ddot)
     return z / math.sqrt(dot3(z, z))

@@ -25,7 +25,6 @@ from ..bodies.table import BODIES
 from ..constants import J2000_JD
 from ..layout import Layout
 from ..rotations import cross3, dot3, quat_from_matrix
-from .gyroscopic import figure_axis_third_order, tidal_tensor
 from .ode import Ode
 
 CORE_STEP_D = 0.25          # half the RK4 step carrying DE421's core
@@ -100,20 +99,34 @@ def frame(z, x_hint):
 def oppolzer_axes(system, name, t, spins, states=None, step_d=1.0 / 64.0):
     """Figure axes (n, 3, inertial) of body ``name`` on its forced motion from its spin angular momenta (n, 3):
     to third order in the Oppolzer terms of the point masses acting on its figure (their tidal tensor's rates
-    by central differences over ``step_d``; bodies in the state carried by their velocity)."""
+    by central differences over ``step_d``; bodies in the state carried by their velocity): the terms of the
+    gyroscopic module's docstring, every point at once."""
     from .rotators import oppolzer_attractors
 
     t, spins = np.atleast_1d(np.asarray(t, dtype=float)), np.atleast_2d(spins)
     figure = system.bodies[name].figure
     attractors = oppolzer_attractors(system, name)
     gm = np.array([system.motion.gm(b) for b in attractors])
-    tensors = [[tidal_tensor(np.ascontiguousarray(rows), gm) for rows in
-                system.motion.positions(t + dt, states, name, attractors, dt)] for dt in (0.0, step_d, -step_d)]
-    scale = 1.0 + figure.anisotropy_rate_per_d * t
-    a, c_minus_a = 0.5 * (figure.moments[0] + figure.moments[1]), figure.c_minus_a
-    return np.array([figure_axis_third_order(np.ascontiguousarray(s), t0, (tp - tm) / (2 * step_d),
-                                             (tp - 2 * t0 + tm) / step_d ** 2, a, c_minus_a * k)
-                     for s, t0, tp, tm, k in zip(spins, *tensors, scale)])
+    tensor, plus, minus = (tidal_tensors(np.asarray(system.motion.positions(t + dt, states, name, attractors, dt)),
+                                         gm) for dt in (0.0, step_d, -step_d))
+    c_minus_a = figure.c_minus_a * (1.0 + figure.anisotropy_rate_per_d * t)
+    norm = np.linalg.norm(spins, axis=1)
+    ell, lam = spins / norm[:, None], norm / (0.5 * (figure.moments[0] + figure.moments[1]))
+
+    def torque(tidal, order):         # (C - A) (T ell) x ell / (|l| lam^order)
+        return (c_minus_a / (norm * lam ** order))[:, None] * np.cross(np.einsum("nab,nb->na", tidal, ell), ell)
+
+    n0, n_dot = torque(tensor, 1), torque((plus - minus) / (2 * step_d), 2)
+    n_ddot = torque((plus - 2 * tensor + minus) / step_d ** 2, 3)
+    z = ell - np.cross(ell, n0) - n_dot + np.cross(ell, n_ddot)
+    return z / np.linalg.norm(z, axis=1)[:, None]
+
+
+def tidal_tensors(rows, gm):
+    """3 sum GM r r^T / r^5 (n, 3, 3) of point masses at ``rows`` (n, masses, 3) km with GM ``gm`` (masses,)
+    (gyroscopic.tidal_tensor, the right-hand side's, at each of n times)."""
+    s2 = np.einsum("nka,nka->nk", rows, rows)
+    return np.einsum("nk,nka,nkb->nab", 3.0 * gm / (s2 * s2 * np.sqrt(s2)), rows, rows)
 
 
 def forced_spin(system, name, t0, pole, spin_rate, iterations=4, states=None):

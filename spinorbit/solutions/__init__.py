@@ -3,13 +3,26 @@
 
 ``solve(scene, sets, t_start, t_end)`` is the one entry: the stored solution of a built-in scene's model
 (``sets``: its ``--set`` assignments) covering [t_start, t_end] TDB days, integrated only where the store
-lacks it.
+lacks it.  ``for_run(scenario, system)`` is the runner's: a scene's main run integrated once into a Solution,
+kept in the store where it is the stored model (``keep``).
 """
+import fcntl
+import math
+
+import numpy as np
+
 from . import models, store
-from .fit import integrate
+from .chebyshev import grid_indices
+from .fit import Grid, integrate
 from .solution import Solution, joined
 
-__all__ = ["Solution", "solve", "for_scenario"]
+__all__ = ["Solution", "solve", "for_scenario", "for_run", "keep"]
+
+MICROARCSEC = 1e-6                  # arcsec
+# What a fit may differ from the integrator by when the integration's own estimate is smaller (or not made):
+# the issue's 1 uas and 1 mm; a rate or any other slice relative to its size, 1 uas in radians.
+FIT_FLOORS = {"arcsec": MICROARCSEC, "km": 1e-6, "rel": MICROARCSEC * np.pi / 180 / 3600}
+REFINEMENTS = 2                     # halvings of the segments tried before a run is handed on discrete
 
 
 def solve(scene, sets, t_start, t_end):
@@ -53,31 +66,144 @@ def _extended(scenario, solution, lo, hi):
         t0, y0 = models.first_start(scenario)
         lo, hi = min(lo, t0), max(hi, t0)
         return _piece(scenario, kind, (t0, y0), lo, hi)
+    grid = grid_of(solution)            # a run's solution (keep) tiles its own span: continued on its grid
     if lo < solution.span[0]:
-        solution = joined(solution, _piece(scenario, kind, solution.ends["start"], lo, solution.span[0]))
+        solution = joined(solution, _piece(scenario, kind, solution.ends["start"], lo, solution.span[0], grid))
     if hi > solution.span[1]:
-        solution = joined(solution, _piece(scenario, kind, solution.ends["end"], solution.span[1], hi))
+        solution = joined(solution, _piece(scenario, kind, solution.ends["end"], solution.span[1], hi, grid))
     return solution
 
 
-def _piece(scenario, kind, start, lo, hi):
-    """A Solution over [lo, hi] (rounded out to the grid) of the scene's System started at ``start``."""
-    lo, hi = kind.grid_bounds(lo, hi)
+def _piece(scenario, kind, start, lo, hi, grid=None):
+    """A Solution over [lo, hi] (rounded out to ``grid``, default the kind's) of the scene's System started at
+    ``start``."""
+    grid = grid or kind.grid
+    lo, hi = grid_bounds(grid, lo, hi)
     stretch = models.stretch(scenario, lo, hi, start[0])
     system = models.system(stretch, start)
     method, options = stretch["integrator.method"], stretch.integrator_options()
-    piece = integrate(system, kind.grid, lo, hi, method, options, label=f"{scenario.kind} solution")
-    run = {"span_tdb_d": [lo, hi], "start_tdb_d": float(start[0]),
+    piece = integrate(system, grid, lo, hi, method, options, label=f"{scenario.kind} solution")
+    return made(scenario, system, grid, piece, (lo, hi), method, options)
+
+
+def made(scenario, system, grid, piece, span, method, options):
+    """The Solution of a fitted ``piece`` of ``system`` (``scenario``'s model) over ``span``, with its
+    provenance."""
+    run = {"span_tdb_d": [float(span[0]), float(span[1])], "start_tdb_d": float(system.t0),
            **{k: v for k, v in piece.run.items() if isinstance(v, (int, float, str, type(None)))}}
     provenance = {"scene": scenario.kind, "scenario": str(scenario.path),
                   "keys": store.record(scenario)["keys"], "ephemeris": scenario.get("orbit.source"),
                   "integrator": {"method": method, **options}, "code_version": store.code_version(),
-                  "grid": {"segment_d": kind.grid.length_d, "degree": kind.grid.degree},
+                  "grid": {"segment_d": grid.length_d, "degree": grid.degree},
                   "state_size": int(system.layout.size), "fit_error": piece.fit_error,
                   "fit_error_how": "the series against the integrator's output at the Chebyshev points of the "
                                    "second kind (between the fitted points, and the segments' ends)",
                   "runs": [run]}
     return Solution(piece.segments, piece.layout, provenance, piece.ends)
+
+
+def grid_bounds(grid, lo, hi):
+    """[lo, hi] rounded out to ``grid``'s segment ends."""
+    first, count = grid_indices(grid.origin_d, grid.length_d, lo, hi)
+    return grid.origin_d + first * grid.length_d, grid.origin_d + (first + count) * grid.length_d
+
+
+def grid_of(solution):
+    """The Grid a Solution's segments lie on (its extensions continue it)."""
+    s = solution.segments
+    return Grid(s.origin_d, s.length_d, s.degree)
+
+
+def run_grid(kind, system, lo, hi, halvings=0):
+    """The kind's grid made to tile the run's span [lo, hi] exactly, the first segment starting at lo (no orbit
+    is read beyond the span), of the kind's degree, its segments no longer than the kind's nor than
+    :func:`spin_segment_d` (halved ``halvings`` times)."""
+    length = min(kind.grid.length_d, spin_segment_d(system, kind.grid.degree)) / 2 ** halvings
+    count = max(1, int(np.ceil((hi - lo) / length - 1e-9)))
+    return Grid(lo, (hi - lo) / count, kind.grid.degree)
+
+
+def spin_segment_d(system, degree):
+    """The longest segment (days) on which a series of ``degree`` follows an attitude turning at the System's
+    fastest body rate at its start (``*.omega``, rad/d; inf with none) within FIT_FLOORS' 1 uas: a quaternion
+    turns at half the rate, and a series of cos(w t / 2) on a segment L has coefficients 2 J_k(w L / 4), whose
+    first one left out, ~ 2 (w L / 8)^(n + 1) / (n + 1)! (Abramowitz & Stegun 9.1.7, 9.1.44), is held to the
+    floor."""
+    rates = [np.linalg.norm(system.y0[part.index]) for part in system.layout.slices if part.name.endswith(".omega")]
+    if not rates or max(rates) <= 0.0:
+        return np.inf
+    x = (FIT_FLOORS["rel"] / 2 * math.factorial(degree + 1)) ** (1.0 / (degree + 1))
+    return 8.0 * x / max(rates)
+
+
+def for_run(scenario, system):
+    """(Solution, None) of a scene's main run: ``system`` (the System its scene built for the run) integrated
+    once over the span to the Chebyshev points of the segments tiling it (run_grid) with the scenario's
+    [integrator] and its error estimate as the scenario says, the series fitted; the segments halved (at most
+    REFINEMENTS times) while the fit differs from the integrator by more than the run's own error
+    (``fit_beyond_run``).  (None, why) for a scene kind not kept as a solution, or a fit never within the run."""
+    if scenario.kind not in models.KINDS:
+        return None, (f"scene kind {scenario.kind} is not kept as a solution (the kinds that are: "
+                      f"{', '.join(sorted(models.KINDS))})")
+    kind, (lo, hi) = models.KINDS[scenario.kind], scenario.bounds
+    method, options = scenario["integrator.method"], scenario.integrator_options()
+    for halvings in range(REFINEMENTS + 1):
+        grid = run_grid(kind, system, lo, hi, halvings)
+        piece = integrate(system, grid, lo, hi, method, options, label=scenario.name,
+                          estimate_error=scenario["integrator.estimate_error"])
+        beyond = fit_beyond_run(piece.fit_error, piece.run)
+        if not beyond:
+            return made(scenario, system, grid, piece, (lo, hi), method, options), None
+    return None, (f"its fit on segments of {grid.length_d:.4g} d differs from the integrator by more than the "
+                  f"run's own error: {'; '.join(beyond)}")
+
+
+def fit_beyond_run(fit_error, run):
+    """What of a fit's error (fit.errors) exceeds the run's own error estimate (simulate's point), or FIT_FLOORS
+    where the estimate is smaller or not made: the state's slices and the figure axes derived from it (a body's
+    position read from the orbit source, ``*_from_*``, is data, not integrated: stated, not judged)."""
+    out = []
+    for key, value in fit_error.items():
+        name = key.removeprefix("fit_error_")
+        if "_from_" in name:
+            continue
+        unit = name.rsplit("_", 1)[1]
+        if unit == "arcsec":
+            estimate = run.get("integration_error_attitude_arcsec")
+        elif unit == "km":
+            estimate = run.get("integration_error_position_km")
+        else:
+            slice_name = name.removesuffix("_rel")
+            estimate = run.get("integration_error_omega_rel" if slice_name.endswith("_omega") else
+                               f"integration_error_{slice_name}_rel")
+        bound = max(estimate or 0.0, FIT_FLOORS.get(unit, 0.0))
+        if not value <= bound:
+            out.append(f"{key} {value:.3g} > {bound:.3g}")
+    return out
+
+
+def keep(scenario, solution):
+    """Put a run's Solution in the store where it is what the store holds for its record (store.record): the
+    model started where the stored one starts (the kind's anchor; the Earth's record holds its span, so its
+    start), its error estimated; kept unless the store already holds a longer span.  Returns the path, or
+    None when it is not the stored model."""
+    from ..files import open_lock
+    from ..schema import parse_tdb_days
+
+    anchor, run = models.KINDS[scenario.kind].anchor, solution.provenance["runs"][0]
+    if not any(k.startswith("integration_error_") for k in run):
+        return None
+    if anchor is not None and abs(run["start_tdb_d"] - float(parse_tdb_days("anchor", anchor))) > 1e-9:
+        return None
+    rec = store.record(scenario)
+    path = store.path_of(rec)
+    with open_lock(path.with_name(path.name + ".lock")) as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        stored = store.read(path, rec)
+        if stored is None or solution.covers(*stored.span):
+            store.save(solution, rec, path)
+    solution.path = path
+    return path
 
 
 def integration_error(solution):

@@ -74,15 +74,16 @@ def components(system, t, states):
     return np.hstack([states, *extra]) if extra else np.asarray(states)
 
 
-def integrate(system, grid, t_start, t_end, method, options, label=None):
+def integrate(system, grid, t_start, t_end, method, options, label=None, estimate_error=True):
     """The Piece covering [t_start, t_end] (rounded out to the grid) of ``system`` integrated from its t0
-    (inside the span, or at one of its ends) with ``method`` and ``options``."""
+    (inside the span, or at one of its ends) with ``method`` and ``options`` (its error estimated unless
+    ``estimate_error`` is False)."""
     first, count = grid_indices(grid.origin_d, grid.length_d, t_start, t_end)
     empty = Segments(grid.origin_d, grid.length_d, first, np.zeros((count, 0, grid.degree + 1)))
     nodes, checks = empty.nodes(first, count)
     t_out = np.concatenate([nodes.ravel(), checks.ravel()])
     times, rows = np.unique(t_out, return_inverse=True)     # the segments' shared ends once
-    solution, run = simulate(system, times, method, options, estimate_error=True, label=label)
+    solution, run = simulate(system, times, method, options, estimate_error=estimate_error, label=label)
     states = solution.y[rows]
     values = components(system, t_out, states)
     layout, n = fitted_layout(system), nodes.size

@@ -1,0 +1,116 @@
+"""The runner integrates a scene kept as a solution once, into a Solution: its table is that Solution at the
+output times, the Solution agrees with an independent discrete run within the integration's own error, asking
+for it integrates nothing more, and a stored kind's run answers the API at dates inside its span."""
+import astropy.units as u
+import numpy as np
+import pytest
+from astropy.time import Time
+
+import spinorbit
+from spinorbit import scene, solutions
+from spinorbit.integrators import simulate
+from spinorbit.rotations import quat_angle
+from spinorbit.runner import run_scenario
+from spinorbit.solutions import chebyshev, fit, store
+from tests.units import arcsec
+
+uas = arcsec * 1e-6
+MOON_MONTH = ["span.start=2000-01-01T12:00:00", "span.end=2000-01-31T12:00:00", "span.step=1 d",
+              "output.plots=false"]
+
+
+@pytest.fixture
+def place(tmp_path, monkeypatch):
+    monkeypatch.setitem(store.PLACE, "directory", tmp_path)
+    return tmp_path
+
+
+@pytest.fixture
+def simulations(monkeypatch):
+    """Counts of the integrations through the runner's two doors: the Solution's fit and a scene's runs."""
+    counts = {"fit": 0, "scene": 0}
+
+    def counted(door, original):
+        def run(*args, **kwargs):
+            counts[door] += 1
+            return original(*args, **kwargs)
+        return run
+
+    monkeypatch.setattr(fit, "simulate", counted("fit", fit.simulate))
+    monkeypatch.setattr(scene, "simulate", counted("scene", scene.simulate))
+    return counts
+
+
+def test_a_runs_table_is_its_solution_at_the_outputs_and_agrees_with_a_discrete_run(place, simulations):
+    """The Moon over a month: the table's angles are the Solution's states at the output times (evaluated from
+    it: exactly), and those states are an independent simulate() to the output times within twice the run's
+    own error estimate (each run within it of the truth) plus the fit's measured error."""
+    from spinorbit.analysis.librations import icrf_to_body
+    from spinorbit.rotations import euler313_from_matrix
+
+    result = run_scenario("moon_libration", MOON_MONTH)
+    assert simulations == {"fit": 1, "scene": 0}
+    solution, t = result.solution, result.states.t
+    at_outputs = solution.states(t)
+    angles = euler313_from_matrix(icrf_to_body(at_outputs.quaternion))
+    for i, name in enumerate(("phi", "theta", "psi")):
+        assert np.array_equal(result.table[name].to_value(u.rad), angles[:, i])
+    assert np.array_equal(result.states.y, at_outputs.y)
+
+    scenario = result.scenario
+    system = scenario.scene.build(scenario.params, t).system
+    discrete, _ = simulate(system, t, scenario["integrator.method"], scenario.integrator_options(), False)
+    section = result.summary["solution"]
+    bound = (2 * section["integration_error_attitude_arcsec"] + section["fit_error_attitude_arcsec"]) * arcsec
+    assert quat_angle(at_outputs.quaternion, discrete.quaternion).max() <= bound
+    assert section["fit_error_attitude_arcsec"] <= section["integration_error_attitude_arcsec"]
+
+
+def test_the_runs_solution_costs_no_second_integration_and_a_stored_kind_answers_the_api(place, simulations):
+    """run_scenario(...).solution is the run's one integration; the Moon's run from J2000 (the stored
+    solution's start) is kept in the store, and moon_librations at dates inside its span integrates nothing
+    and gives the run's own angles."""
+    result = run_scenario("moon_libration", MOON_MONTH)
+    assert simulations["fit"] == 1
+    solution = result.solution
+    table = solution.at(Time(2451545.0 + np.arange(1.0, 29.0), format="jd", scale="tdb"))
+    assert len(table) == 28 and result.summary["solution"]["stored"] is not None
+    answer = spinorbit.moon_librations(Time(2451545.0 + np.arange(2.0, 28.0), format="jd", scale="tdb"))
+    assert simulations == {"fit": 1, "scene": 0}
+    assert np.abs(answer["psi"].to_value(u.rad) - result.table["psi"][2:28].to_value(u.rad)).max() < 1e-6 * uas
+
+
+def test_a_scene_not_kept_as_a_solution_is_run_to_its_outputs_and_says_why(place, simulations):
+    """The free body (not a stored kind) integrates once to its outputs; it has no Solution, and says why."""
+    result = run_scenario("free_body", ["span.end=20 d", "output.plots=false"])
+    assert simulations == {"fit": 0, "scene": 1}
+    assert result.solution is None and "not kept as a solution" in result.solution_absent
+    assert result.summary["solution"] == {"kept": False, "why": result.solution_absent}
+
+
+@pytest.mark.parametrize("rate", [0.23, 6.3])          # the Moon's spin, the Earth's (rad/d)
+def test_the_spin_segment_fits_a_turning_attitude_within_a_microarcsecond(rate):
+    """A body turning at ``rate`` about a fixed axis (a closed form): its quaternion's series of degree 14 on
+    segments of spin_segment_d follows it within 1 uas between the fitted points."""
+    from types import SimpleNamespace
+
+    from spinorbit.layout import Layout
+
+    system = SimpleNamespace(y0=np.array([1.0, 0, 0, 0, 0, 0, rate]),
+                             layout=Layout([("body.q", 4, "quaternion", ""), ("body.omega", 3, "vector", "rad/d")]))
+    length = solutions.spin_segment_d(system, 14)
+    quaternion = lambda t: np.stack([np.cos(rate * t / 2), 0 * t, 0 * t, np.sin(rate * t / 2)], axis=-1)
+    segments = chebyshev.Segments(0.0, length, 0, np.zeros((5, 4, 15)))
+    nodes, checks = segments.nodes(0, 5)
+    segments.coefficients = chebyshev.interpolating(quaternion(nodes).transpose(0, 2, 1))
+    fitted = segments.at_points(chebyshev.second_kind(14)).transpose(0, 2, 1).reshape(-1, 4)
+    assert quat_angle(fitted / np.linalg.norm(fitted, axis=1)[:, None], quaternion(checks.ravel())).max() <= uas
+
+
+def test_a_fit_beyond_the_runs_error_is_named():
+    """fit_beyond_run: each fitted kind against the run's estimate, or the 1 uas / 1 mm floor below it."""
+    run = {"integration_error_attitude_arcsec": 1e-5, "integration_error_omega_rel": 1e-12}
+    assert solutions.fit_beyond_run({"fit_error_attitude_arcsec": 2e-6, "fit_error_moon_omega_rel": 5e-13,
+                                     "fit_error_earth_from_moon_rel": 1.0}, run) == []
+    beyond = solutions.fit_beyond_run({"fit_error_attitude_arcsec": 2e-5, "fit_error_position_km": 2e-6}, run)
+    assert [b.split()[0] for b in beyond] == ["fit_error_attitude_arcsec", "fit_error_position_km"]
