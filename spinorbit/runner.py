@@ -84,8 +84,13 @@ def main_run(scenario, system, times):
     """(Solution or None, states at the output times, the run's point, summary["solution"]): a scene kept as a
     solution integrated once into a Solution (solutions.for_run: its fit's error within the run's own) and kept
     in the store where it is the stored model (solutions.keep), its states at the outputs evaluated from it;
-    any other run integrated to the outputs (checkpointed as the scenario says), the reason in the section."""
-    solution, why = for_run(scenario, system)
+    any other run integrated to the outputs (checkpointed as the scenario says), the reason in the section.  A
+    fitted run that fails is run again to the outputs: its partial result (IntegrationError.partial) holds the
+    states at the output times up to the failure, as any run's does."""
+    try:
+        solution, why = for_run(scenario, system)
+    except IntegrationError as exc:
+        solution, why = None, f"the run to the Chebyshev points failed ({exc})"
     if solution is None:
         states, point = integrate(scenario, system, times)
         return None, states, point, {"kept": False, "why": why}

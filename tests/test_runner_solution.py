@@ -114,3 +114,16 @@ def test_a_fit_beyond_the_runs_error_is_named():
                                      "fit_error_earth_from_moon_rel": 1.0}, run) == []
     beyond = solutions.fit_beyond_run({"fit_error_attitude_arcsec": 2e-5, "fit_error_position_km": 2e-6}, run)
     assert [b.split()[0] for b in beyond] == ["fit_error_attitude_arcsec", "fit_error_position_km"]
+
+
+def test_a_fitted_run_that_fails_leaves_its_partial_result_at_the_output_times(place):
+    """A stored kind's run that stops (max_steps) raises with the partial result of the run to the outputs:
+    its rows are output times (1 d apart from span.start), those the steps allowed reach."""
+    from spinorbit.errors import IntegrationError
+
+    with pytest.raises(IntegrationError) as caught:
+        run_scenario("moon_libration", MOON_MONTH + ["integrator.step=0.5 d", "integrator.max_steps=20"])
+    partial = caught.value.result
+    assert partial.summary["status"] == "failed" and partial.solution is None
+    assert np.array_equal(partial.states.t, np.arange(len(partial.states.t)) * 1.0)
+    assert len(partial.table) == 11                 # 20 steps of 0.5 d: the outputs at 0, 1, ..., 10 d
