@@ -147,22 +147,36 @@ def for_run(scenario, system):
                       f"{', '.join(sorted(models.KINDS))})")
     kind, (lo, hi) = models.KINDS[scenario.kind], scenario.bounds
     method, options = scenario["integrator.method"], scenario.integrator_options()
+    worst = np.inf
     for halvings in range(REFINEMENTS + 1):
         grid = run_grid(kind, system, lo, hi, halvings)
         piece = integrate(system, grid, lo, hi, method, options, label=scenario.name,
                           estimate_error=scenario["integrator.estimate_error"])
-        beyond = fit_beyond_run(piece.fit_error, piece.run)
+        beyond = fit_beyond_run(piece.fit_error, piece.run, rounding_km(piece))
         if not beyond:
             return made(scenario, system, grid, piece, (lo, hi), method, options), None
+        previous, worst = worst, max(piece.fit_error[key] for key in beyond)
+        if worst > previous / 2:            # shorter segments do not help: not the series' truncation
+            break
     return None, (f"its fit on segments of {grid.length_d:.4g} d differs from the integrator by more than the "
-                  f"run's own error: {'; '.join(beyond)}")
+                  f"run's own error: {'; '.join(f'{k} {piece.fit_error[k]:.3g} > {b:.3g}' for k, b in beyond.items())}")
 
 
-def fit_beyond_run(fit_error, run):
-    """What of a fit's error (fit.errors) exceeds the run's own error estimate (simulate's point), or FIT_FLOORS
-    where the estimate is smaller or not made: the state's slices and the figure axes derived from it (a body's
-    position read from the orbit source, ``*_from_*``, is data, not integrated: stated, not judged)."""
-    out = []
+def rounding_km(piece):
+    """The rounding floor of a fit's positions (km): a series of degree n sums n + 1 terms, each rounded to the
+    double precision of the largest position fitted (Higham, Accuracy and Stability of Numerical Algorithms,
+    §3.1: (n + 1) u)."""
+    coefficients = piece.segments.coefficients
+    sizes = [np.abs(coefficients[:, part.index, 0]).max() for part in piece.layout.slices if part.name.endswith(".r")]
+    return (piece.segments.degree + 1) * np.finfo(float).eps * max(sizes, default=0.0)
+
+
+def fit_beyond_run(fit_error, run, rounding_km=0.0):
+    """{fit error key: bound} of what of a fit's error (fit.errors) exceeds the run's own error estimate
+    (simulate's point), or FIT_FLOORS where the estimate is smaller or not made (positions: or ``rounding_km``,
+    their rounding floor): the state's slices and the figure axes derived from it (a body's position read from
+    the orbit source, ``*_from_*``, is data, not integrated: stated, not judged)."""
+    out = {}
     for key, value in fit_error.items():
         name = key.removeprefix("fit_error_")
         if "_from_" in name:
@@ -171,14 +185,14 @@ def fit_beyond_run(fit_error, run):
         if unit == "arcsec":
             estimate = run.get("integration_error_attitude_arcsec")
         elif unit == "km":
-            estimate = run.get("integration_error_position_km")
+            estimate = max(run.get("integration_error_position_km") or 0.0, rounding_km)
         else:
             slice_name = name.removesuffix("_rel")
             estimate = run.get("integration_error_omega_rel" if slice_name.endswith("_omega") else
                                f"integration_error_{slice_name}_rel")
         bound = max(estimate or 0.0, FIT_FLOORS.get(unit, 0.0))
         if not value <= bound:
-            out.append(f"{key} {value:.3g} > {bound:.3g}")
+            out[key] = bound
     return out
 
 
