@@ -3,11 +3,11 @@
     python benchmarks/bench_solutions.py [latency|agreement|extension|export|readme|all]
 
 * latency: a process asks for 100 dates spread over 2021-2041, its ends included (the store then holds the
-  span); a new process asks
-  ``earth_pole`` and ``moon_librations`` for 10^4 other dates there: the call's wall time (its first and a
-  second call; ``import spinorbit`` aside), beside what the API did before it kept solutions -- a run of the
-  validated scene per call with the dates among its outputs (``SCENE_PER_CALL``, on this code's scenes) --
-  each with warm caches;
+  span); a new process asks ``earth_pole`` and ``moon_librations`` for 10^4 other dates there: the call's wall
+  time (its first and a second call; ``import spinorbit`` aside, and every module the calls import, found by
+  calls in another process, loaded before them -- or imported in the first call), beside what the API did
+  before it kept solutions -- a run of the validated scene per call with the dates among its outputs
+  (``SCENE_PER_CALL``, on this code's scenes) -- each with warm caches;
 * agreement: the API's values against direct scene runs over the same span (the Moon 2000-2020 started at
   J2000, the non-rigid Earth 1950-2050): the largest difference, uas;
 * extension: a stored Moon 2000-2050 extended to 2100, beside integrating 2050-2100 (simulate() of the same
@@ -84,8 +84,8 @@ LATENCY = DATES + """
 import importlib, json, sys, time
 import spinorbit
 {api}
-if sys.argv[1:] == ["imported"]:        # import aside: the modules a call reads, loaded before it is timed
-    for module in IMPORTS:
+if sys.argv[1:2] == ["imported"]:        # import aside: every module a call reads, loaded before it is timed
+    for module in json.loads(sys.argv[2]):
         importlib.import_module(module)
 out = {{}}
 for name in ("moon_librations", "earth_pole"):
@@ -95,11 +95,14 @@ for name in ("moon_librations", "earth_pole"):
     out[name] = [first, second]
 print(json.dumps(out))
 """
-IMPORTS = ("numba", "astropy.table", "astropy.units", "erfa", "jplephem.spk", "spinorbit.scenarios",
-           "spinorbit.runner", "spinorbit.columns", "spinorbit.solutions.tables", "spinorbit.solutions.earth_layer",
-           "spinorbit.analysis.librations", "spinorbit.references.eckhardt", "spinorbit.references.moon_de421",
-           "spinorbit.references.erfa_pole", "spinorbit.comparisons.moon_de421",
-           "spinorbit.comparisons.earth_iau", "spinorbit.comparisons.earth_nonrigid")
+IMPORTED = DATES + """
+import json, sys
+import spinorbit
+before = set(sys.modules)
+spinorbit.moon_librations(dates(10, 5)); spinorbit.earth_pole(dates(10, 5))
+print(json.dumps(sorted(m for m in set(sys.modules) - before if getattr(sys.modules[m], "__spec__", None))))
+"""
+
 
 PREPARE = """
 import json, numpy as np, spinorbit
@@ -113,10 +116,11 @@ print(json.dumps({{}}))
 def latency():
     rows = {}
     python(PREPARE, ROOT)
-    code = LATENCY.replace("IMPORTS", repr(IMPORTS))
+    modules = json.dumps(python(IMPORTED, ROOT))      # what the calls import, found by calls in another process
     for label, api in (("solutions", ""), ("a scene per call", SCENE_PER_CALL)):
         for imports in ("", "imported"):
-            rows[label, imports] = python(code.format(api=api), ROOT, args=(imports,) if imports else ())
+            rows[label, imports] = python(LATENCY.format(api=api), ROOT,
+                                          args=("imported", modules) if imports else ())
     print("\n## latency: 10^4 dates in 2021-2041, a new process (first call / second call, s)\n")
     print("| code | imports | moon_librations | earth_pole |\n|---|---|---|---|")
     for (label, imports), row in rows.items():

@@ -3,8 +3,8 @@
 Where: ``<the kernel cache's private directory>/solutions`` (spinorbit.linker.cache: 0700, refused when
 another user could change it).  A solution is keyed by what decides its numbers: the scene, every key of the
 scenario but its comparisons, outputs and span (kept for a scene whose start is fitted over its span: the
-Earth's), the integrator's options, and the code's version (spinorbit's version and a sha256 of the
-package's source: a changed integration never reuses an old file).  Each file is an npz read with
+Earth's), the integrator's options, and the code's version (solutions.code_version: spinorbit's version and a
+sha256 of the package's source: a changed integration never reuses an old file).  Each file is an npz read with
 ``allow_pickle=False`` (nothing in it can run code) holding the series, the layout, the provenance, the states
 where the integration stopped, the record it was keyed by and a sha256 over every array; one that is not
 intact (truncated, tampered with, another model's) is refused in one line and computed again.  Files are
@@ -15,7 +15,6 @@ A query outside the stored span extends the solution from its nearer end (forwar
 from its start), the same System started at the state where the last run stopped.
 """
 import fcntl
-import functools
 import hashlib
 import json
 import os
@@ -24,7 +23,6 @@ import stat
 import sys
 import time
 import zipfile
-from pathlib import Path
 
 import numpy as np
 
@@ -33,6 +31,7 @@ from ..layout import Layout
 from ..linker import cache
 from ..orbits.solution import arrays_hash
 from .chebyshev import Segments
+from .code_version import code_version
 from .solution import Solution
 
 LAYER_KEYS = ("span.", "model.start", "scene.", "compare.", "comparison.", "report.", "output.", "limits.",
@@ -48,18 +47,6 @@ def directory():
     if not path.is_dir():
         path.mkdir(mode=0o700, exist_ok=True)
     return path
-
-
-@functools.cache
-def code_version():
-    """spinorbit's version and the sha256 (16 hex digits) of every Python file of the package."""
-    from ..version import __version__
-
-    package = Path(__file__).parents[1]
-    digest = hashlib.sha256()
-    for path in sorted(package.rglob("*.py")):
-        digest.update(str(path.relative_to(package)).encode() + b"\0" + path.read_bytes())
-    return f"{__version__}+{digest.hexdigest()[:16]}"
 
 
 def record(scenario):
@@ -224,10 +211,11 @@ def entries():
 
 
 def clear():
-    """Delete every stored solution (and its lock); return the number of files removed."""
+    """Delete every stored solution (and its lock) and the code-version records; return the number of files
+    removed."""
     removed = 0
     for path in directory().iterdir():
-        if path.is_file() and not path.is_symlink() and (path.suffix in (".npz", ".lock")
+        if path.is_file() and not path.is_symlink() and (path.suffix in (".npz", ".lock", ".json")
                                                           or ".tmp-" in path.name):
             path.unlink()
             removed += 1
