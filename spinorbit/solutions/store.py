@@ -126,7 +126,11 @@ def load(path, rec):
     return Solution(segments, layout, json.loads(str(arrays["provenance"])), ends)
 
 
-VERIFIED = {}          # path -> ((device, inode, size, mtime), Solution): files this process has checked
+VERIFIED = {}          # path -> ((device, inode, size, mtime), Solution, record): files this process has checked
+
+
+def stamp_of(info):
+    return info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns
 
 
 def read(path, rec):
@@ -137,13 +141,12 @@ def read(path, rec):
         info = os.lstat(path)
     except FileNotFoundError:
         return None
-    stamp = (info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns)
     known = VERIFIED.get(str(path))
-    if known is not None and known[0] == stamp and known[2] == json.dumps(rec, sort_keys=True):
+    if known is not None and known[0] == stamp_of(info) and known[2] == json.dumps(rec, sort_keys=True):
         return known[1]
     try:
         solution = load(path, rec)
-        VERIFIED[str(path)] = (stamp, solution, json.dumps(rec, sort_keys=True))
+        VERIFIED[str(path)] = (stamp_of(info), solution, json.dumps(rec, sort_keys=True))
         return solution
     except Refused as exc:
         cache.say(f"the stored solution {path} was refused ({exc}); computing it again")
