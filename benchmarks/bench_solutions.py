@@ -1,6 +1,6 @@
 """Answers from stored solutions (spinorbit.solutions) against runs, side by side in one run.
 
-    python benchmarks/bench_solutions.py [latency|agreement|extension|export|readme|all]
+    python benchmarks/bench_solutions.py [latency|agreement|extension|export|grid|readme|all]
 
 * latency: a process asks for 100 dates spread over 2021-2041, its ends included (the store then holds the
   span); a new process asks ``earth_pole`` and ``moon_librations`` for 10^4 other dates there: the call's wall
@@ -16,6 +16,8 @@
   binary PCK; the coupled Earth-Moon and the solar system 1950-2050 as an SPK and the Moon's PCK): solve and
   write times, sizes; read back by spiceypy and skyfield at 1000 dates against the solution (uas, mm) and
   against DE421 (mas, m, km);
+* grid: the solar system's series against its integrator between the nodes, each body (mm): the kept grid
+  over the scene's 1950-2050, other grids side by side over 1969-1970;
 * readme: the README's API example (ten dates of 2027, ``moon_librations`` and ``earth_pole``) from empty
   caches (a fresh SPINORBIT_CACHE_DIR and NUMBA_CACHE_DIR), beside a scene per call.
 """
@@ -337,6 +339,50 @@ def mm(read, truth):
     return np.linalg.norm(read - truth, axis=1).max() * 1e6
 
 
+GRIDS = ((4.0, 13), (2.0, 13), (8.0, 13), (4.0, 8))     # (segment d, degree): models.KINDS's first
+
+
+def grid():
+    """The solar system's grid: each body's fit error against the integrator between the nodes, over the scene's
+    whole span on the kept grid, and over its first year from DE421's epoch on other grids side by side."""
+    from spinorbit.scenarios import load_scenario
+    from spinorbit.solutions import models
+
+    scenario = load_scenario("solar_system", [])
+    start = models.first_start(scenario)
+    kept = models.KINDS["solar_system"].grid
+    rows = {f"{kept.length_d:g} d, degree {kept.degree}, 1950-2050": fit_errors(scenario, start, kept,
+                                                                                  *scenario.bounds)}
+    year = (start[0], start[0] + 365.25)
+    for length, degree in GRIDS:
+        rows[f"{length:g} d, degree {degree}, 1969-1970"] = fit_errors(scenario, start,
+                                                                        models.Grid(0.0, length, degree), *year)
+    bodies = list(next(iter(rows.values())))
+    print("\n## the solar system's fit: each body's series against the integrator between the nodes, mm\n")
+    print(f"| grid | {' | '.join(bodies)} |\n|---|{'---|' * len(bodies)}")
+    for label, errors in rows.items():
+        print(f"| {label} | {' | '.join(f'{errors[b]:.3g}' for b in bodies)} |")
+
+
+def fit_errors(scenario, start, grid, lo, hi):
+    """{body: largest |series - integrator| (mm)} at the points between the nodes of ``grid`` over [lo, hi]: the
+    series fitted as the store fits it (solutions.fit.integrate), the integrator run again to those points."""
+    from spinorbit.integrators import simulate
+    from spinorbit.solutions import models
+    from spinorbit.solutions.fit import integrate
+
+    stretch = models.stretch(scenario, lo, hi, start[0])
+    system = models.system(stretch, start)
+    options = stretch.integrator_options()
+    piece = integrate(system, grid, lo, hi, stretch["integrator.method"], options)
+    segments = piece.segments
+    checks = np.unique(segments.nodes(segments.first, len(segments.coefficients))[1])
+    truth, _ = simulate(system, checks, stretch["integrator.method"], options, estimate_error=False)
+    fitted = segments.evaluate(checks)
+    return {part.name[:-2]: np.linalg.norm(fitted[:, part.index] - truth.y[:, part.index], axis=1).max() * 1e6
+            for part in piece.layout.slices if part.name.endswith(".r")}
+
+
 README_EXAMPLE = """
 import json, time
 started = time.perf_counter()
@@ -364,9 +410,9 @@ def readme():
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("part", nargs="?", default="all",
-                        choices=["latency", "agreement", "extension", "export", "readme", "all"])
+                        choices=["latency", "agreement", "extension", "export", "grid", "readme", "all"])
     args = parser.parse_args()
-    parts = ["latency", "agreement", "extension", "export", "readme"] if args.part == "all" else [args.part]
+    parts = ["latency", "agreement", "extension", "export", "grid", "readme"] if args.part == "all" else [args.part]
     for part in parts:
         globals()[part]()
         sys.stdout.flush()
