@@ -89,6 +89,16 @@ def test_a_scene_not_kept_as_a_solution_is_run_to_its_outputs_and_says_why(place
     assert result.summary["solution"] == {"kept": False, "why": result.solution_absent}
 
 
+def test_a_moon_run_that_is_not_the_stored_model_is_run_to_its_outputs_and_says_why(place, simulations):
+    """The Moon from 2000-01-05 (the stored Moon starts at J2000): fitting it would cost more than MAX_FIT_COST
+    and nothing would keep it, so it is integrated once to its outputs and says so."""
+    result = run_scenario("moon_libration", ["span.start=2000-01-05", "span.end=2000-01-15", "output.plots=false"])
+    assert simulations == {"fit": 0, "scene": 1}
+    assert solutions.FIT_COST["moon_libration"] > solutions.MAX_FIT_COST
+    assert result.solution is None and "starts at 2000-01-05" in result.solution_absent
+    assert not list(place.glob("*.npz"))
+
+
 @pytest.mark.parametrize("rate", [0.23, 6.3])          # the Moon's spin, the Earth's (rad/d)
 def test_the_spin_segment_fits_a_turning_attitude_within_a_microarcsecond(rate):
     """A body turning at ``rate`` about a fixed axis (a closed form): its quaternion's series of degree 14 on
@@ -118,3 +128,16 @@ def test_a_fit_beyond_the_runs_error_is_named():
     beyond = solutions.fit_beyond_run({"fit_error_attitude_arcsec": 2e-5, "fit_error_position_km": 2e-6}, run)
     assert beyond == {"fit_error_attitude_arcsec": 1e-5, "fit_error_position_km": 1e-6}
     assert solutions.fit_beyond_run({"fit_error_position_km": 2e-6}, run, rounding_km=3e-6) == {}
+
+
+def test_a_fitted_run_that_fails_leaves_its_partial_result_at_the_output_times(place):
+    """A stored kind's run that stops (max_steps) raises with the partial result of the run to the outputs:
+    its rows are output times (1 d apart from span.start), those the steps allowed reach."""
+    from spinorbit.errors import IntegrationError
+
+    with pytest.raises(IntegrationError) as caught:
+        run_scenario("moon_libration", MOON_MONTH + ["integrator.step=0.5 d", "integrator.max_steps=20"])
+    partial = caught.value.result
+    assert partial.summary["status"] == "failed" and partial.solution is None
+    assert np.array_equal(partial.states.t, np.arange(len(partial.states.t)) * 1.0)
+    assert len(partial.table) == 11                 # 20 steps of 0.5 d: the outputs at 0, 1, ..., 10 d

@@ -23,6 +23,13 @@ MICROARCSEC = 1e-6                  # arcsec
 # the issue's 1 uas and 1 mm; a rate or any other slice relative to its size, 1 uas in radians.
 FIT_FLOORS = {"arcsec": MICROARCSEC, "km": 1e-6, "rel": MICROARCSEC * np.pi / 180 / 3600}
 REFINEMENTS = 2                     # halvings of the segments tried before a run is handed on discrete
+# What fitting its main run adds to a whole run of each kind (CPU time, the scene's own span;
+# benchmarks/bench_run_fit.py, benchmarks/RESULTS.md): rk8 between its steps costs DOP853's continuous
+# extension, four more right-hand sides in each step (+33 % of the integration), which the Earth's run hardly
+# feels and the Moon's and the coupled system's do; heyoka's Taylor series are dense output already.
+FIT_COST = {"moon_libration": 0.16, "earth_precession_nutation": 0.10, "earth_moon_coupled": 0.27,
+            "solar_system": 0.0}
+MAX_FIT_COST = 0.10                 # fitted anyway where the run is the stored model: the store then pays
 
 
 def solve(scene, sets, t_start, t_end):
@@ -141,10 +148,10 @@ def for_run(scenario, system):
     once over the span to the Chebyshev points of the segments tiling it (run_grid) with the scenario's
     [integrator] and its error estimate as the scenario says, the series fitted; the segments halved (at most
     REFINEMENTS times) while the fit differs from the integrator by more than the run's own error
-    (``fit_beyond_run``).  (None, why) for a scene kind not kept as a solution, or a fit never within the run."""
-    if scenario.kind not in models.KINDS:
-        return None, (f"scene kind {scenario.kind} is not kept as a solution (the kinds that are: "
-                      f"{', '.join(sorted(models.KINDS))})")
+    (``fit_beyond_run``).  (None, why) for a run not fitted (``not_fitted``), or a fit never within the run."""
+    why = not_fitted(scenario, system)
+    if why:
+        return None, why
     kind, (lo, hi) = models.KINDS[scenario.kind], scenario.bounds
     method, options = scenario["integrator.method"], scenario.integrator_options()
     worst = np.inf
@@ -196,18 +203,41 @@ def fit_beyond_run(fit_error, run, rounding_km=0.0):
     return out
 
 
-def keep(scenario, solution):
-    """Put a run's Solution in the store where it is what the store holds for its record (store.record): the
-    model started where the stored one starts (the kind's anchor; the Earth's record holds its span, so its
-    start), its error estimated; kept unless the store already holds a longer span.  Returns the path, or
-    None when it is not the stored model."""
-    from ..files import open_lock
+def not_fitted(scenario, system):
+    """Why a run of ``system`` (its scene's main System) is not fitted, or "": a scene kind not kept as a
+    solution, or one whose fit costs more than MAX_FIT_COST of its run (FIT_COST) where the run is not the
+    stored model (``stored_model``)."""
+    if scenario.kind not in models.KINDS:
+        return (f"scene kind {scenario.kind} is not kept as a solution (the kinds that are: "
+                f"{', '.join(sorted(models.KINDS))})")
+    cost, why_not_stored = FIT_COST.get(scenario.kind, np.inf), stored_model(scenario, system.t0)
+    if cost <= MAX_FIT_COST or not why_not_stored:
+        return ""
+    return (f"not fitted: fitting costs this kind about {cost:.0%} more run time (rk8's output between its steps), "
+            f"paid where the run is the stored model, which it is not ({why_not_stored}); "
+            "spinorbit.solutions.for_scenario(result.scenario) gives the stored one")
+
+
+def stored_model(scenario, t0):
+    """Why a run of ``scenario`` started at t0 (TDB days) is not the model the store keeps for its record, or
+    "": the store's starts at the kind's anchor (the Earth's record holds its span, so its start), its error
+    estimated."""
     from ..schema import parse_tdb_days
 
-    anchor, run = models.KINDS[scenario.kind].anchor, solution.provenance["runs"][0]
-    if not any(k.startswith("integration_error_") for k in run):
-        return None
-    if anchor is not None and abs(run["start_tdb_d"] - float(parse_tdb_days("anchor", anchor))) > 1e-9:
+    anchor = models.KINDS[scenario.kind].anchor
+    if not scenario["integrator.estimate_error"]:
+        return "its integration error is not estimated (integrator.estimate_error = false)"
+    if anchor is not None and abs(t0 - float(parse_tdb_days("anchor", anchor))) > 1e-9:
+        return f"it starts at {models.iso(t0)[0]} TDB, the stored one at {anchor}"
+    return ""
+
+
+def keep(scenario, solution):
+    """Put a run's Solution in the store where it is the stored model (``stored_model``), unless the store
+    already holds a longer span of it.  Returns the path, or None."""
+    from ..files import open_lock
+
+    if stored_model(scenario, solution.provenance["runs"][0]["start_tdb_d"]):
         return None
     rec = store.record(scenario)
     path = store.path_of(rec)
