@@ -365,22 +365,28 @@ def grid():
 
 
 def fit_errors(scenario, start, grid, lo, hi):
-    """{body: largest |series - integrator| (mm)} at the points between the nodes of ``grid`` over [lo, hi]: the
-    series fitted as the store fits it (solutions.fit.integrate), the integrator run again to those points."""
+    """{body: largest |series - integrator| (mm)} at the points between the nodes of ``grid`` over [lo, hi]: one
+    run to the nodes and those points, the series fitted as solutions.fit.integrate fits it (at the node times as
+    rounded), each body's largest difference (integrate states only the largest of all)."""
     from spinorbit.integrators import simulate
     from spinorbit.solutions import models
-    from spinorbit.solutions.fit import integrate
+    from spinorbit.solutions.chebyshev import Segments, grid_indices, interpolating_at
+    from spinorbit.solutions.fit import components, fitted_layout
 
     stretch = models.stretch(scenario, lo, hi, start[0])
     system = models.system(stretch, start)
-    options = stretch.integrator_options()
-    piece = integrate(system, grid, lo, hi, stretch["integrator.method"], options)
-    segments = piece.segments
-    checks = np.unique(segments.nodes(segments.first, len(segments.coefficients))[1])
-    truth, _ = simulate(system, checks, stretch["integrator.method"], options, estimate_error=False)
-    fitted = segments.evaluate(checks)
-    return {part.name[:-2]: np.linalg.norm(fitted[:, part.index] - truth.y[:, part.index], axis=1).max() * 1e6
-            for part in piece.layout.slices if part.name.endswith(".r")}
+    first, count = grid_indices(grid.origin_d, grid.length_d, lo, hi)
+    empty = Segments(grid.origin_d, grid.length_d, first, np.zeros((count, 0, grid.degree + 1)))
+    nodes, checks = empty.nodes(first, count)
+    t_out = np.concatenate([nodes.ravel(), checks.ravel()])
+    times, rows = np.unique(t_out, return_inverse=True)
+    run, _ = simulate(system, times, stretch["integrator.method"], stretch.integrator_options(), estimate_error=False)
+    values, n, layout = components(system, t_out, run.y[rows]), nodes.size, fitted_layout(system)
+    at_nodes = values[:n].reshape(count, grid.degree + 1, -1).transpose(0, 2, 1)
+    series = Segments(grid.origin_d, grid.length_d, first, interpolating_at(at_nodes, empty.normalised(nodes, first)))
+    fitted = series.at_normalised(empty.normalised(checks, first)).reshape(-1, layout.size)
+    return {part.name[:-2]: np.linalg.norm(fitted[:, part.index] - values[n:, part.index], axis=1).max() * 1e6
+            for part in layout.slices if part.name.endswith(".r")}
 
 
 README_EXAMPLE = """
