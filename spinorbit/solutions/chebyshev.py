@@ -41,6 +41,9 @@ def interpolating_at(values, x):
     return np.linalg.solve(vander, values.transpose(0, 2, 1)).transpose(0, 2, 1)
 
 
+EVALUATED_AT_ONCE = 512        # points whose segments' coefficients are gathered together (a few hundred kB)
+
+
 @dataclass
 class Segments:
     """Segments ``first`` .. ``first + count - 1`` of length ``length_d`` on the grid from ``origin_d``;
@@ -74,8 +77,12 @@ class Segments:
         k = np.clip(np.floor((t - self.origin_d) / self.length_d).astype(int), self.first,
                     self.first + len(self.coefficients) - 1)
         mid = self.origin_d + (k + 0.5) * self.length_d
-        basis = np.polynomial.chebyshev.chebvander(2.0 * (t - mid) / self.length_d, self.degree)
-        return np.matmul(self.coefficients[k - self.first], basis[:, :, None])[:, :, 0]
+        basis = np.polynomial.chebyshev.chebvander(2.0 * (t - mid) / self.length_d, self.degree)[:, :, None]
+        out = np.empty((t.size, self.coefficients.shape[1]))
+        for lo in range(0, t.size, EVALUATED_AT_ONCE):          # each point's segment gathered a block at a time
+            block = slice(lo, lo + EVALUATED_AT_ONCE)
+            out[block] = np.matmul(self.coefficients[k[block] - self.first], basis[block])[:, :, 0]
+        return out
 
     def at_normalised(self, x):
         """Values (count, len(x[k]), components): segment k at its own normalised points ``x[k]``."""
