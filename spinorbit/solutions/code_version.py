@@ -22,13 +22,17 @@ PACKAGE = Path(__file__).resolve().parents[1]
 
 def sources(package):
     """[(relative path, stat)] of the package's Python files, sorted by path."""
-    found = []
-    for folder, subfolders, names in os.walk(package):
-        subfolders[:] = sorted(d for d in subfolders if d != "__pycache__")
-        for name in names:
-            if name.endswith(".py"):
-                path = os.path.join(folder, name)
-                found.append((os.path.relpath(path, package), os.stat(path)))
+    found, root = [], str(package)
+
+    def scan(folder, prefix):
+        with os.scandir(folder) as entries:
+            for entry in entries:
+                if entry.is_dir(follow_symlinks=False) and entry.name != "__pycache__":
+                    scan(entry.path, f"{prefix}{entry.name}/")
+                elif entry.name.endswith(".py"):
+                    found.append((prefix + entry.name, entry.stat()))
+
+    scan(root, "")
     return sorted(found)
 
 
