@@ -1,14 +1,17 @@
-"""Does an edit recompile only the kernels it reaches?  Wall time of one run, warm, then after an edit.
+"""Does an edit recompile only the kernels it reaches, and every one it reaches? Wall time of one run, cold,
+warm, then after an edit.
 
     python benchmarks/bench_cache_reach.py [--scenario scenarios/moon_libration.toml] [--repeat 3]
                                            [--baseline GIT_REF]
 
-A copy of the package (this tree's, and with ``--baseline`` the package at a git ref, e.g. one whose
-linker fingerprinted every file) runs the scenario in fresh processes with its own empty kernel and
-numba caches: once to fill them, ``--repeat`` times warm, then after adding a line to the docstring
-of a module no kernel reaches (``spinorbit/verdict.py``), then after the same edit in a module the
-kernels reach (``spinorbit/rotations.py``).  Printed: the median wall time of each and how many
-generated modules were written (a recompiled kernel writes its module anew).
+A copy of the package (this tree's, and with ``--baseline`` the package at a git ref, e.g. one whose linker
+fingerprinted every file) runs the scenario in fresh processes with its own empty kernel and numba caches:
+once to fill them (cold), ``--repeat`` times warm, then after adding a line to the docstring of a module no
+kernel reaches (``spinorbit/verdict.py``), then after the same edit in a module the kernels reach
+(``spinorbit/rotations.py``), each step on every tree in turn. Printed: the median wall time of each, how many
+generated modules were written (a recompiled kernel writes its module anew) and how many numba cache indexes
+of the package's own compiled functions were written (a function compiled afresh rewrites its index; one that
+calls an edited file and is not rewritten runs its old code).
 """
 import argparse
 import os
@@ -39,7 +42,8 @@ def copy_package(work, ref):
 
 
 def run(tree, scenario, work):
-    """Wall time (s) of one run in a fresh process, and the generated modules in the kernel cache."""
+    """Wall time (s) of one run in a fresh process, the generated modules in the kernel cache and numba's
+    indexes of the package's functions ({path: modification time})."""
     cache = work / f"cache-{tree.name}"
     env = {**os.environ, "PYTHONPATH": str(tree), "SPINORBIT_CACHE_DIR": str(cache),
            "NUMBA_CACHE_DIR": str(work / f"numba-{tree.name}"), "SPINORBIT_QUIET": "1"}
@@ -47,7 +51,8 @@ def run(tree, scenario, work):
     subprocess.run([sys.executable, "-m", "spinorbit.cli", "run", str(scenario), "--out", str(work / "out"),
                     "--force", *SHORT], cwd=work, env=env, check=True, capture_output=True)
     wall = time.perf_counter() - start
-    return wall, sorted(p.name for p in cache.rglob("spinorbit_*.py"))
+    indexes = {p: p.stat().st_mtime_ns for p in (work / f"numba-{tree.name}").rglob("*.nbi")}
+    return wall, sorted(p.name for p in cache.rglob("spinorbit_*.py")), indexes
 
 
 def touch_docstring(path):
@@ -56,16 +61,29 @@ def touch_docstring(path):
     path.write_text(text[:end] + f"\nEdited at {time.time()}.\n" + text[end:])
 
 
-def measure(tree, scenario, work, repeat):
-    rows = {}
-    modules = run(tree, scenario, work)[1]                          # fill the caches
-    rows["warm"] = (statistics.median(run(tree, scenario, work)[0] for _ in range(repeat)), 0)
+def measure(trees, scenario, work, repeat):
+    """{row: {tree: (wall s, generated modules written, numba indexes written)}}, each step run on every tree in
+    turn, so that the trees share the machine's load."""
+    seen, rows = {}, {"cold (empty caches)": {}, "warm": {}}
+    for name, tree in trees:                                        # fill the caches
+        wall, modules, indexes = run(tree, scenario, work)
+        rows["cold (empty caches)"][name] = (wall, len(modules), len(indexes))
+        seen[name] = modules, indexes
+    warm = {name: [] for name, _ in trees}
+    for _ in range(repeat):
+        for name, tree in trees:
+            warm[name].append(run(tree, scenario, work)[0])
+    rows["warm"] = {name: (statistics.median(walls), 0, 0) for name, walls in warm.items()}
     for label, module in ((f"after editing {Path(UNREACHED).name} (no kernel reaches it)", UNREACHED),
                           (f"after editing {Path(REACHED).name} (the kernels reach it)", REACHED)):
-        touch_docstring(tree / module)
-        wall, after = run(tree, scenario, work)
-        rows[label] = (wall, len(set(after) - set(modules)))
-        modules = after
+        rows[label] = {}
+        for name, tree in trees:
+            touch_docstring(tree / module)
+            wall, after, written = run(tree, scenario, work)
+            modules, indexes = seen[name]
+            rows[label][name] = (wall, len(set(after) - set(modules)),
+                                 sum(indexes.get(path) != stamp for path, stamp in written.items()))
+            seen[name] = after, written
     return rows
 
 
@@ -81,11 +99,11 @@ def main():
         if args.baseline:
             trees.append((args.baseline, copy_package(work, args.baseline)))
         settings = " ".join(SHORT[1::2])
-        print(f"{Path(args.scenario).name} {settings}; wall s of one run (modules compiled anew)")
-        results = {name: measure(tree, args.scenario, work, args.repeat) for name, tree in trees}
-        for label in next(iter(results.values())):
-            cells = "   ".join(f"{name}: {r[label][0]:6.2f} s ({r[label][1]})" for name, r in results.items())
-            print(f"  {label:45s} {cells}")
+        print(f"{Path(args.scenario).name} {settings}; wall s of one run (generated modules, numba indexes "
+              "written)")
+        for label, cells in measure(trees, args.scenario, work, args.repeat).items():
+            print(f"  {label:45s} " + "   ".join(f"{name}: {wall:6.2f} s ({modules}, {indexes})"
+                                               for name, (wall, modules, indexes) in cells.items()))
 
 
 if __name__ == "__main__":

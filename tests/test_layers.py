@@ -166,7 +166,7 @@ def test_the_scenes_are_declarations_within_2000_lines():
 
 # --- compiled right-hand sides -------------------------------------------------------------------------
 
-COMPILERS = {"njit", "jit", "cfunc", "template", "generated_jit"}       # numba's decorators, linker.template
+COMPILERS = {"njit", "jit", "cfunc", "template", "generated_jit", "cached"}   # numba's, the linker's
 RHS_SIGNATURE = ["t", "y", "p"]
 GENERATED_RHS = re.compile(r"def \w+\(\s*t\s*,\s*y\s*,\s*p\s*\)")
 RHS_HOMES = ("models", "integrators")          # the models write every rhs, the integrators their steps
@@ -179,8 +179,8 @@ def _called_name(node):
 
 def compiled_rhs(source):
     """Names of the compiled right-hand sides a module defines: a function of the signature (t, y, p) that
-    numba compiles or the linker links (decorated with njit/jit/cfunc/template, or passed to one of them), or
-    source text defining one for the linker to compile (``link_source``)."""
+    numba compiles or the linker links (decorated with njit/jit/cfunc/template/cached, or passed to one of
+    them), or source text defining one for the linker to compile (``link_source``)."""
     tree = ast.parse(source)
     functions = {node.name: node for node in ast.walk(tree) if isinstance(node, ast.FunctionDef)}
     shaped = {name for name, node in functions.items()

@@ -26,6 +26,10 @@ kernel afresh, and the same binding in a later process loads numba's cache.
 Generated modules live in a private directory (``$SPINORBIT_CACHE_DIR``,
 default ``~/.cache/spinorbit``) and are run only when their content matches
 their name (:mod:`spinorbit.linker.cache`).
+
+A plain compiled function that calls functions of other files by their module-level names needs no template:
+``@linker.cached`` (:mod:`spinorbit.linker.stamped`) is ``njit`` whose disk cache is keyed by the same
+fingerprint, so editing a callee's file compiles it afresh (numba's own ``cache=True`` sees its own file only).
 """
 import functools
 import hashlib
@@ -40,6 +44,7 @@ from pathlib import Path
 import numba
 
 from . import cache
+from .stamped import cached  # noqa: F401  (re-exported: linker.cached)
 
 PACKAGE_DIR = Path(__file__).resolve().parents[1]
 
@@ -98,12 +103,12 @@ def link(fn, **bindings):
         return _link(fn, tuple(sorted(bindings.items(), key=lambda kv: kv[0])))
 
 
-def fingerprint(function):
-    """sha256 (hex) of what ``function`` (a template, a compiled or a plain function) reaches
-    (:func:`reached`) and of numba's version."""
+def fingerprint(function, root=PACKAGE_DIR):
+    """sha256 (hex) of what ``function`` (a template, a compiled or a plain function) reaches in the package at
+    ``root`` (:func:`reached`) and of numba's version."""
     import numba
 
-    sources = reached(function)
+    sources = reached(function, root)
     digest = hashlib.sha256(f"numba {numba.__version__}".encode())
     for module in sorted(sources):
         digest.update(f"\0{module}\0".encode())
@@ -111,12 +116,13 @@ def fingerprint(function):
     return digest.hexdigest()
 
 
-def reached(function):
+def reached(function, root=PACKAGE_DIR):
     """{module name: its source bytes} of the modules whose functions and constants ``function`` uses,
-    followed through compiled callees; a generated module stands by the hash of its text (which
-    holds its own reach), a module without a file by the function's code."""
+    followed through compiled callees, and of the package's (under ``root``, spinorbit's by default) through
+    plain ones; a generated module stands by the hash of its text (which holds its own reach), a module without
+    a file by the function's code."""
     sources = {}
-    _reach(getattr(function, "py_func", function), sources, set())
+    _reach(getattr(function, "py_func", function), sources, set(), _Package(root))
     return sources
 
 
@@ -150,7 +156,7 @@ def _load(fn_name, text):
     return getattr(module or cache.load_module(name, text), fn_name)
 
 
-def _reach(function, sources, seen):
+def _reach(function, sources, seen, package):
     if function in seen:
         return
     seen.add(function)
@@ -162,41 +168,57 @@ def _reach(function, sources, seen):
     for name in names:
         value = function.__globals__.get(name)
         if isinstance(value, types.ModuleType):
-            if _in_package(value):               # mod.attr: its file, and the functions named
+            if value in package:                 # mod.attr: its file, and the functions named
                 sources.setdefault(value.__name__, _source_of(value, None))
                 for attr in names:
-                    _follow(getattr(value, attr, None), sources, seen)
-        elif not _follow(value, sources, seen) and not isinstance(value, Free):
-            for home in _homes(name, value):     # a constant numba freezes: the modules holding it
+                    _follow(getattr(value, attr, None), sources, seen, package)
+        elif not _follow(value, sources, seen, package) and not isinstance(value, Free):
+            for home in _homes(name, value, package):   # a constant numba freezes: the modules holding it
                 sources.setdefault(home.__name__, _source_of(home, None))
 
 
-def _follow(value, sources, seen):
+def _follow(value, sources, seen, package):
     """Reach a compiled function anywhere, a plain function of the package; True if ``value`` is one."""
     if hasattr(value, "py_func"):
-        _reach(value.py_func, sources, seen)
+        _reach(value.py_func, sources, seen, package)
         return True
     if isinstance(value, types.FunctionType):
-        if _in_package(sys.modules.get(value.__module__)):
-            _reach(value, sources, seen)
+        if sys.modules.get(value.__module__) in package:
+            _reach(value, sources, seen, package)
         return True
     return False
 
 
-def _homes(name, value):
+def _homes(name, value, package):
     """The package's modules holding ``value`` under ``name`` (where a constant imported by name is from)."""
-    return [module for module in list(sys.modules.values())
-            if value is not None and _in_package(module) and getattr(module, name, None) is value]
+    return [] if value is None else [module for module in package.modules if getattr(module, name, None) is value]
 
 
-def _in_package(module):
-    file = getattr(module, "__file__", None)
-    return file is not None and _under_package(file)
+class _Package:
+    """The package a reach follows: the modules with a file whose top-level package is in the folder ``root``
+    (``module in package``), and those imported (listed once per reach)."""
+
+    def __init__(self, root):
+        self.root, self._modules = root, None
+
+    def __contains__(self, module):
+        name = getattr(module, "__name__", None)
+        return (isinstance(name, str) and _top_in(name.partition(".")[0], self.root)
+                and getattr(module, "__file__", None) is not None)
+
+    @property
+    def modules(self):
+        if self._modules is None:
+            self._modules = [module for name, module in list(sys.modules.items())    # by name: no getattr
+                             if _top_in(name.partition(".")[0], self.root) and module in self]
+        return self._modules
 
 
 @functools.cache
-def _under_package(file):
-    return PACKAGE_DIR in Path(file).resolve().parents
+def _top_in(top, root):
+    """Is top-level package ``top`` (or module) in the folder ``root``?  Resolved once per package."""
+    file = getattr(sys.modules.get(top), "__file__", None)
+    return file is not None and Path(file).resolve().parent == root
 
 
 def _source_of(module, function):

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+from ..linker import cached
 from ..rotations import cross3, dot3, put
 from .distortion import taylor_back
 from .motion import PairRelatives
@@ -54,7 +55,7 @@ def shared(accelerations, share):
     return out
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def kinetic_energy(y, gm):
     """sum GM |v|^2 / 2 over the carried centres (r, v in y by sixes, GM per centre; G-scaled)."""
     total = 0.0
@@ -64,7 +65,7 @@ def kinetic_energy(y, gm):
     return total
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def angular_momentum(y, gm):
     """sum GM r x v over the carried centres (G-scaled)."""
     total = np.zeros(3)

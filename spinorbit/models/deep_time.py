@@ -39,6 +39,7 @@ from ..bodies.table import gm_km3_d2
 from ..constants import JULIAN_YEAR_D
 from ..errors import InputError
 from ..layout import Layout
+from ..linker import cached
 from ..rotations import cross3, dot3
 from .ode import Ode
 
@@ -73,7 +74,7 @@ def orbit_series(t, grid, t0, h):
     return _unit(v[:, :3]), v[:, 3:]
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def rhs(t, y, p):
     """dy/dt of the averaged spin axis and the Earth-Moon tidal evolution; p = (grid, t0, h, constants)."""
     grid, t0, h, c = p

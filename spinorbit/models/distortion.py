@@ -18,21 +18,21 @@ in the state, from its position, velocity, acceleration and two-body jerk (:func
 import math
 
 import numpy as np
-from numba import njit
 
+from ..linker import cached
 from ..rotations import cross3, dot3, mat_t_vec3
 
 DIFFERENCE_D = 1e-3        # days, central difference of an ephemeris position for the raiser's velocity
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def rotate_about(v, axis, angle):
     """Rodrigues: v rotated right-handedly by ``angle`` about the unit vector ``axis``."""
     c, s = math.cos(angle), math.sin(angle)
     return v * c + cross3(axis, v) * s + axis * dot3(axis, v) * (1.0 - c)
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def delayed_in_body(rot, omega, x, v, tau):
     """The raiser's position x (km) and velocity v (km/d), ICRF, at t - tau, seen in the body axes of t - tau
     (carried round with the body by w tau): (r_del, v_del), the rate relative to the body."""
@@ -42,7 +42,7 @@ def delayed_in_body(rot, omega, x, v, tau):
     return r_del, rotate_about(mat_t_vec3(rot, v), axis, wn * tau) - cross3(omega, r_del)
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def taylor_back(r, v, acc, gm_pair, tau):
     """(position, velocity) a time tau earlier of a body at r (km) moving at v (km/d) with acceleration ``acc``
     (km/d^2) about a centre of GM ``gm_pair``: to third order in tau with the two-body jerk (16 m from DE421's
@@ -53,7 +53,7 @@ def taylor_back(r, v, acc, gm_pair, tau):
             v - tau * acc + 0.5 * tau * tau * jerk)
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def distortion(omega, r_del, v_del, tide, spin, n_mean):
     """(delta I, its rate), body axes, G-scaled: ``tide`` = k2 GM_E R^5, ``spin`` = k2 R^5 / 3 (km^5), n_mean the
     mean motion (rad/d); r_del, v_del the raiser in body axes at t - tau and its rate (module docstring)."""

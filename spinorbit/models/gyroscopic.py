@@ -19,10 +19,11 @@ import math
 import numpy as np
 from numba import njit
 
+from ..linker import cached
 from ..rotations import cross3, dot3, matvec3
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def frame_from_axis(z):
     """A rotation matrix whose third column is the unit vector z (its x axis: e_x made normal to z)."""
     x = np.array([1.0, 0.0, 0.0]) - z[0] * z
@@ -48,7 +49,7 @@ def tidal_tensor(rows, gm):
     return out
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def figure_axis(spin, tensor, a, c_minus_a):
     """The figure axis to first order in 1/lam from the spin angular momentum ``spin`` (inertial), the point
     masses' tidal tensor, the equatorial moment A and C - A (module docstring)."""

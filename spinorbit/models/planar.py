@@ -11,14 +11,14 @@ Times in days, angles in rad; mean anomaly n (t - t0).
 import math
 
 import numpy as np
-from numba import njit
 
 from ..layout import Layout
+from ..linker import cached
 from ..orbits.analytic import eccentric_anomaly
 from .ode import Ode
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def anomaly_and_distance(mean_anomaly, e):
     """(true anomaly f (rad), r/a) for mean anomaly M on an ellipse of eccentricity e."""
     big_e = eccentric_anomaly(mean_anomaly, e)
@@ -26,7 +26,7 @@ def anomaly_and_distance(mean_anomaly, e):
     return f, 1.0 - e * math.cos(big_e)
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def planar_rhs(t, y, p):
     """d/dt [theta_i, theta'_i] for every copy i; p = (n rad/d, e, t0 d, (3/2)(B - A)/C)."""
     n, e, t0, k = p[0], p[1], p[2], p[3]

@@ -17,6 +17,7 @@ Every inertia, torque and friction constant in one unit (G I, km^5/d^2 in a Syst
 import numpy as np
 from numba import njit
 
+from ..linker import cached
 from ..rotations import cross3, diag3, mat_t_vec3, matvec3, quat_rate, solve3
 
 
@@ -31,13 +32,13 @@ def euler_omega_dot(moments, omega, torque):
     ])
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def distorted_omega_dot(inertia, inertia_rate, omega, torque):
     """dw/dt of a rigid body whose inertia tensor (body axes) changes at ``inertia_rate``: I^-1 (N - w x I w - I' w)."""
     return solve3(inertia, torque - cross3(omega, matvec3(inertia, omega)) - matvec3(inertia_rate, omega))
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def mantle_and_core_rates(omega, omega_core, inertia, inertia_rate, torque, core_c, core_flattening, friction):
     """(dw_m/dt, dw_c/dt), mantle axes: the torque acts on the whole Moon's inertia (with its distortion and
     rate); the mantle turns with I - I_c, the core by the boundary's torque (module docstring).
@@ -52,7 +53,7 @@ def mantle_and_core_rates(omega, omega_core, inertia, inertia_rate, torque, core
     return solve3(mantle, rhs_vec), core_rate
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def quat_rate_in_frame(q, omega, rot, frame_rate):
     """dq/dt of a body turning at ``omega`` (body axes) in a frame that turns at ``frame_rate`` (inertial axes)
     against the inertial one; ``rot`` = the matrix of q."""

@@ -17,20 +17,20 @@
 import math
 
 import numpy as np
-from numba import njit
 
 from ..bodies import de421_orientation
 from ..bodies.moon import de421
 from ..bodies.table import BODIES
 from ..constants import J2000_JD
 from ..layout import Layout
+from ..linker import cached
 from ..rotations import cross3, dot3, quat_from_matrix
 from .ode import Ode
 
 CORE_STEP_D = 0.25          # half the RK4 step carrying DE421's core
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def core_rhs(t, y, p):
     """d(I_c w_c)/dt (units of C, inertial) of the core's angular momentum y under DE421's mantle at t (module
     docstring); p = (series, start, length, k_v/C, C_c/C, A_c/C)."""
@@ -44,7 +44,7 @@ def core_rhs(t, y, p):
     return -friction * (w - w_mantle) - (c_c - a_c) * dot3(pole, w) * cross3(pole, w)
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def core_omega(momentum, pole, c_c, a_c):
     """The core's angular velocity (inertial) from its angular momentum about the mantle pole."""
     return momentum / a_c - (c_c - a_c) / (a_c * c_c) * dot3(pole, momentum) * pole

@@ -16,14 +16,14 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
 
+from ...linker import cached
 from ...rotations import cross3, dot3, mat_t_vec3, matvec3
 from .base import Interaction, needs_forces
 from .point_mass import anisotropic
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def pole_at(t, grid, samples):
     """Unit vector at TDB day t, linear in the table (grid [t0, h], (m, 3) samples), clamped to its ends."""
     s = min(max((t - grid[0]) / grid[1], 0.0), samples.shape[0] - 1.000001)
@@ -32,7 +32,7 @@ def pole_at(t, grid, samples):
     return v / math.sqrt(dot3(v, v))
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def figure_torque(inertia, r, pole, gm_j2_r2):
     """Folkner et al. 2014 N_figM-figE (body axes): r the attractor from the figure (km), pole its unit pole."""
     inertia = anisotropic(inertia)
@@ -46,7 +46,7 @@ def figure_torque(inertia, r, pole, gm_j2_r2):
                                               - 0.4 * cross3(pole, ip))
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def energy(inertia, x, pole, gm_j2_r2):
     """E = -1/2 I : grad grad U_J2 at x (km), [inertia unit]/d^2; real or complex (the tests differentiate it)."""
     inertia = anisotropic(inertia)              # grad grad U_J2 is trace-free: the isotropic part adds 0
@@ -66,7 +66,7 @@ def energy(inertia, x, pole, gm_j2_r2):
     return -0.25 * gm_j2_r2 * total
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def energy_gradients(inertia, r, pole, gm_j2_r2):
     """(grad_r E, grad_p E), body axes, [inertia unit]/(km d^2) and [inertia unit]/d^2, of :func:`energy`
     at r (km), pole p treated as a free vector.  With k = gm_j2_r2 (GM J2 R^2, km^5/d^2), A = anisotropic(I)
@@ -93,7 +93,7 @@ def energy_gradients(inertia, r, pole, gm_j2_r2):
     return grad_r, grad_p
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def with_pole(rot, inertia, r_icrf, pole_icrf, gm_j2_r2):
     """(torque on the figure, body axes; force on the attractor, inertial; torque on the attractor's figure,
     inertial), r_icrf (3,) km the attractor from the figure, pole_icrf its unit pole (inertial axes)."""

@@ -13,11 +13,12 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+from ...linker import cached
 from ...rotations import cross3, dot3
 from .base import Interaction
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def de_sitter(x, w, gm_sun, c):
     """Omega (rad/d, inertial) of a body at x (km) moving at w (km/d) relative to the Sun."""
     return 1.5 * gm_sun / (c * c * dot3(x, x) ** 1.5) * cross3(x, w)

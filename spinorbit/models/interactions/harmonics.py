@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+from ...linker import cached
 from ...rotations import cross3, mat_t_vec3, matvec3
 from .base import Interaction
 from .point_mass import act
@@ -76,7 +77,7 @@ def gradient(r, radius, c_nm, s_nm, n_min, n_max):
     return np.array([ax / r_ref2, ay / r_ref2, az / r_ref2])
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def torque(rot, rows, gm, scale, radius, c_nm, s_nm, n_min, n_max):
     """Sum over the masses of -scale GM/R^2 r x grad W, body axes; ``scale`` = GM_body R^2 (km^5/d^2)."""
     total = np.zeros(3)
@@ -86,7 +87,7 @@ def torque(rot, rows, gm, scale, radius, c_nm, s_nm, n_min, n_max):
     return total
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def force(rot, rows, gm, scale, radius, c_nm, s_nm, n_min, n_max):
     """The field's pull scale GM/R^2 grad W on each mass (n, 3), inertial axes."""
     out = np.zeros((gm.shape[0], 3))
@@ -96,7 +97,7 @@ def force(rot, rows, gm, scale, radius, c_nm, s_nm, n_min, n_max):
     return out
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def energy(rot, rows, gm, scale, radius, c_nm, s_nm, n_min, n_max):
     """The masses' energy in the field, sum of -scale GM/R^2 W(r): F = -grad_r of it."""
     total = 0.0

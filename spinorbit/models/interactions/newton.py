@@ -9,14 +9,14 @@ GM_j [(x_j - x_s)/|x_j - x_s|^3 - (x_j - x_p)/|x_j - x_p|^3].  Where every centr
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
 
+from ...linker import cached
 from ...rotations import dot3
 from .base import Interaction
 from .relativity import newtonian
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def pair_acceleration(x, mu, r):
     """r'' (km/d^2) of the pair (rows n - 2: primary, n - 1: secondary of x (n, 3) km, mu (n,) km^3/d^2)."""
     n = x.shape[0]
@@ -29,7 +29,7 @@ def pair_acceleration(x, mu, r):
     return acc
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def potential_energy(x, mu, r):
     """-sum_{i<j} GM_i GM_j / r_ij (G-scaled) of the masses at x (n, 3) km, the pair (the last two rows) at r."""
     n = x.shape[0]

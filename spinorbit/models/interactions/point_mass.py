@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+from ...linker import cached
 from ...rotations import cross3, dot3, mat_t_vec3, matvec3
 from .base import Interaction, needs_forces
 
@@ -29,7 +30,7 @@ def anisotropic(inertia):
     return out
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def torque(rot, inertia, rows, gm):
     """Sum over the masses at ``rows`` (n, 3, inertial, from the figure) of 3 GM/r^5 r x (I r), body axes (§815)."""
     inertia = anisotropic(inertia)
@@ -41,7 +42,7 @@ def torque(rot, inertia, rows, gm):
     return total
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def force(rot, inertia, rows, gm):
     """The figure's degree-2 force on each mass (n, 3), inertial axes (§818)."""
     out = np.zeros((gm.shape[0], 3))
@@ -57,7 +58,7 @@ def force(rot, inertia, rows, gm):
     return out
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def energy(rot, inertia, rows, gm):
     """MacCullagh's interaction energy, sum over the masses of -GM (r^2 tr I - 3 r.I r) / (2 r^5)."""
     inertia = anisotropic(inertia)             # the isotropic part cancels in r^2 tr I - 3 r.I r
@@ -70,7 +71,7 @@ def energy(rot, inertia, rows, gm):
     return total
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def reaction(rot, rows, pulls):
     """(force on the figure's centre (inertial), torque on the figure (body axes)) from its pulls (n, 3) on
     the masses at ``rows``: minus their sum and minus their moments about its centre (§818)."""

@@ -47,6 +47,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+from ...linker import cached
 from ...rotations import cross3, dot3
 from .base import Interaction
 
@@ -73,7 +74,7 @@ def delayed(x, u, gm, pole, rate, tau, band):
     return out
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def band_gradient(r, s, pole, band):
     """grad_r [A_m(r, s) / (r^5 s^5)] at r (km) for the tide of band m raised from s (km), 1/km^5."""
     z, zs = dot3(r, pole), dot3(s, pole)
@@ -100,7 +101,7 @@ def band_gradient(r, s, pole, band):
     return out
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def raised_by(r, x, u, gm, gm_pair, spin, p):
     """The Moon's acceleration relative to the Earth (km/d^2, ICRF), at r, from the tide raised by a body
     of GM gm at x moving at u (its two-body GM with the Earth gm_pair); spin the Earth's (rad/d)."""
@@ -114,7 +115,7 @@ def raised_by(r, x, u, gm, gm_pair, spin, p):
     return (0.5 * (1.0 + p[GM_M] / p[GM_E]) * gm * radius2 * radius2 * p[RADIUS]) * total
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def acceleration(r, v, r_sun, v_sun, spin, p):
     """The Moon's acceleration relative to the Earth (km/d^2, ICRF) from the tides the Moon (at r, v) and
     the Sun (at r_sun, v_sun; km, km/d from the Earth) raise on the Earth of spin w (rad/d, ICRF)."""
@@ -122,14 +123,14 @@ def acceleration(r, v, r_sun, v_sun, spin, p):
     return moon + raised_by(r, r_sun, v_sun, p[GM_S], p[GM_S] + p[GM_E] + p[GM_M], spin, p)
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def torque_on_earth(r, v, r_sun, v_sun, spin, p):
     """The Moon's torque on the Earth's tides, -mu r x a (G-scaled, km^5/d^4, ICRF): the orbit gains
     mu r x a of angular momentum, the Earth's spin loses as much."""
     return reaction(r, acceleration(r, v, r_sun, v_sun, spin, p), p)
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def reaction(r, a, p):
     """:func:`torque_on_earth` from the tidal acceleration ``a`` already computed at r."""
     mu = p[GM_E] * p[GM_M] / (p[GM_E] + p[GM_M])
