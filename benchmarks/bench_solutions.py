@@ -299,12 +299,8 @@ def carried(solution, t):
 
 
 def position_rows(solution, written, t):
-    import spiceypy
     from skyfield.api import load
     from skyfield.jpllib import SpiceKernel
-
-    from spinorbit.comparisons import earth_moon_de421, solar_system_de421
-    from spinorbit.constants import ARCSEC, DAY_S
 
     barycentric = any("barycentric" in part.unit for part in solution.layout.slices)
     origin = "0" if barycentric else "3"
@@ -312,6 +308,19 @@ def position_rows(solution, written, t):
     at = load.timescale().tdb_jd(2451545.0, t)
     print(f"\n| body (NAIF code) about {origin} | spiceypy spkpos vs the solution, mm | skyfield vs the solution, mm "
           f"| vs DE421 (heliocentric; the Moon geocentric) | scene's bound |\n|---|---|---|---|---|")
+    try:
+        print_positions(solution, t, kernel, at, barycentric, origin)
+    finally:
+        kernel.close()
+
+
+def print_positions(solution, t, kernel, at, barycentric, origin):
+    """The rows of each body the SPK ``kernel`` holds (about ``origin``), read at ``t`` (skyfield: ``at``)."""
+    import spiceypy
+
+    from spinorbit.comparisons import earth_moon_de421, solar_system_de421
+    from spinorbit.constants import ARCSEC, DAY_S
+
     segments = {s.target: s for s in kernel.segments}
     heliocentric = {}
     for (name, code), truth in carried(solution, t).items():

@@ -116,8 +116,12 @@ def test_the_closed_earth_moon_read_back_by_spiceypy_and_skyfield_matches_the_so
         assert np.linalg.norm(read - truth, axis=1).max() < 1 * mm
     finally:
         spiceypy.kclear()
-    moon, earth = (next(s for s in SpiceKernel(bsp).segments if s.target == code) for code in (301, 399))
-    by_skyfield = (moon - earth).at(load.timescale().tdb_jd(2451545.0, t)).position.km.T   # both about 3
+    kernel = SpiceKernel(bsp)
+    try:
+        moon, earth = (next(s for s in kernel.segments if s.target == code) for code in (301, 399))
+        by_skyfield = (moon - earth).at(load.timescale().tdb_jd(2451545.0, t)).position.km.T   # both about 3
+    finally:
+        kernel.close()
     assert np.linalg.norm(by_skyfield - truth, axis=1).max() < 1 * mm
 
 
@@ -207,10 +211,13 @@ def test_the_solar_system_read_back_by_skyfield_matches_the_solution(solar_syste
     kernel = SpiceKernel(next(f for f in written["files"] if f.endswith(".bsp")))
     t = exact_dates(solution.span, 200, 10)
     at = load.timescale().tdb_jd(2451545.0, t)
-    for code, truth in carried(solution, t).items():
-        read = kernel[code].at(at).position.km.T
-        assert np.linalg.norm(read - truth, axis=1).max() < summing_floor(truth, solution.segments.degree), code
-    moon = (kernel["moon"] - kernel["earth"]).at(at).position.km.T
+    try:
+        for code, truth in carried(solution, t).items():
+            read = kernel[code].at(at).position.km.T
+            assert np.linalg.norm(read - truth, axis=1).max() < summing_floor(truth, solution.segments.degree), code
+        moon = (kernel["moon"] - kernel["earth"]).at(at).position.km.T
+    finally:
+        kernel.close()
     assert np.linalg.norm(moon - solution.part("moon.r", t), axis=1).max() < 1 * mm
 
 
