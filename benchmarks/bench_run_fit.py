@@ -2,8 +2,8 @@
 
     python benchmarks/bench_run_fit.py [--reps 2] [kind=span.end ...]
 
-Each kind's built-in scene (its own span unless given, e.g. ``solar_system=1971-01-01``) is run through
-``runner.run_scenario`` twice in turn in one process: fitted (its main run integrated once into a Solution,
+Each kind's built-in scene (or those named, to the span.end given; the solar system by default to 1971) is run
+through ``runner.run_scenario`` twice in turn in one process: fitted (its main run integrated once into a Solution,
 solutions.for_run) and not (integrated to the output times; solutions.not_fitted made to refuse), plots off,
 ``reps`` times; the CPU time of the whole run (process_time: both threads, the error estimate's too) is
 compared, warm (a first run of each compiles, not counted).  The ratio is what solutions.FIT_COST holds.
@@ -35,7 +35,7 @@ def main():
     parser.add_argument("--reps", type=int, default=2)
     parser.add_argument("ends", nargs="*", help="kind=span.end")
     args = parser.parse_args()
-    ends = {**KINDS, **dict(e.split("=", 1) for e in args.ends)}
+    ends = dict(e.split("=", 1) for e in args.ends) or KINDS
     print("| kind | span | CPU s to the outputs | CPU s fitted | ratio | fit / integration error: attitude ″ "
           "| position km |")
     print("|---|---|---|---|---|---|---|")

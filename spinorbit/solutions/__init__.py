@@ -23,12 +23,13 @@ MICROARCSEC = 1e-6                  # arcsec
 # the issue's 1 uas and 1 mm; a rate or any other slice relative to its size, 1 uas in radians.
 FIT_FLOORS = {"arcsec": MICROARCSEC, "km": 1e-6, "rel": MICROARCSEC * np.pi / 180 / 3600}
 REFINEMENTS = 2                     # halvings of the segments tried before a run is handed on discrete
-# What fitting its main run adds to a whole run of each kind (CPU time, the scene's own span;
+# What fitting its main run adds to a whole run of each kind (CPU time of run_scenario, the scene's own span;
 # benchmarks/bench_run_fit.py, benchmarks/RESULTS.md): rk8 between its steps costs DOP853's continuous
 # extension, four more right-hand sides in each step (+33 % of the integration), which the Earth's run hardly
-# feels and the Moon's and the coupled system's do; heyoka's Taylor series are dense output already.
-FIT_COST = {"moon_libration": 0.16, "earth_precession_nutation": 0.10, "earth_moon_coupled": 0.27,
-            "solar_system": 0.0}
+# feels and the Moon's and the coupled system's do; the solar system's Taylor run gives 13 times as many
+# outputs and fits a hundred components.
+FIT_COST = {"moon_libration": 0.46, "earth_precession_nutation": 0.04, "earth_moon_coupled": 0.39,
+            "solar_system": 0.11}
 MAX_FIT_COST = 0.10                 # fitted anyway where the run is the stored model: the store then pays
 
 
@@ -213,7 +214,7 @@ def not_fitted(scenario, system):
     cost, why_not_stored = FIT_COST.get(scenario.kind, np.inf), stored_model(scenario, system.t0)
     if cost <= MAX_FIT_COST or not why_not_stored:
         return ""
-    return (f"not fitted: fitting costs this kind about {cost:.0%} more run time (rk8's output between its steps), "
+    return (f"not fitted: fitting costs this kind about {cost:.0%} more run time (benchmarks/bench_run_fit.py), "
             f"paid where the run is the stored model, which it is not ({why_not_stored}); "
             "spinorbit.solutions.for_scenario(result.scenario) gives the stored one")
 
