@@ -211,38 +211,42 @@ DE421_BOUND = "2x what DE421's asteroids move it"
 
 def export():
     """Each kind exported over its scene's span: solve (store or run), write, read back at 1000 dates."""
+    for scene in EXPORTED:
+        with tempfile.TemporaryDirectory(prefix=f"export-{scene}-") as out:
+            exported(scene, Path(out))
+        sys.stdout.flush()
+
+
+def exported(scene, out):
     import spiceypy
 
     from spinorbit.scenarios import load_scenario
     from spinorbit.solutions import for_scenario
 
-    for scene in EXPORTED:
-        started = time.perf_counter()
-        solution = for_scenario(load_scenario(scene, []))
-        solve_s = time.perf_counter() - started
-        out = Path(tempfile.mkdtemp(prefix=f"export-{scene}-"))
-        started = time.perf_counter()
-        written = solution.export(out)
-        write_s = time.perf_counter() - started
-        sizes = ", ".join(f"{Path(f).name} {Path(f).stat().st_size / 1e6:.3g} MB" for f in written["files"])
-        lo, hi = (2000.0 + d / 365.25 for d in solution.span)
-        print(f"\n## {scene} {lo:.0f}-{hi:.0f} exported\n")
-        fit = {"attitude": f"{solution.fit_error['fit_error_attitude_arcsec'] * 1e6:.3g} uas"}
-        if "fit_error_position_km" in solution.fit_error:
-            fit["positions"] = f"{solution.fit_error['fit_error_position_km'] * 1e6:.3g} mm"
-        print(f"solve {solve_s:.1f} s (from the store, or integrated when it lacks the span); write {write_s:.2f} s;"
-              f" {sizes}; angles refit {written['fit_error']['moon_angles_arcsec']:.2g}\"; the solution's fit "
-              f"error: {', '.join(f'{k} {v}' for k, v in fit.items())}")
-        t = exact_dates(solution.span, 1000, 8)
-        for path in written["files"]:
-            spiceypy.furnsh(path)
-        try:
-            orientation_rows(solution, written, t)
-            if any(f.endswith(".bsp") for f in written["files"]):
-                position_rows(solution, written, t)
-        finally:
-            spiceypy.kclear()
-        sys.stdout.flush()
+    started = time.perf_counter()
+    solution = for_scenario(load_scenario(scene, []))
+    solve_s = time.perf_counter() - started
+    started = time.perf_counter()
+    written = solution.export(out)
+    write_s = time.perf_counter() - started
+    sizes = ", ".join(f"{Path(f).name} {Path(f).stat().st_size / 1e6:.3g} MB" for f in written["files"])
+    lo, hi = (2000.0 + d / 365.25 for d in solution.span)
+    print(f"\n## {scene} {lo:.0f}-{hi:.0f} exported\n")
+    fit = {"attitude": f"{solution.fit_error['fit_error_attitude_arcsec'] * 1e6:.3g} uas"}
+    if "fit_error_position_km" in solution.fit_error:
+        fit["positions"] = f"{solution.fit_error['fit_error_position_km'] * 1e6:.3g} mm"
+    print(f"solve {solve_s:.1f} s (from the store, or integrated when it lacks the span); write {write_s:.2f} s;"
+          f" {sizes}; angles refit {written['fit_error']['moon_angles_arcsec']:.2g}\"; the solution's fit "
+          f"error: {', '.join(f'{k} {v}' for k, v in fit.items())}")
+    t = exact_dates(solution.span, 1000, 8)
+    for path in written["files"]:
+        spiceypy.furnsh(path)
+    try:
+        orientation_rows(solution, written, t)
+        if any(f.endswith(".bsp") for f in written["files"]):
+            position_rows(solution, written, t)
+    finally:
+        spiceypy.kclear()
 
 
 def exact_dates(span, count, seed):
