@@ -294,10 +294,15 @@ def _export(args):
     """Solve the scenario's model over its span (from the solution store) and write its SPICE kernels."""
     import time
 
+    from .errors import InputError
     from .scenarios import load_scenario
-    from .solutions import for_scenario
+    from .solutions import for_scenario, models
 
-    solution = for_scenario(load_scenario(args.scenario, args.overrides))
+    scenario = load_scenario(args.scenario, args.overrides)
+    exported = sorted(name for name, kind in models.KINDS.items() if kind.kernels)
+    if scenario.kind not in exported:        # refused before anything is integrated
+        raise InputError("scene", scenario.kind, f"a scene whose solution SPICE kernels carry: {exported}")
+    solution = for_scenario(scenario)
     started = time.perf_counter()
     written = solution.export(args.out)
     wall = time.perf_counter() - started

@@ -292,6 +292,17 @@ def test_spinorbit_export_writes_the_solar_systems_kernels_from_its_store(solar_
     assert "solar_system solution" not in capsys.readouterr().err              # read from the store: no run
 
 
+def test_spinorbit_export_refuses_a_scene_without_kernels_before_integrating(tmp_path, capsys, monkeypatch):
+    from spinorbit import cli
+    from spinorbit import solutions as package
+
+    monkeypatch.setattr(package, "for_scenario", lambda *a, **k: pytest.fail("integrated before refusing"))
+    assert cli.main(["export", "earth_precession_nutation", "--out", str(tmp_path / "k")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "earth_precession_nutation" in err and "moon_libration" in err
+    assert not (tmp_path / "k").exists()
+
+
 def test_a_solution_with_nothing_spice_holds_is_refused_in_one_line(tmp_path):
     from spinorbit.errors import InputError
     from spinorbit.layout import Layout

@@ -18,12 +18,14 @@ DE421_EPOCH_ISO = "1969-06-28T00:00:00"      # DE421's JDEPOC, 2440400.5 TDB: wh
 
 @dataclass(frozen=True)
 class Kind:
-    """A scene kind kept as a solution: its grid, and the ISO TDB epoch its first run starts from (None: the
-    scene's own span.start)."""
+    """A scene kind kept as a solution: its grid, the ISO TDB epoch its first run starts from (None: the
+    scene's own span.start), and whether its solution holds what SPICE kernels carry (an attitude or
+    integrated positions: ``spinorbit export``)."""
 
     name: str
     grid: Grid
     anchor: str | None
+    kernels: bool = True
 
     def grid_bounds(self, lo, hi):
         """[lo, hi] rounded out to the grid's segment ends."""
@@ -33,7 +35,7 @@ class Kind:
 
 
 KINDS = {"moon_libration": Kind("moon_libration", Grid(0.0, 4.0, 13), J2000_ISO),
-         "earth_precession_nutation": Kind("earth_precession_nutation", Grid(0.0, 8.0, 14), None),
+         "earth_precession_nutation": Kind("earth_precession_nutation", Grid(0.0, 8.0, 14), None, kernels=False),
          "earth_moon_coupled": Kind("earth_moon_coupled", Grid(0.0, 4.0, 13), J2000_ISO),
          "solar_system": Kind("solar_system", Grid(0.0, 4.0, 13), DE421_EPOCH_ISO)}
 
