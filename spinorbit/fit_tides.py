@@ -1,12 +1,13 @@
-"""The global ocean's two parameters fitted to today's recession and the Moon's age, and nothing else:
+"""An ocean's two parameters fitted to today's recession and the Moon's age, and nothing else:
 
-    python -m spinorbit.fit_tides            # prints the fit
-    python -m spinorbit.fit_tides --write    # and stores it in spinorbit/models/tidal_history/global_ocean_fit.json
+    python -m spinorbit.fit_tides            # prints the fit of the ocean with its continent (the default)
+    python -m spinorbit.fit_tides --write    # and stores it in spinorbit/models/tidal_history/ocean_fit.json
+    python -m spinorbit.fit_tides --model global_ocean --write      # the global ocean: global_ocean_fit.json
 
 At each depth the drag is the one whose recession today is LLR's 3.830 cm/yr (Williams & Boggs 2016;
 calibration.ocean_drag); the depth is bisected until the history (scenarios/earth_moon_history.toml with
-tides.model = "global_ocean") reaches the Roche limit at the Moon's age, 4.425 Ga (Maurice et al. 2020),
-within AGE_TOLERANCE_GYR.  The geological proxies are never used.
+that tides.model, the continent's keys at their defaults) reaches the Roche limit at the Moon's age,
+4.425 Ga (Maurice et al. 2020), within AGE_TOLERANCE_GYR.  The geological proxies are never used.
 """
 import argparse
 import datetime
@@ -18,16 +19,18 @@ SCENE = Path(__file__).with_name("builtin_scenarios") / "earth_moon_history.toml
 MOON_AGE_GYR = 4.425
 RECESSION_CM_PER_YR = 3.830
 AGE_TOLERANCE_GYR = 0.001
-BRACKET_KM = (4.0, 6.0)
-COMMAND = "python -m spinorbit.fit_tides --write"
+BRACKETS_KM = {"ocean": (8.6, 8.75), "global_ocean": (4.0, 6.0)}
+DEPTH_KEYS = {"ocean": "tides.ocean_depth", "global_ocean": "tides.global_ocean_depth"}
+COMMANDS = {"ocean": "python -m spinorbit.fit_tides --write",
+            "global_ocean": "python -m spinorbit.fit_tides --model global_ocean --write"}
 
 
-def moon_age_gyr(depth_km):
-    """(the age at which the global ocean's history of this depth reaches the Roche limit, Gyr; inf if it
-    does not within 4.6 Gyr, the drag (rad/day))."""
+def moon_age_gyr(depth_km, model="ocean"):
+    """(the age at which the ocean's history of this depth reaches the Roche limit, Gyr; inf if it does not
+    within 4.6 Gyr, the drag (rad/day))."""
     from .runner import run_scenario
 
-    summary = run_scenario(SCENE, ['tides.model="global_ocean"', f'tides.ocean_depth="{depth_km!r} km"',
+    summary = run_scenario(SCENE, [f'tides.model="{model}"', f'{DEPTH_KEYS[model]}="{depth_km!r} km"',
                                    "compare.models=false", "integrator.estimate_error=false",
                                    'span.end="-4.6 Gyr"', f'tides.recession_rate="{RECESSION_CM_PER_YR} cm/yr"'
                                    ]).summary
@@ -35,36 +38,39 @@ def moon_age_gyr(depth_km):
     return (math.inf if age is None else age), summary["model"]["ocean_drag_per_day"]
 
 
-def fit(bracket=BRACKET_KM, log=print):
-    """{depth_km, drag_per_day, moon_age_gyr, ...}: the depth bisected inside ``bracket`` (km), where the age
-    grows with the depth (a deeper ocean's resonances lie further back)."""
-    low, high = bracket
-    age_low, _ = moon_age_gyr(low)
-    age_high, _ = moon_age_gyr(high)
-    if not age_low < MOON_AGE_GYR < age_high:
-        raise RuntimeError(f"the bracket {bracket} km does not straddle the Moon's age: ages {age_low}, {age_high}")
+def fit(model="ocean", bracket=None, log=print):
+    """{depth_km, drag_per_day, moon_age_gyr, ...}: the depth bisected inside ``bracket`` (km), whose ends'
+    ages lie on either side of the Moon's (inf: the Moon never reaches the Roche limit within 4.6 Gyr)."""
+    low, high = bracket or BRACKETS_KM[model]
+    age_low, _ = moon_age_gyr(low, model)
+    age_high, _ = moon_age_gyr(high, model)
+    if (age_low - MOON_AGE_GYR) * (age_high - MOON_AGE_GYR) >= 0.0:
+        raise RuntimeError(f"the bracket {(low, high)} km does not straddle the Moon's age: ages {age_low}, {age_high}")
     while True:
         middle = 0.5 * (low + high)
-        age, drag = moon_age_gyr(middle)
+        age, drag = moon_age_gyr(middle, model)
         log(f"depth {middle:.6f} km, drag {drag:.6g}/d: the Moon at the Roche limit {age:.4f} Gyr ago")
         if abs(age - MOON_AGE_GYR) <= AGE_TOLERANCE_GYR or high - low < 1e-9:
-            return {"depth_km": middle, "drag_per_day": drag, "drag_per_s": drag / 86400.0,
+            return {"model": model, "depth_km": middle, "drag_per_day": drag, "drag_per_s": drag / 86400.0,
                     "moon_age_gyr": age, "recession_rate_cm_per_yr": RECESSION_CM_PER_YR,
                     "targets": {"recession_rate_cm_per_yr": "3.830 +- 0.008 (LLR, Williams & Boggs 2016)",
                                 "moon_age_gyr": "4.425 +- 0.025 (Maurice et al. 2020)"},
-                    "command": COMMAND, "date": datetime.date.today().isoformat()}
-        low, high = (middle, high) if age < MOON_AGE_GYR else (low, middle)
+                    "command": COMMANDS[model], "date": datetime.date.today().isoformat()}
+        low, high = (middle, high) if (age < MOON_AGE_GYR) == (age_low < MOON_AGE_GYR) else (low, middle)
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--write", action="store_true", help="store the fit in the package")
-    result = fit()
+    parser.add_argument("--model", choices=tuple(DEPTH_KEYS), default="ocean", help="the ocean to fit")
+    args = parser.parse_args(argv)
+    result = fit(args.model)
     print(json.dumps(result, indent=2))
-    if parser.parse_args(argv).write:
-        from .models.tidal_history.calibration import OCEAN_FIT
+    if args.write:
+        from .models.tidal_history.calibration import GLOBAL_OCEAN_FIT, OCEAN_FIT
 
-        OCEAN_FIT.write_text(json.dumps(result, indent=2) + "\n")
+        path = OCEAN_FIT if args.model == "ocean" else GLOBAL_OCEAN_FIT
+        path.write_text(json.dumps(result, indent=2) + "\n")
 
 
 if __name__ == "__main__":

@@ -41,7 +41,7 @@ def description(history):
     from ..starts.earth_moon_history import LOVE_K2
 
     strength = float(history.response[response.STRENGTH])
-    if history.response[response.MODEL] == response.GLOBAL_OCEAN:
+    if history.response[response.MODEL] in (response.GLOBAL_OCEAN, response.OCEAN_WITH_CONTINENT):
         drag = float(history.response[response.DRAG])
         return {"ocean_depth_km": float(history.response[response.DEPTH]), "ocean_drag_per_day": drag,
                 "ocean_drag_per_s": drag / 86400.0, "solid_k2_over_q": strength}

@@ -55,22 +55,27 @@ def today(c):
 
 def tide(p, c, y0, model):
     """The tidal response of ``model`` calibrated to tides.recession_rate (cm/yr): the one parameter of the
-    simple tides, the global ocean's drag at tides.ocean_depth (its depth fitted with the Moon's age by
-    ``python -m spinorbit.fit_tides``)."""
+    simple tides, an ocean's drag at its depth (tides.ocean_depth for the ocean with its continent,
+    tides.global_ocean_depth for the global one; each depth fitted with the Moon's age by ``python -m
+    spinorbit.fit_tides``)."""
     from ..errors import ScenarioError
-    from ..models.tidal_history import calibration, equations, ocean, response
+    from ..models.tidal_history import calibration, cap_ocean, equations, ocean, response
 
     rate = p["tides.recession_rate"]
-    if model != "global_ocean":
+    if model not in ("global_ocean", "ocean"):
         return calibration.calibrated(c, response.MODELS[model], y0, rate)
     radius = c[equations.RADIUS]
     water = ocean.constants(c[equations.GM_EARTH] / radius**2, radius)
-    depth = p["tides.ocean_depth"]
-    drag = calibration.ocean_drag(c, y0, depth, rate, LOVE_K2 / SOLID_Q, water)
+    key = "tides.ocean_depth" if model == "ocean" else "tides.global_ocean_depth"
+    if model == "ocean":
+        water = cap_ocean.constants(water, p["tides.continent_radius"], p["tides.continent_colatitude"],
+                                    p["tides.continent_until"] * GYR_D, p["tides.global_ocean_from"] * GYR_D)
+    depth = p[key]
+    drag = calibration.ocean_drag(c, y0, depth, rate, LOVE_K2 / SOLID_Q, water, model)
     if drag is None:
-        raise ScenarioError("tides.ocean_depth", depth, f"a depth at which some drag gives the recession "
-                            f"tides.recession_rate = {rate} cm/yr (e.g. 4 to 8 km)")
-    return response.responses("global_ocean", LOVE_K2 / SOLID_Q, depth=depth, drag=drag, ocean=water)
+        raise ScenarioError(key, depth, f"a depth at which some drag gives the recession "
+                            f"tides.recession_rate = {rate} cm/yr (e.g. 3 to 8 km)")
+    return response.responses(model, LOVE_K2 / SOLID_Q, depth=depth, drag=drag, ocean=water)
 
 
 def run(p, model, t, integrate, part=None):
@@ -131,4 +136,5 @@ def _stop(system, t_last, y_last, t_next, c, refine, levels=2):
         at_limit = np.array(states[-1])
         at_limit[0] = c[equations.STOP_A]
         return float(times[-1]), equations.stop(at_limit, c)
-    return float(times[-1]), f"the integration could not go on (a = {a:.6g} km)"
+    e = math.sqrt(max(states[-1][1], 0.0))
+    return float(times[-1]), f"the integration could not go on (a = {a:.6g} km, e = {e:.3g})"

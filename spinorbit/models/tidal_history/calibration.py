@@ -11,12 +11,14 @@ from .equations import GM_EARTH, GM_MOON, GM_SUN, INERTIA, RADIUS, SUN_A, rhs
 from .response import STRENGTH, responses
 
 CM_PER_KM = 1e5
-OCEAN_FIT = Path(__file__).with_name("global_ocean_fit.json")
+OCEAN_FIT = Path(__file__).with_name("ocean_fit.json")
+GLOBAL_OCEAN_FIT = Path(__file__).with_name("global_ocean_fit.json")
 
 
-def ocean_fit():
-    """The global ocean's fitted depth and drag, with the command that fitted them (global_ocean_fit.json)."""
-    return json.loads(OCEAN_FIT.read_text())
+def ocean_fit(path=OCEAN_FIT):
+    """An ocean's fitted depth and drag, with the command that fitted them (ocean_fit.json: the ocean with
+    its continent; global_ocean_fit.json: the global ocean)."""
+    return json.loads(Path(path).read_text())
 
 
 def solar_day_h(rotation_rad_d, c):
@@ -55,22 +57,27 @@ def time_lag_s(response, k2):
     return response[STRENGTH] / k2 * DAY_S
 
 
-def ocean_drag(c, y0, depth_km, recession_cm_per_yr, solid_k2_over_q, water):
-    """The drag frequency (rad/day) of a global ocean of ``depth_km`` whose recession today is the one given,
-    on the rising side of the rate's dependence on the drag (the weaker drag of the two that give it); None
-    when no drag gives it.  ``water``: ocean.constants(...)."""
+def ocean_drag(c, y0, depth_km, recession_cm_per_yr, solid_k2_over_q, water, model="global_ocean"):
+    """The drag frequency (rad/day) of an ocean of ``depth_km`` whose recession today is the one given: on
+    the rising side of the rate's dependence on the drag (the weaker drag of the two that give it) when the
+    weakest drag tried (1e-3/day) gives less, else on the falling side (near a resonance); None when no drag
+    gives it.  ``water``: ocean.constants(...) for "global_ocean", cap_ocean.constants(...) for "ocean"."""
     from scipy.optimize import brentq
 
-    from .response import responses
-
     def rate(drag):
-        response = responses("global_ocean", solid_k2_over_q, depth=depth_km, drag=drag, ocean=water)
+        response = responses(model, solid_k2_over_q, depth=depth_km, drag=drag, ocean=water)
         return today_rates(c, response, y0)["recession_rate_cm_per_yr"] - recession_cm_per_yr
 
     drags = np.geomspace(1e-3, 30.0, 60)
     rates = np.array([rate(d) for d in drags])
     top = int(np.argmax(rates))
-    above = np.flatnonzero(rates[:top + 1] >= 0.0)
-    if above.size == 0 or above[0] == 0:
+    if rates[top] < 0.0:
         return None
-    return brentq(rate, drags[above[0] - 1], drags[above[0]], xtol=1e-14, rtol=1e-13)
+    above = np.flatnonzero(rates[:top + 1] >= 0.0)
+    if above[0] > 0:
+        return brentq(rate, drags[above[0] - 1], drags[above[0]], xtol=1e-14, rtol=1e-13)
+    below = np.flatnonzero(rates[top:] < 0.0)
+    if below.size == 0:
+        return None
+    k = top + below[0]
+    return brentq(rate, drags[k - 1], drags[k], xtol=1e-14, rtol=1e-13)

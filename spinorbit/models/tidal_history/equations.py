@@ -21,8 +21,8 @@ Limits (departures from Touma & Wisdom 1994 and Farhat et al. 2022, A&A 665, L1)
 ecliptic (the node regresses about z), true beyond ~15-20 Earth radii today's and closer in the past; the
 planetary orbits and the ecliptic are fixed (today's); C = c M R^2 is today's (the rotational flattening's
 ~1% is left out of the spin's inertia); the Moon's own tide (it damps e and i) is left out; the tidal
-expansion is to O(e^2) (Kaula's G_{2pq}).  A state outside the model (the Moon inside the Roche limit, e^2
-outside [0, 1), |cos| > 1, no spin) stops the motion: the rhs is zero there and ``stop`` says why.
+expansion is to O(e^2) (Kaula's G_{2pq}).  A state outside the model (the Moon inside the Roche limit, e
+outside [0, 0.3), |cos| > 1, no spin) stops the motion: the rhs is zero there and ``stop`` says why.
 """
 import math
 
@@ -38,6 +38,10 @@ NODES = 16
 # the Sun's orbit (semi-major axis km, e^2), where the motion stops (km).
 GM_EARTH, GM_MOON, GM_SUN, RADIUS, INERTIA, SUN_A, SUN_E2, STOP_A = range(8)
 CONSTANTS = 8
+# e^2 may dip below zero by the integration's error where it decays toward 0 (de^2/dt is proportional to e^2,
+# so the rates continue linearly through 0 and e^2 = 0 stays a fixed point); beyond this it is unphysical.
+E2_FLOOR = -1e-6
+E2_MAX = 0.09          # e = 0.3: the O(e^2) expansion's e^4 terms (Hut's coefficients up to ~180) would exceed it
 
 LAYOUT = Layout([("moon.semi_major_axis", 1, "vector", "km"),
                  ("moon.eccentricity_squared", 1, "vector", ""),
@@ -58,7 +62,7 @@ def orbit_momentum(a, e2, c):
 def inside(y, c):
     """Is the state one the equations describe?"""
     a, e2, spin, x, z_orbit = y[0], y[1], y[2], y[3], y[4]
-    if not (a > c[STOP_A] and 0.0 <= e2 < 1.0 and spin > 0.0):
+    if not (a > c[STOP_A] and E2_FLOOR <= e2 < E2_MAX and spin > 0.0):
         return False
     return abs(x) <= c[INERTIA] * c[RADIUS] ** 2 * spin and abs(z_orbit) <= orbit_momentum(a, e2, c)
 
@@ -78,7 +82,7 @@ def rhs(t, y, p):
     cos_i, cos_eps = y[4] / h_orbit, y[3] / h_spin
     sin_i, sin_eps = math.sqrt(max(0.0, 1.0 - cos_i * cos_i)), math.sqrt(max(0.0, 1.0 - cos_eps * cos_eps))
     axial, normal, power, along_z = 0.0, 0.0, 0.0, 0.0
-    lunar_lags = lags(spin, n, response)
+    lunar_lags = lags(spin, n, response, t)
     for j in range(NODES):
         cos_mutual = cos_eps * cos_i + sin_eps * sin_i * math.cos(2.0 * math.pi * (j + 0.5) / NODES)
         ax, no, po = exchange(n, e2, cos_mutual, lunar_lags)
@@ -89,7 +93,7 @@ def rhs(t, y, p):
         along_z += alpha * cos_eps + beta * cos_i
     lunar = strength(c[GM_MOON], c[GM_EARTH], c[RADIUS], a) / NODES
     n_sun = math.sqrt((c[GM_SUN] + mu) / c[SUN_A] ** 3)
-    ax_sun, no_sun, _ = exchange(n_sun, c[SUN_E2], cos_eps, lags(spin, n_sun, response))
+    ax_sun, no_sun, _ = exchange(n_sun, c[SUN_E2], cos_eps, lags(spin, n_sun, response, t))
     alpha, beta = torque_on_spin(ax_sun, no_sun, cos_eps)
     solar = strength(c[GM_SUN], c[GM_EARTH], c[RADIUS], c[SUN_A])
     solar_z = solar * (alpha * cos_eps + beta)
@@ -142,8 +146,8 @@ def stop(y, c):
     a, e2, spin = y[0], y[1], y[2]
     if not a > c[STOP_A]:
         return f"the Moon reached {c[STOP_A] / c[RADIUS]:.2f} Earth radii (the Roche limit)"
-    if not 0.0 <= e2 < 1.0:
-        return f"the eccentricity left [0, 1) (e^2 = {e2:.3g})"
+    if not E2_FLOOR <= e2 < E2_MAX:
+        return f"the eccentricity left [0, 0.3), where the O(e^2) tides hold (e^2 = {e2:.3g})"
     if not spin > 0.0:
         return "the Earth's rotation stopped"
     if not inside(np.asarray(y, dtype=float), c):

@@ -6,7 +6,9 @@ odd in sigma, of the degree-2 Love number, for each tidal model.
 * constant Q (Goldreich 1966, Rev. Geophys. 4, 411; MacDonald 1964): a phase lag independent of the
   frequency, K = (k2/Q) sign(sigma);
 * a global ocean (``ocean.love_number``: a thin ocean of uniform depth under the Laplace tidal equations with
-  linear drag, on the rotating Earth) plus the solid Earth's constant lag (k2/Q_solid sign(sigma)).
+  linear drag, on the rotating Earth) plus the solid Earth's constant lag (k2/Q_solid sign(sigma));
+* the ocean with its continent (``cap_ocean.love_number_imag``: the ocean outside a spherical cap whose size
+  follows the age, ``cap_ocean.cap_radius``, without the Coriolis force) plus the same solid Earth.
 
 sigma in rad/day, for the term e^{i(m phi + sigma t)} in the Earth (m > 0, sigma > 0: a westward wave); the
 models' constants in one array: ``MODEL``, ``STRENGTH`` (k2 dt in days for the time lag, k2/Q for constant Q,
@@ -19,16 +21,20 @@ import math
 import numpy as np
 from numba import njit
 
+from .cap_ocean import cap_radius, love_number_imag
+from .ocean import SIZE as OCEAN_SIZE
 from .ocean import love_number
 
-CONSTANT_TIME_LAG, CONSTANT_Q, GLOBAL_OCEAN = 0, 1, 2
-MODELS = {"constant_time_lag": CONSTANT_TIME_LAG, "constant_q": CONSTANT_Q, "global_ocean": GLOBAL_OCEAN}
+CONSTANT_TIME_LAG, CONSTANT_Q, GLOBAL_OCEAN, OCEAN_WITH_CONTINENT = 0, 1, 2, 3
+MODELS = {"constant_time_lag": CONSTANT_TIME_LAG, "constant_q": CONSTANT_Q, "global_ocean": GLOBAL_OCEAN,
+          "ocean": OCEAN_WITH_CONTINENT}
 # Indices into the response's constants.
 MODEL, STRENGTH, BAND, DEPTH, DRAG, OCEAN = 0, 1, 2, 5, 6, 7     # BAND + |m|: the band's factor
 
 
 def responses(model, strength, bands=(1.0, 1.0, 1.0), depth=0.0, drag=0.0, ocean=None):
-    """The constants array of a model (a MODELS name or code); ``ocean``: ocean.constants(...)."""
+    """The constants array of a model (a MODELS name or code); ``ocean``: ocean.constants(...) (the global
+    ocean) or cap_ocean.constants(...) (the ocean with its continent)."""
     extra = np.zeros(0) if ocean is None else np.asarray(ocean, dtype=float)
     out = np.zeros(OCEAN + extra.size)
     out[MODEL] = MODELS.get(model, model)
@@ -40,9 +46,10 @@ def responses(model, strength, bands=(1.0, 1.0, 1.0), depth=0.0, drag=0.0, ocean
 
 
 @njit(cache=True, nogil=True)
-def dissipation(sigma, m, spin, response):
+def dissipation(sigma, m, spin, response, t):
     """K(sigma) of the term of order m: the lagging part of the Love number, with the sign of sigma (the bulge
-    lags the forcing); ``spin`` the Earth's rotation rate (rad/day), which the ocean's response depends on."""
+    lags the forcing); ``spin`` the Earth's rotation rate (rad/day), which the global ocean's response depends
+    on, t (days) the time, which sets the continent's size."""
     scale = response[STRENGTH] * response[BAND + abs(m)]
     if response[MODEL] == CONSTANT_TIME_LAG:
         return scale * sigma
@@ -51,5 +58,8 @@ def dissipation(sigma, m, spin, response):
     solid = math.copysign(scale, sigma)
     if response[MODEL] == CONSTANT_Q:
         return solid
+    if response[MODEL] == OCEAN_WITH_CONTINENT:
+        cap = cap_radius(t, response[OCEAN + OCEAN_SIZE:])
+        return solid + love_number_imag(m, sigma, response[DRAG], response[DEPTH], cap, response[OCEAN:])
     _, lag = love_number(-m, sigma, spin, response[DEPTH], response[DRAG], response[OCEAN:])
     return solid + lag

@@ -56,13 +56,13 @@ def wigner_squared(m, k, c):
 
 
 @njit(cache=True, nogil=True)
-def lags(spin, n, response):
-    """K(m spin - q n) for m = -2..2 (rows m + 2) and q = -3..3 (columns q + 3): each term's lag, computed
-    once for every orientation the rates are averaged over."""
+def lags(spin, n, response, t):
+    """K(m spin - q n) for m = -2..2 (rows m + 2) and q = -3..3 (columns q + 3) at the time t (days): each
+    term's lag, computed once for every orientation the rates are averaged over."""
     out = np.zeros((5, 7))
     for m in range(-2, 3):
         for q in range(-3, 4):
-            out[m + 2, q + 3] = dissipation(m * spin - q * n, m, spin, response)
+            out[m + 2, q + 3] = dissipation(m * spin - q * n, m, spin, response, t)
     return out
 
 
