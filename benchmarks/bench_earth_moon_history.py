@@ -3,7 +3,7 @@
     python benchmarks/bench_earth_moon_history.py numbers   # per model: today's rates, the Moon's age, the
                                                             # angular momentum, every proxy's residual
     python benchmarks/bench_earth_moon_history.py cost      # the scene end to end: first (empty numba and
-                                                            # kernel caches) and warm, the three models
+                                                            # kernel caches) and warm, the four models
 
 Each prints Markdown for benchmarks/results_earth_moon_history.md.
 """
@@ -26,10 +26,10 @@ def numbers():
     from spinorbit.references.lunar_proxies import PROXIES
 
     print("| tidal model | fitted parameter | recession today cm/yr | LOD rate today ms/cy | de/dt today /Gyr "
-          "| Moon's age (Roche limit) Gyr | max abs(dL/L) over the history | obliquity rate today mas/cy "
+          "| Moon's age (where it stops) Gyr | max abs(dL/L) over the history | obliquity rate today mas/cy "
           "| integration error (a, rel) |\n|---|---|---|---|---|---|---|---|---|")
     residuals = {}
-    for model in ("global_ocean", "constant_time_lag", "constant_q"):
+    for model in ("ocean", "global_ocean", "constant_time_lag", "constant_q"):
         summary = run_scenario(str(SCENE), [f'tides.model="{model}"', "compare.models=false"]).summary
         c, m, run = summary["comparison"], summary["model"], summary["run"]
         if "ocean_depth_km" in m:
@@ -44,6 +44,7 @@ def numbers():
               f"{c['moon_age_gyr']:.4f} | {c['angular_momentum_relative_error_max']:.2g} | "
               f"{c['obliquity_rate_today_mas_per_cy']:.2f} | "
               f"{run['integration_error_moon_semi_major_axis_rel']:.2g} |")
+        print(f"|  | stop: {summary['stop']['reason']} |" + " |" * 7)
         residuals[model] = c
     print("\n| proxy | age Gyr | value | " + " | ".join(f"{m} residual (sigma)" for m in residuals)
           + " |\n|---|---|---|" + "---|" * len(residuals))
