@@ -3,6 +3,7 @@
     python -m spinorbit.fit_tides            # prints the fit of the ocean with its continent (the default)
     python -m spinorbit.fit_tides --write    # and stores it in spinorbit/models/tidal_history/ocean_fit.json
     python -m spinorbit.fit_tides --model global_ocean --write      # the global ocean: global_ocean_fit.json
+    python -m spinorbit.fit_tides --set 'tides.continent_colatitude="0 deg"' --bracket 3 9   # other keys: printed
 
 At each depth the drag is the one whose recession today is LLR's 3.830 cm/yr (Williams & Boggs 2016;
 calibration.ocean_drag); the depth is bisected until the history (scenarios/earth_moon_history.toml with
@@ -25,12 +26,13 @@ COMMANDS = {"ocean": "python -m spinorbit.fit_tides --write",
             "global_ocean": "python -m spinorbit.fit_tides --model global_ocean --write"}
 
 
-def moon_age_gyr(depth_km, model="ocean"):
-    """(the age at which the ocean's history of this depth reaches the Roche limit, Gyr; inf if it does not
-    within 4.6 Gyr, the drag (rad/day))."""
+def moon_age_gyr(depth_km, model="ocean", overrides=()):
+    """(the age at which the ocean's history of this depth stops (the Roche limit, or the eccentricity at the
+    O(e^2) tides' limit), Gyr; inf if it does not within 4.6 Gyr, the drag (rad/day)); ``overrides``: the
+    scene's other keys ("key=value")."""
     from .runner import run_scenario
 
-    summary = run_scenario(SCENE, [f'tides.model="{model}"', f'{DEPTH_KEYS[model]}="{depth_km!r} km"',
+    summary = run_scenario(SCENE, [*overrides, f'tides.model="{model}"', f'{DEPTH_KEYS[model]}="{depth_km!r} km"',
                                    "compare.models=false", "integrator.estimate_error=false",
                                    'span.end="-4.6 Gyr"', f'tides.recession_rate="{RECESSION_CM_PER_YR} cm/yr"'
                                    ]).summary
@@ -38,24 +40,25 @@ def moon_age_gyr(depth_km, model="ocean"):
     return (math.inf if age is None else age), summary["model"]["ocean_drag_per_day"]
 
 
-def fit(model="ocean", bracket=None, log=print):
+def fit(model="ocean", bracket=None, log=print, overrides=()):
     """{depth_km, drag_per_day, moon_age_gyr, ...}: the depth bisected inside ``bracket`` (km), whose ends'
     ages lie on either side of the Moon's (inf: the Moon never reaches the Roche limit within 4.6 Gyr)."""
     low, high = bracket or BRACKETS_KM[model]
-    age_low, _ = moon_age_gyr(low, model)
-    age_high, _ = moon_age_gyr(high, model)
+    age_low, _ = moon_age_gyr(low, model, overrides)
+    age_high, _ = moon_age_gyr(high, model, overrides)
     if (age_low - MOON_AGE_GYR) * (age_high - MOON_AGE_GYR) >= 0.0:
         raise RuntimeError(f"the bracket {(low, high)} km does not straddle the Moon's age: ages {age_low}, {age_high}")
     while True:
         middle = 0.5 * (low + high)
-        age, drag = moon_age_gyr(middle, model)
-        log(f"depth {middle:.6f} km, drag {drag:.6g}/d: the Moon at the Roche limit {age:.4f} Gyr ago")
+        age, drag = moon_age_gyr(middle, model, overrides)
+        log(f"depth {middle:.6f} km, drag {drag:.6g}/d: the history stops {age:.4f} Gyr ago")
         if abs(age - MOON_AGE_GYR) <= AGE_TOLERANCE_GYR or high - low < 1e-9:
             return {"model": model, "depth_km": middle, "drag_per_day": drag, "drag_per_s": drag / 86400.0,
                     "moon_age_gyr": age, "recession_rate_cm_per_yr": RECESSION_CM_PER_YR,
                     "targets": {"recession_rate_cm_per_yr": "3.830 +- 0.008 (LLR, Williams & Boggs 2016)",
                                 "moon_age_gyr": "4.425 +- 0.025 (Maurice et al. 2020)"},
-                    "command": COMMANDS[model], "date": datetime.date.today().isoformat()}
+                    "overrides": list(overrides), "command": COMMANDS[model],
+                    "date": datetime.date.today().isoformat()}
         low, high = (middle, high) if (age < MOON_AGE_GYR) == (age_low < MOON_AGE_GYR) else (low, middle)
 
 
@@ -63,8 +66,14 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--write", action="store_true", help="store the fit in the package")
     parser.add_argument("--model", choices=tuple(DEPTH_KEYS), default="ocean", help="the ocean to fit")
+    parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                        help="another value of one of the scene's keys (e.g. the continent's); not with --write")
+    parser.add_argument("--bracket", nargs=2, type=float, metavar=("LOW_KM", "HIGH_KM"),
+                        help="the depths whose ages straddle the Moon's (default: the default scene's)")
     args = parser.parse_args(argv)
-    result = fit(args.model)
+    if args.write and args.set:
+        parser.error("--write stores the default scene's fit; with --set the fit is printed only")
+    result = fit(args.model, args.bracket, overrides=tuple(args.set))
     print(json.dumps(result, indent=2))
     if args.write:
         from .models.tidal_history.calibration import GLOBAL_OCEAN_FIT, OCEAN_FIT
