@@ -1,6 +1,6 @@
 """Answers from stored solutions (spinorbit.solutions) against runs, side by side in one run.
 
-    python benchmarks/bench_solutions.py [latency|agreement|extension|export|grid|readme|all]
+    python benchmarks/bench_solutions.py [latency|agreement|extension|fit_points|export|grid|readme|all]
 
 * latency: a process asks for 100 dates spread over 2021-2041, its ends included (the store then holds the
   span); a new process asks ``earth_pole`` and ``moon_librations`` for 10^4 other dates there: the call's wall
@@ -12,6 +12,8 @@
   J2000, the non-rigid Earth 1950-2050): the largest difference, uas;
 * extension: a stored Moon 2000-2050 extended to 2100, beside integrating 2050-2100 (simulate() of the same
   System to the scene's 2-d outputs, with its error estimate) and a scene run of 2050-2100;
+* fit_points: the Moon's series (2000-2002) against the integrator at the second-kind points of each segment
+  (what the stated fit error measures), at the extrema of T_(n+1) and at 101 points per segment;
 * export: each kind with SPICE kernels over its scene's span (``spinorbit export SCENE``: the Moon 1900-2050 as a
   binary PCK; the coupled Earth-Moon and the solar system 1950-2050 as an SPK and the Moon's PCK): solve and
   write times, sizes; read back by spiceypy and skyfield at 1000 dates against the solution (uas, mm) and
@@ -207,6 +209,43 @@ def extension():
 
 EXPORTED = ("moon_libration", "earth_moon_coupled", "solar_system")    # each scene's own span (1900/1950-2050)
 DE421_BOUND = "2x what DE421's asteroids move it"
+
+
+def fit_points():
+    """The Moon's series (2000-2002, fitted as the store fits it) against the integrator at three sets of points
+    per segment: the second kind (the stated fit error), the extrema of T_(n+1) (the segment's midpoint, an rk8
+    step point, among them) and 101 evenly spaced; the integrator run once to all of them."""
+    from spinorbit import solutions
+    from spinorbit.integrators import simulate
+    from spinorbit.solutions import fit, models
+    from spinorbit.solutions.chebyshev import second_kind
+
+    scenario = solutions.scenario_of("moon_libration", [])
+    t0, y0 = models.first_start(scenario)
+    kind = models.KINDS["moon_libration"]
+    grid = kind.grid
+    lo, hi = kind.grid_bounds(t0, t0 + 730.0)
+    stretch = models.stretch(scenario, lo, hi, t0)
+    system = models.system(stretch, (t0, y0))
+    method, options = stretch["integrator.method"], stretch.integrator_options()
+    piece = fit.integrate(system, grid, lo, hi, method, options, estimate_error=False)
+    count = len(piece.segments.coefficients)
+    mids = lo + (np.arange(count) + 0.5) * grid.length_d
+    sets = {"second kind (stated)": second_kind(grid.degree),
+            "extrema of T_(n+1)": np.cos(np.pi * np.arange(grid.degree + 2) / (grid.degree + 1)),
+            "101 evenly spaced": np.linspace(-1.0, 1.0, 101)}
+    times = {name: (mids[:, None] + grid.length_d / 2 * x).ravel() for name, x in sets.items()}
+    every = np.unique(np.concatenate(list(times.values())))
+    direct, _ = simulate(system, every, method, options, estimate_error=False)
+    print("\n## the Moon's series (2000-2002) against the integrator, by the points checked in each segment\n")
+    print("| points per segment | attitude, uas | omega, rel | omega_core, rel | Earth from the Moon, rel |")
+    print("|---|---|---|---|---|")
+    for name, t in times.items():
+        rows = np.searchsorted(every, t)
+        truth = fit.components(system, t, direct.y[rows])
+        e = fit.errors(piece.layout, piece.layout.normalise(piece.segments.evaluate(t)), truth)
+        print(f"| {name} | {e['fit_error_attitude_arcsec'] * 1e6:.3g} | {e['fit_error_moon_omega_rel']:.2g} | "
+              f"{e['fit_error_moon_omega_core_rel']:.2g} | {e['fit_error_earth_from_moon_rel']:.2g} |")
 
 
 def export():
@@ -429,9 +468,11 @@ def readme():
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("part", nargs="?", default="all",
-                        choices=["latency", "agreement", "extension", "export", "grid", "readme", "all"])
+                        choices=["latency", "agreement", "extension", "fit_points", "export", "grid", "readme",
+                                 "all"])
     args = parser.parse_args()
-    parts = ["latency", "agreement", "extension", "export", "grid", "readme"] if args.part == "all" else [args.part]
+    parts = ["latency", "agreement", "extension", "fit_points", "export", "grid", "readme"] if args.part == "all" \
+        else [args.part]
     for part in parts:
         globals()[part]()
         sys.stdout.flush()
