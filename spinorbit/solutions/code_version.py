@@ -94,10 +94,9 @@ def content_version(package, directory):
 
 
 @functools.cache
-def code_version():
-    """spinorbit's version and the sha256 (16 hex digits) of every Python file of the package (the record kept
-    beside the stored solutions)."""
+def package_version(directory):
+    """spinorbit's version and the sha256 (16 hex digits) of every Python file of the package, its record kept
+    in ``directory`` (the solution store's)."""
     from ..version import __version__
-    from .store import directory
 
-    return f"{__version__}+{content_version(PACKAGE, directory())}"
+    return f"{__version__}+{content_version(PACKAGE, directory)}"

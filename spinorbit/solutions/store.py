@@ -31,7 +31,7 @@ from ..layout import Layout
 from ..linker import cache
 from ..orbits.solution import arrays_hash
 from .chebyshev import Segments
-from .code_version import code_version
+from .code_version import package_version
 from .solution import Solution
 
 LAYER_KEYS = ("span.", "model.start", "scene.", "compare.", "comparison.", "report.", "output.", "limits.",
@@ -47,6 +47,11 @@ def directory():
     if not path.is_dir():
         path.mkdir(mode=0o700, exist_ok=True)
     return path
+
+
+def code_version():
+    """spinorbit's version and the sha256 of its sources (solutions.code_version, recorded in the store)."""
+    return package_version(directory())
 
 
 def record(scenario):
