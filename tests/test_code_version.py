@@ -35,8 +35,10 @@ def test_an_unreadable_record_is_refused_in_one_line_and_made_again(tmp_path, ca
     cache.mkdir()
     (package / "a.py").write_text("x = 1\n")
     path = cv.record_path(cache, package)
-    path.write_text('{"fingerprint": "')                        # truncated
-    assert cv.content_version(package, cache) == hashed_directly(package)
-    said = [line for line in capfd.readouterr().err.splitlines() if "refused" in line]
-    assert len(said) == 1 and str(path) in said[0]
-    assert cv.stored(path, cv.fingerprint(cv.sources(package))) == hashed_directly(package)
+    stamp = cv.fingerprint(cv.sources(package))
+    for damaged in ('{"fingerprint": "', f'{{"fingerprint": "{stamp}", "content": 12}}'):   # truncated, altered
+        path.write_text(damaged)
+        assert cv.content_version(package, cache) == hashed_directly(package)
+        said = [line for line in capfd.readouterr().err.splitlines() if "refused" in line]
+        assert len(said) == 1 and str(path) in said[0]
+        assert cv.stored(path, stamp) == hashed_directly(package)

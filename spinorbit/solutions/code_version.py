@@ -18,6 +18,7 @@ from ..files import open_regular
 from ..linker import cache
 
 PACKAGE = Path(__file__).resolve().parents[1]
+HEX = frozenset("0123456789abcdef")
 
 
 def sources(package):
@@ -61,7 +62,10 @@ def stored(path, stamp):
     try:
         with open_regular(path, "r", follow_links=False) as f:
             record = json.load(f)
-        return record["content"] if record["fingerprint"] == stamp else None
+        content = record["content"]
+        if not (isinstance(content, str) and len(content) == 16 and all(c in HEX for c in content)):
+            raise ValueError(f"its content hash is {content!r}, not 16 hex digits")
+        return content if record["fingerprint"] == stamp else None
     except FileNotFoundError:
         return None
     except (OSError, ValueError, KeyError, TypeError) as exc:
