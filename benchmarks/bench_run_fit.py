@@ -6,7 +6,7 @@ Each kind's built-in scene (or those named, to the span.end given; the solar sys
 through ``runner.run_scenario`` twice in turn in one process: fitted (its main run integrated once into a Solution,
 solutions.for_run) and not (integrated to the output times; solutions.not_fitted made to refuse), plots off,
 ``reps`` times; the CPU time of the whole run (process_time: both threads, the error estimate's too) is
-compared, warm (a first run of each compiles, not counted).  The ratio is what solutions.FIT_COST holds.
+compared, warm (a first run of each compiles, not counted).  The ratio is what fitting every run of these kinds costs.
 """
 import argparse
 import time

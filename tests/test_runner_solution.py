@@ -89,13 +89,12 @@ def test_a_scene_not_kept_as_a_solution_is_run_to_its_outputs_and_says_why(place
     assert result.summary["solution"] == {"kept": False, "why": result.solution_absent}
 
 
-def test_a_moon_run_that_is_not_the_stored_model_is_run_to_its_outputs_and_says_why(place, simulations):
-    """The Moon from 2000-01-05 (the stored Moon starts at J2000): fitting it would cost more than MAX_FIT_COST
-    and nothing would keep it, so it is integrated once to its outputs and says so."""
+def test_a_moon_run_that_is_not_the_stored_model_is_fitted_and_not_stored(place, simulations):
+    """The Moon from 2000-01-05 (the stored Moon starts at J2000): integrated once into its own Solution, which
+    the store does not keep."""
     result = run_scenario("moon_libration", ["span.start=2000-01-05", "span.end=2000-01-15", "output.plots=false"])
-    assert simulations == {"fit": 0, "scene": 1}
-    assert solutions.FIT_COST["moon_libration"] > solutions.MAX_FIT_COST
-    assert result.solution is None and "starts at 2000-01-05" in result.solution_absent
+    assert simulations == {"fit": 1, "scene": 0}
+    assert result.solution is not None and result.summary["solution"]["stored"] is None
     assert not list(place.glob("*.npz"))
 
 

@@ -23,14 +23,9 @@ MICROARCSEC = 1e-6                  # arcsec
 # the issue's 1 uas and 1 mm; a rate or any other slice relative to its size, 1 uas in radians.
 FIT_FLOORS = {"arcsec": MICROARCSEC, "km": 1e-6, "rel": MICROARCSEC * np.pi / 180 / 3600}
 REFINEMENTS = 2                     # halvings of the segments tried before a run is handed on discrete
-# What fitting its main run adds to a whole run of each kind (CPU time of run_scenario, the scene's own span;
-# benchmarks/bench_run_fit.py, benchmarks/RESULTS.md): rk8 between its steps costs DOP853's continuous
-# extension, four more right-hand sides in each step (+33 % of the integration), which the Earth's run hardly
-# feels and the Moon's and the coupled system's do; the solar system's Taylor run gives 13 times as many
-# outputs and fits a hundred components.
-FIT_COST = {"moon_libration": 0.46, "earth_precession_nutation": 0.04, "earth_moon_coupled": 0.39,
-            "solar_system": 0.11}
-MAX_FIT_COST = 0.10                 # fitted anyway where the run is the stored model: the store then pays
+# A run of a kind kept as a solution is always fitted: the Solution is what the run gives.  What it costs
+# (benchmarks/bench_run_fit.py, benchmarks/RESULTS.md): rk8 between its steps pays DOP853's continuous extension,
+# four more right-hand sides in each step (+33 % of the integration).
 
 
 def solve(scene, sets, t_start, t_end):
@@ -206,17 +201,11 @@ def fit_beyond_run(fit_error, run, rounding_km=0.0):
 
 def not_fitted(scenario, system):
     """Why a run of ``system`` (its scene's main System) is not fitted, or "": a scene kind not kept as a
-    solution, or one whose fit costs more than MAX_FIT_COST of its run (FIT_COST) where the run is not the
-    stored model (``stored_model``)."""
+    solution."""
     if scenario.kind not in models.KINDS:
         return (f"scene kind {scenario.kind} is not kept as a solution (the kinds that are: "
                 f"{', '.join(sorted(models.KINDS))})")
-    cost, why_not_stored = FIT_COST.get(scenario.kind, np.inf), stored_model(scenario, system.t0)
-    if cost <= MAX_FIT_COST or not why_not_stored:
-        return ""
-    return (f"not fitted: fitting costs this kind about {cost:.0%} more run time (benchmarks/bench_run_fit.py), "
-            f"paid where the run is the stored model, which it is not ({why_not_stored}); "
-            "spinorbit.solutions.for_scenario(result.scenario) gives the stored one")
+    return ""
 
 
 def stored_model(scenario, t0):
