@@ -20,7 +20,7 @@ SCENE = Path(__file__).with_name("builtin_scenarios") / "earth_moon_history.toml
 MOON_AGE_GYR = 4.425
 RECESSION_CM_PER_YR = 3.830
 AGE_TOLERANCE_GYR = 0.001
-BRACKETS_KM = {"ocean": (8.6, 8.75), "global_ocean": (4.0, 6.0)}
+BRACKETS_KM = {"ocean": (8.6, 8.76), "global_ocean": (4.0, 6.0)}
 DEPTH_KEYS = {"ocean": "tides.ocean_depth", "global_ocean": "tides.global_ocean_depth"}
 COMMANDS = {"ocean": "python -m spinorbit.fit_tides --write",
             "global_ocean": "python -m spinorbit.fit_tides --model global_ocean --write"}

@@ -95,3 +95,20 @@ def test_the_continent_shrinks_with_its_area_linear_in_the_age():
     assert cap_ocean.cap_radius(-1.0 * GYR_D, k) == 90.0
     assert cap_ocean.cap_radius(-3.0 * GYR_D, k) == pytest.approx(60.0, rel=1e-12)   # 1 - cos 60 = 1/2
     assert cap_ocean.cap_radius(-3.6 * GYR_D, k) == 0.0
+
+
+def test_the_andrade_solid_earth_holds_todays_k2_and_q_and_andrades_frequency_law():
+    """The Andrade body (solid.py) calibrated at today's M2 (12.14 rad/day): Re k2 = 0.298 (IERS) and k2/Q =
+    0.298/280 (Ray et al. 2001) to 1e-9; well above the Maxwell frequency the lag falls as chi^-alpha
+    (Andrade creep: Q ~ chi^alpha, Efroimsky 2012), so Q(48)/Q(24) = 2^0.25 within 1% (the elastic part's
+    share of the phase, (Aμ)^-1 corrections, is frequency-independent to that order); K is odd in sigma."""
+    from spinorbit.models.tidal_history import solid
+
+    m2 = 12.1408
+    p = solid.constants(m2)
+    re, im = solid.love_number(m2, p)
+    assert re == pytest.approx(0.298, rel=1e-9)
+    assert -im == pytest.approx(0.298 / 280, rel=1e-9)
+    q = {chi: solid.love_number(chi, p)[0] / -solid.love_number(chi, p)[1] for chi in (24.0, 48.0)}
+    assert q[48.0] / q[24.0] == pytest.approx(2**0.25, rel=0.01)
+    assert -solid.lag(-m2, p) == solid.lag(m2, p) > 0

@@ -104,18 +104,18 @@ def test_the_dissipated_power_is_never_negative():
 
 def calibrated(c, y0, name):
     """The tide ``name`` fitted to 3.830 cm/yr (an ocean at its stored fitted depth; the continent at the
-    scene's defaults: 90 deg, centred on the equator, until 2.5 Gyr, none from 3.5 Gyr)."""
-    from spinorbit.models.tidal_history import cap_ocean, ocean
+    scene's defaults: 90 deg, centred on the equator, until 2.5 Gyr, none from 3.5 Gyr; its Andrade solid Earth)."""
+    from spinorbit.models.tidal_history import cap_ocean, ocean, solid
 
     if name not in ("global_ocean", "ocean"):
         return calibration.calibrated(c, response.MODELS[name], y0, 3.830)
     water = ocean.constants(GM_E / R**2, R)
-    fit = calibration.ocean_fit(calibration.GLOBAL_OCEAN_FIT)
+    fit, andrade = calibration.ocean_fit(calibration.GLOBAL_OCEAN_FIT), None
     if name == "ocean":
         water = cap_ocean.constants(water, 90.0, 90.0, 2.5 * GYR_D, 3.5 * GYR_D)
-        fit = calibration.ocean_fit(calibration.OCEAN_FIT)
-    drag = calibration.ocean_drag(c, y0, fit["depth_km"], 3.830, 0.3 / 280, water, name)
-    return response.responses(name, 0.3 / 280, depth=fit["depth_km"], drag=drag, ocean=water)
+        fit, andrade = calibration.ocean_fit(calibration.OCEAN_FIT), solid.constants(2 * (SPIN - mean_motion()))
+    drag = calibration.ocean_drag(c, y0, fit["depth_km"], 3.830, 0.3 / 280, water, name, andrade)
+    return response.responses(name, 0.3 / 280, depth=fit["depth_km"], drag=drag, ocean=water, solid=andrade)
 
 
 def test_angular_momentum_is_kept_over_the_moons_age():

@@ -59,7 +59,7 @@ def tide(p, c, y0, model):
     tides.global_ocean_depth for the global one; each depth fitted with the Moon's age by ``python -m
     spinorbit.fit_tides``)."""
     from ..errors import ScenarioError
-    from ..models.tidal_history import calibration, cap_ocean, equations, ocean, response
+    from ..models.tidal_history import calibration, cap_ocean, equations, ocean, response, solid
 
     rate = p["tides.recession_rate"]
     if model not in ("global_ocean", "ocean"):
@@ -67,15 +67,18 @@ def tide(p, c, y0, model):
     radius = c[equations.RADIUS]
     water = ocean.constants(c[equations.GM_EARTH] / radius**2, radius)
     key = "tides.ocean_depth" if model == "ocean" else "tides.global_ocean_depth"
+    andrade = None
     if model == "ocean":
         water = cap_ocean.constants(water, p["tides.continent_radius"], p["tides.continent_colatitude"],
                                     p["tides.continent_until"] * GYR_D, p["tides.global_ocean_from"] * GYR_D)
+        mean_motion = math.sqrt((c[equations.GM_EARTH] + c[equations.GM_MOON]) / y0[0] ** 3)
+        andrade = solid.constants(2.0 * (y0[2] - mean_motion))                 # today's M2
     depth = p[key]
-    drag = calibration.ocean_drag(c, y0, depth, rate, LOVE_K2 / SOLID_Q, water, model)
+    drag = calibration.ocean_drag(c, y0, depth, rate, LOVE_K2 / SOLID_Q, water, model, andrade)
     if drag is None:
         raise ScenarioError(key, depth, f"a depth at which some drag gives the recession "
                             f"tides.recession_rate = {rate} cm/yr (e.g. 3 to 8 km)")
-    return response.responses(model, LOVE_K2 / SOLID_Q, depth=depth, drag=drag, ocean=water)
+    return response.responses(model, LOVE_K2 / SOLID_Q, depth=depth, drag=drag, ocean=water, solid=andrade)
 
 
 def run(p, model, t, integrate, part=None):

@@ -57,15 +57,16 @@ def time_lag_s(response, k2):
     return response[STRENGTH] / k2 * DAY_S
 
 
-def ocean_drag(c, y0, depth_km, recession_cm_per_yr, solid_k2_over_q, water, model="global_ocean"):
+def ocean_drag(c, y0, depth_km, recession_cm_per_yr, solid_k2_over_q, water, model="global_ocean", solid=None):
     """The drag frequency (rad/day) of an ocean of ``depth_km`` whose recession today is the one given: on
     the rising side of the rate's dependence on the drag (the weaker drag of the two that give it) when the
     weakest drag tried (1e-3/day) gives less, else on the falling side (near a resonance); None when no drag
-    gives it.  ``water``: ocean.constants(...) for "global_ocean", cap_ocean.constants(...) for "ocean"."""
+    gives it.  ``water``: ocean.constants(...) for "global_ocean", cap_ocean.constants(...) for "ocean" (with
+    ``solid``: solid.constants(...), its Andrade solid Earth)."""
     from scipy.optimize import brentq
 
     def rate(drag):
-        response = responses(model, solid_k2_over_q, depth=depth_km, drag=drag, ocean=water)
+        response = responses(model, solid_k2_over_q, depth=depth_km, drag=drag, ocean=water, solid=solid)
         return today_rates(c, response, y0)["recession_rate_cm_per_yr"] - recession_cm_per_yr
 
     drags = np.geomspace(1e-3, 30.0, 60)

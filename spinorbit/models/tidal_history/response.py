@@ -8,13 +8,15 @@ odd in sigma, of the degree-2 Love number, for each tidal model.
 * a global ocean (``ocean.love_number``: a thin ocean of uniform depth under the Laplace tidal equations with
   linear drag, on the rotating Earth) plus the solid Earth's constant lag (k2/Q_solid sign(sigma));
 * the ocean with its continent (``cap_ocean.love_number_imag``: the ocean outside a spherical cap whose size
-  follows the age, ``cap_ocean.cap_radius``, without the Coriolis force) plus the same solid Earth.
+  follows the age, ``cap_ocean.cap_radius``, without the Coriolis force) plus an Andrade solid Earth
+  (``solid.lag``: the same k2 and Q at today's M2, Q growing as chi^0.25 with the frequency).
 
 sigma in rad/day, for the term e^{i(m phi + sigma t)} in the Earth (m > 0, sigma > 0: a westward wave); the
 models' constants in one array: ``MODEL``, ``STRENGTH`` (k2 dt in days for the time lag, k2/Q for constant Q,
 the solid Earth's k2/Q under the ocean), the factors of the zonal, diurnal and semi-diurnal bands (order |m| =
 0, 1, 2 of the tide in the Earth; 1 unless a model gives each band its own Love number and lag, as DE421's
-K2E_m TAUE_m), the ocean's depth (km) and drag frequency (rad/day), then the ocean's constants.
+K2E_m TAUE_m), the ocean's depth (km) and drag frequency (rad/day), the Andrade solid Earth's constants
+(solid.constants; zero unless the model is "ocean"), then the ocean's constants.
 """
 import math
 
@@ -24,23 +26,31 @@ from numba import njit
 from .cap_ocean import cap_radius, love_number_imag
 from .ocean import SIZE as OCEAN_SIZE
 from .ocean import love_number
+from .solid import SIZE as SOLID_SIZE
+from .solid import lag as andrade_lag
 
 CONSTANT_TIME_LAG, CONSTANT_Q, GLOBAL_OCEAN, OCEAN_WITH_CONTINENT = 0, 1, 2, 3
 MODELS = {"constant_time_lag": CONSTANT_TIME_LAG, "constant_q": CONSTANT_Q, "global_ocean": GLOBAL_OCEAN,
           "ocean": OCEAN_WITH_CONTINENT}
 # Indices into the response's constants.
-MODEL, STRENGTH, BAND, DEPTH, DRAG, OCEAN = 0, 1, 2, 5, 6, 7     # BAND + |m|: the band's factor
+MODEL, STRENGTH, BAND, DEPTH, DRAG, SOLID = 0, 1, 2, 5, 6, 7     # BAND + |m|: the band's factor
+OCEAN = SOLID + SOLID_SIZE
 
 
-def responses(model, strength, bands=(1.0, 1.0, 1.0), depth=0.0, drag=0.0, ocean=None):
+def responses(model, strength, bands=(1.0, 1.0, 1.0), depth=0.0, drag=0.0, ocean=None, solid=None):
     """The constants array of a model (a MODELS name or code); ``ocean``: ocean.constants(...) (the global
-    ocean) or cap_ocean.constants(...) (the ocean with its continent)."""
+    ocean) or cap_ocean.constants(...) (the ocean with its continent); ``solid``: solid.constants(...) (the
+    ocean with its continent's Andrade solid Earth)."""
     extra = np.zeros(0) if ocean is None else np.asarray(ocean, dtype=float)
     out = np.zeros(OCEAN + extra.size)
     out[MODEL] = MODELS.get(model, model)
     out[STRENGTH] = strength
     out[BAND:BAND + 3] = bands
     out[DEPTH], out[DRAG] = depth, drag
+    if out[MODEL] == OCEAN_WITH_CONTINENT:
+        if solid is None:
+            raise ValueError("the ocean with its continent needs its solid Earth: solid=solid.constants(...)")
+        out[SOLID:OCEAN] = solid
     out[OCEAN:] = extra
     return out
 
@@ -60,6 +70,7 @@ def dissipation(sigma, m, spin, response, t):
         return solid
     if response[MODEL] == OCEAN_WITH_CONTINENT:
         cap = cap_radius(t, response[OCEAN + OCEAN_SIZE:])
-        return solid + love_number_imag(m, sigma, response[DRAG], response[DEPTH], cap, response[OCEAN:])
+        return andrade_lag(sigma, response[SOLID:OCEAN]) + love_number_imag(m, sigma, response[DRAG],
+                                                                             response[DEPTH], cap, response[OCEAN:])
     _, lag = love_number(-m, sigma, spin, response[DEPTH], response[DRAG], response[OCEAN:])
     return solid + lag
