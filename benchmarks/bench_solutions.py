@@ -213,12 +213,11 @@ DE421_BOUND = "2x what DE421's asteroids move it"
 
 def fit_points():
     """The Moon's series (2000-2002, fitted as the store fits it) against the integrator at three sets of points
-    per segment: the second kind (the stated fit error), the extrema of T_(n+1) (the segment's midpoint, an rk8
+    per segment: the second kind, the extrema of T_(n+1) (the stated fit error; the segment's midpoint, an rk8
     step point, among them) and 101 evenly spaced; the integrator run once to all of them."""
     from spinorbit import solutions
     from spinorbit.integrators import simulate
     from spinorbit.solutions import fit, models
-    from spinorbit.solutions.chebyshev import second_kind
 
     scenario = solutions.scenario_of("moon_libration", [])
     t0, y0 = models.first_start(scenario)
@@ -231,8 +230,8 @@ def fit_points():
     piece = fit.integrate(system, grid, lo, hi, method, options, estimate_error=False)
     count = len(piece.segments.coefficients)
     mids = lo + (np.arange(count) + 0.5) * grid.length_d
-    sets = {"second kind (stated)": second_kind(grid.degree),
-            "extrema of T_(n+1)": np.cos(np.pi * np.arange(grid.degree + 2) / (grid.degree + 1)),
+    sets = {"second kind": np.cos(np.pi * np.arange(grid.degree + 1) / grid.degree),
+            "extrema of T_(n+1) (stated)": np.cos(np.pi * np.arange(grid.degree + 2) / (grid.degree + 1)),
             "101 evenly spaced": np.linspace(-1.0, 1.0, 101)}
     times = {name: (mids[:, None] + grid.length_d / 2 * x).ravel() for name, x in sets.items()}
     every = np.unique(np.concatenate(list(times.values())))

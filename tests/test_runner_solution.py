@@ -101,7 +101,7 @@ def test_a_moon_run_that_is_not_the_stored_model_is_fitted_and_not_stored(place,
 @pytest.mark.parametrize("rate", [0.23, 6.3])          # the Moon's spin, the Earth's (rad/d)
 def test_the_spin_segment_fits_a_turning_attitude_within_a_microarcsecond(rate):
     """A body turning at ``rate`` about a fixed axis (a closed form): its quaternion's series of degree 14 on
-    segments of spin_segment_d follows it within 1 uas between the fitted points."""
+    segments of spin_segment_d follows it within 1 uas at the extrema of T_15, where the interpolant's error peaks."""
     from types import SimpleNamespace
 
     from spinorbit.layout import Layout
@@ -120,13 +120,16 @@ def test_the_spin_segment_fits_a_turning_attitude_within_a_microarcsecond(rate):
 
 def test_a_fit_beyond_the_runs_error_is_named():
     """fit_beyond_run: each fitted kind against the run's estimate, or the 1 uas / 1 mm floor below it (positions:
-    or their rounding floor)."""
+    or their rounding floor); with no estimate, rates are stated, not judged."""
     run = {"integration_error_attitude_arcsec": 1e-5, "integration_error_omega_rel": 1e-12}
     assert solutions.fit_beyond_run({"fit_error_attitude_arcsec": 2e-6, "fit_error_moon_omega_rel": 5e-13,
                                      "fit_error_earth_from_moon_rel": 1.0}, run) == {}
     beyond = solutions.fit_beyond_run({"fit_error_attitude_arcsec": 2e-5, "fit_error_position_km": 2e-6}, run)
     assert beyond == {"fit_error_attitude_arcsec": 1e-5, "fit_error_position_km": 1e-6}
     assert solutions.fit_beyond_run({"fit_error_position_km": 2e-6}, run, rounding_km=3e-6) == {}
+    # a rate's fit in a run whose error is not estimated is stated, not judged; its attitude is judged
+    assert solutions.fit_beyond_run({"fit_error_moon_omega_core_rel": 3e-11, "fit_error_attitude_arcsec": 2e-6},
+                                    {}) == {"fit_error_attitude_arcsec": 1e-6}
 
 
 def test_a_fitted_run_that_fails_leaves_its_partial_result_at_the_output_times(place):

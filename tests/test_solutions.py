@@ -53,6 +53,29 @@ def test_fit_matches_the_dense_output_between_nodes(place):
     assert solution.fit_error["fit_error_attitude_arcsec"] < 1e-6
 
 
+def test_the_stated_fit_error_bounds_the_series_between_its_check_points():
+    """The Moon over 40 d (10 segments of 4 d, two rk8 steps each): the series against simulate()'s dense output
+    at 101 evenly spaced points per segment differs by at most twice the stated fit error (measured at T_14's
+    15 extrema, where interpolation's error f^(n+1) T_(n+1) / (2^n (n+1)!) peaks, the middle -- where two steps'
+    dense outputs join -- among them; the factor 2 leaves room for f^(n+1)'s change across a segment)."""
+    from spinorbit.solutions import fit
+
+    scenario = solutions.scenario_of("moon_libration", [])
+    t0, y0 = models.first_start(scenario)
+    stretch = models.stretch(scenario, t0, t0 + 40.0, t0)
+    system = models.system(stretch, (t0, y0))
+    method, options = stretch["integrator.method"], stretch.integrator_options()
+    grid = fit.Grid(t0, 4.0, 13)
+    piece = fit.integrate(system, grid, t0, t0 + 40.0, method, options, estimate_error=False)
+    t = (t0 + 4.0 * (np.arange(10)[:, None] + 0.5 + 0.5 * np.linspace(-1.0, 1.0, 101))).ravel()
+    direct, _ = simulate(system, t, method, options, estimate_error=False)
+    between = fit.errors(piece.layout, piece.layout.normalise(piece.segments.evaluate(t)),
+                         fit.components(system, t, direct.y))
+    assert between.keys() == piece.fit_error.keys()
+    for key, stated in piece.fit_error.items():
+        assert between[key] <= 2.0 * stated, key
+
+
 def test_extended_in_pieces_equals_one_computed_whole(place, tmp_path_factory):
     """[0, 40] d then extended backward and forward to [-40, 80] against [-40, 80] at once: within the
     integration's own error estimate."""

@@ -19,8 +19,9 @@ from .solution import Solution, joined
 __all__ = ["Solution", "solve", "for_scenario", "for_run", "keep"]
 
 MICROARCSEC = 1e-6                  # arcsec
-# What a fit may differ from the integrator by when the integration's own estimate is smaller (or not made):
-# the issue's 1 uas and 1 mm; a rate or any other slice relative to its size, 1 uas in radians.
+# What a fit may differ from the integrator by when the integration's own estimate is smaller (or, for
+# attitudes and positions, not made): the issue's 1 uas and 1 mm; a rate or any other slice relative to its
+# size, 1 uas in radians.
 FIT_FLOORS = {"arcsec": MICROARCSEC, "km": 1e-6, "rel": MICROARCSEC * np.pi / 180 / 3600}
 REFINEMENTS = 2                     # halvings of the segments tried before a run is handed on discrete
 # A run of a kind kept as a solution is always fitted: the Solution is what the run gives.  What it costs
@@ -99,8 +100,8 @@ def made(scenario, system, grid, piece, span, method, options):
                   "integrator": {"method": method, **options}, "code_version": store.code_version(),
                   "grid": {"segment_d": grid.length_d, "degree": grid.degree},
                   "state_size": int(system.layout.size), "fit_error": piece.fit_error,
-                  "fit_error_how": "the series against the integrator's output at the Chebyshev points of the "
-                                   "second kind (between the fitted points, and the segments' ends)",
+                  "fit_error_how": "the series against the integrator's output at the extrema of T_(n+1) "
+                                   "(between the fitted points, the segments' ends included)",
                   "runs": [run]}
     return Solution(piece.segments, piece.layout, provenance, piece.ends)
 
@@ -130,12 +131,13 @@ def spin_segment_d(system, degree):
     """The longest segment (days) on which a series of ``degree`` follows an attitude turning at the System's
     fastest body rate at its start (``*.omega``, rad/d; inf with none) within FIT_FLOORS' 1 uas: a quaternion
     turns at half the rate, and a series of cos(w t / 2) on a segment L has coefficients 2 J_k(w L / 4), whose
-    first one left out, ~ 2 (w L / 8)^(n + 1) / (n + 1)! (Abramowitz & Stegun 9.1.7, 9.1.44), is held to the
-    floor."""
+    first one left out, ~ 2 (w L / 8)^(n + 1) / (n + 1)! (Abramowitz & Stegun 9.1.7, 9.1.44), is the
+    interpolant's error at the extrema of T_(n+1) (it vanishes at the fitted points, T_(n+1)'s roots); the angle
+    between two quaternions is twice their difference: 4 (w L / 8)^(n + 1) / (n + 1)! is held to the floor."""
     rates = [np.linalg.norm(system.y0[part.index]) for part in system.layout.slices if part.name.endswith(".omega")]
     if not rates or max(rates) <= 0.0:
         return np.inf
-    x = (FIT_FLOORS["rel"] / 2 * math.factorial(degree + 1)) ** (1.0 / (degree + 1))
+    x = (FIT_FLOORS["rel"] / 4 * math.factorial(degree + 1)) ** (1.0 / (degree + 1))
     return 8.0 * x / max(rates)
 
 
@@ -176,9 +178,12 @@ def rounding_km(piece):
 
 def fit_beyond_run(fit_error, run, rounding_km=0.0):
     """{fit error key: bound} of what of a fit's error (fit.errors) exceeds the run's own error estimate
-    (simulate's point), or FIT_FLOORS where the estimate is smaller or not made (positions: or ``rounding_km``,
-    their rounding floor): the state's slices and the figure axes derived from it (a body's position read from
-    the orbit source, ``*_from_*``, is data, not integrated: stated, not judged)."""
+    (simulate's point), or FIT_FLOORS where the estimate is smaller (positions: or ``rounding_km``, their rounding
+    floor).  Judged: the state's slices and the figure axes derived from it.  Stated, not judged: a body's position
+    read from the orbit source (``*_from_*``: data, not integrated), and, in a run whose error is not estimated, a
+    slice relative to its size (a rate: the issue bounds attitudes and positions, which keep their floors; the
+    series of a rate, checked where rk8's steps join, differs from the integrator by the dense output's own error
+    there, which only the estimate could bound)."""
     out = {}
     for key, value in fit_error.items():
         name = key.removeprefix("fit_error_")
@@ -193,6 +198,8 @@ def fit_beyond_run(fit_error, run, rounding_km=0.0):
             slice_name = name.removesuffix("_rel")
             estimate = run.get("integration_error_omega_rel" if slice_name.endswith("_omega") else
                                f"integration_error_{slice_name}_rel")
+            if estimate is None:
+                continue
         bound = max(estimate or 0.0, FIT_FLOORS.get(unit, 0.0))
         if not value <= bound:
             out[key] = bound

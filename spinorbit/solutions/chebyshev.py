@@ -2,9 +2,11 @@
 
 Segment k covers [origin + k L, origin + (k + 1) L]; on it each component is sum_j c_j T_j(x), x = 2 (t - mid) / L
 in [-1, 1] (the layout of SPICE's type-2 records, NAIF's SPK and PCK Required Reading).  A series of degree n is
-fitted by interpolation at the n + 1 Chebyshev points of the first kind, cos(pi (j + 1/2) / (n + 1)), where its
-error is near the best polynomial's (Trefethen, Approximation Theory and Approximation Practice, ch. 16); the
-points of the second kind, cos(pi j / n), lie between them and at the ends: the fit's error is measured there.
+fitted by interpolation at the n + 1 Chebyshev points of the first kind, cos(pi (j + 1/2) / (n + 1)) (the roots of
+T_(n+1)), where its error is near the best polynomial's (Trefethen, Approximation Theory and Approximation
+Practice, ch. 11, 16); that error, f^(n+1)(xi) T_(n+1)(x) / (2^n (n + 1)!), peaks at T_(n+1)'s n + 2 extrema,
+cos(pi j / (n + 1)), between the roots and at the ends (the middle among them for an odd degree): the fit's
+error is measured there.
 """
 from dataclasses import dataclass
 
@@ -18,9 +20,9 @@ def first_kind(degree):
     return np.cos(np.pi * (np.arange(degree + 1) + 0.5) / (degree + 1))
 
 
-def second_kind(degree):
-    """The n + 1 points between and around the first kind's (the ends included), descending."""
-    return np.cos(np.pi * np.arange(degree + 1) / degree)
+def extrema(degree):
+    """The n + 2 extrema of T_(n+1) in [-1, 1] (between the first kind's points, the ends included), descending."""
+    return np.cos(np.pi * np.arange(degree + 2) / (degree + 1))
 
 
 def interpolating(values):
@@ -95,10 +97,10 @@ class Segments:
         return 2.0 * (t - mids[:, None]) / self.length_d
 
     def nodes(self, first, count):
-        """(interpolation times (count, n + 1), check times (count, n + 1)) of segments first..first+count-1."""
+        """(interpolation times (count, n + 1), check times (count, n + 2)) of segments first..first+count-1."""
         mids = self.origin_d + (np.arange(first, first + count) + 0.5) * self.length_d
         half = self.length_d / 2.0
-        return mids[:, None] + half * first_kind(self.degree), mids[:, None] + half * second_kind(self.degree)
+        return mids[:, None] + half * first_kind(self.degree), mids[:, None] + half * extrema(self.degree)
 
     def joined(self, other):
         """These segments and ``other`` (the same grid, adjacent before or after) as one."""
