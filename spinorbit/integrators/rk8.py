@@ -8,7 +8,8 @@ rounding floor (about 1e-12 relative in the attitude) at h ~ 1 d for the Moon.
 The step does not depend on the output cadence: where outputs are closer
 than the step, they come from DOP853's 7th-order continuous extension (four
 more rhs calls in each step that holds an output, Hairer, Norsett & Wanner
-II.6); otherwise the step is shortened slightly to land on every output.
+II.6, the first of which, at the step's end, is the next step's first stage:
+three more in all); otherwise the step is shortened slightly to land on every output.
 A span that ends before its start is integrated backward with the step negated.
 """
 import sys
@@ -29,10 +30,11 @@ rhs = free("rhs")    # bound by link()
 
 
 @template("rhs")
-def rk_step(params, t, y, dt, a, b, c, k, ys):
-    """One explicit Runge-Kutta step of size dt; fills the stages k; returns the new state."""
+def rk_step(params, t, y, dt, a, b, c, k, ys, first):
+    """One explicit Runge-Kutta step of size dt; fills the stages k from stage ``first`` (the stages before it are
+    already in k); returns the new state."""
     n_stages, dim = b.shape[0], y.shape[0]
-    for s in range(n_stages):
+    for s in range(first, n_stages):
         for m in range(dim):
             ys[m] = y[m]
         for j in range(s):
@@ -72,7 +74,7 @@ def rk_fixed(params, t0, y0, t_out, h, a, b, c, max_steps):
         for _ in range(n_sub):
             if steps >= max_steps:
                 return y_out, i, steps, t
-            y = rk_step(params, t, y, dt, a, b, c, k, ys)
+            y = rk_step(params, t, y, dt, a, b, c, k, ys, 0)
             t += dt
             steps += 1
             if not np.all(np.isfinite(y)):
@@ -83,14 +85,18 @@ def rk_fixed(params, t0, y0, t_out, h, a, b, c, max_steps):
 
 
 @template("rhs", "rk_step")
-def rk8_dense(params, t_origin, y, steps, i, y_out, t_out, h, a, b, c, a_ext, c_ext, d, max_steps):
+def rk8_dense(params, t_origin, y, steps, i, y_out, t_out, h, a, b, c, a_ext, c_ext, d, max_steps, k, known):
     """Steps of h (signed; the last one shortened to end on t_out[-1]) on the grid t_origin + steps h,
     from state ``y`` after ``steps`` steps, filling ``y_out`` from index i; outputs inside a step from
     the DOP853 continuous extension (order 7).  Stops after ``max_steps`` steps in all, so that a
-    caller can resume exactly where it stopped.  Returns (i, steps, t, y, extra rhs calls, ok)."""
+    caller can resume exactly where it stopped.
+
+    ``k`` (n_stages + 4, dim) holds the stages; ``known``: k[0] already holds rhs(t, y), the first stage of
+    the next step.  A step with outputs computes rhs(t_new, y_new) for the extension, and that is the next
+    step's first stage (its c is 0): the next step takes it instead of computing it again (first same as last).
+    Returns (i, steps, t, y, rhs calls beyond n_stages per step, ok, known)."""
     dim = y.shape[0]
     n_stages = b.shape[0]
-    k = np.empty((n_stages + 4, dim))
     ys = np.empty(dim)
     f = np.empty((7, dim))
     t = t_origin + steps * h
@@ -100,10 +106,13 @@ def rk8_dense(params, t_origin, y, steps, i, y_out, t_out, h, a, b, c, a_ext, c_
         i += 1
     while i < t_out.shape[0] and steps < max_steps:
         dt = h if abs(h) < abs(t_out[-1] - t) else t_out[-1] - t
-        y_new = rk_step(params, t, y, dt, a, b, c, k, ys)
+        y_new = rk_step(params, t, y, dt, a, b, c, k, ys, 1 if known else 0)
+        if known:
+            extra -= 1
+        known = False
         steps += 1
         if not np.all(np.isfinite(y_new)):
-            return i, steps, t, y, extra, False
+            return i, steps, t, y, extra, False, False
         t_new = t + dt if dt != h else t_origin + steps * h     # no drift of the step grid
         if (t_out[i] - t_new) * h <= 0.0:
             extra += 4
@@ -136,8 +145,10 @@ def rk8_dense(params, t_origin, y, steps, i, y_out, t_out, h, a, b, c, a_ext, c_
                         value *= x if (6 - r) % 2 == 0 else 1.0 - x
                     y_out[i, m] = y[m] + value
                 i += 1
+            put(k[0], k[n_stages])
+            known = True
         y, t = y_new, t_new
-    return i, steps, t, y, extra, True
+    return i, steps, t, y, extra, True, known
 
 
 def _landing_shortens(t_out, t0, h):
@@ -293,15 +304,18 @@ class _Dense(_Run):
 
     def compile(self):
         self.tableau = (*self.tableau, *RK8.DENSE)
-        self.loop(self.system.params, self.t, self.y, 0, 0, self.y_out, self.t_out[:1], self.h, *self.tableau, 0)
+        self.k = np.empty((self.tableau[1].size + 4, self.y.size))
+        self.known = False                  # k[0] holds rhs(t, y): the last step's extension computed it
+        self.loop(self.system.params, self.t, self.y, 0, 0, self.y_out, self.t_out[:1], self.h, *self.tableau, 0,
+                  self.k, False)
         self.t0 = self.t
         self.chunk = max(1, int(abs(self.t_out[-1] - self.t) / abs(self.h)) // 200)
 
     def advance(self):
         limit = min(self.steps + self.chunk, self.max_steps)
-        self.done, self.steps, self.t, self.y, more, ok = self.loop(
+        self.done, self.steps, self.t, self.y, more, ok, self.known = self.loop(
             self.system.params, self.t0, self.y, self.steps, self.done, self.y_out, self.t_out, self.h, *self.tableau,
-            limit)
+            limit, self.k, self.known)
         self.extra += more
         self.failed = not ok or (self.steps >= self.max_steps and self.done < self.t_out.size)
 
