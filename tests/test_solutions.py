@@ -76,6 +76,28 @@ def test_the_stated_fit_error_bounds_the_series_between_its_check_points():
         assert between[key] <= 2.0 * stated, key
 
 
+def test_the_earth_seen_from_the_moon_is_de421s_within_a_millimetre(place):
+    """The Moon's solution over 80 d holds the Earth seen from the Moon fitted at DE421's own values: at 1000
+    random dates within 1 mm of DE421 read by jplephem directly, and the physical librations and sub-Earth point
+    from it within 1 uas of those from jplephem's Earth."""
+    from jplephem.spk import SPK
+
+    from spinorbit.analysis.librations import icrf_to_body
+    from spinorbit.orbits.kernel import kernel_path
+    from spinorbit.references import eckhardt
+
+    solution = solutions.solve("moon_libration", [], -20.0, 60.0)
+    t = np.random.default_rng(5).uniform(*solution.span, 1000)
+    with SPK.open(str(kernel_path("de421"))) as kernel:
+        de421 = (kernel[3, 399].compute(2451545.0, t) - kernel[3, 301].compute(2451545.0, t)).T
+    fitted = solution.part("earth.from_moon", t)
+    assert np.linalg.norm(fitted - de421, axis=1).max() <= 1e-6                     # km
+    mats = icrf_to_body(solution.part("moon.q", t))
+    ours, direct = eckhardt.physical_librations(t, mats, fitted), eckhardt.physical_librations(t, mats, de421)
+    for name in ("tau", "rho", "sigma", "sub_earth_lon", "sub_earth_lat"):
+        assert np.abs(ours[name] - direct[name]).max() <= 1 * uas, name
+
+
 def test_extended_in_pieces_equals_one_computed_whole(place, tmp_path_factory):
     """[0, 40] d then extended backward and forward to [-40, 80] against [-40, 80] at once: within the
     integration's own error estimate."""

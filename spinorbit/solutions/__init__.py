@@ -86,7 +86,8 @@ def _piece(scenario, kind, start, lo, hi, grid=None):
     stretch = models.stretch(scenario, lo, hi, start[0])
     system = models.system(stretch, start)
     method, options = stretch["integrator.method"], stretch.integrator_options()
-    piece = integrate(system, grid, lo, hi, method, options, label=f"{scenario.kind} solution")
+    piece = integrate(system, grid, lo, hi, method, options, label=f"{scenario.kind} solution",
+                      ephemeris=models.ephemeris(stretch, system, lo, hi))
     return made(scenario, system, grid, piece, (lo, hi), method, options)
 
 
@@ -156,7 +157,8 @@ def for_run(scenario, system):
     for halvings in range(REFINEMENTS + 1):
         grid = run_grid(kind, system, lo, hi, halvings)
         piece = integrate(system, grid, lo, hi, method, options, label=scenario.name,
-                          estimate_error=scenario["integrator.estimate_error"])
+                          estimate_error=scenario["integrator.estimate_error"],
+                          ephemeris=models.ephemeris(scenario, system, lo, hi))
         beyond = fit_beyond_run(piece.fit_error, piece.run, rounding_km(piece))
         if not beyond:
             return made(scenario, system, grid, piece, (lo, hi), method, options), None

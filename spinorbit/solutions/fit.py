@@ -5,7 +5,9 @@ fit's error measured against the integrator at the points between them.
 What is fitted: the whole state (every slice of the System's layout); for a body turned by its spin (a
 Gyroscopic rotator), its figure axis ``<body>.pole`` (System.figure_axes: the spin's direction plus the
 Oppolzer terms, a function of the state and the torque, so it is fitted, not rebuilt); for a System centred on
-one body, the first body its orbit source gives, as the run read it (``earth.from_moon``).
+one body, the first body its orbit source gives (``earth.from_moon``): read from the JPL ephemeris itself at the
+node times where the orbit source is one (its own Chebyshev series, which a series of the segments' degree
+follows to ~0.1 mm), else as the run read it (the orbit source's interpolant).
 """
 from dataclasses import dataclass
 
@@ -66,18 +68,22 @@ def fitted_layout(system):
     return Layout(parts)
 
 
-def components(system, t, states):
-    """The fitted components (n, fitted size) of ``states`` (n, state size) at TDB days ``t``."""
+def components(system, t, states, ephemeris=None):
+    """The fitted components (n, fitted size) of ``states`` (n, state size) at TDB days ``t``; the seen body's
+    position from ``ephemeris`` (a JPL reader, spinorbit.orbits.kernel: ``relative_states``) when given, else from
+    the System's orbits."""
     extra = [system.figure_axes(body, t, states) for body in poles(system)]
-    if seen(system):
+    if seen(system) and ephemeris is not None:
+        extra.append(ephemeris.relative_states(*seen(system), t)[0])
+    elif seen(system):
         extra.append(np.asarray(system.motion.externals.positions(t))[:, 0])
     return np.hstack([states, *extra]) if extra else np.asarray(states)
 
 
-def integrate(system, grid, t_start, t_end, method, options, label=None, estimate_error=True):
+def integrate(system, grid, t_start, t_end, method, options, label=None, estimate_error=True, ephemeris=None):
     """The Piece covering [t_start, t_end] (rounded out to the grid) of ``system`` integrated from its t0
     (inside the span, or at one of its ends) with ``method`` and ``options`` (its error estimated unless
-    ``estimate_error`` is False)."""
+    ``estimate_error`` is False); ``ephemeris``: the JPL reader the seen body is read from (``components``)."""
     first, count = grid_indices(grid.origin_d, grid.length_d, t_start, t_end)
     empty = Segments(grid.origin_d, grid.length_d, first, np.zeros((count, 0, grid.degree + 1)))
     nodes, checks = empty.nodes(first, count)
@@ -85,7 +91,7 @@ def integrate(system, grid, t_start, t_end, method, options, label=None, estimat
     times, rows = np.unique(t_out, return_inverse=True)     # the segments' shared ends once
     solution, run = simulate(system, times, method, options, estimate_error=estimate_error, label=label)
     states = solution.y[rows]
-    values = components(system, t_out, states)
+    values = components(system, t_out, states, ephemeris)
     layout, n = fitted_layout(system), nodes.size
     at_nodes = values[:n].reshape(count, grid.degree + 1, -1).transpose(0, 2, 1)
     coefficients = interpolating_at(at_nodes, empty.normalised(nodes, first))

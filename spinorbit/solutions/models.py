@@ -77,6 +77,19 @@ def first_start(scenario):
     return float(built.t0), built.y0.copy()
 
 
+def ephemeris(scenario, built, lo, hi):
+    """The JPL ephemeris reader of ``scenario``'s orbit source over [lo, hi] TDB days where ``built`` (its System)
+    sees a body from another (fit.seen: that position is fitted from it, fit.components), or None (nothing seen,
+    or a source that is not a JPL kernel)."""
+    from ..orbits.sources import orbit_source
+    from .fit import seen
+
+    if not seen(built):
+        return None
+    source = orbit_source(scenario["orbit.source"])
+    return source.open(lo, hi) if source.jpl_kernel else None
+
+
 def system(scenario, start):
     """The scene's System over the scenario's span, started at ``start`` = (t0, state) (its Scene's
     ``restart``), or at the scene's own start (``start`` None: its ``build``)."""
