@@ -37,9 +37,6 @@ def value(x):
 RUN = """from tiny.caller import value
 print(value(2.0), sum(value.stats.cache_hits.values()), sum(value.stats.cache_misses.values()))
 """
-# The tidal history's modules keep plain cache=True until their owner takes @cached: remove a name then.
-AWAITING = {"spinorbit.models.tidal_history.equations", "spinorbit.models.tidal_history.response",
-            "spinorbit.models.tidal_history.secular"}
 
 
 def run(folder):
@@ -76,8 +73,7 @@ def test_every_cached_function_reaching_other_files_is_keyed_by_its_reach():
         for name, value in vars(module).items():
             cache = getattr(value, "_cache", None)
             if (getattr(getattr(value, "py_func", None), "__module__", None) != module.__name__
-                    or cache is None or isinstance(cache, (NullCache, ReachCache))
-                    or module.__name__ in AWAITING):
+                    or cache is None or isinstance(cache, (NullCache, ReachCache))):
                 continue
             if set(linker.reached(value)) - {module.__name__}:
                 stale.append(f"{module.__name__}.{name}")

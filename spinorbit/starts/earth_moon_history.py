@@ -90,14 +90,14 @@ def run(p, model, t, integrate, part=None):
     y0 = today(c)
     system = equations.history(c, tide(p, c, y0, model), y0)
     try:
-        solution, point = integrate(system, t[1:], part)
+        solution, point = integrate(system, t, part)
         reached = t.size
     except IntegrationError as exc:            # the stop: the rates run away at the Roche limit
-        reached = 1 + exc.partial.t.size
+        reached = exc.partial.t.size           # the outputs reached, today's (t0's) among them
         if reached < 3:
             raise
-        solution, point = integrate(system, t[1:reached], f"{part or model} to the stop")
-    y = np.vstack([y0, solution.y])
+        solution, point = integrate(system, t[:reached], f"{part or model} to the stop")
+    y = solution.y
     outside = [k for k in range(y.shape[0]) if equations.stop(y[k], c)]
     if outside:                                 # frozen past the stop (the rhs is zero there)
         reached = outside[0]

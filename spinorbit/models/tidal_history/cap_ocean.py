@@ -46,6 +46,7 @@ from numba import njit
 from scipy.linalg import eigh
 from scipy.special import assoc_legendre_p_all, legendre_p_all, roots_legendre
 
+from ...linker import cached
 from .ocean import DENSITY_RATIO, GRAVITY, LOAD_H2, LOAD_K2, RADIUS, SOLID_H2, SOLID_K2
 from .ocean import SIZE as OCEAN_SIZE
 
@@ -229,7 +230,7 @@ def cap_radius(t, k):
     return math.degrees(math.acos(1.0 - 2.0 * area))
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def love_number_imag(m, w, drag, depth, cap_deg, p):
     """Im k_2 of the ocean outside a cap of radius cap_deg for the Earth's Y_2^m at the frequency w (rad/day; Im
     has its sign), drag in rad/day, depth in km; ``p`` = ``constants(...)``: the poles interpolated linearly

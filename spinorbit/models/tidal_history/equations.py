@@ -27,9 +27,9 @@ outside [0, 0.3), |cos| > 1, no spin) stops the motion: the rhs is zero there an
 import math
 
 import numpy as np
-from numba import njit
 
 from ...layout import Layout
+from ...linker import cached
 from ..ode import Ode
 from .secular import exchange, lags, strength, torque_on_spin
 
@@ -51,14 +51,14 @@ LAYOUT = Layout([("moon.semi_major_axis", 1, "vector", "km"),
                  ("sun.tidal_share_z", 1, "vector", "km^2/d per Earth mass")])
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def orbit_momentum(a, e2, c):
     """The lunar orbit's angular momentum per unit Earth mass, m/(M + m) sqrt(mu a (1 - e^2))."""
     mu = c[GM_EARTH] + c[GM_MOON]
     return c[GM_MOON] / mu * math.sqrt(mu * a * (1.0 - e2))
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def inside(y, c):
     """Is the state one the equations describe?"""
     a, e2, spin, x, z_orbit = y[0], y[1], y[2], y[3], y[4]
@@ -67,7 +67,7 @@ def inside(y, c):
     return abs(x) <= c[INERTIA] * c[RADIUS] ** 2 * spin and abs(z_orbit) <= orbit_momentum(a, e2, c)
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def rhs(t, y, p):
     """dy/dt; p = (constants, response)."""
     c, response = p

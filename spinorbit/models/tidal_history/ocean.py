@@ -32,6 +32,8 @@ import math
 
 from numba import njit
 
+from ...linker import cached
+
 # Indices into the ocean's constants.
 GRAVITY, RADIUS, DENSITY_RATIO, LOAD_K2, LOAD_H2, SOLID_K2, SOLID_H2, DEGREES = range(8)
 SIZE = 8
@@ -46,7 +48,7 @@ def _a(n, m):
     return math.sqrt(max(n * n - m * m, 0) / (4.0 * n * n - 1.0))
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def love_number(m, w, spin, depth, drag, p):
     """(Re, Im) of the ocean's degree-2 Love number for the forcing Y_2^m e^{i(m phi - w t)}: w, spin, drag in
     rad/day, depth in km, p the constants (GRAVITY km/d^2, RADIUS km, ...)."""

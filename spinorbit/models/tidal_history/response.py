@@ -21,8 +21,8 @@ K2E_m TAUE_m), the ocean's depth (km) and drag frequency (rad/day), the Andrade 
 import math
 
 import numpy as np
-from numba import njit
 
+from ...linker import cached
 from .cap_ocean import cap_radius, love_number_imag
 from .ocean import SIZE as OCEAN_SIZE
 from .ocean import love_number
@@ -55,7 +55,7 @@ def responses(model, strength, bands=(1.0, 1.0, 1.0), depth=0.0, drag=0.0, ocean
     return out
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def dissipation(sigma, m, spin, response, t):
     """K(sigma) of the term of order m: the lagging part of the Love number, with the sign of sigma (the bulge
     lags the forcing); ``spin`` the Earth's rotation rate (rad/day), which the global ocean's response depends

@@ -22,6 +22,7 @@ O(e^2) the sums give Hut's (1981, A&A 99, 126) constant-time-lag f-functions (te
 import numpy as np
 from numba import njit
 
+from ...linker import cached
 from .response import dissipation
 
 # (k, q, c_k X_q^{-3,k}(e)^2 as (constant, e^2 coefficient)): Kaula's G_{2pq} to O(e^2).
@@ -55,7 +56,7 @@ def wigner_squared(m, k, c):
     return (0.5 * (1.0 - c)) ** 4
 
 
-@njit(cache=True, nogil=True)
+@cached(nogil=True)
 def lags(spin, n, response, t):
     """K(m spin - q n) for m = -2..2 (rows m + 2) and q = -3..3 (columns q + 3) at the time t (days): each
     term's lag, computed once for every orientation the rates are averaged over."""
