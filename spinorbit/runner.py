@@ -66,7 +66,8 @@ def run_scene(scenario):
     run = Run(p, model, times, functools.partial(integrate, scenario))
     solution, section = None, {"kept": False, "why": "the scene has no main run (nothing of its own integrated)"}
     if model.system is not None:
-        solution, run.solution, run.point, section = main_run(scenario, model.system, times)
+        run.fitted, run.solution, run.point, section = main_run(scenario, model.system, times)
+        solution = run.fitted
     outcome = scene.compare(p, run)
     table = outcome.table
     if table is None and run.solution is not None and run.solution.layout.quaternions:

@@ -61,7 +61,8 @@ class Model(SimpleNamespace):
 @dataclass
 class Run:
     """What the runner hands a scene's ``compare``: the parameters, the model, the output times, the main
-    run's solution and its point (method, wall time, error estimate), and ``integrate(system, times, part,
+    run's solution and its point (method, wall time, error estimate), ``fitted``: the main run's Solution
+    (spinorbit.solutions; None when it was run to the outputs), and ``integrate(system, times, part,
     method=None, options=None, estimate_error=None) -> (solution, point)`` for a further run (``part`` names its
     checkpoint and progress bar; the scenario's [integrator] unless given)."""
 
@@ -71,6 +72,7 @@ class Run:
     integrate: Callable
     solution: object = None
     point: dict = field(default_factory=dict)
+    fitted: object = None
 
 
 @dataclass

@@ -66,6 +66,24 @@ def test_a_runs_table_is_its_solution_at_the_outputs_and_agrees_with_a_discrete_
     assert section["fit_error_attitude_arcsec"] <= section["integration_error_attitude_arcsec"]
 
 
+def test_the_readme_scenes_run_is_its_solution_at_the_outputs(place, simulations):
+    """The README's scene (the Moon from 1900-01-05, not the stored model's start), two months of it: integrated
+    once into a Solution, not stored; its table's angles are the Solution's states at the outputs and its
+    librations and sub-Earth point come from the Solution's Earth (DE421's series, fitted), exactly."""
+    from spinorbit.analysis.librations import icrf_to_body
+    from spinorbit.references import eckhardt
+
+    result = run_scenario("moon_libration", ["span.end=1900-03-05", "output.plots=false"])
+    assert simulations == {"fit": 1, "scene": 0}
+    solution, t = result.solution, result.states.t
+    assert solution is not None and result.summary["solution"]["stored"] is None
+    assert np.array_equal(result.states.y, solution.states(t).y)
+    mats = icrf_to_body(solution.states(t).quaternion)
+    lib = eckhardt.physical_librations(t, mats, solution.part("earth.from_moon", t))
+    assert np.array_equal(result.table["libration_longitude"].to_value(u.arcsec), lib["tau"] / (np.pi / 648000))
+    assert np.array_equal(result.table["sub_earth_latitude"].to_value(u.deg), np.degrees(lib["sub_earth_lat"]))
+
+
 def test_the_runs_solution_costs_no_second_integration_and_a_stored_kind_answers_the_api(place, simulations):
     """run_scenario(...).solution is the run's one integration; the Moon's run from J2000 (the stored
     solution's start) is kept in the store, and moon_librations at dates inside its span integrates nothing

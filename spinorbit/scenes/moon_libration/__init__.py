@@ -89,11 +89,13 @@ def compare_run(p, run):
     solution, system, orbits, level = run.solution, run.model.system, run.model.orbits, p.model.level
     t, mats = solution.t, icrf_to_body(solution.quaternion)
     de421, covered, comparison, not_measured = vs.against_de421(t, mats)
-    lib = eckhardt.physical_librations(t, mats, orbits.positions(t)[:, 0])
+    # the Earth seen from the Moon: the Solution's (DE421's own series on a JPL source), else the orbits'
+    earth = run.fitted.part("earth.from_moon", t) if run.fitted is not None else orbits.positions(t)[:, 0]
+    lib = eckhardt.physical_librations(t, mats, earth)
     terms, refused = eckhardt.fit_longitude_terms(t, lib["tau"] / ARCSEC, FREE_LIBRATION_LONGITUDE_PERIOD_D)
     if de421 is not None:           # DE421's own librations fitted alike: where Eckhardt's series differs
         vs.beside_de421(terms, eckhardt.fit_longitude_terms(t[covered], eckhardt.physical_librations(
-            t[covered], de421["icrf_to_body"], orbits.positions(t[covered])[:, 0])["tau"] / ARCSEC,
+            t[covered], de421["icrf_to_body"], earth[covered])["tau"] / ARCSEC,
             FREE_LIBRATION_LONGITUDE_PERIOD_D)[0])
     sections = {"reference": de421.provenance if de421 else None,
                 "model": {"level": level, "name": LEVELS[level].name, "start_tdb_d": system.t0,
@@ -104,7 +106,7 @@ def compare_run(p, run):
     table, rows = vs.table(solution, mats, de421, covered, lib), terms["main"] + terms["other"]
     zoom = covered & (np.abs(t - t[covered][-1]) <= ZOOM_D) if covered.any() else None   # two years vs DE421
     de421_zoom = None if zoom is None else eckhardt.physical_librations(
-        t[zoom], de421["icrf_to_body"][zoom[covered]], orbits.positions(t[zoom])[:, 0])
+        t[zoom], de421["icrf_to_body"][zoom[covered]], earth[zoom])
     figures = plots.moon_libration(t, table, rows, [r["term"] for r in terms["main"]], zoom, de421_zoom)
     if p.compare.source:
         other = p.compare.source
