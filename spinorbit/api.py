@@ -85,7 +85,7 @@ def expected(answer):
     """The expected accuracy of an answer ("moon", "earth", "earth_rigid", "earth_moon"): the tolerances its
     validated scene's verdict judges it by, and what ACCURACY says of them."""
     scene, names = TOLERANCES[answer]
-    scenario = _scenario(scene, {})
+    scenario = _validated(scene)
     checks = {c.metric: c.tolerance for c in scenario.scene.verdict_for(scenario.params, {}).checks}
     return {**{name: checks[metric] for name, metric in names.items()}, **ACCURACY[answer]}
 
@@ -258,12 +258,18 @@ def _ephemeris(ephemeris, t, span):
 
 def _check_iso_years(t, span):
     """Refuse dates whose run (``span``, TDB days) a scene's span cannot name: ISO dates of four-digit years."""
-    from .schema import parse_tdb_days
-
-    first, last = (parse_tdb_days("times", date) for date in ISO_YEARS)
+    first, last = _iso_limits()
     if span[0] < first or span[1] > last:
         raise InputError("times", tdb_dates((t.min(), t.max())),
                          f"dates whose run ({tdb_dates(span)}) lies within {ISO_YEARS[0]} to {ISO_YEARS[1]} (TDB)")
+
+
+@functools.cache
+def _iso_limits():
+    """ISO_YEARS as TDB days from J2000."""
+    from .schema import parse_tdb_days
+
+    return tuple(parse_tdb_days("times", date) for date in ISO_YEARS)
 
 
 def _check_nbody_cost(t, span, days):
@@ -299,10 +305,23 @@ def _span_text(source):
 
 
 def _scenario(scene, values):
-    """The built-in scene ``scene`` with ``values`` (dotted key -> value) in place of its file's."""
+    """The built-in scene ``scene`` with ``values`` (dotted key -> value) in place of its file's: the validated
+    scene itself (loaded once per process) when they are its own values."""
     from .scenarios import load_scenario
 
+    validated, values = _validated(scene), dict(values or {})
+    if all(type(validated.values.get(key)) is type(value) and validated.values.get(key) == value
+           for key, value in values.items()):
+        return validated
     return load_scenario(scene, values=values)
+
+
+@functools.cache
+def _validated(scene):
+    """The built-in scene ``scene`` as its file says it (what ``expected`` judges by), loaded once per process."""
+    from .scenarios import load_scenario
+
+    return load_scenario(scene)
 
 
 def _solution(scene, values, t, margin):

@@ -10,23 +10,35 @@ def moon(solution, t, source):
     from ..comparisons import moon_de421 as vs
     from ..references import eckhardt
 
-    states = solution.states(t)
+    values = solution.components(t)            # the series evaluated once: the state and the Earth sliced from it
+    states = _states(solution, t, values)
     mats = icrf_to_body(states.quaternion)
     de421, covered, _, _ = vs.against_de421(t, mats)
-    earth = solution.part("earth.from_moon", t) if "earth.from_moon" in solution.layout else \
+    earth = values[:, solution.layout["earth.from_moon"]] if "earth.from_moon" in solution.layout else \
         earth_from_moon(source, t)
     lib = eckhardt.physical_librations(t, mats, earth)
     return vs.table(states, mats, de421, covered, lib)
+
+
+def _states(solution, t, values):
+    """The integrator's kind of Solution (what a scene's analysis reads) from the components ``values`` evaluated
+    at ``t``: the leading ``state_size`` columns, laid out as the solution's layout says them."""
+    from ..integrators.base import Solution as States
+    from ..layout import Layout
+
+    size = solution.provenance["state_size"]
+    layout = Layout([(s.name, s.stop - s.start, s.kind, s.unit) for s in solution.layout.slices if s.stop <= size])
+    return States(t, values[:, :size], solution.provenance["integrator"]["method"], layout=layout)
 
 
 def earth_moon(solution, t):
     """The coupled scene's table (comparisons.earth_moon_de421.table) at TDB days ``t``."""
     from ..comparisons import earth_moon_de421 as vs
 
-    r, q = solution.part("moon.r", t), solution.part("moon.q", t)
+    values = solution.components(t)            # the series evaluated once, each part sliced from it
+    r, q, axis = (values[:, solution.layout[name]] for name in ("moon.r", "moon.q", "earth.pole"))
     direction, distance = vs.orbit_errors(t, r)
     mats, _, pole, longitude, _ = vs.lunar_errors(t, q)
-    axis = solution.part("earth.pole", t)
     errors = {"direction": direction, "range": distance, "pole": pole, "longitude": longitude,
               "earth_axis": vs.earth_axis_error(t, axis)}
     return vs.table(t, r, mats, errors, axis)
