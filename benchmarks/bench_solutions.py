@@ -12,8 +12,8 @@
   J2000, the non-rigid Earth 1950-2050): the largest difference, uas;
 * extension: a stored Moon 2000-2050 extended to 2100, beside integrating 2050-2100 (simulate() of the same
   System to the scene's 2-d outputs, with its error estimate) and a scene run of 2050-2100;
-* fit_points: the Moon's series (2000-2002) against the integrator at the second-kind points of each segment
-  (what the stated fit error measures), at the extrema of T_(n+1) and at 101 points per segment;
+* fit_points: the Moon's series (2000-2002) against the integrator at the second-kind points of each segment,
+  at the extrema of T_(n+1) (what the stated fit error measures) and at 101 points per segment;
 * export: each kind with SPICE kernels over its scene's span (``spinorbit export SCENE``: the Moon 1900-2050 as a
   binary PCK; the coupled Earth-Moon and the solar system 1950-2050 as an SPK and the Moon's PCK): solve and
   write times, sizes; read back by spiceypy and skyfield at 1000 dates against the solution (uas, mm) and
@@ -227,7 +227,8 @@ def fit_points():
     stretch = models.stretch(scenario, lo, hi, t0)
     system = models.system(stretch, (t0, y0))
     method, options = stretch["integrator.method"], stretch.integrator_options()
-    piece = fit.integrate(system, grid, lo, hi, method, options, estimate_error=False)
+    ephemeris = models.ephemeris(stretch, system, lo, hi)
+    piece = fit.integrate(system, grid, lo, hi, method, options, estimate_error=False, ephemeris=ephemeris)
     count = len(piece.segments.coefficients)
     mids = lo + (np.arange(count) + 0.5) * grid.length_d
     sets = {"second kind": np.cos(np.pi * np.arange(grid.degree + 1) / grid.degree),
@@ -241,7 +242,7 @@ def fit_points():
     print("|---|---|---|---|---|")
     for name, t in times.items():
         rows = np.searchsorted(every, t)
-        truth = fit.components(system, t, direct.y[rows])
+        truth = fit.components(system, t, direct.y[rows], ephemeris)
         e = fit.errors(piece.layout, piece.layout.normalise(piece.segments.evaluate(t)), truth)
         print(f"| {name} | {e['fit_error_attitude_arcsec'] * 1e6:.3g} | {e['fit_error_moon_omega_rel']:.2g} | "
               f"{e['fit_error_moon_omega_core_rel']:.2g} | {e['fit_error_earth_from_moon_rel']:.2g} |")
