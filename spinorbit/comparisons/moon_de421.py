@@ -25,15 +25,23 @@ def against_de421(t, mats):
     from ..analysis.librations import residual_metrics
     from ..bodies.de421_orientation import span
     from ..errors import tdb_dates
+
+    de421, covered = de421_where_covered(t)
+    if de421 is None:
+        why = f"DE421's lunar orientation covers {tdb_dates(span())} TDB; this span lies outside it"
+        return None, covered, {}, {f"comparison.{k}": why for k in METRICS}
+    return de421, covered, residual_metrics(mats[covered], de421["icrf_to_body"]), {}
+
+
+def de421_where_covered(t):
+    """(DE421's orientation at the dates ``t`` its series covers (a Comparable, or None if it covers none), the
+    covered rows (mask))."""
+    from ..bodies.de421_orientation import span
     from ..references.moon_de421 import Orientation
 
     first, last = span()
     covered = (t >= first) & (t <= last)
-    if not covered.any():
-        why = f"DE421's lunar orientation covers {tdb_dates((first, last))} TDB; this span lies outside it"
-        return None, covered, {}, {f"comparison.{k}": why for k in METRICS}
-    de421 = Orientation()(t[covered])
-    return de421, covered, residual_metrics(mats[covered], de421["icrf_to_body"]), {}
+    return (Orientation()(t[covered]) if covered.any() else None), covered
 
 
 METRICS = ("pole_error_max_arcsec", "pole_error_rms_arcsec", "longitude_error_max_arcsec",

@@ -13,7 +13,7 @@ def moon(solution, t, source):
     values = solution.components(t)            # the series evaluated once: the state and the Earth sliced from it
     states = _states(solution, t, values)
     mats = icrf_to_body(states.quaternion)
-    de421, covered, _, _ = vs.against_de421(t, mats)
+    de421, covered = vs.de421_where_covered(t)            # the table computes the differences itself
     earth = values[:, solution.layout["earth.from_moon"]] if "earth.from_moon" in solution.layout else \
         earth_from_moon(source, t)
     lib = eckhardt.physical_librations(t, mats, earth)
