@@ -1,13 +1,14 @@
 """Answers from stored solutions (spinorbit.solutions) against runs, side by side in one run.
 
-    python benchmarks/bench_solutions.py [latency|agreement|extension|fit_points|export|grid|readme|all]
+    python benchmarks/bench_solutions.py [latency|agreement|extension|fit_points|export|grid|readme|all] [--busy N]
 
 * latency: a process asks for 100 dates spread over 2021-2041, its ends included (the store then holds the
   span); a new process asks ``earth_pole`` and ``moon_librations`` for 10^4 other dates there: the call's wall
   time (its first and a second call; ``import spinorbit`` aside, and every module the calls import, found by
   calls in another process, loaded before them -- or imported in the first call), beside what the API did
   before it kept solutions -- a run of the validated scene per call with the dates among its outputs
-  (``SCENE_PER_CALL``, on this code's scenes) -- each with warm caches;
+  (``SCENE_PER_CALL``, on this code's scenes) -- each with warm caches; ``--busy N``: N busy-loop processes
+  compete with the solutions' calls (a crowded machine, whatever else runs);
 * agreement: the API's values against direct scene runs over the same span (the Moon 2000-2020 started at
   J2000, the non-rigid Earth 1950-2050): the largest difference, uas;
 * extension: a stored Moon 2000-2050 extended to 2100, beside integrating 2050-2100 (simulate() of the same
@@ -24,6 +25,7 @@
   caches (a fresh SPINORBIT_CACHE_DIR and NUMBA_CACHE_DIR), beside a scene per call.
 """
 import argparse
+import contextlib
 import json
 import os
 import subprocess
@@ -120,14 +122,15 @@ print(json.dumps({{}}))
 """.format(lo=SPAN_2021_2041[0], hi=SPAN_2021_2041[1])
 
 
-def latency():
+def latency(busy=0):
     rows = {}
     python(PREPARE, ROOT)
     modules = json.dumps(python(IMPORTED, ROOT))      # what the calls import, found by calls in another process
     for label, api in (("solutions", ""), ("a scene per call", SCENE_PER_CALL)):
-        for imports in ("", "imported"):
-            rows[label, imports] = python(LATENCY.format(api=api), ROOT,
-                                          args=("imported", modules) if imports else ())
+        with crowded(busy if label == "solutions" else 0):
+            for imports in ("", "imported"):
+                rows[label, imports] = python(LATENCY.format(api=api), ROOT,
+                                              args=("imported", modules) if imports else ())
     print("\n## latency: 10^4 dates in 2021-2041, a new process (first call / second call, s)\n")
     print("| code | imports | moon_librations | earth_pole |\n|---|---|---|---|")
     for (label, imports), row in rows.items():
@@ -138,6 +141,19 @@ def latency():
         ratio = rows["a scene per call", "imported"][name][0] / rows["solutions", "imported"][name][0]
         print(f"\n{name}: {ratio:.0f}x faster (first call, import aside)", end="")
     print()
+
+
+@contextlib.contextmanager
+def crowded(busy):
+    """``busy`` busy-loop processes competing for the cores while the block runs (none: the machine as it is)."""
+    loops = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(busy)]
+    try:
+        time.sleep(1.0 if busy else 0.0)
+        yield
+    finally:
+        for loop in loops:
+            loop.kill()
+            loop.wait()
 
 
 def agreement():
@@ -470,11 +486,13 @@ def main():
     parser.add_argument("part", nargs="?", default="all",
                         choices=["latency", "agreement", "extension", "fit_points", "export", "grid", "readme",
                                  "all"])
+    parser.add_argument("--busy", type=int, default=0,
+                        help="latency: busy-loop processes competing with the solutions' calls (a crowded machine)")
     args = parser.parse_args()
     parts = ["latency", "agreement", "extension", "fit_points", "export", "grid", "readme"] if args.part == "all" \
         else [args.part]
     for part in parts:
-        globals()[part]()
+        globals()[part](**({"busy": args.busy} if part == "latency" else {}))
         sys.stdout.flush()
 
 
