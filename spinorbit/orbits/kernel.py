@@ -6,7 +6,7 @@ downloaded: DE421 comes from the ``skyfield-data`` package, other kernels from
 installed ``naif-<name>`` package.
 """
 import importlib
-import importlib.resources
+import importlib.util
 from pathlib import Path
 
 import numpy as np
@@ -29,7 +29,8 @@ def kernel_path(source):
         if (folder / f"{source}.bsp").exists():
             return folder / f"{source}.bsp"
     if source == "de421":
-        return Path(str(importlib.resources.files("skyfield_data") / "data" / "de421.bsp"))
+        # the package's folder from its spec: importlib.resources.files would first import zipfile and threading
+        return Path(importlib.util.find_spec("skyfield_data").origin).parent / "data" / "de421.bsp"
     try:
         return Path(getattr(importlib.import_module(f"naif_{source}"), source))
     except (ImportError, AttributeError):
@@ -149,8 +150,9 @@ class JPLKernel:
 class DE421Arrays:
     """DE421 from the ``de421`` package: the same Chebyshev series as numpy arrays, 1899-2200.
 
-    Evaluated by jplephem's ``Ephemeris`` reader.  Planet entries are the system
-    barycentres; 'moon' in the arrays is geocentric, Earth = EMB - Moon/(1 + EMRAT).
+    jplephem's ``Ephemeris`` reads the arrays and constants; the series are summed over all dates at once by
+    :func:`clenshaw`.  Planet entries are the system barycentres; 'moon' in the arrays is geocentric,
+    Earth = EMB - Moon/(1 + EMRAT).
     """
 
     name = "de421 arrays"
@@ -160,29 +162,44 @@ class DE421Arrays:
         from jplephem.ephem import Ephemeris
 
         self._eph = Ephemeris(de421)
+        self._highest_first = {}        # series name -> its coefficients (order, set, axis), highest order first
         self.span = (self._eph.jalpha - J2000_JD, self._eph.jomega - J2000_JD)
+
+    def _series(self, key, t):
+        """Position and velocity of series ``key`` at ``t`` TDB days, shape (3, len(t)) each."""
+        eph = self._eph
+        if key not in self._highest_first:
+            self._highest_first[key] = np.ascontiguousarray(eph.load(key).transpose(2, 0, 1)[::-1])
+        coefficients = self._highest_first[key]
+        days_per_set = (eph.jomega - eph.jalpha) / coefficients.shape[1]
+        index, offset = divmod((J2000_JD - eph.jalpha) + t, days_per_set)     # as jplephem's Ephemeris
+        index = index.astype(int)
+        last = index == coefficients.shape[1]                                  # jomega itself: the last set's end
+        index[last] -= 1
+        offset[last] += days_per_set
+        pos, rate = clenshaw(coefficients, index, 2.0 * offset / days_per_set - 1.0)
+        return pos, rate * (2.0 / days_per_set)
 
     def _barycentric(self, name, t):
         eph = self._eph
-        state = lambda key: eph.position_and_velocity(key, J2000_JD, t)
         if name == "solar_system_barycenter":
             return np.zeros((3, t.size)), np.zeros((3, t.size))
         if name in ("earth", "moon"):
-            emb_p, emb_v = state("earthmoon")
-            moon_p, moon_v = state("moon")
+            emb_p, emb_v = self._series("earthmoon", t)
+            moon_p, moon_v = self._series("moon", t)
             share = eph.earth_share if name == "earth" else -eph.moon_share
             return emb_p - share * moon_p, emb_v - share * moon_v
         key = {"earth_moon_barycenter": "earthmoon"}.get(name, name)
         if key not in eph.names or key in ("librations", "nutations"):
             raise InputError("body", name, f"one of {sorted(NAIF)}")
-        return state(key)
+        return self._series(key, t)
 
     def relative_states(self, target, center, t_tdb_days):
         """(pos_km, vel_km_per_day) of ``target`` relative to ``center``, shape (len(t), 3)."""
         t = np.atleast_1d(np.asarray(t_tdb_days, dtype=float))
         self.check_span(t.min(), t.max())
         if {target, center} == {"earth", "moon"}:   # direct from the geocentric series
-            p, v = self._eph.position_and_velocity("moon", J2000_JD, t)
+            p, v = self._series("moon", t)
             sign = 1.0 if target == "moon" else -1.0
             return sign * p.T, sign * v.T
         tp, tv = self._barycentric(target, t)
@@ -190,6 +207,24 @@ class DE421Arrays:
         return (tp - cp).T, (tv - cv).T
 
     check_span = JPLKernel.check_span
+
+
+def clenshaw(coefficients, index, s):
+    """A Chebyshev series and its derivative in ``s`` by Clenshaw's recurrence, as jplephem sums an SPK segment.
+
+    coefficients: (order, set, axis), highest order first; index: each date's set; s: each date in [-1, 1].
+    Returns (value, d value / ds), shape (axis, len(s)) each.  Each order's coefficients are gathered per date as
+    rows of (set, axis), never a whole (date, axis, order) table.
+    """
+    s = s[:, None]
+    w0 = w1 = dw0 = dw1 = 0.0
+    for order in coefficients[:-1]:
+        w1, w2 = w0, w1
+        w0 = order[index] + (2.0 * s * w1 - w2)
+        dw1, dw2 = dw0, dw1
+        dw0 = 2.0 * w1 + 2.0 * s * dw1 - dw2
+    value = coefficients[-1][index] + (s * w0 - w1)
+    return value.T, (w0 + s * dw0 - dw1).T
 
 
 def open_ephemeris(source, t_start, t_end):
