@@ -76,6 +76,7 @@ class JPLKernel:
         self._spk = _open_spk(SPK, self.path)
         self._parent = {}       # target code -> (center code, [segments])
         self._memo = (None, {})
+        self._highest_first = {}        # segment -> (start JD, days per set, coefficients (order, set, axis))
         for seg in self._spk.segments:
             self._parent.setdefault(seg.target, (seg.center, []))[1].append(seg)
         # a body may be split over consecutive segments (e.g. DE441): its cover is their union
@@ -120,11 +121,32 @@ class JPLKernel:
         for seg in self._parent[code][1]:
             inside = ~done & (t + J2000_JD >= seg.start_jd) & (t + J2000_JD <= seg.end_jd)
             if inside.any():
-                pos[:, inside], vel[:, inside] = seg.compute_and_differentiate(J2000_JD, t[inside])
+                pos[:, inside], vel[:, inside] = self._segment_series(seg, t[inside])
                 done |= inside
         if not done.all():
             raise EphemerisRangeError(self.name, (t[~done][0], t[~done][0]), self.span)
         return pos, vel
+
+    def _segment_series(self, seg, t):
+        """Position and velocity from one segment at ``t`` (inside it): by :func:`clenshaw` for a Chebyshev
+        position segment (type 2, as JPL's DE kernels are), else by jplephem."""
+        if seg.data_type != 2:
+            return seg.compute_and_differentiate(J2000_JD, t)
+        if seg not in self._highest_first:
+            start_jd, days_per_set, coefficients = seg.load_array()     # (axis, set, order), lowest order first
+            self._highest_first[seg] = (start_jd, days_per_set,
+                                        np.ascontiguousarray(coefficients.transpose(2, 1, 0)[::-1]))
+        start_jd, days_per_set, coefficients = self._highest_first[seg]
+        # as jplephem: the sets before J2000 and those after it counted apart, so t keeps its precision
+        before, before_offset = divmod(J2000_JD - start_jd, days_per_set)
+        after, after_offset = divmod(t, days_per_set)
+        carry, offset = divmod(before_offset + after_offset, days_per_set)
+        index = (before + after + carry).astype(int)
+        last = index == coefficients.shape[1]                   # the segment's very end: its last set's end
+        index[last] -= 1
+        offset[last] += days_per_set
+        pos, rate = clenshaw(coefficients, index, 2.0 * offset / days_per_set - 1.0)
+        return pos, rate * (2.0 / days_per_set)
 
     def relative_states(self, target, center, t_tdb_days):
         """(pos_km, vel_km_per_day) of ``target`` relative to ``center``, shape (len(t), 3)."""
