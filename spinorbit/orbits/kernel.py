@@ -137,16 +137,7 @@ class JPLKernel:
             self._highest_first[seg] = (start_jd, days_per_set,
                                         np.ascontiguousarray(coefficients.transpose(2, 1, 0)[::-1]))
         start_jd, days_per_set, coefficients = self._highest_first[seg]
-        # as jplephem: the sets before J2000 and those after it counted apart, so t keeps its precision
-        before, before_offset = divmod(J2000_JD - start_jd, days_per_set)
-        after, after_offset = divmod(t, days_per_set)
-        carry, offset = divmod(before_offset + after_offset, days_per_set)
-        index = (before + after + carry).astype(int)
-        last = index == coefficients.shape[1]                   # the segment's very end: its last set's end
-        index[last] -= 1
-        offset[last] += days_per_set
-        pos, rate = clenshaw(coefficients, index, 2.0 * offset / days_per_set - 1.0)
-        return pos, rate * (2.0 / days_per_set)
+        return series_states(coefficients, start_jd, days_per_set, t)
 
     def relative_states(self, target, center, t_tdb_days):
         """(pos_km, vel_km_per_day) of ``target`` relative to ``center``, shape (len(t), 3)."""
@@ -193,14 +184,7 @@ class DE421Arrays:
         if key not in self._highest_first:
             self._highest_first[key] = np.ascontiguousarray(eph.load(key).transpose(2, 0, 1)[::-1])
         coefficients = self._highest_first[key]
-        days_per_set = (eph.jomega - eph.jalpha) / coefficients.shape[1]
-        index, offset = divmod((J2000_JD - eph.jalpha) + t, days_per_set)     # as jplephem's Ephemeris
-        index = index.astype(int)
-        last = index == coefficients.shape[1]                                  # jomega itself: the last set's end
-        index[last] -= 1
-        offset[last] += days_per_set
-        pos, rate = clenshaw(coefficients, index, 2.0 * offset / days_per_set - 1.0)
-        return pos, rate * (2.0 / days_per_set)
+        return series_states(coefficients, eph.jalpha, (eph.jomega - eph.jalpha) / coefficients.shape[1], t)
 
     def _barycentric(self, name, t):
         eph = self._eph
@@ -229,6 +213,21 @@ class DE421Arrays:
         return (tp - cp).T, (tv - cv).T
 
     check_span = JPLKernel.check_span
+
+
+def series_states(coefficients, start_jd, days_per_set, t):
+    """Position and velocity (per day) at ``t`` TDB days from J2000 of Chebyshev sets ``days_per_set`` long from
+    ``start_jd``, coefficients (order, set, axis) highest order first; shape (axis, len(t)) each."""
+    # the sets before J2000 and those after it counted apart (as jplephem's SPK segments): t keeps its precision
+    before, before_offset = divmod(J2000_JD - start_jd, days_per_set)
+    after, after_offset = divmod(t, days_per_set)
+    carry, offset = divmod(before_offset + after_offset, days_per_set)
+    index = (before + after + carry).astype(int)
+    last = index == coefficients.shape[1]                   # the sets' very end: the last set's end
+    index[last] -= 1
+    offset[last] += days_per_set
+    pos, rate = clenshaw(coefficients, index, 2.0 * offset / days_per_set - 1.0)
+    return pos, rate * (2.0 / days_per_set)
 
 
 def clenshaw(coefficients, index, s):
