@@ -41,6 +41,14 @@ def copy_package(work, ref):
     return tree
 
 
+def package_trees(work, baseline):
+    """[(label, root)]: this tree's package, and the one at git ``baseline`` beside it when given."""
+    trees = [("this tree", copy_package(work, None))]
+    if baseline:
+        trees.append((baseline, copy_package(work, baseline)))
+    return trees
+
+
 def run(tree, scenario, work):
     """Wall time (s) of one run in a fresh process, the generated modules in the kernel cache and numba's
     indexes of the package's functions ({path: modification time})."""
@@ -95,9 +103,7 @@ def main():
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
-        trees = [("this tree", copy_package(work, None))]
-        if args.baseline:
-            trees.append((args.baseline, copy_package(work, args.baseline)))
+        trees = package_trees(work, args.baseline)
         settings = " ".join(SHORT[1::2])
         print(f"{Path(args.scenario).name} {settings}; wall s of one run (generated modules, numba indexes "
               "written)")

@@ -20,7 +20,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from bench_cache_reach import copy_package, touch_docstring
+from bench_cache_reach import package_trees, touch_docstring
 
 FIRST_CALLS = """
 import time
@@ -79,9 +79,7 @@ def main():
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
-        trees = [("this tree", copy_package(work, None))]
-        if args.baseline:
-            trees.append((args.baseline, copy_package(work, args.baseline)))
+        trees = package_trees(work, args.baseline)
         rows = measure(trees, work, args.repeat)
     print("first call, s: " + "   ".join(f"{name}: " + " / ".join(KERNELS) for name, _ in trees))
     for label, cells in rows.items():
