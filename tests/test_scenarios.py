@@ -116,7 +116,7 @@ def peak_bytes(tmp_path, scenario, sets):
 
 
 @pytest.mark.parametrize("scenario, common, sizes", [
-    (MOON, ['span.start="2000-01-01T12:00:00"', "span.end=2000 d", "span.step=20 d", "model.level=1"],
+    (MOON, ['span.start="2000-01-01T12:00:00"', "span.end=2000 d", "span.step=20 d"],
      ["orbit.step=0.1 d", "orbit.step=0.01 d"]),                           # 20,001 and 200,001 orbit samples
     (P93, ["span.end=2000 d"], ["span.step=0.1 d", "span.step=0.01 d"]),    # 20,001 and 200,001 output rows
 ])

@@ -137,5 +137,5 @@ def restart(p, start):
     return started_at(p, start)
 
 
-SCENE = Scene(SCHEMA, build, compare_run, verdict, Cost(step_s=2e-4), bench=bench, backward=True,
-              restart=restart)
+SCENE = Scene(SCHEMA, build, compare_run, verdict, Cost(step_s=2e-4, sample_bytes=400), bench=bench,
+              backward=True, restart=restart)
