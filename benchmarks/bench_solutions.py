@@ -239,7 +239,7 @@ def fit_points():
     t0, y0 = models.first_start(scenario)
     kind = models.KINDS["moon_libration"]
     grid = kind.grid
-    lo, hi = kind.grid_bounds(t0, t0 + 730.0)
+    lo, hi = grid.bounds(t0, t0 + 730.0)
     stretch = models.stretch(scenario, lo, hi, t0)
     system = models.system(stretch, (t0, y0))
     method, options = stretch["integrator.method"], stretch.integrator_options()

@@ -6,13 +6,11 @@
 lacks it.  ``for_run(scenario, system)`` is the runner's: a scene's main run integrated once into a Solution,
 kept in the store where it is the stored model (``keep``).
 """
-import fcntl
 import math
 
 import numpy as np
 
 from . import models, store
-from .chebyshev import grid_indices
 from .fit import Grid, integrate
 from .solution import Solution, joined
 
@@ -82,7 +80,7 @@ def _piece(scenario, kind, start, lo, hi, grid=None):
     """A Solution over [lo, hi] (rounded out to ``grid``, default the kind's) of the scene's System started at
     ``start``."""
     grid = grid or kind.grid
-    lo, hi = grid_bounds(grid, lo, hi)
+    lo, hi = grid.bounds(lo, hi)
     stretch = models.stretch(scenario, lo, hi, start[0])
     system = models.system(stretch, start)
     method, options = stretch["integrator.method"], stretch.integrator_options()
@@ -105,12 +103,6 @@ def made(scenario, system, grid, piece, span, method, options):
                                    "(between the fitted points, the segments' ends included)",
                   "runs": [run]}
     return Solution(piece.segments, piece.layout, provenance, piece.ends)
-
-
-def grid_bounds(grid, lo, hi):
-    """[lo, hi] rounded out to ``grid``'s segment ends."""
-    first, count = grid_indices(grid.origin_d, grid.length_d, lo, hi)
-    return grid.origin_d + first * grid.length_d, grid.origin_d + (first + count) * grid.length_d
 
 
 def grid_of(solution):
@@ -234,19 +226,9 @@ def stored_model(scenario, t0):
 def keep(scenario, solution):
     """Put a run's Solution in the store where it is the stored model (``stored_model``), unless the store
     already holds a longer span of it.  Returns the path, or None."""
-    from ..files import open_lock
-
     if stored_model(scenario, solution.provenance["runs"][0]["start_tdb_d"]):
         return None
-    rec = store.record(scenario)
-    path = store.path_of(rec)
-    with open_lock(path.with_name(path.name + ".lock")) as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
-        stored = store.read(path, rec)
-        if stored is None or solution.covers(*stored.span):
-            store.save(solution, rec, path)
-    solution.path = path
-    return path
+    return store.offer(solution, store.record(scenario))
 
 
 def integration_error(solution):

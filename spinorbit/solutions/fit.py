@@ -28,6 +28,11 @@ class Grid:
     length_d: float
     degree: int
 
+    def bounds(self, lo, hi):
+        """[lo, hi] rounded out to the grid's segment ends."""
+        first, count = grid_indices(self.origin_d, self.length_d, lo, hi)
+        return self.origin_d + first * self.length_d, self.origin_d + (first + count) * self.length_d
+
 
 @dataclass
 class Piece:

@@ -9,7 +9,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .chebyshev import grid_indices
 from .fit import Grid
 
 J2000_ISO = "2000-01-01T12:00:00"
@@ -26,12 +25,6 @@ class Kind:
     grid: Grid
     anchor: str | None
     kernels: bool = True
-
-    def grid_bounds(self, lo, hi):
-        """[lo, hi] rounded out to the grid's segment ends."""
-        first, count = grid_indices(self.grid.origin_d, self.grid.length_d, lo, hi)
-        return (self.grid.origin_d + first * self.grid.length_d,
-                self.grid.origin_d + (first + count) * self.grid.length_d)
 
 
 KINDS = {"moon_libration": Kind("moon_libration", Grid(0.0, 4.0, 13), J2000_ISO),

@@ -14,6 +14,7 @@ waiting and then reading what it wrote.
 A query outside the stored span extends the solution from its nearer end (forward from its end, backward
 from its start), the same System started at the state where the last run stopped.
 """
+import contextlib
 import fcntl
 import hashlib
 import json
@@ -171,12 +172,7 @@ def solve(rec, t_start, t_end, extend):
     if solution is not None and solution.covers(t_start, t_end):
         solution.path = path
         return solution
-    with open_lock(path.with_name(path.name + ".lock")) as lock:
-        try:
-            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except BlockingIOError:
-            print(f"spinorbit: waiting for another process extending {path}", file=sys.stderr)
-            fcntl.flock(lock, fcntl.LOCK_EX)
+    with locked(path):
         solution = read(path, rec)
         if solution is None or not solution.covers(t_start, t_end):
             started = time.perf_counter()
@@ -185,6 +181,30 @@ def solve(rec, t_start, t_end, extend):
             save(solution, rec, path)
     solution.path = path
     return solution
+
+
+def offer(solution, rec):
+    """Keep ``solution`` under ``rec`` unless the store already holds a span it does not cover (under the
+    file's lock); returns the file's path."""
+    path = path_of(rec)
+    with locked(path):
+        stored = read(path, rec)
+        if stored is None or solution.covers(*stored.span):
+            save(solution, rec, path)
+    solution.path = path
+    return path
+
+
+@contextlib.contextmanager
+def locked(path):
+    """The exclusive lock of the stored file ``path``: one process at a time writes it, the others wait."""
+    with open_lock(path.with_name(path.name + ".lock")) as lock:
+        try:
+            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            print(f"spinorbit: waiting for another process writing {path}", file=sys.stderr)
+            fcntl.flock(lock, fcntl.LOCK_EX)
+        yield
 
 
 def entry_span(path):
