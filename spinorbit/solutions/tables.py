@@ -11,24 +11,13 @@ def moon(solution, t, source):
     from ..references import eckhardt
 
     values = solution.components(t)            # the series evaluated once: the state and the Earth sliced from it
-    states = _states(solution, t, values)
+    states = solution.states(t, values)
     mats = icrf_to_body(states.quaternion)
     de421, covered = vs.de421_where_covered(t)            # the table computes the differences itself
     earth = values[:, solution.layout["earth.from_moon"]] if "earth.from_moon" in solution.layout else \
         earth_from_moon(source, t)
     lib = eckhardt.physical_librations(t, mats, earth)
     return vs.table(states, mats, de421, covered, lib)
-
-
-def _states(solution, t, values):
-    """The integrator's kind of Solution (what a scene's analysis reads) from the components ``values`` evaluated
-    at ``t``: the leading ``state_size`` columns, laid out as the solution's layout says them."""
-    from ..integrators.base import Solution as States
-    from ..layout import Layout
-
-    size = solution.provenance["state_size"]
-    layout = Layout([(s.name, s.stop - s.start, s.kind, s.unit) for s in solution.layout.slices if s.stop <= size])
-    return States(t, values[:, :size], solution.provenance["integrator"]["method"], layout=layout)
 
 
 def earth_moon(solution, t):
