@@ -93,7 +93,7 @@ def expected(answer):
 MOON_COLUMNS = ("phi", "theta", "psi", "libration_longitude", "libration_latitude", "libration_node",
                 "sub_earth_longitude", "sub_earth_latitude", "pole_error", "longitude_error")
 EARTH_COLUMNS = ("cip_x", "cip_y", "cip_x_minus_erfa", "cip_y_minus_erfa", "precession_longitude", "obliquity",
-                 "nutation_longitude", "nutation_obliquity")
+                 "nutation_longitude", "nutation_obliquity", "cio_locator_s", "celestial_to_intermediate")
 EARTH_MOON_COLUMNS = ("moon_geocentric_x", "moon_geocentric_y", "moon_geocentric_z", "phi", "theta", "psi",
                       "moon_direction_error", "moon_range_error", "pole_error", "longitude_error",
                       "earth_axis_x", "earth_axis_y", "earth_axis_z")
@@ -122,8 +122,9 @@ def moon_librations(times, *, level=3, ephemeris=None, optical=False):
 
 def earth_pole(times, *, nonrigid=True, ephemeris=None):
     """The Earth's pole at ``times``: the CIP X, Y (GCRS), their difference from IAU 2006/2000A (ERFA), the
-    precession in longitude and the obliquity of the model's mean pole and its nutation Δψ, Δε about it; non-rigid
-    (MHB2000's transfer function on the rigid run) by default."""
+    precession in longitude and the obliquity of the model's mean pole and its nutation Δψ, Δε about it, the CIO
+    locator s and the GCRS-to-CIRS matrix (n, 3, 3) of the model's X, Y and s (as ERFA's ``c2i06a`` builds it from
+    IAU's: ``s06``, ``c2ixys``); non-rigid (MHB2000's transfer function on the rigid run) by default."""
     from .solutions import earth_layer
 
     t, when = tdb_days(times, "times")

@@ -41,6 +41,9 @@ COLUMNS = {
     "cip_y": "the model's Celestial Intermediate Pole Y: its figure axis in the GCRS, y component",
     "cip_x_minus_erfa": "the model's CIP X minus IAU 2006/2000A's (ERFA bpn2xy(pnm06a))",
     "cip_y_minus_erfa": "the model's CIP Y minus IAU 2006/2000A's (ERFA bpn2xy(pnm06a))",
+    "cio_locator_s": "the CIO locator s of the model's CIP X, Y (IAU 2006's series given X, Y: ERFA s06)",
+    "celestial_to_intermediate": "the GCRS-to-CIRS matrix (3 x 3) of the model's X, Y and s (ERFA c2ixys, as "
+                                 "c2i06a builds it from IAU 2006/2000A's): v_CIRS = M v_GCRS",
     "precession_longitude": "the model's mean pole: Fukushima-Williams psi_bar of its pole with the nutation fitted "
                             "out (IAU 2006's mean pole plus the model's mean offset)",
     "obliquity": "the model's mean pole: its obliquity on the ecliptic of date (IAU 2006 eps_A plus the model's "

@@ -148,8 +148,22 @@ def table(solution, t):
     z, cip = values[:, LAYOUT["earth.pole"]], values[:, LAYOUT["iau.cip"]]
     mean, offset = values[:, LAYOUT["nutation.mean"]], values[:, LAYOUT["nutation.offset"]]
     arcsec = lambda x: (x * u.rad).to(u.arcsec)
-    return QTable({"time": tdb_days_to_time(t), "cip_x": arcsec(z[:, 0]), "cip_y": arcsec(z[:, 1]),
+    time = tdb_days_to_time(t)
+    s, celestial_to_intermediate = intermediate_frame(time, z[:, 0], z[:, 1])
+    return QTable({"time": time, "cip_x": arcsec(z[:, 0]), "cip_y": arcsec(z[:, 1]),
                    "cip_x_minus_erfa": (z[:, 0] - cip[:, 0]) / MAS * u.mas,
                    "cip_y_minus_erfa": (z[:, 1] - cip[:, 1]) / MAS * u.mas,
                    "precession_longitude": arcsec(mean[:, 0]), "obliquity": (mean[:, 1] * u.rad).to(u.deg),
-                   "nutation_longitude": arcsec(offset[:, 0]), "nutation_obliquity": arcsec(offset[:, 1])})
+                   "nutation_longitude": arcsec(offset[:, 0]), "nutation_obliquity": arcsec(offset[:, 1]),
+                   "cio_locator_s": arcsec(s), "celestial_to_intermediate": celestial_to_intermediate})
+
+
+def intermediate_frame(time, x, y):
+    """(the CIO locator s (n,) rad, the GCRS-to-CIRS matrices (n, 3, 3)) of the CIP X, Y (rad) at ``time``
+    (astropy Time): s from IAU 2006's series given X, Y (ERFA s06), the matrix from X, Y and s (ERFA c2ixys),
+    as ERFA's c2i06a builds them from IAU 2006/2000A's own X, Y (IERS Conventions 2010, 5.4.4 and 5.5.6)."""
+    import erfa
+
+    tt = time.tt
+    s = erfa.s06(tt.jd1, tt.jd2, x, y)
+    return s, erfa.c2ixys(x, y, s)
