@@ -41,22 +41,18 @@ def run_scenario(scenario, overrides=()):
     return _run(scenario, overrides)
 
 
-def moon_librations(times, **options):
-    """The Moon's orientation and physical librations at ``times`` (spinorbit.api.moon_librations)."""
-    from .api import moon_librations as _moon
-
-    return _moon(times, **options)
+_API = ("moon_librations", "earth_pole", "earth_moon")
 
 
-def earth_pole(times, **options):
-    """The Earth's CIP X, Y, precession and nutation at ``times`` (spinorbit.api.earth_pole)."""
-    from .api import earth_pole as _pole
+def __getattr__(name):
+    """The API's functions (spinorbit.api), imported when first asked for: ``import spinorbit`` stays light,
+    and ``help(spinorbit.moon_librations)`` shows the function itself, its signature and its docstring."""
+    if name in _API:
+        from . import api
 
-    return _pole(times, **options)
+        return getattr(api, name)
+    raise AttributeError(f"module 'spinorbit' has no attribute {name!r}")
 
 
-def earth_moon(times, **options):
-    """The coupled Earth-Moon system's state at ``times`` (spinorbit.api.earth_moon)."""
-    from .api import earth_moon as _earth_moon
-
-    return _earth_moon(times, **options)
+def __dir__():
+    return sorted([*globals(), *_API])

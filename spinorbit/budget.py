@@ -25,7 +25,8 @@ NBODY_KEYS = {"WHFast steps": ("span.end", "a shorter span (an orbital solution 
                                            "cache: a later run reads it)"),
               "IAS15 days": ("orbit.source", "a span nearer DE421's (1899-2200: REBOUND starts from DE421's state "
                                              "there and integrates out to the span), or an ephemeris that covers "
-                                             "it (orbit.source = 'de440')")}
+                                             "it (orbit.source = 'de440')"),
+              "Taylor days (solar system)": ("span.end", "a shorter span")}
 # Cycles a run may have to follow: any rate key (rad/d) times the span, and the time-scales its scene declares
 # (a torque's sqrt(3 GM/s^3), Euler's equations' body-frame rates).  The fast-spin stress
 # scene follows 1e5 spin cycles (a compiled splitting method); dop853 costs ~10 ms per cycle
@@ -115,7 +116,7 @@ def _check_time(scenario, culprits):
     if kind in NBODY_KEYS:
         key, remedy = NBODY_KEYS[kind]
         refuse(scenario, key, scenario.values.get(key), f"a run the estimate finishes within limits.time = "
-                                                        f"{_duration(limit)}: its N-body stage, "
+                                                        f"{_duration(limit)}: its N-body work, "
                                                         f"{_count(items[kind])} {kind} at ~{each * 1e6:.3g} us "
                                                         f"each (measured), is ~{_duration(items[kind] * each)} "
                                                         f"(the whole run ~{_duration(total)}); {remedy}, or "

@@ -20,6 +20,7 @@ import threading
 from pathlib import Path
 
 from .errors import IntegrationError, SpinorbitError
+from .version import __version__
 
 EXIT_VERDICT_FAIL = 4
 FORCE_HELP = ("write into an --out holding entries spinorbit did not write: they are kept, except files of "
@@ -32,6 +33,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(prog="spinorbit",
                                      description="Couple orbit and spin (Euler, Theoria motus ch. 16).")
     parser.add_argument("--quiet", action="store_true", help="no progress bars on stderr")
+    parser.add_argument("--version", action="version", version=f"spinorbit {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
     run = sub.add_parser("run", help="run a scenario and write a run directory")
     run.add_argument("scenario", help="a scenario .toml file, or a built-in scene's name (spinorbit list)")
@@ -69,9 +71,15 @@ def main(argv=None):
                                         "where and how big; 'clear' empties them")
     cache.add_argument("action", nargs="?", choices=["show", "clear"], default="show")
     export = sub.add_parser("export", help="a scene's solution over its span as SPICE kernels (binary PCK + frame "
-                                           "kernel of each attitude, SPK of the integrated positions)")
+                                           "kernel of each attitude, SPK of the integrated positions)",
+                            description="Write a scene's solution over its span as SPICE kernels.",
+                            add_help=False)
+    export.add_argument("-h", "--help", action=_ExportHelp, nargs=0, help="show this help and the kinds that "
+                                                                          "can be exported, then exit")
     export.add_argument("scenario", help="a scenario .toml file, or a built-in scene's name")
-    export.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE")
+    export.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
+                        help="set a key, e.g. --set span.end=2100-01-01 (repeatable; spinorbit show SCENE lists "
+                             "the keys)")
     export.add_argument("--out", required=True, help="directory the kernels are written into")
     args, extra = parser.parse_known_args(argv)
     if extra:
@@ -290,16 +298,33 @@ def _cache(action):
     return 0
 
 
+class _ExportHelp(argparse.Action):
+    """``spinorbit export --help``: the help, with the scene kinds whose solutions SPICE kernels carry (read
+    from spinorbit.solutions only when asked: the other commands do not import it)."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        parser.epilog = (f"exportable scene kinds: {', '.join(_exportable())} (a built-in scene of one of these "
+                         "kinds, or a scenario file of one; spinorbit list names them)")
+        parser.print_help()
+        parser.exit()
+
+
+def _exportable():
+    from .solutions import models
+
+    return sorted(name for name, kind in models.KINDS.items() if kind.kernels)
+
+
 def _export(args):
     """Solve the scenario's model over its span (from the solution store) and write its SPICE kernels."""
     import time
 
     from .errors import InputError
     from .scenarios import load_scenario
-    from .solutions import for_scenario, models
+    from .solutions import for_scenario
 
     scenario = load_scenario(args.scenario, args.overrides)
-    exported = sorted(name for name, kind in models.KINDS.items() if kind.kernels)
+    exported = _exportable()
     if scenario.kind not in exported:        # refused before anything is integrated
         raise InputError("scene", scenario.kind, f"a scene whose solution SPICE kernels carry: {exported}")
     solution = for_scenario(scenario)

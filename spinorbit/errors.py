@@ -1,5 +1,5 @@
 """Exceptions, each named after what went wrong and saying what to do next."""
-
+import datetime
 
 ECHO_CHARS = 80                # longest key or value echoed in an error message
 
@@ -17,7 +17,12 @@ class ScenarioError(SpinorbitError, ValueError):
 
     def __init__(self, key, given, accepted):
         self.key, self.given, self.accepted = key, given, accepted
-        super().__init__(f"{_short(str(key))}: got {_short(repr(given))}; expected {' '.join(str(accepted).split())}")
+        super().__init__(f"{_short(str(key))}: got {_short(_echo(given))}; expected {' '.join(str(accepted).split())}")
+
+
+def _echo(given):
+    """What was given, as the user wrote it: a date as ISO text, anything else as its repr."""
+    return repr(given.isoformat()) if isinstance(given, (datetime.date, datetime.time)) else repr(given)
 
 
 def _short(text, limit=ECHO_CHARS):
@@ -34,7 +39,7 @@ class InputError(SpinorbitError, ValueError):
 
     def __init__(self, name, given, accepted):
         self.name, self.given, self.accepted = name, given, accepted
-        super().__init__(f"{_short(str(name))}: got {_short(repr(given))}; expected {' '.join(str(accepted).split())}")
+        super().__init__(f"{_short(str(name))}: got {_short(_echo(given))}; expected {' '.join(str(accepted).split())}")
 
 
 class PhysicsError(SpinorbitError, ValueError):

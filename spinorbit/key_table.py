@@ -26,7 +26,7 @@ def key_table(scene):
         default = repr(options[name]) if key.startswith("integrator.") and name in options else \
             "(required)" if spec.default is REQUIRED else repr(spec.default)
         if spec.choices:
-            span = "|".join(map(str, spec.choices))
+            span = " | ".join(map(str, spec.choices))
         elif math.isfinite(spec.min) or math.isfinite(spec.max) or spec.positive:
             span = f"{'>0' if spec.positive else f'{spec.min:g}'} .. {spec.max:g}"
         else:

@@ -37,7 +37,9 @@ class Cost:
 # benchmarks/results_costs.md): the deep-time orbital solution's WHFast steps (10 bodies, 5 d; 1.6 us of CPU a
 # step, 1.5-2 us of wall time on a free core) and REBOUND's IAS15 run of orbit.source = 'rebound' per simulated
 # day (11 bodies, GR; 0.37 ms of CPU a day); each about twice the quiet figure, as Cost's.
-NBODY_COSTS = {"WHFast steps": 4e-6, "IAS15 days": 8e-4}
+# The solar system's Taylor run at 1e-15 per simulated day (12 bodies, EIH, the Moon's and the Earth's spins:
+# 4.8 s of wall time for 20 yr on the shared machine, load about 8; 2.3e-4 s quiet from 28.6 s a century).
+NBODY_COSTS = {"WHFast steps": 4e-6, "IAS15 days": 8e-4, "Taylor days (solar system)": 6e-4}
 
 
 @dataclass(frozen=True)
@@ -105,8 +107,8 @@ class Scene:
     ``restart(p, start) -> System``: the model started at a stored state ``start`` = (t0, y) instead of its own
     start (what a continuous solution is extended with, spinorbit.solutions);
     ``sweep_figures(tables) -> {name: draw}``: figures over a sweep's members (e.g. a band over their curves);
-    ``nbody_counts(p) -> {count: items}``: an N-body stage its run does first (NBODY_COSTS' counts), for
-    the up-front estimate."""
+    ``nbody_counts(p) -> {count: items}``: N-body work its run does (NBODY_COSTS' counts: an orbital solution
+    or a REBOUND run first, or its own run where its integrator chooses its steps), for the up-front estimate."""
 
     schema: dict
     build: Callable = None

@@ -61,6 +61,8 @@ class Key:
             return f"{what} in units convertible to '{self.unit}', e.g. \"1.0 {self.unit}\""
         if self.unit == "":
             return f"a list of {self.size} numbers" if self.size else "a number"
+        if self.type is str and self.help:
+            return f"a string: {self.help}"
         return f"a value of type {self.type.__name__}"
 
     def check_range(self, key, value, given):

@@ -62,3 +62,28 @@ def test_a_rebound_orbit_far_from_de421_counts_the_days_out():
         load_scenario("moon_libration_rebound", ['span.start="2400-01-01T12:00:00"', 'span.end="30 d"',
                                                  'limits.time="30 s"'])
     assert str(info.value).startswith("orbit.source: got 'rebound'") and "IAS15 days" in str(info.value)
+
+
+def test_the_solar_system_counts_the_days_its_taylor_run_follows():
+    """1950-01-01 (JD 2433282.5) to 4969-06-28 contains DE421's epoch (1969-06-28), from which the run goes both
+    ways: the Taylor integrator follows the whole span, twice with the error estimated; refused under a
+    one-minute limit on span.end, in one line, with the count and the estimate."""
+    from astropy.time import Time
+
+    end_jd = Time("4969-06-28", scale="tdb").jd
+    with pytest.raises(ScenarioError) as info:
+        load_scenario("solar_system", ["span.end=4969-06-28", 'limits.time="1 min"',
+                                       "integrator.estimate_error=true"])
+    text = str(info.value)
+    assert text.startswith("span.end: got '4969-06-28'") and "\n" not in text
+    counted = float(text.split(" Taylor days")[0].rsplit(" ", 1)[1].replace(",", ""))
+    assert counted == pytest.approx(2 * (end_jd - 2433282.5), abs=2)
+
+
+def test_the_solar_system_estimate_is_its_days_times_the_measured_cost():
+    from spinorbit import budget
+
+    scenario = load_scenario("solar_system")                     # 1950-2050, Taylor, no error estimate
+    days = 2469807.5 - 2433282.5                                   # 2050-01-01 less 1950-01-01, JD TDB
+    cost = NBODY_COSTS["Taylor days (solar system)"]
+    assert budget.estimate(scenario)["time_s"] == pytest.approx(days * cost, rel=1e-9)

@@ -46,6 +46,24 @@ def build(p, times):
     return Model(system(p))
 
 
+def start_epoch(p):
+    """TDB days of the run's start: DE421's epoch JDEPOC, or span.start."""
+    from ...bodies.de421_header import header
+    from ...constants import J2000_JD
+
+    return header()["JDEPOC"] - J2000_JD if p["start.epoch"] == "de421" else p.t_start
+
+
+def nbody_counts(p):
+    """The days the Taylor integrator follows for the up-front estimate (its steps are its own: it is
+    counted by the day), from the start epoch both ways over the span, twice when its error is estimated."""
+    if p.integrator.method != "taylor":
+        return {}
+    t0 = start_epoch(p)
+    days = max(p.t_start, p.t_end, t0) - min(p.t_start, p.t_end, t0)
+    return {"Taylor days (solar system)": days * (2 if p.integrator.estimate_error else 1)}
+
+
 def switches(p):
     return tuple(name for name in SWITCHES if p[f"model.{name}"])
 
@@ -68,13 +86,11 @@ def bench(p, model, times):
 def system(scenario):
     """DE421's solar system with the scenario's switches, started as ``start.epoch`` says."""
     from ...bodies import earth
-    from ...bodies.de421_header import header
-    from ...constants import J2000_JD
     from ...models.assemblies.solar_system import solar_system
     from ...models.start import solar_system_de421
     from ...references.erfa_pole import cip_vector
 
-    t0 = header()["JDEPOC"] - J2000_JD if scenario["start.epoch"] == "de421" else scenario.t_start
+    t0 = start_epoch(scenario)
     built = solar_system(switches(scenario), t0)
     built.y0 = built.layout.pack(solar_system_de421(built, t0, cip_vector(t0), earth.ERA_RATE_RAD_D))
     return built
@@ -101,4 +117,5 @@ def compare_run(p, run):
 
 
 # every term a function of the state: heyoka's Taylor integrator takes it; from DE421's epoch both ways
-SCENE = Scene(SCHEMA, build, compare_run, verdict, bench=bench, backward=True, taylor=True, restart=restart)
+SCENE = Scene(SCHEMA, build, compare_run, verdict, bench=bench, backward=True, taylor=True, restart=restart,
+              nbody_counts=nbody_counts)
