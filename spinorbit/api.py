@@ -366,6 +366,7 @@ def _answer(table, t, when, columns, summary, expected, ephemeris):
 
     out = QTable()
     out["time"] = when.reshape(t.shape)
+    out["time"].info.description = f"the dates as given, in their scale ({when.scale.upper()})"
     for name in columns:
         if name in table.colnames:
             out[name] = table[name][rows]

@@ -26,6 +26,8 @@ EXIT_VERDICT_FAIL = 4
 FORCE_HELP = ("write into an --out holding entries spinorbit did not write: they are kept, except files of "
               "the names the run writes, which it overwrites")
 MAX_LISTED_BYTES = 1 << 20          # `list` reads at most this much of a file (a scenario is a few kB)
+# spinorbit at BODY: the API function that answers for it
+ANSWERS = {"moon": "moon_librations", "earth": "earth_pole"}
 _COMMAND = False                     # this process is the spinorbit command (console), not a caller of main
 
 
@@ -81,6 +83,16 @@ def main(argv=None):
                         help="set a key, e.g. --set span.end=2100-01-01 (repeatable; spinorbit show SCENE lists "
                              "the keys)")
     export.add_argument("--out", required=True, help="directory the kernels are written into")
+    at = sub.add_parser("at", help="the Moon's librations or the Earth's pole at dates, from the stored solutions "
+                                   "(as spinorbit.moon_librations / earth_pole answer)")
+    at.add_argument("body", choices=sorted(ANSWERS), help="moon: the lunar angles and librations; earth: the CIP, "
+                                                          "precession and nutation")
+    at.add_argument("dates", nargs="+", metavar="DATE", help="ISO dates or times, e.g. 2027-03-01 "
+                                                             "2027-03-01T12:00:00")
+    at.add_argument("--scale", default="utc", choices=["utc", "tt", "tdb"], help="the dates' time scale "
+                                                                                  "(default utc)")
+    at.add_argument("--format", default="csv", choices=["csv", "ecsv"],
+                    help="csv: a header line with each column's unit; ecsv: astropy's, with units and meta")
     args, extra = parser.parse_known_args(argv)
     if extra:
         parser.error(f"unrecognized arguments: {' '.join(extra)}{_quote_hint(argv, extra)}")
@@ -102,6 +114,8 @@ def main(argv=None):
             return _show(args.scenario)
         if args.command == "export":
             return _export(args)
+        if args.command == "at":
+            return _at(args)
         return _list(args.folder)
     except IntegrationError as exc:
         print(f"error: {exc}", file=sys.stderr)
@@ -335,6 +349,34 @@ def _export(args):
         print(f"wrote {path} ({os.path.getsize(path) / 1e6:.3g} MB)")
     fit = ", ".join(f"{k} {v:.2g}" for k, v in {**solution.fit_error, **written["fit_error"]}.items())
     print(f"{solution!r}\nwritten in {wall:.2f} s; fit errors: {fit}")
+    return 0
+
+
+def _at(args):
+    """``spinorbit at BODY DATE ...``: the API's answer at the dates, printed as CSV or ECSV."""
+    import io
+
+    from astropy.time import Time
+
+    from . import api
+    from .errors import InputError
+
+    try:
+        times = Time(args.dates, scale=args.scale)
+    except ValueError:
+        raise InputError("DATE", args.dates, "ISO dates or times, e.g. 2027-03-01 or 2027-03-01T12:00:00") from None
+    table = getattr(api, ANSWERS[args.body])(times)
+    table["time"] = table["time"].isot
+    table.rename_column("time", f"time_{args.scale}")
+    if args.format == "csv":
+        table = table.copy()
+        for name in table.colnames:
+            unit = getattr(table[name], "unit", None)
+            if unit is not None and str(unit):
+                table.rename_column(name, f"{name} [{unit}]")
+    text = io.StringIO()
+    table.write(text, format="ascii.ecsv" if args.format == "ecsv" else "ascii.csv")
+    sys.stdout.write(text.getvalue())
     return 0
 
 

@@ -96,3 +96,39 @@ def test_dates_beyond_de421_run_on_de440_and_say_they_are_not_compared():
     assert "not compared" in table.meta["verdict"] or "not-compared" in table.meta["verdict"]
     # the libration keeps the size it has today (the annual term ~90"): no runaway over two centuries
     assert np.all(np.abs(table["libration_longitude"].to_value("arcsec")) < 200.0)
+
+
+def test_the_time_column_says_the_scale_the_dates_were_given_in():
+    table = spinorbit.moon_librations(DATES_2027[:2])
+    assert table["time"].scale == "utc" and "(UTC)" in table["time"].info.description
+
+
+def test_spinorbit_at_prints_the_moon_at_the_dates_within_the_accuracy_of_de421():
+    """`spinorbit at moon DATE ...`: one CSV row a date, units in the header, the dates as given; psi within the
+    level-3 scene's 0.01" of DE421's own lunar angles (the de421 package's series) at those dates."""
+    import csv
+    import io
+    import subprocess
+    import sys
+
+    from spinorbit.bodies.de421_orientation import angles_and_rates
+
+    done = subprocess.run([sys.executable, "-m", "spinorbit", "--quiet", "at", "moon", "2027-01-15", "2027-02-15",
+                           "--scale", "tdb"], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    rows = list(csv.DictReader(io.StringIO(done.stdout)))
+    assert [row["time_tdb"][:10] for row in rows] == ["2027-01-15", "2027-02-15"]
+    days = Time([row["time_tdb"] for row in rows], scale="tdb").jd - 2451545.0
+    psi = np.array([float(row["psi [rad]"]) for row in rows])
+    de421_psi = angles_and_rates(days)[0][:, 2]
+    difference = np.angle(np.exp(1j * (psi - de421_psi)))
+    assert np.max(np.abs(difference)) <= 0.01 * arcsec
+
+
+def test_spinorbit_at_refuses_a_date_it_cannot_read_in_one_line():
+    import subprocess
+    import sys
+
+    done = subprocess.run([sys.executable, "-m", "spinorbit", "at", "earth", "2027-13-45"], capture_output=True,
+                          text=True, timeout=120)
+    assert done.returncode == 2 and done.stderr.count("\n") == 1 and "DATE" in done.stderr
