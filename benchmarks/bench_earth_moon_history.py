@@ -51,7 +51,7 @@ def numbers():
     for p in PROXIES:
         cells = []
         for c in residuals.values():
-            value, sigma = c.get(f"{p.name}_residual"), c.get(f"{p.name}_residual_sigma")
+            value, sigma = c.get(f"{p.name}_residual_{p.unit}"), c.get(f"{p.name}_residual_sigma")
             cells.append("history stopped before" if value is None else
                          f"{value:+.4g} ({'no sigma' if sigma is None else f'{sigma:+.1f}'})")
         print(f"| {p.name} | {p.age_gyr} | {p.value:g} | " + " | ".join(cells) + " |")

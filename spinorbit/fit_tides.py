@@ -9,11 +9,15 @@ At each depth the drag is the one whose recession today is LLR's 3.830 cm/yr (Wi
 calibration.ocean_drag); the depth is bisected until the history (scenarios/earth_moon_history.toml with
 that tides.model, the continent's keys at their defaults) reaches the Roche limit at the Moon's age,
 4.425 Ga (Maurice et al. 2020), within AGE_TOLERANCE_GYR.  The geological proxies are never used.
+
+The fit is a developer's command: its result is a reviewed data file of the repository (the scene's default
+depth), written aside and renamed over the old one, so a failed write (a full disk) leaves the old fit whole.
 """
 import argparse
 import datetime
 import json
 import math
+import os
 from pathlib import Path
 
 SCENE = Path(__file__).with_name("builtin_scenarios") / "earth_moon_history.toml"
@@ -62,6 +66,20 @@ def fit(model="ocean", bracket=None, log=print, overrides=()):
         low, high = (middle, high) if (age < MOON_AGE_GYR) == (age_low < MOON_AGE_GYR) else (low, middle)
 
 
+def write_fit(path, result):
+    """``result`` as JSON at ``path``, written aside, synced and renamed over it: never half a file."""
+    path = Path(path)
+    aside = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        with open(aside, "w") as f:
+            f.write(json.dumps(result, indent=2) + "\n")
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(aside, path)
+    finally:
+        aside.unlink(missing_ok=True)
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--write", action="store_true", help="store the fit in the package")
@@ -79,7 +97,7 @@ def main(argv=None):
         from .models.tidal_history.calibration import GLOBAL_OCEAN_FIT, OCEAN_FIT
 
         path = OCEAN_FIT if args.model == "ocean" else GLOBAL_OCEAN_FIT
-        path.write_text(json.dumps(result, indent=2) + "\n")
+        write_fit(path, result)
 
 
 if __name__ == "__main__":

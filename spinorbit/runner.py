@@ -163,13 +163,18 @@ JULIAN_YEAR_D = 365.25
 
 
 LONG_SPAN_YR = 10_000          # spans at least this long are labelled in kyr from J2000
+GEOLOGICAL_SPAN_YR = 1e8       # and these in Gyr
 
 
 def span_label(scenario):
-    """The run's span for titles: calendar years "1900–2050" (Julian epochs), or its length in days."""
+    """The run's span for titles: calendar years "1900–2050" (Julian epochs), kyr or Gyr from J2000 for deep
+    time, or its length in days."""
     length = abs(scenario.t_end - scenario.t_start)
     if length < JULIAN_YEAR_D:
         return f"{length:.4g} d"
+    if length >= GEOLOGICAL_SPAN_YR * JULIAN_YEAR_D:   # the Earth-Moon history: Gyr
+        g0, g1 = (t / JULIAN_YEAR_D / 1e9 for t in (scenario.t_start, scenario.t_end))
+        return f"{g0:.4g} to {g1:.4g} Gyr from J2000".replace("-", "−")
     if length >= LONG_SPAN_YR * JULIAN_YEAR_D:         # deep time: kyr from J2000, as La2004 counts
         k0, k1 = (t / JULIAN_YEAR_D / 1000.0 for t in (scenario.t_start, scenario.t_end))
         return f"{k0:.0f} to {k1:.0f} kyr from J2000".replace("-", "−")

@@ -121,6 +121,7 @@ def test_deep_time_titles_say_kyr_sources_and_the_ephemeris_it_starts_from():
     assert not any("issue" in source for source in sources)
     assert any("La93 with and without tides differ by 3°" in source for source in sources)
     assert set(compare.EXPLAINED) == {"la2004_*", "la93_tides_*", "la2004_minus_la93_*"}
+    assert span_label(load_scenario("earth_moon_history")) == "0 to −4.5 Gyr from J2000"
 
 
 def test_the_solar_system_table_carries_the_moons_angles():

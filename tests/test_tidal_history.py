@@ -264,8 +264,10 @@ def test_the_stored_ocean_fits_hold_their_two_constraints(model):
     assert c["moon_age_gyr"] == pytest.approx(4.425, abs=0.025)
     assert c["angular_momentum_relative_error_max"] <= 1e-9
     assert ("Roche" if model == "global_ocean" else "e = ") in summary["stop"]["reason"]
-    assert all(c[f"{name}_residual"] is not None for name in ("elatina_lod", "xiamaling_distance",
-                                                                "joffre_distance", "moodies_distance_ratio"))
+    assert all(c[name] is not None for name in ("elatina_lod_residual_h", "xiamaling_distance_residual_km",
+                                                 "xiamaling_precession_constant_residual_arcsec_per_yr",
+                                                 "joffre_distance_residual_km",
+                                                 "moodies_distance_ratio_residual_a_over_a_today"))
 
 
 # --- the scene ----------------------------------------------------------------------------------------
@@ -351,3 +353,36 @@ def test_obliquity_rate_of_a_single_circular_orbit_is_mignards():
     x = SPIN / (2 * mean_motion())
     expected = -math.sin(theta) * (math.cos(theta) * x - 1) / ((1 + math.cos(theta) ** 2) * x - math.cos(theta))
     assert dtheta / (dy[2] / SPIN) == pytest.approx(expected, rel=1e-9)
+
+
+def test_a_failed_fit_write_leaves_the_old_fit_whole(tmp_path, monkeypatch):
+    """python -m spinorbit.fit_tides --write on a full disk: the old fit stays as it was, nothing left aside
+    (issue 42's 0-byte ocean_fit.json)."""
+    import errno
+    import json
+    import os
+
+    from spinorbit import fit_tides
+
+    path = tmp_path / "ocean_fit.json"
+    path.write_text(json.dumps({"depth_km": 4.0}))
+
+    def full(fd):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(os, "fsync", full)
+    with pytest.raises(OSError):
+        fit_tides.write_fit(path, {"depth_km": 5.0})
+    assert json.loads(path.read_text()) == {"depth_km": 4.0}
+    assert [p.name for p in tmp_path.iterdir()] == ["ocean_fit.json"]
+
+
+def test_the_day_at_a_distance_is_read_on_the_first_crossing_back():
+    """comparisons.earth_moon_history.day_at_distance on a history whose day is linear in the distance: the
+    day at a distance between two outputs is the line's (and None where the Moon never comes that close)."""
+    from spinorbit.comparisons.earth_moon_history import day_at_distance
+
+    a = np.linspace(384_400.0, 300_000.0, 9)
+    q = {"semi_major_axis": a, "length_of_day": 24.0 - (384_400.0 - a) * 1e-4}
+    assert day_at_distance(q, 340_900.0) == pytest.approx(24.0 - 43_500.0 * 1e-4, rel=1e-12)
+    assert day_at_distance(q, 200_000.0) is None

@@ -1,11 +1,14 @@
 """earth_moon_history's quantities and metrics: the history's elements, periods and angular momentum at the
 output times; today's rates; the Moon's age (where the history stops at the Roche limit); each geological
-proxy's residual in its own sigma (spinorbit.references.lunar_proxies)."""
+proxy's residual in its own sigma and in its unit (spinorbit.references.lunar_proxies), and the day the
+history gives at Xiamaling's distance, beside the day Meyers & Malinverno derived there."""
 import math
 
 import numpy as np
 
 from ..starts.earth_moon_history import GYR_D
+
+DAY_AT_XIAMALING = "length_of_day_at_xiamaling_distance_h"
 
 
 def quantities(history):
@@ -55,18 +58,33 @@ def metrics(history, q):
                                                    "at the Roche limit")
     ages = -q["t_gyr"]
     for proxy in PROXIES:
-        key = f"{proxy.name}_residual_sigma"
+        key, residual = f"{proxy.name}_residual_sigma", f"{proxy.name}_residual_{proxy.unit}"
         if proxy.age_gyr > ages[-1]:
-            out[f"{proxy.name}_residual"] = out[key] = None
-            not_measured[f"comparison.{key}"] = not_measured[f"comparison.{proxy.name}_residual"] = (
+            out[residual] = out[key] = None
+            not_measured[f"comparison.{key}"] = not_measured[f"comparison.{residual}"] = (
                 f"the history stops at {ages[-1]:.3f} Gyr, before the proxy's {proxy.age_gyr} Gyr")
             continue
         model_value = float(np.interp(proxy.age_gyr, ages, proxy_series(q, proxy.quantity)))
-        out[f"{proxy.name}_residual"] = model_value - proxy.value
+        out[residual] = model_value - proxy.value
         out[key] = proxy.residual_sigma(model_value)
         if out[key] is None:
             not_measured[f"comparison.{key}"] = "the source's uncertainty could not be read here"
+    xiamaling = next(p for p in PROXIES if p.name == "xiamaling_distance")
+    out[DAY_AT_XIAMALING] = day_at_distance(q, xiamaling.value)
+    if out[DAY_AT_XIAMALING] is None:
+        not_measured[f"comparison.{DAY_AT_XIAMALING}"] = "the history does not reach Xiamaling's distance"
     return out, not_measured
+
+
+def day_at_distance(q, distance_km):
+    """The history's length of day (h) where the Moon is at ``distance_km`` (the first crossing back in time),
+    None if it never is: the day the model's own angular-momentum bookkeeping ties to a distance."""
+    a = q["semi_major_axis"]
+    below = np.flatnonzero(a <= distance_km)
+    if below.size == 0 or below[0] == 0:
+        return None
+    k = below[0]
+    return float(np.interp(distance_km, a[[k, k - 1]], q["length_of_day"][[k, k - 1]]))
 
 
 def proxy_series(q, quantity):

@@ -16,21 +16,22 @@ def series(quantities):
 
 
 def proxies():
-    """{"distance" | "length_of_day": [(age, value, below, above, label)]} in Earth radii and hours."""
+    """{"distance" | "length_of_day" | "precession_constant": [(age, value, below, above, site)]} in Earth
+    radii, hours and "/yr."""
     from ..bodies import earth, moon
     from ..references.lunar_proxies import PROXIES
 
     scale = {"semi_major_axis": ("distance", 1.0 / earth.EQUATORIAL_RADIUS_KM),
              "distance_ratio": ("distance", moon.MEAN_DISTANCE_KM / earth.EQUATORIAL_RADIUS_KM),
-             "length_of_day": ("length_of_day", 1.0)}
-    out = {"distance": [], "length_of_day": []}
+             "length_of_day": ("length_of_day", 1.0), "precession_constant": ("precession_constant", 1.0)}
+    out = {key: [] for key, _ in scale.values()}
     for p in PROXIES:
         if p.quantity not in scale:
             continue
         key, factor = scale[p.quantity]
         below = None if p.sigma_below is None else p.sigma_below * factor
         above = None if p.sigma_above is None else p.sigma_above * factor
-        out[key].append((p.age_gyr, p.value * factor, below, above, p.name.rsplit("_", 1)[0]))
+        out[key].append((p.age_gyr, p.value * factor, below, above, p.name.split("_", 1)[0]))
     return out
 
 

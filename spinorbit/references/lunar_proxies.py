@@ -5,7 +5,7 @@ history; nothing is fitted to them.
 Each proxy: its age (Gyr before present), the quantity (``length_of_day`` h, ``semi_major_axis`` km,
 ``distance_ratio`` a/a_today, ``precession_constant`` "/yr), the value and its one-sigma uncertainty below and
 above (None where the source states none that could be checked here), and the source.  Two-sigma ranges are
-halved.
+halved.  ``unit``: the quantity's unit as a key's suffix (``<name>_residual_<unit>``).
 """
 from dataclasses import dataclass
 
@@ -20,12 +20,18 @@ class Proxy:
     sigma_above: float | None
     source: str
 
+    @property
+    def unit(self):
+        return UNITS[self.quantity]
+
     def residual_sigma(self, model_value):
         """(model - value) in the proxy's own sigma on the residual's side; None without an uncertainty."""
         sigma = self.sigma_below if model_value < self.value else self.sigma_above
         return None if sigma is None else (model_value - self.value) / sigma
 
 
+UNITS = {"length_of_day": "h", "semi_major_axis": "km", "distance_ratio": "a_over_a_today",
+         "precession_constant": "arcsec_per_yr"}
 XIAMALING = "Meyers & Malinverno 2018, PNAS 115, 6363 (Xiamaling Fm., 1.4 Ga; 2-sigma values halved)"
 NANFEN = ("J. Geol. Soc. 2022, doi:10.1144/jgs2022-022 (Nanfen Fm., North China craton, ~1.1 Ga; its +- "
           "taken as one sigma: the abstract does not say)")
