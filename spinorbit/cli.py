@@ -330,26 +330,50 @@ def _exportable():
 
 
 def _export(args):
-    """Solve the scenario's model over its span (from the solution store) and write its SPICE kernels."""
+    """Write the SPICE kernels of exactly the scenario's model over its span (solutions.for_export)."""
     import time
 
     from .errors import InputError
     from .scenarios import load_scenario
-    from .solutions import for_scenario
+    from .solutions import for_export
 
     scenario = load_scenario(args.scenario, args.overrides)
     exported = _exportable()
     if scenario.kind not in exported:        # refused before anything is integrated
         raise InputError("scene", scenario.kind, f"a scene whose solution SPICE kernels carry: {exported}")
-    solution = for_scenario(scenario)
+    _out_folder(args.out)
+    solution = for_export(scenario)
     started = time.perf_counter()
-    written = solution.export(args.out)
+    written = solution.export(args.out, asked=scenario.values)
     wall = time.perf_counter() - started
     for path in written["files"]:
         print(f"wrote {path} ({os.path.getsize(path) / 1e6:.3g} MB)")
     fit = ", ".join(f"{k} {v:.2g}" for k, v in {**solution.fit_error, **written["fit_error"]}.items())
-    print(f"{solution!r}\nwritten in {wall:.2f} s; fit errors: {fit}")
+    frames = ", ".join(written["frames"].values())
+    print(f"{solution!r}\nframes: {frames or 'none'}; written in {wall:.2f} s; fit errors: {fit}")
     return 0
+
+
+def _out_folder(given):
+    """Make export's --out folder (before anything is integrated); a path the system cannot hold (a name
+    longer than NAME_MAX, the whole longer than PATH_MAX) is an InputError naming --out and the limits."""
+    import errno
+
+    from .errors import InputError
+
+    folder = Path(given)
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        probe = folder / f".earth_moon_coupled_moon.probe.bpc.tmp-{os.getpid()}"   # longer than any kernel's
+        probe.touch()
+        probe.unlink()
+    except OSError as exc:
+        if exc.errno != errno.ENAMETOOLONG:
+            raise
+        existing = next(p for p in (folder.absolute(), *folder.absolute().parents) if os.path.exists(p))
+        raise InputError("--out", given, f"a folder path of at most {os.pathconf(existing, 'PC_PATH_MAX')} "
+                                         f"bytes, each name in it at most {os.pathconf(existing, 'PC_NAME_MAX')} "
+                                         f"(this one: {len(os.fsencode(folder.absolute()))} bytes)") from None
 
 
 def _at(args):

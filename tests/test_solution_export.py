@@ -43,9 +43,9 @@ def test_the_moon_read_back_by_spiceypy_matches_the_solution(moon_kernels):
     solution, written = moon_kernels
     assert written["fit_error"]["moon_angles_arcsec"] < 1e-6
     for path in written["files"]:
-        spiceypy.furnsh(path)
+        spiceypy.furnsh(str(path))
     t = np.random.default_rng(5).uniform(*solution.span, 100)
-    read = np.array([spiceypy.pxform("J2000", "MOON_PA_SPINORBIT", ti * DAY_S) for ti in t])
+    read = np.array([spiceypy.pxform("J2000", written["frames"]["moon"], ti * DAY_S) for ti in t])
     assert rotation_angle(read, icrf_to_body(solution.part("moon.q", t))).max() < 1 * uas
 
 
@@ -61,7 +61,7 @@ def test_the_moon_read_back_by_skyfield_matches_the_solution(moon_kernels):
     constants = PlanetaryConstants()
     constants.read_text(load.open([f for f in written["files"] if f.endswith(".tf")][0]))
     constants.read_binary(load.open([f for f in written["files"] if f.endswith(".bpc")][0]))
-    frame = constants.build_frame_named("MOON_PA_SPINORBIT")
+    frame = constants.build_frame_named(written["frames"]["moon"])
     t = np.random.default_rng(6).uniform(*solution.span, 50)
     expected = icrf_to_body(solution.part("moon.q", t))
     angles = [frame._segment.compute(2451545.0, ti, False) for ti in t]
@@ -111,7 +111,7 @@ def test_the_closed_earth_moon_read_back_by_spiceypy_and_skyfield_matches_the_so
     truth = solution.part("moon.r", t)
     try:
         for path in written["files"]:
-            spiceypy.furnsh(path)
+            spiceypy.furnsh(str(path))
         read = np.array([spiceypy.spkpos("MOON", ti * DAY_S, "J2000", "NONE", "EARTH")[0] for ti in t])
         assert np.linalg.norm(read - truth, axis=1).max() < 1 * mm
     finally:
@@ -155,7 +155,7 @@ def carried(solution, t):
 
 def furnished(files):
     for path in files:
-        spiceypy.furnsh(path)
+        spiceypy.furnsh(str(path))
 
 
 def test_the_solar_system_is_stored_from_de421s_epoch(solar_system):
@@ -177,12 +177,20 @@ def test_the_solar_systems_spk_is_laid_out_as_de421s(solar_system):
     first, last = (d * DAY_S for d in solution.span)
     expected = {(0, code) for code in (10, 1, 2, 4, 5, 6, 7, 8, 9, 3)} | {(3, 301), (3, 399)}
     assert segments_of(bsp) == {pair: (1, 2, first, last) for pair in expected}
-    handle = spiceypy.dafopr(bsp)
+    text = " ".join(comment_lines(bsp))
+    assert "'solar_system' scene" in text and store.code_version() in text and 'start.epoch = "de421"' in text
+
+
+def comment_lines(path):
+    """The comment area of a DAF kernel as spiceypy.dafec reads it (lines of at most 80 characters: a longer one
+    is SPICE(COMMENTTOOLONG)), every line read."""
+    handle = spiceypy.dafopr(str(path))
     try:
-        text = " ".join(spiceypy.dafec(handle, 100, 1000)[1])
+        count, lines, done = spiceypy.dafec(handle, 1000, 81)
     finally:
         spiceypy.dafcls(handle)
-    assert "'solar_system' scene" in text and store.code_version() in text and '"start.epoch": "de421"' in text
+    assert done and count < 1000
+    return lines[:count]
 
 
 def test_the_solar_system_read_back_by_spiceypy_matches_the_solution(solar_system):
@@ -234,7 +242,7 @@ def test_the_solar_system_read_back_agrees_with_de421_within_its_scenes_toleranc
     furnished(written["files"])
     try:
         moon = np.array([spiceypy.spkpos("MOON", ti * DAY_S, "J2000", "NONE", "EARTH")[0] for ti in t])
-        mats = np.array([spiceypy.pxform("J2000", "MOON_PA_SPINORBIT", ti * DAY_S) for ti in t])
+        mats = np.array([spiceypy.pxform("J2000", written["frames"]["moon"], ti * DAY_S) for ti in t])
         planets = {name: np.array([spiceypy.spkpos(str(code), ti * DAY_S, "J2000", "NONE", "SUN")[0]
                                    for ti in t])
                    for name, code in (("mercury", 1), ("venus", 2), ("earth", 399), ("mars", 4), ("jupiter", 5),
@@ -296,7 +304,7 @@ def test_spinorbit_export_refuses_a_scene_without_kernels_before_integrating(tmp
     from spinorbit import cli
     from spinorbit import solutions as package
 
-    monkeypatch.setattr(package, "for_scenario", lambda *a, **k: pytest.fail("integrated before refusing"))
+    monkeypatch.setattr(package, "for_export", lambda *a, **k: pytest.fail("integrated before refusing"))
     assert cli.main(["export", "earth_precession_nutation", "--out", str(tmp_path / "k")]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "earth_precession_nutation" in err and "moon_libration" in err
@@ -313,3 +321,113 @@ def test_a_solution_with_nothing_spice_holds_is_refused_in_one_line(tmp_path):
     with pytest.raises(InputError, match="earth_precession_nutation.*earth.pole.*an attitude"):
         pole.export(tmp_path / "out")
     assert not (tmp_path / "out").exists()
+
+
+def frame_rotations(written, t):
+    """spiceypy's J2000-to-frame rotations at TDB days ``t`` of the exported solution ``written``'s Moon."""
+    return np.array([spiceypy.pxform("J2000", written["frames"]["moon"], ti * DAY_S) for ti in t])
+
+
+def pck_cover(path, written):
+    """(first, last) TDB days the PCK at ``path`` covers for the exported frame."""
+    frame = int(spiceypy.gipool(f"FRAME_{written['frames']['moon']}", 0, 1)[0])
+    cell = spiceypy.stypes.SPICEDOUBLE_CELL(10)
+    spiceypy.pckcov(str(path), frame, cell)
+    return tuple(np.array(spiceypy.wnfetd(cell, 0)) / DAY_S)
+
+
+def test_a_key_that_starts_the_model_elsewhere_exports_that_model_over_the_span_asked(place):
+    """``model.start`` starts the Moon from DE421's state at that date (its scene's start): exported, the frame
+    there is DE421's within 1 uas (the J2000-started stored solution is 0.35 mas from it then), the PCK covers the
+    span asked (7 days), and the comments name every key asked."""
+    from spinorbit import cli
+    from spinorbit.analysis.librations import pole_and_longitude_difference
+    from spinorbit.references.moon_de421 import Orientation
+
+    out = place / "kernels"
+    asked = ["--set", "span.start=2000-12-01T00:00:00", "--set", "span.end=2000-12-08T00:00:00",
+             "--set", "model.start=2000-12-01T00:00:00"]
+    assert cli.main(["export", "moon_libration", *asked, "--out", str(out)]) == 0
+    start = 334.5                                       # TDB days: 2000-12-01T00:00 TDB
+    pck, frame_kernel = out / "moon_libration_moon.bpc", out / "moon_libration_moon.tf"
+    try:
+        furnished([pck, frame_kernel])
+        written = {"frames": {"moon": frame_kernel.read_text().split("FRAME_")[1].split(" =")[0]}}
+        assert pck_cover(pck, written) == (start, start + 7.0)
+        pole, longitude = pole_and_longitude_difference(frame_rotations(written, [start]),
+                                                        Orientation()([start])["icrf_to_body"])
+    finally:
+        spiceypy.kclear()
+    assert abs(pole[0]) < 1 * uas and abs(longitude[0]) < 1 * uas
+    text = "\n".join(comment_lines(pck))
+    assert 'model.start = "2000-12-01T00:00:00"' in text and 'span.end = "2000-12-08T00:00:00"' in text
+
+
+def test_an_export_writes_the_segments_covering_its_span_whatever_the_store_holds(moon_kernels, place):
+    """The store holds -20..60 d; asked 10..17 d, the PCK covers the 4-d segments 8..20 d, no more."""
+    from spinorbit import cli
+
+    solution, written = moon_kernels
+    out = place / "week"
+    assert cli.main(["export", "moon_libration", "--set", "span.start=2000-01-11T12:00:00",
+                     "--set", "span.end=2000-01-18T12:00:00", "--out", str(out)]) == 0
+    assert solution.span == (-20.0, 60.0)
+    try:
+        furnished([out / "moon_libration_moon.tf"])
+        assert pck_cover(out / "moon_libration_moon.bpc", written) == (8.0, 20.0)
+    finally:
+        spiceypy.kclear()
+
+
+def test_two_exported_solutions_loaded_together_each_read_in_its_own_frame(moon_kernels, place):
+    """The J2000-started solution and one started at 2000-01-21 (another model: 0.1 mas from it a week on), loaded
+    together: each frame gives its own solution within 1 uas, under its own name and ID."""
+    from spinorbit.scenarios import load_scenario
+
+    solution, written = moon_kernels
+    restarted = solutions.for_export(load_scenario("moon_libration", [
+        "span.start=2000-01-21T12:00:00", "span.end=2000-01-28T12:00:00", "model.start=2000-01-21T12:00:00"]))
+    other = restarted.export(place / "other")
+    assert other["frames"]["moon"] != written["frames"]["moon"]
+    t = np.linspace(20.0, 27.0, 15)
+    try:
+        furnished(written["files"] + other["files"])
+        ids = {int(spiceypy.gipool(f"FRAME_{w['frames']['moon']}", 0, 1)[0]) for w in (written, other)}
+        first, second = frame_rotations(written, t), frame_rotations(other, t)
+    finally:
+        spiceypy.kclear()
+    assert len(ids) == 2 and all(1_400_000 <= i < 2_000_000 for i in ids)
+    assert rotation_angle(first, icrf_to_body(solution.part("moon.q", t))).max() < 1 * uas
+    assert rotation_angle(second, icrf_to_body(restarted.part("moon.q", t))).max() < 1 * uas
+    assert rotation_angle(first, second).max() > 10 * uas
+
+
+def test_every_comment_line_reads_back_with_dafec(moon_kernels):
+    """Every kernel's comment lines (and the frame kernel's) are at most 80 characters; the Moon's PCK names every
+    key of its model."""
+    _, written = moon_kernels
+    text = comment_lines(next(f for f in written["files"] if f.endswith(".bpc")))
+    assert max(map(len, text)) <= 80 and "  keys.model.level = 3" in text
+    frame_kernel = next(f for f in written["files"] if f.endswith(".tf"))
+    assert max(len(line) for line in open(frame_kernel).read().splitlines()) <= 80
+
+
+def test_export_to_a_folder_path_spice_cannot_name_writes_only_there(moon_kernels, place, capsys):
+    """An --out of 262 characters (SPICE cuts a file name at 255): the kernels are in it and nothing is written
+    anywhere else; a name the system cannot hold is refused in one line naming --out."""
+    from spinorbit import cli
+
+    root = place / "long"
+    out = root.joinpath(*["d" * 50] * 5)
+    week = ["--set", "span.start=2000-01-11T12:00:00", "--set", "span.end=2000-01-18T12:00:00"]
+    assert len(str(out)) > 255
+    assert cli.main(["export", "moon_libration", *week, "--out", str(out)]) == 0
+    written = sorted(str(p.relative_to(root)) for p in root.rglob("*") if p.is_file())
+    assert written == [str(out.relative_to(root) / name) for name in ("moon_libration_moon.bpc",
+                                                                      "moon_libration_moon.tf")]
+    capsys.readouterr()
+    too_long = root / ("e" * 300)
+    assert cli.main(["export", "moon_libration", *week, "--out", str(too_long)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and err.startswith("error: --out:") and "255" in err
+    assert sorted(root.iterdir()) == [root / ("d" * 50)]

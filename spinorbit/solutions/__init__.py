@@ -14,7 +14,7 @@ from . import models, store
 from .fit import Grid, integrate
 from .solution import Solution, joined
 
-__all__ = ["Solution", "solve", "for_scenario", "for_run", "keep"]
+__all__ = ["Solution", "solve", "for_scenario", "for_export", "for_run", "keep"]
 
 MICROARCSEC = 1e-6                  # arcsec
 # What a fit may differ from the integrator by when the integration's own estimate is smaller (or, for
@@ -60,6 +60,22 @@ def for_scenario(scenario, t_start=None, t_end=None):
     return store.solve(store.record(scenario), lo, hi, extend)
 
 
+def for_export(scenario):
+    """The Solution of exactly ``scenario``'s model over the whole segments covering its span: the store's
+    (extended where it lacks the span) when its model is the stored one, else (a key starts it elsewhere:
+    models.own_start) the scenario's own run fitted (for_run: its segments tile the span)."""
+    from ..errors import InputError
+    from ..schema import parse_tdb_days
+
+    kind, start = models.KINDS[scenario.kind], models.own_start(scenario)
+    if start is None or abs(start - float(parse_tdb_days("anchor", kind.anchor))) < 1e-9:
+        return for_scenario(scenario).window(*scenario.bounds)
+    solution, why = for_run(scenario, models.system(scenario, None))
+    if solution is None:
+        raise InputError("scene", scenario.kind, f"a model whose run can be fitted: {why}")
+    return solution
+
+
 def _extended(scenario, solution, lo, hi):
     """``solution`` (or a new one from the scene's start) extended to cover [lo, hi]: each stretch from the
     state where the last run stopped."""
@@ -94,7 +110,7 @@ def made(scenario, system, grid, piece, span, method, options):
     provenance."""
     run = {"span_tdb_d": [float(span[0]), float(span[1])], "start_tdb_d": float(system.t0),
            **{k: v for k, v in piece.run.items() if isinstance(v, (int, float, str, type(None)))}}
-    provenance = {"scene": scenario.kind, "scenario": str(scenario.path),
+    provenance = {"scene": scenario.kind, "scenario": str(scenario.path), "model_start_tdb_d": float(system.t0),
                   "keys": store.record(scenario)["keys"], "ephemeris": scenario.get("orbit.source"),
                   "integrator": {"method": method, **options}, "code_version": store.code_version(),
                   "grid": {"segment_d": grid.length_d, "degree": grid.degree},

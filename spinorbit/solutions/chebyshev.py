@@ -102,6 +102,15 @@ class Segments:
         half = self.length_d / 2.0
         return mids[:, None] + half * first_kind(self.degree), mids[:, None] + half * extrema(self.degree)
 
+    def window(self, t_start, t_end):
+        """The segments covering [t_start, t_end] (inside the span): whole segments, none beyond them."""
+        if not self.covers(t_start, t_end):
+            raise InputError("span", f"{t_start:.6g}..{t_end:.6g} TDB days",
+                             f"a span inside the solution's {self.span[0]:.6g}..{self.span[1]:.6g}")
+        first, count = grid_indices(self.origin_d, self.length_d, t_start, t_end)
+        return Segments(self.origin_d, self.length_d, first,
+                        self.coefficients[first - self.first:first - self.first + count])
+
     def joined(self, other):
         """These segments and ``other`` (the same grid, adjacent before or after) as one."""
         if (other.origin_d, other.length_d, other.degree) != (self.origin_d, self.length_d, self.degree):

@@ -55,6 +55,18 @@ def stretch(scenario, lo, hi, t0):
     return Scenario(data, scenario.path)
 
 
+def own_start(scenario):
+    """Where ``scenario`` asks its model to start when a key says so (TDB days), or None (the kind's anchor, the
+    stored solution's): the Moon's ``model.start``; the solar system's span.start with ``start.epoch = "span"``."""
+    if scenario.kind == "moon_libration" and scenario["model.start"]:
+        from ..starts.moon import start_epoch
+
+        return start_epoch(scenario)
+    if scenario.kind == "solar_system" and scenario["start.epoch"] == "span":
+        return float(scenario.t_start)
+    return None
+
+
 def first_start(scenario):
     """(t0, state) where the kind's first run starts: the scene's start at the anchor (the Earth: at its own
     span.start, with the start its own span gives it; the solar system: at DE421's epoch, where the scene starts

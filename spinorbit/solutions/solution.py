@@ -85,11 +85,18 @@ class Solution:
                            "provenance": self.provenance})
         return table
 
-    def export(self, directory):
+    def window(self, t_start, t_end):
+        """The Solution over the whole segments covering [t_start, t_end] (its ends: the window's first and last
+        states as the series give them)."""
+        segments = self.segments.window(t_start, t_end)
+        ends = {name: (t, self.states([t]).y[0]) for name, t in zip(("start", "end"), segments.span)}
+        return Solution(segments, self.layout, self.provenance, ends)
+
+    def export(self, directory, asked=None):
         """Write SPICE kernels of the solution into ``directory``: spinorbit.solutions.spice.export."""
         from .spice import export
 
-        return export(self, directory)
+        return export(self, directory, asked)
 
     def __repr__(self):
         lo, hi = (2000.0 + t / 365.25 for t in self.span)
@@ -98,9 +105,11 @@ class Solution:
 
 
 def joined(piece_solution, other):
-    """One Solution from two adjacent ones of the same model (``other`` before or after)."""
+    """One Solution from two adjacent ones of the same model (``other``, the stretch continuing
+    ``piece_solution``, before or after): the model's start is ``piece_solution``'s."""
     before, after = sorted((piece_solution, other), key=lambda s: s.span[0])
     provenance = dict(before.provenance)
+    provenance["model_start_tdb_d"] = piece_solution.provenance.get("model_start_tdb_d")
     provenance["runs"] = before.provenance.get("runs", []) + after.provenance.get("runs", [])
     provenance["fit_error"] = {k: max(before.fit_error.get(k, 0.0), after.fit_error.get(k, 0.0))
                                for k in set(before.fit_error) | set(after.fit_error)}

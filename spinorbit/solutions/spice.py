@@ -21,8 +21,12 @@ version, the span, the grid and the fit's error.  Read back by spiceypy (``furns
 et)``, ``spkezr`` / ``spkpos``) or skyfield (``PlanetaryConstants.read_text`` / ``read_binary`` /
 ``build_frame_named``; ``load_file`` / ``SpiceKernel`` for the SPK).
 """
+import hashlib
 import json
 import os
+import shutil
+import tempfile
+import textwrap
 from pathlib import Path
 
 import numpy as np
@@ -32,8 +36,15 @@ from ..constants import ARCSEC, DAY_S
 from ..errors import InputError
 from .chebyshev import Segments, interpolating_at
 
-FRAME_BASE = 1_400_000          # NAIF's range for frames users define: 1 400 000 to 2 000 000
-COMMENT_LINE = 1000             # SPICE's longest comment line
+# Frame IDs: NAIF leaves 1 400 000 to 2 000 000 to users (Frames Required Reading, "Selecting a Name and ID");
+# JPL's lunar frames (31000-31008) and the built-in ones lie below it.  A solution's frames take the block of
+# FRAMES_PER_SOLUTION IDs its identity's hash picks, one ID each for the axes it defines (AXES).
+FRAME_BASE = 1_400_000
+FRAME_BLOCKS = 150_000                  # (2 000 000 - 1 400 000) / FRAMES_PER_SOLUTION
+FRAMES_PER_SOLUTION = 4
+AXES = ("PA",)                          # the principal axes: the frame the PCK's angles turn to
+COMMENT_LINE = 80                       # a comment line's longest (spiceypy.dafec reads lines of up to ~80)
+SPICE_FILE_NAME = 255                   # SPICE's longest file name: a longer one is cut (FILEN, SPICE Toolkit)
 
 
 def body_code(body):
@@ -46,16 +57,31 @@ def position_code(body):
     return BODIES[body].naif[-1]
 
 
-def frame_name(body):
-    return f"{body.upper()}_PA_SPINORBIT"
+def identity(solution):
+    """8 hex digits naming what decides the solution's numbers: its scene, its model's keys (the store's
+    record), the ephemeris, the code's version and where the model starts (TDB days)."""
+    p = solution.provenance
+    what = {key: p.get(key) for key in ("scene", "keys", "ephemeris", "code_version", "model_start_tdb_d")}
+    return hashlib.sha256(json.dumps(what, sort_keys=True, default=str).encode()).hexdigest()[:8]
 
 
-def frame_id(body):
-    return FRAME_BASE + body_code(body)
+def frame_name(body, solution_id, axes="PA"):
+    """``<BODY>_<axes>_SPINORBIT_<solution id>``: one name per exported solution (at most 32 characters, as
+    SPICE's frame names)."""
+    return f"{body.upper()}_{axes}_SPINORBIT_{solution_id.upper()}"
 
 
-def export(solution, directory):
-    """Write the solution's kernels into ``directory`` (created); return {"files": [...], "fit_error": {...}}."""
+def frame_id(solution_id, axes="PA"):
+    """The frame's ID: FRAME_BASE + FRAMES_PER_SOLUTION x (the identity's hash mod FRAME_BLOCKS) + the axes'
+    place in AXES.  Two solutions share a block with probability 1 / FRAME_BLOCKS."""
+    block = int(solution_id, 16) % FRAME_BLOCKS
+    return FRAME_BASE + FRAMES_PER_SOLUTION * block + AXES.index(axes)
+
+
+def export(solution, directory, asked=None):
+    """Write the solution's kernels into ``directory`` (created); ``asked``: {key: value} of the scenario asked
+    for, written in the comments beside the solution's own.  Returns {"files": [...], "frames": {body: name},
+    "fit_error": {...}}."""
     try:
         import spiceypy
     except ImportError:
@@ -68,15 +94,19 @@ def export(solution, directory):
                          "a solution with an attitude (<body>.q) or integrated positions (<body>.r)")
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
-    files, error = [], {}
+    solution_id = identity(solution)
+    files, frames, error = [], {}, {}
     for body in attitudes:
+        frames[body] = frame_name(body, solution_id)
         coefficients, error[f"{body}_angles_arcsec"] = angle_series(solution, body)
-        files.append(_written(directory / f"{name}_{body}.bpc",
-                              lambda path, b=body, c=coefficients: _pck(spiceypy, solution, b, c, path)))
-        files.append(_written(directory / f"{name}_{body}.tf", lambda path, b=body: path.write_text(frame_kernel(b))))
+        lines = comments(solution, f"the orientation of {body} (frame {frames[body]})", asked)
+        files.append(_written(directory / f"{name}_{body}.bpc", lambda path, b=body, c=coefficients, k=lines:
+                              _pck(spiceypy, solution, b, c, k, solution_id, path)))
+        files.append(_written(directory / f"{name}_{body}.tf",
+                              lambda path, b=body: path.write_text(frame_kernel(b, solution_id))))
     if positions:
-        files.append(_written(directory / f"{name}.bsp", lambda path: _spk(spiceypy, solution, path)))
-    return {"files": [str(f) for f in files], "fit_error": error}
+        files.append(_written(directory / f"{name}.bsp", lambda path: _spk(spiceypy, solution, asked, path)))
+    return {"files": [str(f) for f in files], "frames": frames, "fit_error": error}
 
 
 def angle_series(solution, body):
@@ -101,13 +131,21 @@ def angle_series(solution, body):
     return coefficients, float(difference.max() / ARCSEC)
 
 
-def frame_kernel(body):
+def frame_kernel(body, solution_id):
     """The text frame kernel naming ``body``'s PCK frame (as JPL's moon_080317.tf names MOON_PA_DE421)."""
-    code, name = frame_id(body), frame_name(body)
-    return (f"KPL/FK\n\n{name}: the principal axes of {body} integrated by spinorbit (a binary PCK of type 2 "
-            f"gives its 3-1-3 angles relative to J2000).\n\n\\begindata\n\n"
+    code, name = frame_id(solution_id), frame_name(body, solution_id)
+    about = (f"{name}: the principal axes of {body} integrated by spinorbit (solution {solution_id}); a binary "
+             f"PCK of type 2 gives its 3-1-3 angles relative to J2000.  Each exported solution names its "
+             f"frames <BODY>_<AXES>_SPINORBIT_<solution id>, IDs {FRAME_BASE} + {FRAMES_PER_SOLUTION} x "
+             f"(id mod {FRAME_BLOCKS}) + the axes' place (PA 0).")
+    return (f"KPL/FK\n\n{_wrapped(about)}\n\n\\begindata\n\n"
             f"    FRAME_{name} = {code}\n    FRAME_{code}_NAME = '{name}'\n    FRAME_{code}_CLASS = 2\n"
             f"    FRAME_{code}_CLASS_ID = {code}\n    FRAME_{code}_CENTER = {body_code(body)}\n\n\\begintext\n")
+
+
+def _wrapped(text):
+    """``text`` in lines of at most COMMENT_LINE characters (a word longer than that cut), continued indented."""
+    return "\n".join(textwrap.wrap(text, COMMENT_LINE, subsequent_indent="    ", break_on_hyphens=False))
 
 
 def _seconds(solution):
@@ -116,28 +154,42 @@ def _seconds(solution):
     return first * DAY_S, last * DAY_S, solution.segments.length_d * DAY_S
 
 
-def comments(solution, what):
-    """The comment area's lines: what the kernel holds and what made it (the solution's provenance)."""
+def comments(solution, what, asked=None):
+    """The comment area's lines (at most COMMENT_LINE characters, ASCII): what the kernel holds and what made
+    it (the solution's provenance: ``made with``), and ``asked``, the scenario's every key (``asked``)."""
     p = solution.provenance
     lo, hi = solution.span
-    made = {key: p.get(key) for key in ("scene", "keys", "ephemeris", "integrator", "code_version", "grid",
-                                        "fit_error")}
-    text = [f"spinorbit {p.get('code_version')}: {what} of the solution of the '{p.get('scene')}' scene",
+    text = [f"spinorbit {p.get('code_version')}: {what} of the solution {identity(solution)} of the "
+            f"'{p.get('scene')}' scene",
             f"span: {lo:.6f} to {hi:.6f} TDB days from J2000 ({lo * DAY_S:.3f} to {hi * DAY_S:.3f} TDB s), "
-            f"Chebyshev segments of {solution.segments.length_d:g} d, degree {solution.segments.degree}",
-            "made with (JSON):"]
-    body = json.dumps(made, default=str, sort_keys=True)
-    text += [body[k:k + COMMENT_LINE - 1] for k in range(0, len(body), COMMENT_LINE - 1)]
-    return [line.encode("ascii", "replace").decode() for line in text]
+            f"Chebyshev segments of {solution.segments.length_d:g} d, degree {solution.segments.degree}"]
+    made = {key: p.get(key) for key in ("scene", "keys", "ephemeris", "integrator", "code_version",
+                                        "model_start_tdb_d", "grid", "fit_error")}
+    sections = [("made with", made)] + ([("asked", asked)] if asked is not None else [])
+    for title, values in sections:
+        text.append(f"{title}:")
+        text += [f"  {key} = {json.dumps(value, default=str, sort_keys=True)}" for key, value in _flat(values)]
+    lines = [line for entry in text for line in _wrapped(entry).splitlines()]
+    return [line.encode("ascii", "replace").decode() for line in lines]
 
 
-def _pck(spiceypy, solution, body, coefficients, path):
+def _flat(values, prefix=""):
+    """[(dotted key, value)] of nested dicts."""
+    out = []
+    for key, value in sorted(values.items()):
+        if isinstance(value, dict) and value:
+            out += _flat(value, f"{prefix}{key}.")
+        else:
+            out.append((f"{prefix}{key}", value))
+    return out
+
+
+def _pck(spiceypy, solution, body, coefficients, lines, solution_id, path):
     first, last, length = _seconds(solution)
-    lines = comments(solution, f"the orientation of {body} (frame {frame_name(body)})")
     handle = spiceypy.pckopn(str(path), f"spinorbit {body}", sum(len(line) + 1 for line in lines))
     try:
         spiceypy.dafac(handle, lines)
-        spiceypy.pckw02(handle, frame_id(body), "J2000", first, last, f"spinorbit {body} orientation"[:40],
+        spiceypy.pckw02(handle, frame_id(solution_id), "J2000", first, last, f"spinorbit {body} orientation"[:40],
                         length, len(coefficients), solution.segments.degree,
                         np.ascontiguousarray(coefficients).ravel(), first)
     finally:
@@ -166,11 +218,11 @@ def position_segments(solution):
     return out
 
 
-def _spk(spiceypy, solution, path):
+def _spk(spiceypy, solution, asked, path):
     first, last, length = _seconds(solution)
     segments = position_segments(solution)
     names = ", ".join(f"{name} ({target} about {centre})" for target, centre, name, _ in segments)
-    lines = comments(solution, f"the positions of {names}")
+    lines = comments(solution, f"the positions of {names}", asked)
     handle = spiceypy.spkopn(str(path), f"spinorbit {solution.provenance.get('scene')}"[:60],
                              sum(len(line) + 1 for line in lines))
     try:
@@ -184,11 +236,20 @@ def _spk(spiceypy, solution, path):
 
 
 def _written(path, write):
-    """``write(aside)`` to a file beside ``path``, then renamed over it (nothing half-written is left)."""
-    aside = path.with_name(f".{path.name}.tmp-{os.getpid()}{path.suffix}")
-    aside.unlink(missing_ok=True)
+    """``write(draft)`` to a short-named file in a private temporary folder (SPICE cuts a longer name than
+    SPICE_FILE_NAME, and would write elsewhere), copied beside ``path`` and renamed over it: nothing
+    half-written is left, nothing is written outside ``path``'s folder but the temporary folder, removed."""
+    aside = path.with_name(f".{path.name}.tmp-{os.getpid()}")
     try:
-        write(aside)
+        with tempfile.TemporaryDirectory(prefix="spinorbit-") as folder:
+            draft = Path(folder) / f"kernel{path.suffix}"
+            if len(str(draft)) > SPICE_FILE_NAME:
+                raise InputError("TMPDIR", folder, f"a temporary folder whose kernel paths fit SPICE's "
+                                                   f"{SPICE_FILE_NAME} characters")
+            write(draft)
+            shutil.copyfile(draft, aside)
+        with open(aside, "rb") as f:
+            os.fsync(f.fileno())
         os.replace(aside, path)
     finally:
         aside.unlink(missing_ok=True)
