@@ -360,8 +360,7 @@ def _answer(table, t, when, columns, summary, expected, ephemeris):
     from astropy.table import QTable
 
     days = table["time"].tdb.jd1 - 2451545.0 + table["time"].tdb.jd2
-    rows = np.searchsorted(days, t) if np.all(np.diff(days) > 0) else \
-        np.array([int(np.argmin(np.abs(days - ti))) for ti in t])
+    rows = _rows(days, t)
     from .columns import describe
 
     out = QTable()
@@ -390,6 +389,17 @@ def _answer(table, t, when, columns, summary, expected, ephemeris):
                      "run": summary.get("run"), "scene": summary.get("scene"),
                      "fit_error": (summary.get("provenance") or {}).get("fit_error")})
     return out
+
+
+def _rows(days, t):
+    """The row of ``days`` nearest each date of ``t`` (both TDB days, any order): one sort and one binary search
+    for all of them."""
+    order = np.argsort(days, kind="stable")
+    ordered = days[order]
+    right = np.clip(np.searchsorted(ordered, t), 1, max(len(ordered) - 1, 1))
+    left = right - 1
+    nearer_left = np.abs(t - ordered[left]) <= np.abs(ordered[np.minimum(right, len(ordered) - 1)] - t)
+    return order[np.where(nearer_left, left, np.minimum(right, len(ordered) - 1))]
 
 
 def _verdict(at_dates):

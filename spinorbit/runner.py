@@ -10,6 +10,7 @@ provenance; NaN turned into "not measured").
 import functools
 import math
 import re
+import sys
 from dataclasses import replace
 
 import numpy as np
@@ -18,7 +19,7 @@ from .errors import IntegrationError, ScenarioError
 from .run_result import RunResult, attitude_table
 from .scenarios import Scenario, load_scenario, scenario_errors
 from .scene import Run, integrate
-from .solutions import for_run, keep
+from .solutions import build_scenario, for_run, keep
 
 
 def run_scenario(scenario, overrides=()):
@@ -62,7 +63,7 @@ def run_scene(scenario):
     summary."""
     scene, p = scenario.scene, scenario.params
     times = scenario.output_times()
-    model = scene.build(p, times)
+    model = scene.build(build_scenario(scenario).params, times)     # a stored kind's: over its grid's span
     run = Run(p, model, times, functools.partial(integrate, scenario))
     solution, section = None, {"kept": False, "why": "the scene has no main run (nothing of its own integrated)"}
     if model.system is not None:
@@ -74,6 +75,8 @@ def run_scene(scenario):
         table = attitude_table(run.solution)
         for name, column in outcome.columns.items():
             table[name] = column
+    if solution is not None:                     # the run is whole: its solution offered to the store
+        section.update(stored(scenario, solution))
     summary = {"comparison": outcome.comparison, "run": run.point, "solution": section, **outcome.sections}
     if outcome.not_measured:
         summary["not_measured"] = {**summary.get("not_measured", {}), **outcome.not_measured}
@@ -100,14 +103,24 @@ def main_run(scenario, system, times):
     section = {"kept": True, "span_tdb_d": list(solution.span), "segments": len(solution.segments.coefficients),
                "segment_d": solution.segments.length_d, "degree": solution.segments.degree,
                **solution.fit_error, **{k: v for k, v in point.items() if k.startswith("integration_error_")}}
-    try:
-        section["stored"] = str(keep(scenario, solution) or "") or None
-    except OSError as exc:                       # the run's result stands without the store
-        section["stored"] = None
-        section["not_stored_because"] = f"{type(exc).__name__}: {exc}"
     states = replace(solution.states(times), nfev=run.get("rhs_evaluations", 0), nsteps=run.get("steps"),
                      wall_s=run.get("wall_s", 0.0))
     return solution, states, point, section
+
+
+def stored(scenario, solution):
+    """{"stored": path or None, "not_stored_because": why} of a finished run's Solution offered to the store
+    (solutions.keep): not waiting on another process's lock beyond store.OFFER_WAIT_S, nor failing the run on a
+    store it cannot write (both said in one line)."""
+    from .verified import Busy
+
+    try:
+        path, why = keep(scenario, solution)
+    except (Busy, OSError) as exc:               # the run's result stands without the store
+        why = str(exc) if isinstance(exc, Busy) else f"{type(exc).__name__}: {exc.strerror or exc}"
+        print(f"spinorbit: the run's solution was not stored ({why})", file=sys.stderr)
+        return {"stored": None, "not_stored_because": why}
+    return {"stored": str(path)} if path else {"stored": None, "not_stored_because": why}
 
 
 def mark_unmeasured(summary):

@@ -80,22 +80,22 @@ def _extended(scenario, solution, lo, hi):
     """``solution`` (or a new one from the scene's start) extended to cover [lo, hi]: each stretch from the
     state where the last run stopped."""
     kind = models.KINDS[scenario.kind]
+    if solution is not None and grid_of(solution) != kind.grid:     # the store keeps its kind's grid only
+        solution = None
     if solution is None:
         t0, y0 = models.first_start(scenario)
         lo, hi = min(lo, t0), max(hi, t0)
         return _piece(scenario, kind, (t0, y0), lo, hi)
-    grid = grid_of(solution)            # a run's solution (keep) tiles its own span: continued on its grid
     if lo < solution.span[0]:
-        solution = joined(solution, _piece(scenario, kind, solution.ends["start"], lo, solution.span[0], grid))
+        solution = joined(solution, _piece(scenario, kind, solution.ends["start"], lo, solution.span[0]))
     if hi > solution.span[1]:
-        solution = joined(solution, _piece(scenario, kind, solution.ends["end"], solution.span[1], hi, grid))
+        solution = joined(solution, _piece(scenario, kind, solution.ends["end"], solution.span[1], hi))
     return solution
 
 
-def _piece(scenario, kind, start, lo, hi, grid=None):
-    """A Solution over [lo, hi] (rounded out to ``grid``, default the kind's) of the scene's System started at
-    ``start``."""
-    grid = grid or kind.grid
+def _piece(scenario, kind, start, lo, hi):
+    """A Solution over [lo, hi] (rounded out to the kind's grid) of the scene's System started at ``start``."""
+    grid = kind.grid
     lo, hi = grid.bounds(lo, hi)
     stretch = models.stretch(scenario, lo, hi, start[0])
     system = models.system(stretch, start)
@@ -110,8 +110,10 @@ def made(scenario, system, grid, piece, span, method, options):
     provenance."""
     run = {"span_tdb_d": [float(span[0]), float(span[1])], "start_tdb_d": float(system.t0),
            **{k: v for k, v in piece.run.items() if isinstance(v, (int, float, str, type(None)))}}
+    rec = store.record(scenario)
     provenance = {"scene": scenario.kind, "scenario": str(scenario.path), "model_start_tdb_d": float(system.t0),
-                  "keys": store.record(scenario)["keys"], "ephemeris": scenario.get("orbit.source"),
+                  "keys": rec["keys"], "ephemeris": {"name": scenario.get("orbit.source"),
+                                                     **(rec["ephemeris_file"] or {})},
                   "integrator": {"method": method, **options}, "code_version": store.code_version(),
                   "grid": {"segment_d": grid.length_d, "degree": grid.degree},
                   "state_size": int(system.layout.size), "fit_error": piece.fit_error,
@@ -122,9 +124,39 @@ def made(scenario, system, grid, piece, span, method, options):
 
 
 def grid_of(solution):
-    """The Grid a Solution's segments lie on (its extensions continue it)."""
+    """The Grid a Solution's segments lie on."""
     s = solution.segments
     return Grid(s.origin_d, s.length_d, s.degree)
+
+
+def stored_grid_span(scenario):
+    """The span a main run is integrated over when it is the model the store keeps (``stored_model``), started at
+    its kind's anchor and run forward: its own span rounded out to the end of the kind's last segment (the
+    runner builds its System over it), so that the store keeps its kind's grid whatever the run's length; None
+    for any other run (it tiles its own span: :func:`run_grid`, and is not stored)."""
+    kind = models.KINDS.get(scenario.kind)
+    if kind is None or kind.anchor is None or scenario.t_end <= scenario.t_start or \
+            stored_model(scenario, scenario.t_start):
+        return None
+    lo, hi = kind.grid.bounds(scenario.t_start, scenario.t_end)
+    return (lo, hi) if lo == scenario.t_start else None
+
+
+def build_scenario(scenario):
+    """The scenario a main run's System is built from: ``scenario`` over :func:`stored_grid_span` (started where it
+    starts), or ``scenario`` itself."""
+    span = stored_grid_span(scenario)
+    return scenario if span is None else models.stretch(scenario, *span, scenario.t_start)
+
+
+def fitted_grid(scenario, kind, system, lo, hi, halvings=0):
+    """(Grid, span) a main run over [lo, hi] is fitted on: the kind's own grid over :func:`stored_grid_span` when
+    there is one and the kind's segments follow the run's spin (``spin_segment_d``); else :func:`run_grid`,
+    tiling the span exactly."""
+    span = stored_grid_span(scenario)
+    if not halvings and span is not None and spin_segment_d(system, kind.grid.degree) >= kind.grid.length_d:
+        return kind.grid, span
+    return run_grid(kind, system, lo, hi, halvings), (lo, hi)
 
 
 def run_grid(kind, system, lo, hi, halvings=0):
@@ -163,13 +195,13 @@ def for_run(scenario, system):
     method, options = scenario["integrator.method"], scenario.integrator_options()
     worst = np.inf
     for halvings in range(REFINEMENTS + 1):
-        grid = run_grid(kind, system, lo, hi, halvings)
-        piece = integrate(system, grid, lo, hi, method, options, label=scenario.name,
+        grid, (a, b) = fitted_grid(scenario, kind, system, lo, hi, halvings)
+        piece = integrate(system, grid, a, b, method, options, label=scenario.name,
                           estimate_error=scenario["integrator.estimate_error"],
-                          ephemeris=models.ephemeris(scenario, system, lo, hi))
+                          ephemeris=models.ephemeris(scenario, system, a, b))
         beyond = fit_beyond_run(piece.fit_error, piece.run, rounding_km(piece))
         if not beyond:
-            return made(scenario, system, grid, piece, (lo, hi), method, options), None
+            return made(scenario, system, grid, piece, (a, b), method, options), None
         previous, worst = worst, max(piece.fit_error[key] for key in beyond)
         if worst > previous / 2:            # shorter segments do not help: not the series' truncation
             break
@@ -240,11 +272,17 @@ def stored_model(scenario, t0):
 
 
 def keep(scenario, solution):
-    """Put a run's Solution in the store where it is the stored model (``stored_model``), unless the store
-    already holds a longer span of it.  Returns the path, or None."""
-    if stored_model(scenario, solution.provenance["runs"][0]["start_tdb_d"]):
-        return None
-    return store.offer(solution, store.record(scenario))
+    """Put a run's Solution in the store where it is the stored model (``stored_model``) on its kind's grid,
+    unless the store already holds a longer span of it.  (path, None), or (None, why not)."""
+    why = stored_model(scenario, solution.provenance["runs"][0]["start_tdb_d"])
+    grid = models.KINDS[scenario.kind].grid
+    if not why and grid_of(solution) != grid:
+        s = solution.segments
+        why = (f"its segments ({s.length_d:.4g} d from {s.origin_d:.6g}, degree {s.degree}) are not the stored "
+               f"grid's ({grid.length_d:g} d from {grid.origin_d:g}, degree {grid.degree})")
+    if why:
+        return None, why
+    return store.offer(solution, store.record(scenario)), None
 
 
 def integration_error(solution):

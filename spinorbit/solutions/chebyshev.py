@@ -43,6 +43,7 @@ def interpolating_at(values, x):
     return np.linalg.solve(vander, values.transpose(0, 2, 1)).transpose(0, 2, 1)
 
 
+ROUNDING = 1e-9               # of a segment: what a span's end or a time may differ by through rounding
 EVALUATED_AT_ONCE = 512        # points whose segments' coefficients are gathered together (a few hundred kB)
 
 
@@ -67,8 +68,11 @@ class Segments:
                 self.origin_d + (self.first + len(self.coefficients)) * self.length_d)
 
     def covers(self, t_start, t_end):
+        """Whether [t_start, t_end] lies in the span, give or take ROUNDING of a segment: the span's ends are sums of
+        segment lengths, a run's outputs sums of steps, each rounded (no more: never an extrapolation)."""
         lo, hi = self.span
-        return lo <= min(t_start, t_end) and max(t_start, t_end) <= hi
+        slack = ROUNDING * self.length_d
+        return lo - slack <= min(t_start, t_end) and max(t_start, t_end) <= hi + slack
 
     def evaluate(self, t):
         """Values (n, components) at TDB days ``t`` (n,); InputError outside the span (no extrapolation)."""
@@ -129,6 +133,6 @@ def fitted(origin_d, length_d, first, values):
 
 def grid_indices(origin_d, length_d, t_start, t_end):
     """(first, count): the segments of the grid that cover [t_start, t_end]."""
-    lo = int(np.floor((min(t_start, t_end) - origin_d) / length_d + 1e-9))
-    hi = int(np.ceil((max(t_start, t_end) - origin_d) / length_d - 1e-9))
+    lo = int(np.floor((min(t_start, t_end) - origin_d) / length_d + ROUNDING))
+    hi = int(np.ceil((max(t_start, t_end) - origin_d) / length_d - ROUNDING))
     return lo, max(hi - lo, 1)

@@ -40,7 +40,10 @@ def stored(scenario, nonrigid, t_start, t_end):
     """The stored layer when it covers [t_start, t_end] and was fitted over the whole stored rigid solution
     (its span is the rigid one's: the solution is extended only at its ends), else None."""
     rec = _record(scenario, nonrigid)
-    found = store.read(store.path_of(rec), rec)
+    try:
+        found = store.read(store.path_of(rec), rec)
+    except store.Unreadable:
+        return None
     rigid = store.entry_span(store.path_of(store.record(scenario)))
     if found is None or rigid is None or tuple(found.span) != tuple(rigid) or not found.covers(t_start, t_end):
         return None

@@ -72,7 +72,8 @@ class Solution:
         return out
 
     def at(self, times):
-        """QTable of the named quantities at ``times`` (astropy Time, any scale), ``time`` as given."""
+        """QTable of the named quantities at ``times`` (astropy Time, any scale), ``time`` as given; InputError for a
+        masked or non-finite date (as the API refuses them)."""
         import astropy.units as u
         from astropy.table import QTable
 
@@ -125,6 +126,9 @@ def tdb_days(times):
 
     if not isinstance(times, Time):
         raise InputError("times", type(times).__name__, "astropy Time (any scale)")
+    if times.masked and np.any(times.mask):
+        raise InputError("times", f"{int(np.sum(times.mask))} masked of {times.size} dates",
+                         "finite astropy Times without masked values: pass times[~times.mask]")
     t = np.atleast_1d(np.asarray(times.tdb.jd1 - 2451545.0, dtype=float) + times.tdb.jd2).ravel()
     if not np.all(np.isfinite(t)):
         raise InputError("times", "non-finite or masked dates", "finite astropy Times")

@@ -1,36 +1,37 @@
 """The solution store: every solution computed, kept in spinorbit's private cache and extended on demand.
 
-Where: ``<the kernel cache's private directory>/solutions`` (spinorbit.linker.cache: 0700, refused when
-another user could change it).  A solution is keyed by what decides its numbers: the scene, every key of the
+Where: ``<spinorbit's private cache>/solutions`` (spinorbit.verified: 0700, refused in one line when another
+user owns it or can write it).  A solution is keyed by what decides its numbers: the scene, every key of the
 scenario but its comparisons, outputs and span (kept for a scene whose start is fitted over its span: the
-Earth's), the integrator's options, and the code's version (solutions.code_version: spinorbit's version and a
-sha256 of the package's source: a changed integration never reuses an old file).  Each file is an npz read with
-``allow_pickle=False`` (nothing in it can run code) holding the series, the layout, the provenance, the states
-where the integration stopped, the record it was keyed by and a sha256 over every array; one that is not
-intact (truncated, tampered with, another model's) is refused in one line and computed again.  Files are
-written aside and renamed (atomic); a lock beside each makes one process at a time extend it, the others
-waiting and then reading what it wrote.
+Earth's), the integrator's options, the ephemeris *file* the orbit source names (its sha256 and size: another
+file under the same name, or a file replaced at its path, is another solution), and the code's version
+(solutions.code_version: spinorbit's version and a sha256 of the package's source: a changed integration never
+reuses an old file).  Each file is a verified npz (spinorbit.verified: every array hashed, written aside and
+renamed) holding the series, the layout, the provenance, the states where the integration stopped and the record
+it was keyed by; one that is not intact (truncated, tampered with, another model's) is refused in one line,
+deleted and computed again.  A read that fails for a reason that is not the file's (EIO, EMFILE) is said and the
+answer computed without the store; a write that fails (a full disk) is warned of, the answer kept.
+
+A lock beside each file makes one process at a time extend it, the others waiting and then reading what it wrote;
+a finished run offers its solution without waiting (``offer``: at most OFFER_WAIT_S).  The store keeps within
+``LIMIT["bytes"]`` (default 2 GB): after each write the least recently written files go first (`spinorbit
+cache` states the bound).
 
 A query outside the stored span extends the solution from its nearer end (forward from its end, backward
 from its start), the same System started at the state where the last run stopped.
 """
-import contextlib
-import fcntl
+import functools
 import hashlib
 import json
 import os
-import shutil
-import stat
-import sys
 import time
-import zipfile
+import warnings
 
 import numpy as np
 
-from ..files import open_lock, open_regular
+from .. import verified
 from ..layout import Layout
 from ..linker import cache
-from ..orbits.solution import arrays_hash
 from .chebyshev import Segments
 from .code_version import package_version
 from .solution import Solution
@@ -38,16 +39,17 @@ from .solution import Solution
 LAYER_KEYS = ("span.", "model.start", "scene.", "compare.", "comparison.", "report.", "output.", "limits.",
               "earth.nonrigid", "earth.transfer_function", "integrator.estimate_error")
 
-
 PLACE = {"directory": None}          # another directory (tests); None: the private cache's
+LIMIT = {"bytes": 2_000_000_000}     # the store's size bound: least recently written files removed beyond it
+OFFER_WAIT_S = 2.0                   # how long a finished run waits for the store's lock before it says it was not
+# stored
 
 
 def directory():
-    """``<private cache>/solutions`` (created 0700)."""
-    path = PLACE["directory"] or cache.kernels_dir().parent / "solutions"
-    if not path.is_dir():
-        path.mkdir(mode=0o700, exist_ok=True)
-    return path
+    """``<private cache>/solutions`` (created 0700; refused in one line when not private)."""
+    if PLACE["directory"] is not None:
+        return verified.private(PLACE["directory"])
+    return verified.folder("solutions")
 
 
 def code_version():
@@ -56,8 +58,9 @@ def code_version():
 
 
 def record(scenario):
-    """What decides a solution's numbers: the scene kind, its model keys, the code's version (and the span, for a
-    scene whose start depends on it: the Earth's is fitted over its span's outputs)."""
+    """What decides a solution's numbers: the scene kind, its model keys, the ephemeris file's identity, the code's
+    version (and the span, for a scene whose start depends on it: the Earth's is fitted over its span's
+    outputs)."""
     from .models import KINDS
 
     anchored = scenario.kind in KINDS and KINDS[scenario.kind].anchor is not None
@@ -65,7 +68,39 @@ def record(scenario):
     keys = {k: v.tolist() if hasattr(v, "tolist") else v for k, v in sorted(scenario.values.items())
             if not k.startswith(ignored)}
     keys["integrator"] = scenario.integrator_options()
-    return {"scene": scenario.kind, "keys": json.loads(json.dumps(keys, default=str)), "code": code_version()}
+    return {"scene": scenario.kind, "keys": json.loads(json.dumps(keys, default=str)), "code": code_version(),
+            "ephemeris_file": ephemeris_identity(scenario.get("orbit.source"))}
+
+
+def ephemeris_identity(source):
+    """{"sha256", "bytes"} of the JPL kernel file the orbit source ``source`` names (orbits.kernel.kernel_path: a
+    ``./ephemerides/`` file shadows a name), or None for a source that reads no kernel file."""
+    from ..errors import InputError
+    from ..orbits.kernel import kernel_path
+    from ..orbits.sources import orbit_source
+
+    if not isinstance(source, str):
+        return None
+    try:
+        if not orbit_source(source).jpl_kernel:
+            return None
+        path = kernel_path(source).resolve()
+        info = os.stat(path)
+    except (InputError, OSError):
+        return None                      # no file to name: the run itself refuses the source in one line
+    return {"sha256": file_sha256(str(path), info.st_size, info.st_mtime_ns, info.st_ctime_ns, info.st_ino,
+                                  info.st_dev), "bytes": info.st_size}
+
+
+@functools.lru_cache(maxsize=32)
+def file_sha256(path, size, mtime_ns, ctime_ns, inode, device):
+    """sha256 of the file at ``path``, hashed once per process for each (size, times, inode): any change to the
+    file changes one of them (ctime cannot be set back by a user)."""
+    digest = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
 
 
 def path_of(rec):
@@ -73,63 +108,41 @@ def path_of(rec):
     return directory() / f"{rec['scene']}-{key}.npz"
 
 
-ARRAYS = ("coefficients", "grid", "layout", "provenance", "record", "end_start_t", "end_start_state",
-          "end_end_t", "end_end_state")
-
-
-def _arrays(solution, rec):
+def _arrays(solution):
     s = solution.segments
     layout = [[p.name, p.stop - p.start, p.kind, p.unit] for p in solution.layout.slices]
     grid = np.array([s.origin_d, s.length_d, s.first, len(s.coefficients)], dtype=float)
-    return {"coefficients": s.coefficients, "grid": grid,
-            "layout": np.array(json.dumps(layout)), "provenance": np.array(json.dumps(solution.provenance)),
-            "record": np.array(json.dumps(rec, sort_keys=True)),
+    return {"coefficients": s.coefficients, "grid": grid, "layout": np.array(json.dumps(layout)),
             **{f"end_{name}_{part}": np.asarray(value, dtype=float) for name, (t, y) in solution.ends.items()
                for part, value in (("t", t), ("state", y))}}
 
 
-def content_hash(arrays):
-    """sha256 of the stored arrays (each name, dtype, shape and bytes), as the orbital solutions are hashed."""
-    return arrays_hash({name: arrays[name] for name in ARRAYS})
-
-
 def save(solution, rec, path):
-    """Write atomically: aside in the same directory, fsync, rename over ``path``."""
-    arrays = _arrays(solution, rec)
-    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
-    try:
-        with open(tmp, "wb") as f:
-            np.savez(f, sha256=np.array(content_hash(arrays)), **arrays)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    finally:
-        tmp.unlink(missing_ok=True)
+    """Write atomically (spinorbit.verified.write), then keep the store within LIMIT."""
+    verified.write(path, _arrays(solution), rec, solution.provenance)
+    verified.prune(path.parent, "*.npz", LIMIT["bytes"], keep=[path])
 
 
-class Refused(Exception):
-    """A store file that is not an intact solution of the record asked for."""
+Refused = verified.Damaged
 
 
 def load(path, rec):
-    """The Solution in ``path``; Refused (saying why) unless it is intact and made with ``rec``."""
+    """The Solution in ``path``; Refused (saying why) unless it is intact and made with ``rec``; None when there is
+    no file; an OSError that is not the file's raised."""
+    entry = verified.read(path, rec)
+    if entry is None:
+        return None
     try:
-        with open_regular(path) as f, np.load(f, allow_pickle=False) as data:
-            arrays = {name: data[name] for name in ARRAYS}
-            stored_hash = str(data["sha256"])
-    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as exc:
-        raise Refused(f"not a readable solution file: {type(exc).__name__}: {exc}") from None
-    if content_hash(arrays) != stored_hash:
-        raise Refused("its arrays do not match their sha256")
-    if json.loads(str(arrays["record"])) != json.loads(json.dumps(rec, sort_keys=True)):
-        raise Refused("it was made with another model, keys or code version")
-    origin, length, first, count = arrays["grid"]
-    if count != len(arrays["coefficients"]):
-        raise Refused("its grid does not match its series")
-    segments = Segments(float(origin), float(length), int(first), arrays["coefficients"])
-    layout = Layout([tuple(p) for p in json.loads(str(arrays["layout"]))])
-    ends = {name: (float(arrays[f"end_{name}_t"]), arrays[f"end_{name}_state"]) for name in ("start", "end")}
-    return Solution(segments, layout, json.loads(str(arrays["provenance"])), ends)
+        arrays = entry.arrays
+        origin, length, first, count = arrays["grid"]
+        if count != len(arrays["coefficients"]):
+            raise Refused("its grid does not match its series")
+        segments = Segments(float(origin), float(length), int(first), arrays["coefficients"])
+        layout = Layout([tuple(p) for p in json.loads(str(arrays["layout"]))])
+        ends = {name: (float(arrays[f"end_{name}_t"]), arrays[f"end_{name}_state"]) for name in ("start", "end")}
+    except (KeyError, ValueError, TypeError) as exc:
+        raise Refused(f"not a stored solution ({type(exc).__name__}: {exc})") from None
+    return Solution(segments, layout, entry.meta, ends)
 
 
 VERIFIED = {}          # path -> ((device, inode, size, mtime), Solution, record): files this process has checked
@@ -140,9 +153,9 @@ def stamp_of(info):
 
 
 def read(path, rec):
-    """The stored Solution, or None when there is none or it is refused (said in one line, then deleted).  A
-    file this process has already read and checked, unchanged since (same inode, size and time), is not read
-    again."""
+    """The stored Solution, or None when there is none, it is refused (said in one line, then deleted), or it
+    cannot be read for a reason that is not the file's (said in one line, the file kept).  A file this process
+    has already read and checked, unchanged since (same inode, size and time), is not read again."""
     try:
         info = os.lstat(path)
     except FileNotFoundError:
@@ -152,100 +165,131 @@ def read(path, rec):
         return known[1]
     try:
         solution = load(path, rec)
-        VERIFIED[str(path)] = (stamp_of(info), solution, json.dumps(rec, sort_keys=True))
-        return solution
     except Refused as exc:
         cache.say(f"the stored solution {path} was refused ({exc}); computing it again")
-        if stat.S_ISDIR(info.st_mode):          # a folder in the private store, where a file belongs
-            shutil.rmtree(path, ignore_errors=True)
-        else:
-            path.unlink(missing_ok=True)
+        verified.discard(path)
         return None
+    except OSError as exc:
+        _warn(f"the stored solution {path} could not be read ({exc.strerror or exc}); answering without the store")
+        raise Unreadable from None
+    if solution is not None:
+        VERIFIED[str(path)] = (stamp_of(info), solution, json.dumps(rec, sort_keys=True))
+    return solution
+
+
+class Unreadable(Exception):
+    """A store file that could not be read for a reason that is not its own (said already)."""
+
+
+def _warn(message):
+    warnings.warn(f"spinorbit: {message}", UserWarning, stacklevel=4)
+
+
+def _save_or_warn(solution, rec, path):
+    """Save; a write that fails (a full disk) is warned of and said in the provenance.  True when stored."""
+    try:
+        save(solution, rec, path)
+        return True
+    except OSError as exc:
+        why = f"{type(exc).__name__}: {exc.strerror or exc}"
+        solution.provenance["not_stored_because"] = why
+        _warn(f"the solution was not stored ({why}); answering from this computation")
+        return False
 
 
 def solve(rec, t_start, t_end, extend):
     """The stored solution keyed by ``rec`` (``record``) covering [t_start, t_end] TDB days; where the store
     lacks part of it, ``extend(solution or None, t_start, t_end)`` computes the stretches (solutions.solve);
-    one process at a time extends a file (a lock), the others wait and read what it wrote."""
+    one process at a time extends a file (a lock), the others wait and read what it wrote.  A store that cannot
+    be read or written is said, and the answer is computed without it."""
     path = path_of(rec)
-    solution = read(path, rec)
+    try:
+        solution = read(path, rec)
+    except Unreadable:
+        return _timed(extend, None, t_start, t_end)
     if solution is not None and solution.covers(t_start, t_end):
         solution.path = path
         return solution
-    with locked(path):
-        solution = read(path, rec)
+    with verified.lock(path):
+        try:
+            solution = read(path, rec)
+        except Unreadable:
+            return _timed(extend, None, t_start, t_end)
         if solution is None or not solution.covers(t_start, t_end):
-            started = time.perf_counter()
-            solution = extend(solution, t_start, t_end)
-            solution.provenance["last_extension_wall_s"] = time.perf_counter() - started
-            save(solution, rec, path)
+            solution = _timed(extend, solution, t_start, t_end)
+            if not _save_or_warn(solution, rec, path):
+                return solution
     solution.path = path
     return solution
 
 
+def _timed(extend, solution, t_start, t_end):
+    started = time.perf_counter()
+    solution = extend(solution, t_start, t_end)
+    solution.provenance["last_extension_wall_s"] = time.perf_counter() - started
+    return solution
+
+
 def offer(solution, rec):
-    """Keep ``solution`` under ``rec`` unless the store already holds a span it does not cover (under the
-    file's lock); returns the file's path."""
+    """Keep ``solution`` under ``rec`` unless the store already holds a span it does not cover, waiting at most
+    OFFER_WAIT_S for the file's lock; returns the file's path.  verified.Busy when another process holds the lock
+    longer; OSError when the store cannot be read or written."""
     path = path_of(rec)
-    with locked(path):
-        stored = read(path, rec)
+    with verified.lock(path, wait_s=OFFER_WAIT_S):
+        try:
+            stored = read(path, rec)
+        except Unreadable:
+            raise OSError(f"{path} could not be read") from None
         if stored is None or solution.covers(*stored.span):
             save(solution, rec, path)
     solution.path = path
     return path
 
 
-@contextlib.contextmanager
-def locked(path):
-    """The exclusive lock of the stored file ``path``: one process at a time writes it, the others wait."""
-    with open_lock(path.with_name(path.name + ".lock")) as lock:
-        try:
-            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except BlockingIOError:
-            print(f"spinorbit: waiting for another process writing {path}", file=sys.stderr)
-            fcntl.flock(lock, fcntl.LOCK_EX)
-        yield
-
-
 def entry_span(path):
-    """(start, end) TDB days of the solution stored at ``path``, read from its grid alone (not checked), or
-    None."""
+    """(start, end) TDB days of the solution stored at ``path`` (checked), or None."""
     try:
-        with open_regular(path) as f, np.load(f, allow_pickle=False) as data:
-            origin, length, first, count = data["grid"]
-    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+        entry = verified.read(path)
+        origin, length, first, count = entry.arrays["grid"]
+    except (verified.Damaged, OSError, AttributeError, KeyError, ValueError):
         return None
     return float(origin + first * length), float(origin + (first + count) * length)
 
 
 def entries():
     """[(path, scene, (start, end) TDB days, bytes)] of the stored solutions: a file of another code version
-    says so after its scene (no run of this code reads it; `spinorbit cache clear` removes it), an unreadable
-    one has span None."""
+    says so after its scene (no run of this code reads it; `spinorbit cache clear` removes it), a damaged or
+    unreadable one is "unreadable", span None."""
     out = []
     for path in sorted(directory().glob("*.npz")):
         scene, span = "unreadable", None
         try:
-            with open_regular(path) as f, np.load(f, allow_pickle=False) as data:
-                rec = json.loads(str(data["record"]))
-                scene = rec["scene"] if rec.get("code") == code_version() else \
-                    f"{rec['scene']} (code {rec.get('code')}, not this one's)"
-                origin, length, first, count = data["grid"]
+            entry = verified.read(path)
+            rec = entry.record
+            scene = rec["scene"] if rec.get("code") == code_version() else \
+                f"{rec['scene']} (code {rec.get('code')}, not this one's)"
+            origin, length, first, count = entry.arrays["grid"]
             span = (origin + first * length, origin + (first + count) * length)
-        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+        except (verified.Damaged, OSError, AttributeError, KeyError, ValueError, TypeError):
             pass
         out.append((path, scene, span, path.stat().st_size))
     return out
 
 
 def clear():
-    """Delete every stored solution (and its lock) and the code-version records; return the number of files
-    removed."""
-    removed = 0
-    for path in directory().iterdir():
-        if path.is_file() and not path.is_symlink() and (path.suffix in (".npz", ".lock", ".json")
-                                                          or ".tmp-" in path.name):
+    """Delete every stored solution no process holds (with its lock and the leftovers of killed writes) and the
+    code-version records; a solution another live process holds the lock of is kept, with its lock and
+    temporary files, and said.  Returns the number of files removed."""
+    folder = directory()
+    removed = verified.clear(folder, "*.npz")
+    for path in folder.glob("*.json"):
+        if path.is_file() and not path.is_symlink():
             path.unlink()
             removed += 1
+    for lock in folder.glob("*.npz.lock"):              # a lock whose solution is gone, no process holding it
+        stored = lock.with_name(lock.name.removesuffix(".lock"))
+        if not os.path.lexists(stored) and not verified.locked_elsewhere(stored):
+            lock.unlink(missing_ok=True)
+            removed += 1
+            removed += verified.remove_leftovers(stored)
     return removed
-
