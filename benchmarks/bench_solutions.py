@@ -276,10 +276,10 @@ def exported(scene, out):
     import spiceypy
 
     from spinorbit.scenarios import load_scenario
-    from spinorbit.solutions import for_scenario
+    from spinorbit.solutions import for_export
 
     started = time.perf_counter()
-    solution = for_scenario(load_scenario(scene, []))
+    solution = for_export(load_scenario(scene, []))
     solve_s = time.perf_counter() - started
     started = time.perf_counter()
     written = solution.export(out)
@@ -323,11 +323,11 @@ def orientation_rows(solution, written, t):
 
     pck, frame = (next(f for f in written["files"] if f.endswith(suffix)) for suffix in (".bpc", ".tf"))
     truth = icrf_to_body(solution.part("moon.q", t))
-    by_spice = np.array([spiceypy.pxform("J2000", "MOON_PA_SPINORBIT", ti * DAY_S) for ti in t])
+    by_spice = np.array([spiceypy.pxform("J2000", written["frames"]["moon"], ti * DAY_S) for ti in t])
     constants = PlanetaryConstants()
     constants.read_text(load.open(frame))
     constants.read_binary(load.open(pck))
-    segment = constants.build_frame_named("MOON_PA_SPINORBIT")._segment
+    segment = constants.build_frame_named(written["frames"]["moon"])._segment
     by_skyfield = np.array([mxm(rot_z(-w), mxm(rot_x(-d), rot_z(-r)))
                             for r, d, w in (segment.compute(2451545.0, ti, False) for ti in t)])
 
@@ -343,61 +343,75 @@ def orientation_rows(solution, written, t):
 
 
 def carried(solution, t):
-    """{(name, NAIF code): (n, 3) km about the kernel's origin (the barycentre; the Earth-Moon barycentre for a
-    solution without barycentric bodies)} of every body the SPK holds, from the solution (the Earth and the Moon
-    from their barycentre by the body table's mass ratio)."""
+    """{(name, NAIF code): (n, 3) km about the solar-system barycentre} of every body the SPK holds, from the
+    solution (the Earth and the Moon from their barycentre by the body table's mass ratio; that barycentre, for a
+    solution without barycentric bodies, from DE421, which the coupled Earth-Moon's run reads)."""
     from spinorbit.bodies.table import EMB, gm_km3_d2
-    from spinorbit.solutions.spice import position_segments
+    from spinorbit.orbits.kernel import open_ephemeris
+    from spinorbit.solutions.tracks import tracks
 
     values = {part.name[:-2]: solution.part(part.name, t) for part in solution.layout.slices
               if part.name.endswith(".r") and "barycentric" in part.unit}
+    if EMB not in values:
+        values[EMB] = open_ephemeris("de421", *solution.span).relative_states(EMB, "solar_system_barycenter", t)[0]
     mu = gm_km3_d2("moon") / (gm_km3_d2("earth") + gm_km3_d2("moon"))
-    moon, centre = solution.part("moon.r", t), values.get(EMB, 0.0)
-    values.update(moon=centre + (1 - mu) * moon, earth=centre - mu * moon)
-    return {(name, target): values[name] for target, _, name, _ in position_segments(solution)}
+    moon = solution.part("moon.r", t)
+    values.update(moon=values[EMB] + (1 - mu) * moon, earth=values[EMB] - mu * moon)
+    return {(track.name, track.target): values[track.name] for track in tracks(solution)}
 
 
 def position_rows(solution, written, t):
     from skyfield.api import load
     from skyfield.jpllib import SpiceKernel
 
-    barycentric = any("barycentric" in part.unit for part in solution.layout.slices)
-    origin = "0" if barycentric else "3"
     kernel = SpiceKernel(next(f for f in written["files"] if f.endswith(".bsp")))
     at = load.timescale().tdb_jd(2451545.0, t)
-    print(f"\n| body (NAIF code) about {origin} | spiceypy spkpos vs the solution, mm | skyfield vs the solution, mm "
-          f"| vs DE421 (heliocentric; the Moon geocentric) | scene's bound |\n|---|---|---|---|---|")
+    print("\n| body (NAIF code about its centre) | records, degree | fit error, mm | spiceypy spkpos about 0 vs "
+          "the solution, mm | skyfield vs the solution, mm | vs DE421 (heliocentric; the Sun about 0) | scene's "
+          "bound |\n|---|---|---|---|---|---|---|")
     try:
-        print_positions(solution, t, kernel, at, barycentric, origin)
+        print_positions(solution, written, t, kernel, at)
     finally:
         kernel.close()
 
 
-def print_positions(solution, t, kernel, at, barycentric, origin):
-    """The rows of each body the SPK ``kernel`` holds (about ``origin``), read at ``t`` (skyfield: ``at``)."""
+def print_positions(solution, written, t, kernel, at):
+    """The rows of each body the SPK ``kernel`` holds, read about 0 at ``t`` (skyfield: ``at``)."""
     import spiceypy
+    from jplephem.spk import SPK
 
     from spinorbit.comparisons import earth_moon_de421, solar_system_de421
     from spinorbit.constants import ARCSEC, DAY_S
+    from spinorbit.orbits.kernel import open_ephemeris
 
-    segments = {s.target: s for s in kernel.segments}
-    heliocentric = {}
-    for (name, code), truth in carried(solution, t).items():
-        by_spice = np.array([spiceypy.spkpos(str(code), ti * DAY_S, "J2000", "NONE", origin)[0] for ti in t])
-        read = kernel[code] if barycentric else segments[code]
-        by_skyfield = read.at(at).position.km.T
-        de421, bound = "", ""
-        if barycentric and name not in ("sun", "moon", "earth_moon_barycenter"):
-            heliocentric[name] = np.array([spiceypy.spkpos(str(code), ti * DAY_S, "J2000", "NONE", "SUN")[0]
-                                           for ti in t])
-            error = solar_system_de421.planet_errors(t, {name: heliocentric[name]})[name].max()
-            de421, bound = f"{error:.3g} km", f"{2 * solar_system_de421.ASTEROIDS_KM[name]:.3g} km ({DE421_BOUND})"
-        print(f"| {name} ({code}) | {mm(by_spice, truth):.3g} | {mm(by_skyfield, truth):.3g} | {de421} | {bound} |")
+    bsp = next(f for f in written["files"] if f.endswith(".bsp"))
+    with SPK.open(bsp) as spk:
+        records = {s.target: (s.load_array()[1], s.load_array()[2].shape) for s in spk.segments}
+    de421 = open_ephemeris("de421", *solution.span)
+    carried_at = carried(solution, t)
+    sun = dict(carried_at).get(("sun", 10))
+    for (name, code), truth in carried_at.items():
+        by_spice = np.array([spiceypy.spkpos(str(code), ti * DAY_S, "J2000", "NONE", "0")[0] for ti in t])
+        by_skyfield = kernel[code].at(at).position.km.T
+        length, (_, count, coefficients) = records[code]
+        fit = written["fit_error"][f"{name}_position_km"] * 1e6
+        de421_km, bound = "", ""
+        if name == "sun":
+            drift = np.linalg.norm(by_spice - de421.relative_states("sun", "solar_system_barycenter", t)[0], axis=1)
+            de421_km = f"{drift.max():.3g} km (the barycentre's drift; {drift[-1]:.3g} km at the end)"
+        elif sun is not None and name not in ("moon", "earth_moon_barycenter"):
+            heliocentric = by_spice - np.array([spiceypy.spkpos("10", ti * DAY_S, "J2000", "NONE", "0")[0]
+                                                for ti in t])
+            error = solar_system_de421.planet_errors(t, {name: heliocentric})[name].max()
+            de421_km = f"{error:.3g} km"
+            bound = f"{2 * solar_system_de421.ASTEROIDS_KM[name]:.3g} km ({DE421_BOUND})"
+        print(f"| {name} ({code}) | {count} x {length:.4g} d, {coefficients - 1} | {fit:.2g} | "
+              f"{mm(by_spice, truth):.3g} | {mm(by_skyfield, truth):.3g} | {de421_km} | {bound} |")
     moon = np.array([spiceypy.spkpos("MOON", ti * DAY_S, "J2000", "NONE", "EARTH")[0] for ti in t])
-    moon_sky = (segments[301] - segments[399]).at(at).position.km.T
+    moon_sky = (kernel["moon"] - kernel["earth"]).at(at).position.km.T
     direction, distance = earth_moon_de421.orbit_errors(t, moon)
-    tolerance = "1 mas, 0.1 m" if barycentric else "1\", 2 km"
-    print(f"| the Moon from the Earth (301 - 399) | {mm(moon, solution.part('moon.r', t)):.3g} "
+    tolerance = "1 mas, 0.1 m" if sun is not None else "1\", 2 km"
+    print(f"| the Moon from the Earth (301 - 399) | | | {mm(moon, solution.part('moon.r', t)):.3g} "
           f"| {mm(moon_sky, solution.part('moon.r', t)):.3g} "
           f"| {np.nanmax(direction) / ARCSEC * 1e3:.3g} mas, {np.nanmax(np.abs(distance)) * 1e3:.3g} m "
           f"| {tolerance} (the scene's) |")

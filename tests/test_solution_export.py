@@ -96,33 +96,45 @@ def segments_of(path):
 
 
 def test_the_closed_earth_moon_read_back_by_spiceypy_and_skyfield_matches_the_solution(place):
-    """The Moon and the Earth about their barycentre (3), as DE421 writes them: their difference is the
-    integrated geocentric Moon, within 1 mm by either reader (the barycentre's own orbit is DE421's: a reader
-    wanting either about 0 loads de421.bsp beside it)."""
+    """The Moon and the Earth about their barycentre (3), as DE421 writes them, and that barycentre about 0 from
+    the run's ephemeris (DE421), fitted on its own records: the file alone takes skyfield from the barycentre to
+    the Moon.  The geocentric Moon is the integrated one within 1 mm by either reader and DE421's within the
+    scene's 1" and 2 km; the barycentre DE421's within its stated fit error (and a summing floor of 1 mm)."""
     from skyfield.api import load
     from skyfield.jpllib import SpiceKernel
+
+    from spinorbit.comparisons import earth_moon_de421
+    from spinorbit.orbits.kernel import open_ephemeris
 
     solution = solutions.solve("earth_moon_coupled", [], 0.0, 40.0)
     written = solution.export(place / "out")
     bsp = next(f for f in written["files"] if f.endswith(".bsp"))
     first, last = (d * DAY_S for d in solution.span)
-    assert segments_of(bsp) == {(3, 301): (1, 2, first, last), (3, 399): (1, 2, first, last)}
+    assert segments_of(bsp) == {(3, 301): (1, 2, first, last), (3, 399): (1, 2, first, last),
+                                (0, 3): (1, 2, first, last)}
     t = exact_dates(solution.span, 100, 7)
     truth = solution.part("moon.r", t)
     try:
         for path in written["files"]:
-            spiceypy.furnsh(str(path))
+            spiceypy.furnsh(path)
         read = np.array([spiceypy.spkpos("MOON", ti * DAY_S, "J2000", "NONE", "EARTH")[0] for ti in t])
         assert np.linalg.norm(read - truth, axis=1).max() < 1 * mm
     finally:
         spiceypy.kclear()
     kernel = SpiceKernel(bsp)
     try:
-        moon, earth = (next(s for s in kernel.segments if s.target == code) for code in (301, 399))
-        by_skyfield = (moon - earth).at(load.timescale().tdb_jd(2451545.0, t)).position.km.T   # both about 3
+        at = load.timescale().tdb_jd(2451545.0, t)
+        by_skyfield = (kernel["moon"] - kernel["earth"]).at(at).position.km.T
+        barycentre = kernel[3].at(at).position.km.T
     finally:
         kernel.close()
     assert np.linalg.norm(by_skyfield - truth, axis=1).max() < 1 * mm
+    direction, distance = earth_moon_de421.orbit_errors(t, by_skyfield)
+    assert direction.max() < 1 * arcsec and np.abs(distance).max() < 2.0
+    de421 = open_ephemeris("de421", *solution.span).relative_states("earth_moon_barycenter",
+                                                                     "solar_system_barycenter", t)[0]
+    fit = written["fit_error"]["earth_moon_barycenter_position_km"]
+    assert np.linalg.norm(barycentre - de421, axis=1).max() < fit + 1 * mm
 
 
 @pytest.fixture(scope="module")
@@ -153,6 +165,16 @@ def carried(solution, t):
     return out
 
 
+NAMES = {10: "sun", 1: "mercury", 2: "venus", 4: "mars", 5: "jupiter", 6: "saturn", 7: "uranus", 8: "neptune",
+         9: "pluto", 3: "earth_moon_barycenter", 301: "earth_moon_barycenter", 399: "earth_moon_barycenter"}
+
+
+def within(written, code, truth, solution):
+    """km: what the SPK may differ from the solution by for body ``code`` about 0: its track's stated fit error
+    (the Moon and the Earth: their barycentre's; they are the solution's own about it) plus the summing floor."""
+    return written["fit_error"][f"{NAMES[code]}_position_km"] + summing_floor(truth, solution.segments.degree)
+
+
 def furnished(files):
     for path in files:
         spiceypy.furnsh(str(path))
@@ -171,14 +193,30 @@ def test_the_solar_system_is_stored_from_de421s_epoch(solar_system):
 
 def test_the_solar_systems_spk_is_laid_out_as_de421s(solar_system):
     """Every body about the barycentre (0), the Moon and the Earth about theirs (3); J2000 (1), type 2, the
-    solution's span in TDB seconds past J2000; the comment area names the scene, its keys and the code."""
+    solution's span in TDB seconds past J2000, on DE421's record lengths (the span, 64 d, holds a whole number of
+    each); each track's fit within 1 mm or its rounding floor; the comment area names the scene, its keys, the
+    code, each body's fit and its distance from DE421."""
+    from jplephem.spk import SPK
+
+    from spinorbit.orbits.kernel import kernel_path
+
     solution, written, _ = solar_system
     bsp = next(f for f in written["files"] if f.endswith(".bsp"))
     first, last = (d * DAY_S for d in solution.span)
     expected = {(0, code) for code in (10, 1, 2, 4, 5, 6, 7, 8, 9, 3)} | {(3, 301), (3, 399)}
     assert segments_of(bsp) == {pair: (1, 2, first, last) for pair in expected}
+    assert last - first == 64 * DAY_S
+    with SPK.open(str(bsp)) as ours, SPK.open(str(kernel_path("de421"))) as de421:
+        lengths = {(s.center, s.target): s.load_array()[1] for s in de421.segments}
+        assert {(s.center, s.target): s.load_array()[1] for s in ours.segments} == {p: lengths[p] for p in expected}
+    for name, error in written["fit_error"].items():
+        if name.endswith("_position_km"):
+            size = np.linalg.norm(solution.part(name.replace("_position_km", ".r"), solution.span), axis=1).max() \
+                if name.split("_position")[0] not in ("moon", "earth") else 0.0
+            assert error < max(1 * mm, 15 * np.finfo(float).eps * size), name
     text = " ".join(comment_lines(bsp))
     assert "'solar_system' scene" in text and store.code_version() in text and 'start.epoch = "de421"' in text
+    assert "mercury (1 about 0): 8 records of 8 d, degree 13" in text and "from DE421's, heliocentric" in text
 
 
 def comment_lines(path):
@@ -200,7 +238,7 @@ def test_the_solar_system_read_back_by_spiceypy_matches_the_solution(solar_syste
     try:
         for code, truth in carried(solution, t).items():
             read = np.array([spiceypy.spkpos(str(code), ti * DAY_S, "J2000", "NONE", "0")[0] for ti in t])
-            assert np.linalg.norm(read - truth, axis=1).max() < summing_floor(truth, solution.segments.degree), code
+            assert np.linalg.norm(read - truth, axis=1).max() < within(written, code, truth, solution), code
         moon = np.array([spiceypy.spkezr("MOON", ti * DAY_S, "J2000", "NONE", "EARTH")[0] for ti in t])
         assert np.linalg.norm(moon[:, :3] - solution.part("moon.r", t), axis=1).max() < 1 * mm
         # SPK type 2's velocity is the series' derivative: a 1 mm error's is at most degree^2 / (L / 2) times it
@@ -222,7 +260,7 @@ def test_the_solar_system_read_back_by_skyfield_matches_the_solution(solar_syste
     try:
         for code, truth in carried(solution, t).items():
             read = kernel[code].at(at).position.km.T
-            assert np.linalg.norm(read - truth, axis=1).max() < summing_floor(truth, solution.segments.degree), code
+            assert np.linalg.norm(read - truth, axis=1).max() < within(written, code, truth, solution), code
         moon = (kernel["moon"] - kernel["earth"]).at(at).position.km.T
     finally:
         kernel.close()

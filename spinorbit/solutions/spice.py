@@ -6,15 +6,16 @@
   frame kernel naming its frame (``<BODY>_PA_SPINORBIT``, class 2: a PCK frame), as JPL's ``moon_080317.tf``.
   The angles are refitted on the solution's own grid at its Chebyshev points; the difference of the rotation
   they give from the solution's, measured between those points, is returned.
-* The positions of the integrated bodies: an SPK of type 2 (Chebyshev positions; SPK Required Reading), the
-  series the solution already holds, in the frame J2000 (ICRF), time in TDB seconds past J2000 (SPICE's ET).
-  A barycentric ``<body>.r`` is a segment of the body about the solar-system barycentre (centre 0); the Moon
-  seen from the Earth (``moon.r``, as the ephemerides carry the pair) is written as DE421 writes it, the Moon
-  (301) and the Earth (399) about the Earth-Moon barycentre (3), (1 - mu) r and -mu r with mu = GM_moon /
-  (GM_earth + GM_moon) of the body table -- the solar system's own barycentre (3 about 0) completes the chain;
-  the Earth-Moon scene's is DE421's, so its kernel is read beside ``de421.bsp`` or as a difference of the two.
-  Codes (spinorbit.bodies.table): a point mass carrying a planet's system is that system's barycentre (Mercury
-  1 ... Pluto 9, as DE421's segments about 0), the Sun 10, the Moon 301, the Earth 399.
+* The positions of the integrated bodies: an SPK of type 2 (Chebyshev positions; SPK Required Reading) in the
+  frame J2000 (ICRF), time in TDB seconds past J2000 (SPICE's ET), one segment per body on its own record length
+  and degree as DE421's (solutions.tracks: refitted from the solution's series, each fit's error stated): a
+  barycentric ``<body>.r`` about the solar-system barycentre (centre 0); the Moon seen from the Earth
+  (``moon.r``) as DE421 writes it, the Moon (301) and the Earth (399) about the Earth-Moon barycentre (3), and
+  that barycentre about 0 -- the solar system's own, or for the coupled Earth-Moon the run's ephemeris's -- so
+  the file alone reaches the barycentre.  Codes (spinorbit.bodies.table): a point mass carrying a planet's
+  system is that system's barycentre (Mercury 1 ... Pluto 9, as DE421's segments about 0), the Sun 10, the Moon
+  301, the Earth 399.  The comments state, per body, the fit's error and how far it lies from DE421 over the
+  span (heliocentric planets and Earth, the geocentric Moon, the Sun about 0: the barycentre's drift).
 
 Every kernel's comment area names what made it: the scene, every key, the ephemeris, the integrator, the code's
 version, the span, the grid and the fit's error.  Read back by spiceypy (``furnsh``; ``pxform("J2000", frame,
@@ -31,10 +32,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ..bodies.table import BODIES, EMB, gm_km3_d2
+from ..bodies.table import EMB
 from ..constants import ARCSEC, DAY_S
-from ..errors import InputError
+from ..errors import EphemerisRangeError, InputError
 from .chebyshev import Segments, interpolating_at
+from .tracks import body_code, tracks
 
 # Frame IDs: NAIF leaves 1 400 000 to 2 000 000 to users (Frames Required Reading, "Selecting a Name and ID");
 # JPL's lunar frames (31000-31008) and the built-in ones lie below it.  A solution's frames take the block of
@@ -45,16 +47,6 @@ FRAMES_PER_SOLUTION = 4
 AXES = ("PA",)                          # the principal axes: the frame the PCK's angles turn to
 COMMENT_LINE = 80                       # a comment line's longest (spiceypy.dafec reads lines of up to ~80)
 SPICE_FILE_NAME = 255                   # SPICE's longest file name: a longer one is cut (FILEN, SPICE Toolkit)
-
-
-def body_code(body):
-    """The NAIF code of a body's own centre (the planet, not its system): the first of the table's codes."""
-    return BODIES[body].naif[0]
-
-
-def position_code(body):
-    """The NAIF code of what an integrated point mass is: its system's barycentre (the table's last code)."""
-    return BODIES[body].naif[-1]
 
 
 def identity(solution):
@@ -105,7 +97,10 @@ def export(solution, directory, asked=None):
         files.append(_written(directory / f"{name}_{body}.tf",
                               lambda path, b=body: path.write_text(frame_kernel(b, solution_id))))
     if positions:
-        files.append(_written(directory / f"{name}.bsp", lambda path: _spk(spiceypy, solution, asked, path)))
+        def spk(path):
+            error.update(_spk(spiceypy, solution, asked, path))
+
+        files.append(_written(directory / f"{name}.bsp", spk))
     return {"files": [str(f) for f in files], "frames": frames, "fit_error": error}
 
 
@@ -196,43 +191,78 @@ def _pck(spiceypy, solution, body, coefficients, lines, solution_id, path):
         spiceypy.pckcls(handle)
 
 
-def position_segments(solution):
-    """[(target code, centre code, name, coefficients (segments, 3, degree + 1) km)] of the solution's
-    ``<body>.r`` slices: barycentric ones about 0; the Moon seen from the Earth as the Moon and the Earth about
-    their barycentre (module docstring); another body seen from another, about it."""
-    out = []
-    for part in solution.layout.slices:
-        if not part.name.endswith(".r"):
-            continue
-        body, coefficients = part.name[:-2], solution.segments.coefficients[:, part.index, :]
-        if "barycentric" in part.unit:
-            out.append((position_code(body), 0, body, coefficients))
-            continue
-        primary = part.unit.split("from ")[1].split(",")[0]
-        if (primary, body) == ("earth", "moon"):
-            mu = gm_km3_d2("moon") / (gm_km3_d2("earth") + gm_km3_d2("moon"))
-            out += [(body_code("moon"), position_code(EMB), "moon", (1.0 - mu) * coefficients),
-                    (body_code("earth"), position_code(EMB), "earth", -mu * coefficients)]
-        else:
-            out.append((position_code(body), position_code(primary), body, coefficients))
-    return out
-
-
 def _spk(spiceypy, solution, asked, path):
-    first, last, length = _seconds(solution)
-    segments = position_segments(solution)
-    names = ", ".join(f"{name} ({target} about {centre})" for target, centre, name, _ in segments)
-    lines = comments(solution, f"the positions of {names}", asked)
+    """The SPK of the solution's tracks, its comments stating each one's records, fit error and distance from
+    DE421; returns {"<body>_position_km": fit error}."""
+    held = tracks(solution)
+    lines = comments(solution, "the positions of " + ", ".join(f"{t.name} ({t.target} about {t.centre})"
+                                                                for t in held), asked)
+    lines += [line for entry in ["each body: its records, the fit's error, its distance from DE421:",
+                                 *track_lines(held, from_de421(held, solution.span))]
+              for line in _wrapped(entry).splitlines()]
     handle = spiceypy.spkopn(str(path), f"spinorbit {solution.provenance.get('scene')}"[:60],
                              sum(len(line) + 1 for line in lines))
     try:
         spiceypy.dafac(handle, lines)
-        for target, centre, name, coefficients in segments:
-            spiceypy.spkw02(handle, target, centre, "J2000", first, last, f"spinorbit {name}"[:40], length,
-                            len(coefficients), solution.segments.degree,
-                            np.ascontiguousarray(coefficients).ravel(), first)
+        for track in held:
+            s = track.segments
+            lo, hi = (d * DAY_S for d in s.span)
+            spiceypy.spkw02(handle, track.target, track.centre, "J2000", lo, hi, f"spinorbit {track.name}"[:40],
+                            s.length_d * DAY_S, len(s.coefficients), s.degree,
+                            np.ascontiguousarray(s.coefficients).ravel(), lo)
     finally:
         spiceypy.spkcls(handle)
+    return {f"{t.name}_position_km": t.fit_error_km for t in held}
+
+
+def track_lines(held, distances):
+    """One comment entry per track: its records, its fit's error, its distance from DE421 (``distances``)."""
+    out = []
+    for t in held:
+        s = t.segments
+        fit = (f"refit within {t.fit_error_km * 1e6:.2g} mm of {t.source}" if t.fit_error_km else
+               f"{t.source}'s own series")
+        out.append(f"  {t.name} ({t.target} about {t.centre}): {len(s.coefficients)} records of "
+                   f"{s.length_d:.6g} d, degree {s.degree}; {fit}; "
+                   f"{distances.get(t.name, 'not compared with DE421')}")
+    return out
+
+
+DE421_DATES = 2000          # dates spread over the span where each body is compared with DE421
+
+
+def from_de421(held, span):
+    """{track name: "<distance> from DE421's ..."}: the largest distance over the span between what the tracks
+    give and DE421 -- the planets and the Earth heliocentric, the Moon geocentric, the Sun about 0 (the
+    barycentre's drift), the Earth-Moon barycentre about 0 when it is the ephemeris's -- or {} beyond DE421."""
+    from ..orbits.kernel import open_ephemeris
+
+    t = np.linspace(*span, DE421_DATES)
+    try:
+        de421 = open_ephemeris("de421", *span)
+    except EphemerisRangeError:
+        return {}
+    by_name = {track.name: track for track in held}
+    at = {name: track.segments.evaluate(t) for name, track in by_name.items()}
+    about_0 = {name: at[name] for name, track in by_name.items() if track.centre == 0}
+    if "moon" in at and 3 in {track.target for track in held}:
+        centre = about_0.get(EMB, 0.0)
+        about_0.update(moon=centre + at["moon"], earth=centre + at["earth"])
+    out = {}
+
+    def largest(x, name, centre):
+        return np.linalg.norm(x - de421.relative_states(name, centre, t)[0], axis=1).max()
+
+    for name, x in about_0.items():
+        if name in ("sun", EMB):
+            what = "about 0 (the barycentre's drift)" if name == "sun" else "about 0"
+            out[name] = f"{largest(x, name, 'solar_system_barycenter'):.3g} km from DE421's {what}"
+        elif name != "moon" and "sun" in about_0:
+            out[name] = f"{largest(x - about_0['sun'], name, 'sun'):.3g} km from DE421's, heliocentric"
+    if "moon" in at and "earth" in at:
+        out["moon"] = (f"{largest(at['moon'] - at['earth'], 'moon', 'earth') * 1e3:.3g} m from DE421's, "
+                       f"geocentric")
+    return out
 
 
 def _written(path, write):
