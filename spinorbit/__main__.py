@@ -3,4 +3,5 @@ import sys
 
 from spinorbit.cli import console
 
-sys.exit(console())
+if __name__ == "__main__":
+    sys.exit(console())

@@ -2,11 +2,13 @@
 
 On a terminal, a tqdm bar; elsewhere (a notebook's stderr, a log file, CI) one line at each tenth of the run
 or every ``LINE_EVERY_S`` seconds, whichever comes first.  Either appears only after ``DELAY_S`` seconds;
-``spinorbit --quiet`` (or ``SPINORBIT_QUIET=1``) turns both off.
+A step with no simulated time to count (compiling, fitting) says when it starts and ends if it lasts longer
+(:func:`stage`).  ``spinorbit --quiet`` (or ``SPINORBIT_QUIET=1``) turns them off.
 """
 import contextlib
 import os
 import sys
+import threading
 import time
 
 DELAY_S = 2.0
@@ -37,6 +39,31 @@ def progress(description, start, end, unit="d"):
             bar.update(min(abs(value - start), total) - bar.n)
 
         yield advance_to
+
+
+@contextlib.contextmanager
+def stage(description, stream=None):
+    """A step with no simulated time to count (compiling, fitting, averaging, writing): when it is still running
+    after ``DELAY_S``, one line ``description ...`` on stderr, and ``description: done in 12 s`` at its end; nothing
+    for a shorter step, when quiet, or when description is None."""
+    if description is None or not enabled():
+        yield
+        return
+    began, said = time.monotonic(), threading.Event()
+
+    def announce():
+        said.set()
+        print(f"{description} ...", file=stream or sys.stderr, flush=True)
+
+    timer = threading.Timer(DELAY_S, announce)
+    timer.daemon = True
+    timer.start()
+    try:
+        yield
+    finally:
+        timer.cancel()
+        if said.is_set():
+            print(f"{description}: done in {time.monotonic() - began:.0f} s", file=stream or sys.stderr, flush=True)
 
 
 def _is_terminal(stream):

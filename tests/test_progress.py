@@ -46,3 +46,18 @@ def test_not_a_terminal_gives_lines_and_quiet_gives_nothing(monkeypatch, capsys)
     with progress.progress("run", 0.0, 10.0) as advance_to:
         advance_to(5.0)
     assert capsys.readouterr().err == ""
+
+
+def test_a_long_stage_says_when_it_starts_and_ends_and_a_short_one_nothing(monkeypatch):
+    import io
+    import time
+
+    monkeypatch.delenv("SPINORBIT_QUIET", raising=False)
+    monkeypatch.setattr(progress, "DELAY_S", 0.05)
+    said = io.StringIO()
+    with progress.stage("fitting", stream=said):
+        time.sleep(0.3)
+    with progress.stage("quick", stream=said):
+        pass
+    lines = said.getvalue().splitlines()
+    assert lines[0] == "fitting ..." and lines[1].startswith("fitting: done in ") and len(lines) == 2

@@ -20,7 +20,7 @@ import numpy as np
 from ..errors import InputError, IntegrationError
 from ..layout import Layout
 from ..linker import free, link, template
-from ..progress import progress
+from ..progress import progress, stage
 from ..rotations import put
 from . import dop853_tableau as dop853
 from .base import Integrator, Solution, normalised, output_chunks
@@ -204,11 +204,12 @@ class RK8(Integrator):
         if not h > 0:
             raise InputError("step", h, "a positive step in days")
         h = h if t_out[-1] >= system.t0 else -h
-        step = link(rk_step, rhs=system.rhs)
-        if self.DENSE is not None and not self.lands and _landing_shortens(t_out, system.t0, h):
-            run = _Dense(link(rk8_dense, rhs=system.rhs, rk_step=step), self, system, t_out, h)
-        else:
-            run = _Landing(link(rk_fixed, rk_step=step), self, system, t_out, h)
+        with stage(None if self.label is None else f"{self.label}: compiling the integrator (once: cached after)"):
+            step = link(rk_step, rhs=system.rhs)
+            if self.DENSE is not None and not self.lands and _landing_shortens(t_out, system.t0, h):
+                run = _Dense(link(rk8_dense, rhs=system.rhs, rk_step=step), self, system, t_out, h)
+            else:
+                run = _Landing(link(rk_fixed, rk_step=step), self, system, t_out, h)
         start = time.perf_counter()
         run.drive(self.label, self.checkpoint)
         wall = time.perf_counter() - start

@@ -27,6 +27,7 @@ import numpy as np
 
 from ..bodies import earth
 from ..constants import ARCSEC, JULIAN_CENTURY_D, JULIAN_YEAR_D
+from ..progress import stage
 from ..references import arguments, erfa_pole
 
 HALF_SPAN_D = 50 * JULIAN_YEAR_D         # the run: J2000 +- 50 yr
@@ -63,14 +64,10 @@ def summary(scenario):
 def from_observed_rate(source, planets, sample_step, j2_rate, j4, geodesic, geodesic_nutation, tidal="none"):
     """The H_d that gives the model IAU 2006's rate in longitude at J2000, and the model's budget in
     longitude and obliquity at H_0 (the rows, "/cy, by the run's torques; see the module docstring)."""
-    from ..analysis import nonrigid
-    from ..analysis.harmonics import fit_harmonics
-    from ..analysis.precession import fit_pole
     from ..integrators import simulate
     from ..models.assemblies.earth import rigid_earth
-    from ..orbits.sources import gm_of, sample_orbits
+    from ..orbits.sources import sample_orbits
     from .earth_pole import PLANETS, ecliptic_pole, ren2000_scaled, started
-    from .earth_tides import rates as tidal_rates
 
     t = np.arange(-HALF_SPAN_D, HALF_SPAN_D + STEP_D / 2, STEP_D)
     bodies = ("moon", "sun") + (PLANETS if planets else ())
@@ -81,6 +78,19 @@ def from_observed_rate(source, planets, sample_step, j2_rate, j4, geodesic, geod
     start = erfa_pole.from_mean_pole(t[:1], *ren2000_scaled(t[:1], earth.H_D, geodesic and geodesic_nutation))
     solution, _ = simulate(started(system, t[0], start[0]), t, "rk8", {"step": STEP_D}, estimate_error=False,
                            label="H_d from the observed rate")
+    with stage("H_d from the observed rate: fitting the pole and the torques"):
+        return _rate_budget(t, system, solution, orbits, bodies, planets, geodesic, tidal, source)
+
+
+def _rate_budget(t, system, solution, orbits, bodies, planets, geodesic, tidal, source):
+    """from_observed_rate's H_d and budget from its run ``solution`` of ``system`` at ``t``."""
+    from ..analysis import nonrigid
+    from ..analysis.harmonics import fit_harmonics
+    from ..analysis.precession import fit_pole
+    from ..orbits.sources import gm_of
+    from .earth_pole import PLANETS
+    from .earth_tides import rates as tidal_rates
+
     axis, mean = system.figure_axes("earth", t, solution.y), erfa_pole.from_mean_pole(t, 0.0 * t, 0.0 * t)
     terms = arguments.named(t, erfa_pole.NUTATION_ARGUMENTS)
     iau = erfa_pole.IauPole()(t)

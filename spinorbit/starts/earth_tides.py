@@ -25,6 +25,7 @@ import numpy as np
 from ..bodies import earth
 from ..bodies.table import gm_km3_d2
 from ..constants import ARCSEC, JULIAN_CENTURY_D, JULIAN_YEAR_D
+from ..progress import stage
 from ..references import erfa_pole
 
 CHOICES = ("none", "de421", "williams1994")
@@ -43,8 +44,9 @@ def rates(choice, source):
 
     love = earth.de421_tides()
     ephemeris = source if orbit_source(source).jpl_kernel else "de421"       # averaged on a kernel
-    delayed = model_rates(ephemeris, tuple(love[band] for band in (0, 1, 2)))
-    elastic = model_rates(ephemeris, tuple((love[band][0], 0.0) for band in (0, 1, 2)))
+    with stage("the tides' rates (DE421's model averaged over 18.6 yr)"):
+        delayed = model_rates(ephemeris, tuple(love[band] for band in (0, 1, 2)))
+        elastic = model_rates(ephemeris, tuple((love[band][0], 0.0) for band in (0, 1, 2)))
     return tuple(d - e for d, e in zip(delayed, elastic))
 
 
