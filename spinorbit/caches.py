@@ -6,13 +6,10 @@ All live in spinorbit's private cache directory (spinorbit.linker.cache: ``$SPIN
 (spinorbit.orbits.solution) and the stored continuous solutions (spinorbit.solutions.store).  To add a cache:
 an entry in :data:`CACHES` (a name, its folder, and how to clear it).
 """
-import fcntl
 import os
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
-
-from .files import open_lock
 
 
 @dataclass(frozen=True)
@@ -70,21 +67,10 @@ def _solutions():
 
 def _clear_solutions(folder):
     """Delete the orbital solutions no process is working on (their lock free) and the leftovers of killed
-    saves; a solution another run is extending is kept and said."""
-    from .orbits import solution
+    saves; a solution another run is extending is kept and said (spinorbit.verified.clear)."""
+    from . import verified
 
-    removed = 0
-    for path in sorted(folder.glob("*.npz")):
-        with open_lock(path.with_name(path.name + ".lock")) as lock:
-            try:
-                fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
-            except BlockingIOError:
-                print(f"kept {path}: another run is computing it")
-                continue
-            removed += solution.remove_stale_leftovers(path)
-            path.unlink()
-            removed += 1
-    return removed
+    return verified.clear(folder, "*.npz")
 
 
 def _stored():

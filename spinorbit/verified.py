@@ -144,7 +144,7 @@ def read(path, record=None):
     if stored_hash is None or not set(RESERVED[:2]) <= set(held) or held.get("room_format") != FORMAT:
         raise Damaged(f"not a file this cache wrote (it holds {sorted(held)})")
     if arrays_hash(held) != str(stored_hash):
-        raise Damaged("its arrays do not match their sha256 (damaged or edited)")
+        raise Damaged("its arrays do not match their hash (sha256: damaged or edited)")
     try:
         stored, meta = json.loads(str(held.pop("record"))), json.loads(str(held.pop("meta")))
     except ValueError as exc:

@@ -17,18 +17,19 @@ osculating orbit normal and eccentricity vector (ICRF axes, the ephemeris's) and
 from J2000, ascending.  The two branches (backward and forward from J2000) keep their last state, so a file is
 extended bit for bit; it is written every ``SAVE_EVERY_S`` and when a run stops, and reloaded by the next.
 
-A file is input like any other: opened only when it is a regular file, read without pickles, and used only when
-every array it holds (the outputs, the settings and the end states each branch continues from) matches the
-sha256 it carries; anything else is refused in one line.  Leftovers of a save that was killed are removed.
+A file is input like any other, kept in the verified room (spinorbit.verified): opened only when it is a regular
+file, read without pickles, and used only when every array it holds (the outputs, the settings and the end states
+each branch continues from) matches the sha256 it carries and its record is these settings'; anything else is
+refused in one line (not remade: the file may hold hours of integration; delete it to recompute).  Leftovers of a
+save that was killed are removed.
 """
 import ast
-import fcntl
+import contextlib
 import functools
 import hashlib
 import inspect
 import json
 import os
-import re
 import sys
 import textwrap
 import time
@@ -39,12 +40,13 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import verified
 from ..bodies import moon
 from ..bodies.de421_header import header
 from ..bodies.table import gm_km3_d2, heliocentric_set
 from ..constants import DAY_S
 from ..errors import InputError
-from ..files import NotRegular, open_lock, open_regular, process_alive
+from ..files import NotRegular, open_regular
 from ..linker import cache
 from ..progress import progress
 from .interrupts import python_sigint
@@ -115,8 +117,8 @@ def integration_digest():
 
 
 def cache_directory():
-    """Where solutions are kept: ``<spinorbit's private cache>/orbital_solutions``, private as the kernels'."""
-    return cache.private_folder("orbital_solutions")
+    """Where solutions are kept: ``<spinorbit's private cache>/orbital_solutions`` (spinorbit.verified.folder)."""
+    return verified.folder("orbital_solutions")
 
 
 class OrbitalSolution:
@@ -146,29 +148,15 @@ class OrbitalSolution:
         return elements(self.normal, self.eccentricity_vector, rotation)
 
     def arrays(self):
-        """{name: array} of everything the file holds but the provenance (which carries their hash)."""
+        """{name: array} of everything the file holds but the record and the provenance."""
         ends = {f"end_{name}_{part}": value for name, (t, states) in self.ends.items()
                 for part, value in (("t", np.float64(t)), ("states", np.asarray(states)))}
         return {"t_d": self.t_d, "normal": self.normal, "eccentricity_vector": self.eccentricity_vector,
-                "semi_major_axis_km": self.semi_major_axis_km,
-                "record": np.array(json.dumps(self.record, sort_keys=True)), **ends}
-
-    def content_hash(self):
-        return arrays_hash(self.arrays())
+                "semi_major_axis_km": self.semi_major_axis_km, **ends}
 
     def save(self, path):
-        """Write atomically (aside, then renamed over ``path``)."""
-        path = Path(path)
-        provenance = {**self.provenance, "span_d": list(self.span), "content_sha256": self.content_hash()}
-        tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
-        try:
-            with open(tmp, "wb") as f:
-                np.savez(f, provenance=json.dumps(provenance, sort_keys=True), **self.arrays())
-                f.flush()
-                os.fsync(f.fileno())
-            os.replace(tmp, path)
-        finally:
-            tmp.unlink(missing_ok=True)
+        """Write atomically, every array hashed (spinorbit.verified.write)."""
+        verified.write(path, self.arrays(), self.record, {**self.provenance, "span_d": list(self.span)})
 
     @classmethod
     def load(cls, path, record):
@@ -176,36 +164,27 @@ class OrbitalSolution:
         intact."""
         accepted = "an orbital solution file of these settings (delete it, or name another, to recompute)"
         try:
-            with open_regular(path) as f, np.load(f, allow_pickle=False) as data:
-                held = {name: data[name] for name in data.files}
-            stored, provenance = json.loads(str(held["record"])), json.loads(str(held.pop("provenance")))
+            entry = verified.read(path)
+            if entry is None:
+                raise FileNotFoundError(2, "No such file or directory")
+            held, stored, provenance = entry.arrays, entry.record, entry.meta
             ends = {name: (float(held[f"end_{name}_t"]), held[f"end_{name}_states"])
                     for name in ("backward", "forward") if f"end_{name}_t" in held}
             arrays = (held[k] for k in ("t_d", "normal", "eccentricity_vector", "semi_major_axis_km"))
             solution = cls(*arrays, ends, stored, provenance)
-        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile, zlib.error) as exc:
+        except verified.Damaged as exc:
+            raise InputError("orbit_file", str(path), f"{accepted}; {exc}") from None
+        except (OSError, KeyError, ValueError) as exc:
             reason = (exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc).splitlines()[0]
                       if str(exc) else type(exc).__name__)
             raise InputError("orbit_file", str(path), f"{accepted} ({type(exc).__name__}: {reason})") from None
-        if not (isinstance(stored, dict) and isinstance(provenance, dict)):
-            raise InputError("orbit_file", str(path), f"{accepted}; its record is not one spinorbit wrote")
         differ = sorted(k for k in set(stored) | set(record) if stored.get(k) != record.get(k))
         if differ:
             detail = ", ".join(f"{k} {stored.get(k)!r} (this run: {record.get(k)!r})" for k in differ)
             raise InputError("orbit_file", str(path), f"{accepted}; it differs in {detail}")
-        if arrays_hash(held) != provenance.get("content_sha256") or set(held) != set(solution.arrays()):
-            raise InputError("orbit_file", str(path), f"{accepted}; its arrays do not match their hash")
+        if set(held) != set(solution.arrays()):
+            raise InputError("orbit_file", str(path), f"{accepted}; it holds {sorted(held)}")
         return solution
-
-
-def arrays_hash(arrays):
-    """sha256 of named arrays: each name, dtype, shape and bytes, in the order of the names."""
-    digest = hashlib.sha256()
-    for name in sorted(arrays):
-        array = np.ascontiguousarray(arrays[name])
-        digest.update(f"{name}:{array.dtype.str}{array.shape}:".encode())
-        digest.update(array.data)          # the buffer itself, no copy
-    return digest.hexdigest()
 
 
 def elements(normal, eccentricity_vector, rotation):
@@ -249,51 +228,42 @@ def solve(settings, t_start, t_end, path=None, label="orbital solution"):
         path = cache_directory() / file_name(settings)
     path = Path(path)
     lo, hi = min(t_start, t_end, 0.0), max(t_start, t_end, 0.0)
-    with _lock_file(path) as lock:
-        waiting = False
-        while True:
-            try:
-                fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    said = False
+    while True:
+        try:
+            with _locked(path):
+                verified.remove_leftovers(path)
+                solution = OrbitalSolution.load(path, record) if os.path.lexists(path) else None
+                if solution is None or not solution.covers(lo, hi):
+                    solution = _extend(solution, settings, record, lo, hi, path, label)
+            break
+        except verified.Busy:            # another process is extending it: use its file once long enough
+            if os.path.lexists(path) and (solution := OrbitalSolution.load(path, record)).covers(lo, hi):
                 break
-            except BlockingIOError:          # another process is extending it: use its file once long enough
-                if os.path.lexists(path) and (solution := OrbitalSolution.load(path, record)).covers(lo, hi):
-                    solution.path = path
-                    return solution
-                if not waiting:
-                    print(f"waiting for another process computing {path}", file=sys.stderr)
-                    waiting = True
-                time.sleep(POLL_S)
-        remove_stale_leftovers(path)
-        solution = OrbitalSolution.load(path, record) if os.path.lexists(path) else None
-        if solution is None or not solution.covers(lo, hi):
-            solution = _extend(solution, settings, record, lo, hi, path, label)
+            if not said:
+                print(f"waiting for another process computing {path}", file=sys.stderr)
+                said = True
+            time.sleep(POLL_S)
     solution.path = path
     return solution
 
 
-def _lock_file(path):
-    """The lock beside ``path`` (``<name>.lock``), opened for writing if it is a regular file (or none yet): a
+@contextlib.contextmanager
+def _locked(path):
+    """Hold the lock beside ``path`` (verified.lock, not waited on: Busy) if it is a regular file (or none yet): a
     FIFO there never blocks, a missing folder is one line."""
+    held = verified.lock(path, wait_s=0)
     try:
-        return open_lock(path.with_name(path.name + ".lock"))
+        held.__enter__()
     except NotRegular:
         raise InputError("orbit_file", str(path), "a regular file beside a regular lock file (its .lock is not)") \
             from None
     except OSError as exc:
         raise InputError("orbit_file", str(path), f"a file in a folder you can write ({exc.strerror})") from None
-
-
-def remove_stale_leftovers(path):
-    """Delete the ``.<name>.tmp-<pid>`` files a killed save left beside ``path`` (their process is gone);
-    return how many."""
-    pattern = re.compile(rf"\.{re.escape(path.name)}\.tmp-(\d+)")
-    removed = 0
-    for entry in os.scandir(path.parent):
-        match = pattern.fullmatch(entry.name)
-        if match and entry.is_file(follow_symlinks=False) and not process_alive(int(match.group(1))):
-            os.unlink(entry.path)
-            removed += 1
-    return removed
+    try:
+        yield
+    finally:
+        held.__exit__(None, None, None)
 
 
 def _extend(solution, settings, record, lo, hi, path, label):
