@@ -17,6 +17,7 @@ Internal units: TDB days from J2000.0, km, rad (see spinorbit.constants).
 import os as _os
 import sys as _sys
 
+from .compiled_names import install as _install_compiled_names
 from .private import NUMBA as _NUMBA
 from .private import numba_cache_refusal as _numba_cache_refusal
 from .version import __version__  # noqa: F401
@@ -25,6 +26,7 @@ if _numba_cache_refusal() is not None:           # others could plant pickles th
     _os.environ[_NUMBA] = ""                     # (the first kernel asked for refuses it in one line)
     if "numba.core.config" in _sys.modules:
         _sys.modules["numba.core.config"].CACHE_DIR = ""
+_install_compiled_names()                        # names no other process compiles (spinorbit.compiled_names)
 
 
 def load_scenario(path, overrides=()):

@@ -11,7 +11,7 @@ import pytest
 PACKAGE = Path(__file__).parents[1] / "spinorbit"
 LAYERS = {
     "constants": 0, "errors": 0, "rotations": 0, "linker": 0, "progress": 0,
-    "layout": 0, "files": 0, "private": 0, "verified": 0,
+    "layout": 0, "files": 0, "private": 0, "verified": 0, "compiled_names": 0,
     "bodies": 1, "orbits": 1,                       # bodies/de421_orientation.py: DE421's libration series
     "models": 2, "integrators": 2, "theory": 2, "analysis": 2,      # integrators/simulation.py: the one door
 }

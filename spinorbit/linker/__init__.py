@@ -47,6 +47,7 @@ from . import cache
 from .stamped import cached  # noqa: F401  (re-exported: linker.cached)
 
 PACKAGE_DIR = Path(__file__).resolve().parents[1]
+NAMES = "names unique per process"   # spinorbit.compiled_names: caches written before it are not read
 
 
 class Free:
@@ -109,7 +110,7 @@ def fingerprint(function, root=PACKAGE_DIR):
     import numba
 
     sources = reached(function, root)
-    digest = hashlib.sha256(f"numba {numba.__version__}".encode())
+    digest = hashlib.sha256(f"numba {numba.__version__}, {NAMES}".encode())
     for module in sorted(sources):
         digest.update(f"\0{module}\0".encode())
         digest.update(sources[module])
