@@ -104,3 +104,19 @@ def free_nutation_amplitude(t, omega_body, moments):
     design = np.column_stack([np.ones_like(t), np.exp(1j * sigma * (t - t[0]))])
     coef = np.linalg.lstsq(design, m, rcond=None)[0]
     return float(a / c * abs(coef[1]))
+
+
+def node_and_inclination(poles, plane_frame):
+    """(psi, I) rad, psi unwrapped: the equator of poles (n, 3) on a fixed plane whose frame ``plane_frame`` (3, 3,
+    rows: the plane's x axis, y axis, pole) they are given against -- psi the equator's ascending node along the
+    plane from its x axis, I the angle between the poles (pole = (sin I sin psi, -sin I cos psi, cos I))."""
+    local = np.asarray(poles, dtype=float) @ np.asarray(plane_frame, dtype=float).T
+    return np.unwrap(np.arctan2(local[:, 0], -local[:, 1])), np.arccos(np.clip(local[:, 2], -1.0, 1.0))
+
+
+def axial_precession_rate(mean_motion, spin_rate, ellipticity, obliquity, eccentricity):
+    """A rigid body's precession rate in longitude (rad per unit of the rates) under one mass on a fixed
+    ellipse: -(3/2) (n^2 / w) H cos(eps) (1 - e^2)^(-3/2), H = (C - (A + B)/2)/C (Euler ch. 16 P96, §846, with
+    the orbit's mean of a^3/r^3)."""
+    return (-1.5 * mean_motion ** 2 / spin_rate * ellipticity * np.cos(obliquity)
+            * (1.0 - eccentricity ** 2) ** -1.5)

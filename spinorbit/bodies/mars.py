@@ -8,8 +8,8 @@ sectoral term's size, about the A axis).  Polar moment C/(M R^2) = 0.3644 +- 0.0
 (Konopliv et al. 2011, Icarus 211, 401, from their precession rate -7594 +- 10 mas/yr and J2).  Measured
 precession rate -7608.3 +- 2.1 mas/yr and k2 = 0.169 +- 0.006 (Konopliv et al. 2016).  Rotation: IAU 2015
 (Archinal et al. 2018, CMDA 130:22, from Kuchynka et al. 2014, Icarus 229, 340): W = 176.049863 deg +
-350.891982443297 deg/d at J2000, pole (317.269202, 54.432516) deg at J2000 (the series:
-spinorbit.references.mars_iau2015).  The mean orbit of J2000 the precession angles refer to (node on the ICRF
+350.891982443297 deg/d at J2000; the pole, a series (spinorbit.references.mars_iau2015), is at (317.6809,
+52.8864) deg at J2000.  The mean orbit of J2000 the precession angles refer to (node on the ICRF
 equator N, inclination J) and Mars's mean anomaly: Konopliv et al. 2006 (Icarus 182, 23, §6).
 Satellites (their mean orbits about Mars's equator): GM Phobos 7.087e-4, Deimos 9.62e-5 km^3/s^2 (Jacobson &
 Lainey 2014, Planet. Space Sci. 102, 35), semi-major axes 9376 and 23458 km (Jacobson 2010, AJ 139, 668).
@@ -29,7 +29,6 @@ PRECESSION_RATE_MAS_YR = (-7608.3, 2.1)   # Konopliv et al. 2016, about the J200
 W0_DEG = 176.049863                       # prime meridian at J2000, IAU 2015
 ROTATION_RATE_DEG_D = 350.891982443297    # IAU 2015 (Kuchynka et al. 2014)
 ROTATION_RATE_RAD_D = math.radians(ROTATION_RATE_DEG_D)
-POLE_RA_DEG, POLE_DEC_DEG = 317.269202, 54.432516   # IAU 2015 at J2000 (their series' constant parts)
 
 MEAN_ORBIT_NODE_DEG = 3.37919183          # N: the J2000 mean orbit's node on the ICRF equator, Konopliv 2006
 MEAN_ORBIT_INCLINATION_DEG = 24.67682669  # J: its inclination to the ICRF equator, Konopliv 2006

@@ -27,6 +27,7 @@ SCENES = {
     "solar_system": "spinorbit.scenes.solar_system",
     "earth_deep_time": "spinorbit.scenes.earth_deep_time",
     "earth_moon_history": "spinorbit.scenes.earth_moon_history",
+    "mars_orientation": "spinorbit.scenes.mars_orientation",
 }
 
 

@@ -19,7 +19,8 @@ from .harmonics import Harmonics
 from .newton import Newton
 from .point_mass import PointMass
 from .relativity import Relativity
+from .rings import Rings
 from .tides import Tides
 
 __all__ = ["FigureFigure", "PoleTable", "Geodesic", "GeodesicRate", "Harmonics", "Newton", "PointMass",
-           "Relativity", "Tides"]
+           "Relativity", "Rings", "Tides"]

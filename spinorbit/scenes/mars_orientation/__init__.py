@@ -1,0 +1,48 @@
+"""Mars's orientation (Euler ch. 16 P91/P96): its precession and nutation against Konopliv et al. 2016's rate,
+the rigid-Mars nutation series and the IAU 2015 pole.
+
+Rigid Mars (spinorbit.bodies.mars: MRO120D's J2 and C22, C/MR^2 = 0.3644; models.assemblies.planet) under
+the Sun's torque on its figure, with Phobos and Deimos as rings held to its equator
+(models.interactions.rings), the planets' direct torques and the geodesic precession, each a key; the Sun
+and the planets from DE421 (or DE440), or the Sun on its Kepler ellipse; started at mars.start on the IAU 2015
+pole and spin (starts/mars.py).  The rate, the nutation, the pole against IAU 2015, the rate's budget and
+the verdict: comparisons/mars_orientation.py.
+"""
+from ...bodies import mars
+from ...comparisons.mars_orientation import verdict
+from ...models.assemblies.planet import MODELS
+from ...scene import Cost, Model, Scene
+from ...schema import SAMPLE_STEP, Key
+from ...starts.mars import restarted
+
+SCHEMA = {
+    "mars.model": Key(type=str, default="gyroscopic", choices=MODELS,
+                      help="the spin angular momentum alone, or Euler's equations with the day (and C22)"),
+    "mars.c_mr2": Key(unit="", default=mars.C_MR2, min=0.2, max=0.4,
+                      help="polar moment C/(M R^2) at 3396 km"),
+    "mars.start": Key(type=str, default="2000-01-01T12:00:00", help="ISO TDB epoch of the IAU 2015 start"),
+    "mars.satellites": Key(type=bool, default=True, help="Phobos and Deimos as rings on the equator"),
+    "mars.geodesic_precession": Key(type=bool, default=True),
+    "orbit.source": Key(type=str, default="de421",
+                        help="'de421', 'de440' (or a .bsp), or 'kepler' (the Sun alone)"),
+    "orbit.planets": Key(type=bool, default=True, help="the direct torques of the planets and the Moon"),
+    "orbit.sample_step": Key(**SAMPLE_STEP, default=1.0),
+    "comparison.budget": Key(type=bool, default=True, help="the rate's budget: five further runs"),
+}
+
+
+def build(p, times):
+    """Rigid Mars started on the IAU 2015 pole (starts/mars.py)."""
+    from ...starts import mars as start
+
+    return Model(start.build(p))
+
+
+def compare_run(p, run):
+    from ...comparisons import mars_orientation as vs
+
+    return vs.outcome(p, run)
+
+
+SCENE = Scene(SCHEMA, build, compare_run, verdict, Cost(step_s=3e-5, sample_bytes=300), backward=True,
+              restart=restarted)
