@@ -232,7 +232,7 @@ def figures(t, poles, columns, separation):
 
     years = 2000.0 + t / JULIAN_YEAR_D
     iau = mars_iau2015.pole(t)
-    ra = [np.degrees(np.unwrap(np.arctan2(p[:, 1], p[:, 0]))) for p in (poles, iau)]
+    ra = [np.degrees(np.unwrap(np.arctan2(p[:, 1], p[:, 0]))) % 360.0 for p in (poles, iau)]
     dec = [np.degrees(np.arcsin(p[:, 2])) for p in (poles, iau)]
     series = mars_nutation.nutation(t)
     return {"pole_vs_iau2015": plot_panels(years, [
@@ -241,7 +241,9 @@ def figures(t, poles, columns, separation):
             "nutation": plot_panels(years, [
                 ([columns["nutation_psi"][0] / MAS, series[0] / MAS], ["model", "rigid series"], "Δψ (mas)"),
                 ([columns["nutation_obliquity"][0] / MAS, series[1] / MAS], ["model", "rigid series"],
-                 "ΔI (mas)")], "year")}
+                 "ΔI (mas)"),
+                ([(columns["nutation_psi"][0] - series[0]) / MAS, (columns["nutation_obliquity"][0] - series[1]) / MAS],
+                 ["Δψ", "ΔI"], "model − series (mas)")], "year")}
 
 
 def provenance():
