@@ -88,9 +88,16 @@ def scaled(series, factor):
 def barycentre_track(solution):
     """The Earth-Moon barycentre (3) about the solar-system barycentre (0) over the solution's span, refitted on
     its RECORDS from the ephemeris the solution's run read (``provenance["ephemeris"]``)."""
+    from ..errors import InputError
     from ..orbits.sources import orbit_source
+    from .store import ephemeris_identity
 
-    name = solution.provenance.get("ephemeris")
+    read = solution.provenance.get("ephemeris")
+    name = read.get("name") if isinstance(read, dict) else read
+    now = (ephemeris_identity(name) or {}).get("sha256")
+    if isinstance(read, dict) and read.get("sha256") and now != read["sha256"]:
+        raise InputError("ephemeris", name, f"the file the solution's run read (sha256 {read['sha256'][:16]}...): "
+                                            "it has changed since")
     lo, hi = solution.span
     source = orbit_source(name)
     if source.jpl_kernel:
