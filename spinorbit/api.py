@@ -174,12 +174,13 @@ def tdb_days(times, name):
     if _is_empty(times):
         raise InputError(name, _shown(times), "at least one date: none was given")
     try:
-        when = times if isinstance(times, Time) else Time(times, scale="utc")
+        when = times if isinstance(times, Time) else _quietly(Time, times, scale="utc")
         if when.masked and np.any(when.mask):
             raise InputError(name, _shown(times), f"dates without masked values ({int(np.sum(when.mask))} of "
                                                   f"{when.size} are masked): pass times[~times.mask]")
         when = when.ravel() if when.ndim > 1 else when      # a 2-D Time: one row per date, row by row
-        t = np.atleast_1d(np.asarray(when.tdb.jd1 - 2451545.0, dtype=float) + when.tdb.jd2)
+        tdb = _quietly(getattr, when, "tdb")
+        t = np.atleast_1d(np.asarray(tdb.jd1 - 2451545.0, dtype=float) + tdb.jd2)
     except InputError:
         raise
     except Exception as exc:                     # whatever Time cannot read: one line naming the argument
@@ -190,6 +191,23 @@ def tdb_days(times, name):
     if not np.all(np.isfinite(t)):
         raise InputError(name, _shown(times), accepted)
     return t, when
+
+
+def _quietly(read, *args, **kwargs):
+    """``read(*args, **kwargs)`` with ERFA's "dubious year" (a UTC date outside the years its leap-second table
+    vouches for: before 1960, or some years past its last leap second) said once, in spinorbit's words."""
+    import warnings
+
+    from erfa import ErfaWarning
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", ErfaWarning)
+        value = read(*args, **kwargs)
+    if any(issubclass(w.category, ErfaWarning) for w in caught):
+        warnings.warn("spinorbit: UTC dates outside the years ERFA's leap-second table vouches for (before 1960, "
+                      "or some years past its last leap second) are converted with its nearest TAI-UTC, which "
+                      "may be off by the leap seconds to come; give TT or TDB dates to avoid it", stacklevel=4)
+    return value
 
 
 def _is_empty(times):

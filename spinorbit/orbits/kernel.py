@@ -7,6 +7,7 @@ installed ``naif-<name>`` package.
 """
 import importlib
 import importlib.util
+import weakref
 from pathlib import Path
 
 import numpy as np
@@ -74,6 +75,7 @@ class JPLKernel:
         self.path = kernel_path("de421") if path is None else Path(path)
         self.name = self.path.stem
         self._spk = _open_spk(SPK, self.path)
+        weakref.finalize(self, self._spk.close)        # the file closed with the kernel, never left to the GC
         self._parent = {}       # target code -> (center code, [segments])
         self._memo = (None, {})
         self._highest_first = {}        # segment -> (start JD, days per set, coefficients (order, set, axis))
