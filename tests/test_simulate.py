@@ -98,3 +98,15 @@ def test_output_times_that_are_not_a_finite_list_are_refused(t_out):
     system = free_body(SYMMETRIC, np.array([1.0, 0.0, 0.0, 0.0]), OMEGA0)
     with pytest.raises(InputError, match="t_out"):
         simulate(system, np.array(t_out, dtype=float), "rk8", {"step": 0.05})
+
+
+def test_a_run_on_both_sides_of_t0_names_each_side_in_its_progress(monkeypatch, capsys):
+    """Two runs from t0, one each way: their progress lines say which, not the same label twice."""
+    from spinorbit import progress
+
+    monkeypatch.setattr(progress, "DELAY_S", 0.0)
+    monkeypatch.delenv("SPINORBIT_QUIET", raising=False)
+    system = free_body(SYMMETRIC, np.array([1.0, 0.0, 0.0, 0.0]), OMEGA0)
+    simulate(system, np.linspace(-2.0, 2.0, 9), "rk8", {"step": 0.01}, estimate_error=False, label="spin")
+    said = capsys.readouterr().err
+    assert "spin (backward):" in said and "spin (forward):" in said

@@ -101,8 +101,14 @@ def simulate(system, t_out, method="dop853", options=None, estimate_error=True, 
     runs = away_from(system.t0, t_out)
     if len(runs) == 1 and np.array_equal(runs[0], t_out):
         return _run(system, t_out, method, options, estimate_error, checkpoint, label)
-    done = [_run(system, times, method, options, estimate_error, None, label) for times in runs]
+    done = [_run(system, times, method, options, estimate_error, None, _side(label, system.t0, times))
+            for times in runs]
     return _gathered(system, t_out, runs, done, method, options, estimate_error)
+
+
+def _side(label, t0, times):
+    """The progress label of one side's run: ``label`` and which way it goes from t0."""
+    return None if label is None else f"{label} ({'backward' if times[0] < t0 else 'forward'})"
 
 
 def _run(system, t_out, method, options, estimate_error, checkpoint, label):
