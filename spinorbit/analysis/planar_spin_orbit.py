@@ -51,6 +51,19 @@ def forcing_coefficients(e, k_max=8, samples=4096):
     return 2 * np.mean(s * np.sin(np.outer(k, m)), axis=1), float(np.mean(c))
 
 
+def libration_theory(gamma, e):
+    """{amplitude_linear, amplitude_series, w0_over_n, coefficients g_k} of the forced libration (rad) of a body in
+    the 3:2 state with (B - A)/C = gamma (C: the moment that librates): the linear forced solution
+    g_k = (3/2) gamma S_k / (k^2 - w0^2/n^2), w0^2/n^2 = 3 gamma H, and Margot et al. (2007)'s series
+    (3/2) gamma (1 - 11 e^2 + 959 e^4/48) of its 88-d term."""
+    s, h = forcing_coefficients(e, 24)
+    w0_over_n2 = 3 * gamma * h
+    k = np.arange(1, s.size + 1)
+    g = 1.5 * gamma * s / (k**2 - w0_over_n2)
+    return {"g": g, "w0_over_n": math.sqrt(w0_over_n2), "amplitude_linear": float(g[0]),
+            "amplitude_series": 1.5 * gamma * (1 - 11 * e**2 + 959 * e**4 / 48), "S1": float(s[0]), "H": h}
+
+
 def planar_lyapunov(p, theta0, rate0, t0, period, orbits, steps, d0, method="rk8"):
     """Running exponents (orbits, n_starts) in 1/T for starts theta0, rate0 (rad, rad/d): all starts and
     neighbours in one vector of planar_rhs copies; ``method`` "rk8" (``steps`` per period) or "dop853"."""

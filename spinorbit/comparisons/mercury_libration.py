@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from ..analysis.planar_spin_orbit import forcing_coefficients, theta_from_quaternions
+from ..analysis.planar_spin_orbit import theta_from_quaternions
 from ..analysis.spans import refusals, resolvable
 from ..constants import ARCSEC
 from ..plots import plot_series
@@ -17,16 +17,6 @@ HARMONICS = 6          # fitted harmonics of M; the initial rate sums the linear
 FITTED_FROM = {"libration_88d_measured_arcsec": 0, "libration_88d_rel_error_vs_linear": 0,
                "libration_88d_rel_error_vs_series": 0, "libration_88d_cos_term_arcsec": 0, "passed": 0,
                "libration_44d_measured_arcsec": 1, "free_libration_fitted_arcsec": HARMONICS}
-
-
-def libration_theory(gamma, e):
-    """{amplitude_linear, amplitude_series, w0_over_n, coefficients g_k} of the forced gamma (rad)."""
-    s, h = forcing_coefficients(e, 24)
-    w0_over_n2 = 3 * gamma * h
-    k = np.arange(1, s.size + 1)
-    g = 1.5 * gamma * s / (k**2 - w0_over_n2)
-    return {"g": g, "w0_over_n": math.sqrt(w0_over_n2), "amplitude_linear": float(g[0]),
-            "amplitude_series": 1.5 * gamma * (1 - 11 * e**2 + 959 * e**4 / 48), "S1": float(s[0]), "H": h}
 
 
 def design(t, n, w0, keep):

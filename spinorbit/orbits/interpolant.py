@@ -219,3 +219,23 @@ def grid(t_start, t_end, step):
     n = max(1, math.ceil((t_end - t_start) / step))
     n += t_start + n * step < t_end
     return t_start + step * np.arange(n + 1)
+
+
+def turned(orbits, rate, t_ref):
+    """``orbits`` (a HermiteOrbits) turned about the axis of ``rate`` (rad/d, inertial) by |rate| (t - t_ref):
+    r' = R r, v' = R v + rate x r', sampled on the same grid (a precession added to, or taken from, an orbit)."""
+    rate = np.asarray(rate, dtype=float)
+    t0, step = orbits.data[0]
+    pos, vel = orbits.data[1], orbits.data[2]
+    t = t0 + step * np.arange(pos.shape[1])
+    size = float(np.linalg.norm(rate))
+    axis = rate / size if size else np.array([0.0, 0.0, 1.0])
+    turn = size * (t - t_ref)
+    c, s = np.cos(turn)[:, None], np.sin(turn)[:, None]
+
+    def rotate(x):                                  # Rodrigues, each sample (n, 3) by its own angle
+        return x * c + np.cross(axis, x) * s + np.outer(x @ axis, axis) * (1 - c)
+
+    new_pos = np.array([rotate(p) for p in pos])
+    new_vel = np.array([rotate(v) + np.cross(rate, r) for v, r in zip(vel, new_pos)])
+    return HermiteOrbits(orbits.names, orbits.gm, t0, step, new_pos, new_vel, source=f"{orbits.source} (turned)")

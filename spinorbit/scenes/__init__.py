@@ -20,6 +20,7 @@ SCENES = {
     "stress_free_body": "spinorbit.scenes.stress_free_body",
     "stress_separatrix": "spinorbit.scenes.stress_separatrix",
     "stress_mercury": "spinorbit.scenes.stress_mercury",
+    "mercury_spin": "spinorbit.scenes.mercury_spin",
     "stress_hyperion": "spinorbit.scenes.stress_hyperion",
     "stress_fast_spin": "spinorbit.scenes.stress_fast_spin",
     "coupled_conservation": "spinorbit.scenes.coupled_conservation",

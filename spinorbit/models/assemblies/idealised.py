@@ -18,8 +18,12 @@ def free_body(moments, q0, omega0, t0=0.0, name="free body"):
                   {"body.q": q0, "body.omega": omega0})
 
 
-def under_point_masses(moments, orbit, q0, omega0, t0=0.0, name="rigid body under point masses"):
-    """A rigid body of principal ``moments`` under the P91 torque (§815) of ``orbit``'s point masses."""
-    body = Body("body", figure=Figure(moments), rotator=Rigid())
-    return System(name, [body], Centred("body", orbit), [PointMass("body", tuple(orbit.names))], t0,
-                  {"body.q": q0, "body.omega": omega0})
+def under_point_masses(moments, orbit, q0, omega0, t0=0.0, name="rigid body under point masses", rotator=None,
+                       omega_core0=None):
+    """A body of principal ``moments`` under the P91 torque (§815) of ``orbit``'s point masses: rigid, or turning
+    as ``rotator`` says (a MantleCore, its core started at ``omega_core0``, mantle axes)."""
+    body = Body("body", figure=Figure(moments), rotator=Rigid() if rotator is None else rotator)
+    start = {"body.q": q0, "body.omega": omega0}
+    if omega_core0 is not None:
+        start["body.omega_core"] = omega_core0
+    return System(name, [body], Centred("body", orbit), [PointMass("body", tuple(orbit.names))], t0, start)

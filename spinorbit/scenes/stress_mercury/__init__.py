@@ -23,8 +23,8 @@ import math
 
 import numpy as np
 
-from ...analysis.planar_spin_orbit import kepler_orbit, rigid_body_system
-from ...comparisons.mercury_libration import compare_run, libration_theory
+from ...analysis.planar_spin_orbit import kepler_orbit, libration_theory, rigid_body_system
+from ...comparisons.mercury_libration import compare_run
 from ...scene import Model, Scene
 from ...schema import DISTANCE, GM, Key
 from ...verdict import Check, Verdict
