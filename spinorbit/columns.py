@@ -69,6 +69,8 @@ COLUMNS = {
     "XZA": "angle XZA of the figure axis about the orbit's pole from the fixed direction X (Euler P96, §844)",
     "libration": "the 3:2 spin's forced libration: the body's angle minus 3/2 the mean anomaly (Mercury's 88-d "
                  "term, Margot et al. 2007)",
+    "spin_obliquity": "the spin axis's angle from the orbit normal moving as fitted over the run (Mercury's "
+                      "obliquity, its Cassini state plus the free precession)",
 }
 
 

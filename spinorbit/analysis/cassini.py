@@ -18,8 +18,9 @@ Only the orbit normal's speed |dk/dt| = -Omega' sin i enters at first order; i e
 eps for Mercury).  The state lies on the far side of k from the Laplace pole: along k x dk/dt.
 
 A spin started off the state circles it at alpha (the free precession, ~1300 yr for Mercury): from its
-velocity v in the precessing frame, the centre it circles is s - k x v / alpha (``settled_axis``), so a run
-much shorter than the free period still finds the state the spin settles to.
+velocity v in the precessing frame, the centre it circles is s - k x v / alpha (``settled_axis``, with the
+frame's turning about k, Omega' cos i, taken out), so a run much shorter than the free period still finds the
+state the spin settles to.
 """
 import math
 
@@ -93,14 +94,17 @@ def mean_normal(t, normals, t_ref):
     return value, rate - value * (value @ rate)
 
 
-def settled_axis(t, axes, normal, normal_rate, t_ref, alpha):
+def settled_axis(t, axes, normal, normal_rate, t_ref, alpha, inclination):
     """(the centre the spin axis circles at t_ref, the spin's free-precession offset from it (rad), the spin's
     mean axis at t_ref): the axes (n, 3) seen from the normal moving linearly as fitted, their mean offset and
-    velocity fitted, the offset less k x v / alpha (module docstring)."""
+    velocity fitted; in the frame precessing with the orbit (turning at Omega' cos i about the normal, Omega' =
+    -|dk/dt|/sin i) the offset moves at v' = v + |dk/dt| cot i k x offset and circles the state at alpha -
+    |dk/dt| cot i; the centre is the offset less k x v' / (alpha - |dk/dt| cot i) (module docstring)."""
     moving = normal + np.outer(t - t_ref, normal_rate)
     moving /= np.linalg.norm(moving, axis=1)[:, None]
     offset, velocity = linear_fit(t, axes - moving, t_ref)
-    free = np.cross(normal, velocity) / alpha
+    turning = float(np.linalg.norm(normal_rate)) / math.tan(inclination)
+    free = np.cross(normal, velocity + turning * np.cross(normal, offset)) / (alpha - turning)
     centre = normal + offset - free
     return centre / np.linalg.norm(centre), float(np.linalg.norm(free)), (normal + offset) / np.linalg.norm(
         normal + offset)

@@ -142,7 +142,7 @@ def cassini_system(orbits, interior, t_start, t_end, gm, inclination, obliquity_
     fluid core (spinorbit.models.rotators.MantleCore), started at t_start in the Cassini state of Peale's equation
     for the orbit normal's speed fitted over [t_start, t_end] (plus ``obliquity_offset`` rad, away from the
     orbit normal), on the forced libration.  context: {orbit (MeanOrbit), alpha (rad/d), peale_obliquity (rad),
-    axis, theory}."""
+    axis, theory, inclination (rad)}."""
     from ..models.assemblies.idealised import under_point_masses
     from ..models.rotators import MantleCore
     from .cassini import cassini_axis, peale_obliquity, precession_constant
@@ -160,4 +160,4 @@ def cassini_system(orbits, interior, t_start, t_end, gm, inclination, obliquity_
     system = under_point_masses(moments, orbits, start["q0"], start["omega0"], t_start, "resonant spin", rotator,
                                 start["omega_core0"])
     return system, {"orbit": orbit, "alpha": precession_constant(*args, eps), "peale_obliquity": eps,
-                    "axis": axis, "theory": start["theory"]}
+                    "axis": axis, "theory": start["theory"], "inclination": inclination}

@@ -1,7 +1,29 @@
-"""Mercury's spin against the radar and the altimeter (Margot et al. 2012; Stark et al. 2015), the forced
-libration's closed form and Peale's equation; and the obliquity of runs whose orbit's node precession is scaled.
+"""Mercury in its 3:2 spin-orbit resonance on an N-body orbit: the Cassini-state obliquity and the 88-day
+forced libration, against the radar (Margot et al. 2012, JGR 117, E00L09) and the altimeter (Stark et al.
+2015).
 
-Edge module (astropy units); the scene (scenes/mercury_spin) declares, this measures.
+Mercury turns under the Sun's torque on its degree-2 figure (Euler ch. 16 P91, §815) as a mantle over a
+fluid core (spinorbit.models.rotators.MantleCore; J2, C22, C/(M R^2) = 0.346 and C_m/C = 0.431 from
+spinorbit.bodies.mercury), on DE421's orbit (or REBOUND's), whose node and perihelion precess under the
+planets.  The core is pulled to the mantle's rotation by friction in ``core.coupling_time`` (1 yr): long
+against the 88 days, so the mantle librates alone ((B - A)/C_m), short against the precession, so the whole
+planet (C) precesses -- the assumption under which Margot et al. read C from the obliquity and C_m from the
+libration.  It lags the spin axis by |dk/dt| tau (0.6" at 1 yr) and delays the libration by (C_c/C_m)/(n
+tau) (3 deg).
+
+The start (analysis/resonant_spin): the spin axis in Peale's Cassini state for the orbit normal's mean speed
+over the run (analysis/cassini), the long axis on the forced libration.  The obliquity reported is the state
+the spin settles to: the spin circles it at the free precession (~1300 yr), and from its velocity over the
+run the centre is found (``cassini.settled_axis``; ``start.obliquity_offset`` starts it away to show that
+the centre does not depend on the start).  The libration is the sin M term fitted with M's harmonics, a
+quadratic and the free libration.  Further runs with the orbit's node precession scaled
+(``precession.scales``: the orbit turned about k x dk/dt, orbits.interpolant.turned) show the obliquity
+follows Peale's equation (Baland et al. 2017).  The Cassini state is that of the normal's secular motion: the
+normal's periodic terms (years to decades) bias a decade's mean speed by a few percent, so the scene runs a
+century (benchmarks/RESULTS.md, Mercury).
+
+Edge module (astropy units); the scene (scenes/mercury_spin) declares, spinorbit.starts.mercury starts it, this
+measures and judges.
 """
 import math
 
@@ -13,6 +35,7 @@ from ..bodies import mercury
 from ..constants import ARCSEC
 from ..plots import plot_series
 from ..scene import Outcome
+from ..verdict import Check, Verdict
 
 ARCMIN = 60 * ARCSEC
 
@@ -23,7 +46,7 @@ def measured(t, q, context):
     orbit = context["orbit"]
     spin = rs.body_axes(q)[1]
     centre, free, mean_axis = cassini.settled_axis(t, spin, orbit.normal, orbit.normal_rate, orbit.t_ref,
-                                                   context["alpha"])
+                                                   context["alpha"], context["inclination"])
     gamma = rs.libration(t, q, orbit)
     w0 = context["theory"]["w0_over_n"] * orbit.n
     return {"settled": cassini.angle(centre, orbit.normal), "mean": cassini.angle(mean_axis, orbit.normal),
@@ -114,5 +137,51 @@ def outcome(t, q, context, rows):
         figures["obliquity_vs_precession"] = plots.plot_series(
             scales, [[r["obliquity_arcmin"] for r in rows], [r["obliquity_peale_arcmin"] for r in rows]],
             "node precession (x the orbit's own)", "obliquity [arcmin]", ["settled, integrated", "Peale's equation"])
-    columns = {"obliquity": obliquity * u.arcmin, "libration": m["gamma"] / ARCSEC * u.arcsec}
+    columns = {"spin_obliquity": obliquity * u.arcmin, "libration": m["gamma"] / ARCSEC * u.arcsec}
     return Outcome(comparison, columns, figures, sections={"precession": rows})
+
+
+MARGOT, STARK = "Margot et al. 2012 radar (1 sigma)", "Stark et al. 2015 laser altimetry (1 sigma)"
+PEALE_TOLERANCE_ARCMIN = 0.05
+PEALE_WHY = ("3\": the core's lag |dk/dt| tau (0.6\"), the orbit normal's periodic wobbles over the run "
+             "(~1\" on DE421) and the pericentre's precession (0.1 % of eps, Baland et al. 2017), which "
+             "Peale's equation omits")
+CLOSED_FORM_WHY = ("1 %: the e^6 remainder (0.13 %), the core's friction (0.1-0.5 %) and the planets' "
+                   "perturbations of the orbit, which the closed form omits")
+
+
+def observed(label, metric, measured, unit, source):
+    """A check of ``metric`` within a published (value, sigma)."""
+    return Check(label, metric, measured[1], unit, source, expected=measured[0])
+
+
+def verdict(p, comparison):
+    """The obliquity and the libration within the radar's and the altimeter's 1 sigma; the libration against
+    the closed form; the obliquity against Peale's equation (and, with scaled precession, every run's)."""
+    oblique, libration = "obliquity_arcmin", "libration_amplitude_arcsec"
+    checks = [observed("obliquity (radar)", oblique, mercury.OBLIQUITY_ARCMIN, "′", MARGOT),
+              observed("libration (radar)", libration, mercury.LIBRATION_AMPLITUDE_ARCSEC, "″", MARGOT),
+              observed("obliquity (altimetry)", oblique, mercury.STARK_2015["obliquity_arcmin"], "′", STARK),
+              observed("libration (altimetry)", libration, mercury.STARK_2015["libration_arcsec"], "″", STARK),
+              Check("libration vs (3/2)(B-A)/C_m (1 - 11e^2 + 959e^4/48)", libration, 0.01, "",
+                    CLOSED_FORM_WHY, versus="libration_closed_form_arcsec", relative=True),
+              Check("obliquity vs Peale's equation", oblique, PEALE_TOLERANCE_ARCMIN, "′", PEALE_WHY,
+                    versus="obliquity_peale_arcmin")]
+    if p.precession.scales:
+        checks.append(Check("scaled precession vs Peale's equation", "precession_peale_error_max_arcsec",
+                            60 * PEALE_TOLERANCE_ARCMIN, "″", PEALE_WHY))
+    return Verdict("Margot et al. 2012; Stark et al. 2015; closed forms", tuple(checks),
+                   "C/MR^2 and C_m/C were inferred from these observations with this theory: agreement "
+                   "checks that the integrated spin realises it on an N-body orbit, not the interior")
+
+
+def compare(p, run):
+    """The scene's comparison: the main run measured, and one run per precession scale."""
+    from ..starts.mercury import model, scales
+
+    rows = []
+    for scale in scales(p):
+        system, context = model(p, run.times, scale)
+        solution, _ = run.integrate(system, run.times, f"precession x{scale:g}")
+        rows.append(precession_row(scale, measured(solution.t, solution.quaternion, context), context))
+    return outcome(run.solution.t, run.solution.quaternion, run.model.context, rows)
