@@ -96,6 +96,7 @@ def expected(answer):
 
 MOON_COLUMNS = ("phi", "theta", "psi", "libration_longitude", "libration_latitude", "libration_node",
                 "sub_earth_longitude", "sub_earth_latitude", "pole_error", "longitude_error")
+OBSERVER_COLUMNS = ("sub_observer_longitude", "sub_observer_latitude", "axis_position_angle")
 EARTH_COLUMNS = ("cip_x", "cip_y", "cip_x_minus_erfa", "cip_y_minus_erfa", "precession_longitude", "obliquity",
                  "nutation_longitude", "nutation_obliquity", "cio_locator_s", "celestial_to_intermediate")
 EARTH_MOON_COLUMNS = ("moon_geocentric_x", "moon_geocentric_y", "moon_geocentric_z", "phi", "theta", "psi",
@@ -103,25 +104,45 @@ EARTH_MOON_COLUMNS = ("moon_geocentric_x", "moon_geocentric_y", "moon_geocentric
                       "earth_axis_x", "earth_axis_y", "earth_axis_z")
 
 
-def moon_librations(times, *, level=3, ephemeris=None, optical=False):
+def moon_librations(times, *, level=3, ephemeris=None, optical=False, frame="PA", observer=None):
     """The Moon's orientation and physical librations at ``times``: the JPL 3-1-3 angles (phi, theta, psi), the
     physical librations tau, rho, sigma (``libration_longitude``, ``_latitude``, ``_node``: the prime meridian,
     the equator's inclination and node against the Cassini state of the mean ecliptic of date; sigma is large,
     ~5600", because it is the node's offset, rho / sin I), the sub-Earth point, and the difference from DE421
-    where it has data; with ``optical``, the optical libration (the sub-Earth point of the Cassini state)."""
+    where it has data; with ``optical``, the optical libration (the sub-Earth point of the Cassini state).
+
+    ``frame``: the lunar frame of the sub-Earth point, "PA" (the principal axes, the integrated figure's) or
+    "ME" (the mean-Earth/polar-axis frame of lunar maps and the IAU: the principal axes turned by the fixed
+    rotation that takes DE421's MOON_PA_DE421 to MOON_ME_DE421, 67.92", 78.56", 0.30" about z, y, x; NAIF's
+    moon_080317.tf, Williams, Boggs & Folkner 2008); ``meta["frame"]`` says which.
+
+    ``observer``: an astropy ``EarthLocation`` (one place): adds the apparent topocentric libration there,
+    ``sub_observer_longitude``, ``_latitude`` (in ``frame``: the point of the Moon at the centre of its disk as
+    seen from the place, the Moon's apparent place with light time and aberration, the lunar frame at the time
+    the light left it) and ``axis_position_angle`` (of the frame's z axis, from the north of the true equator of
+    date eastward).  The place is astropy's (``get_gcrs_posvel``: UT1 and polar motion from astropy's IERS
+    tables, which say where they hold: a date beyond them is refused); ``meta["observer"]`` says which."""
     from .solutions import tables
 
     t, when = tdb_days(times, "times")
     _check_choice("level", level, (1, 2, 3, 4))
+    _check_choice("frame", frame, tuple(tables.FRAMES))
+    _check_observer(observer, when)
     first, last = min(t.min(), MOON_START) - 2.0, max(t.max(), MOON_START) + 2.0
     source, why = _ephemeris(ephemeris, t, (first, last))
     solution = _solution("moon_libration", {"orbit.source": source, "model.level": level}, t, 1.0)
-    table = tables.moon(solution, t, source)
+    table = tables.moon(solution, t, source, frame)
     columns = MOON_COLUMNS + (("optical_libration_longitude", "optical_libration_latitude") if optical else ())
     if optical:
         table = _with_optical(table, source)
-    return _answer(table, t, when, columns, _summary(solution, "moon_libration"), expected("moon"),
-                   {"source": source, "why": why})
+    if observer is not None:
+        table, columns = _with_observer(table, solution, t, when, source, observer, frame), columns + OBSERVER_COLUMNS
+    out = _answer(table, t, when, columns, _summary(solution, "moon_libration"), expected("moon"),
+                  {"source": source, "why": why})
+    out.meta["frame"] = {"name": frame, "definition": tables.FRAMES[frame]}
+    if observer is not None:
+        out.meta["observer"] = _observer_said(observer)
+    return out
 
 
 def earth_pole(times, *, nonrigid=True, ephemeris=None):
@@ -474,6 +495,54 @@ def _dates_said(days):
     """'3 dates, 1850-01-01 to 1851-01-01' (TDB) for the TDB days given."""
     count = f"{days.size} date{'s' if days.size > 1 else ''}"
     return f"{count}, {tdb_dates((days.min(), days.max()))}"
+
+
+def _check_observer(observer, when):
+    """None or one astropy EarthLocation, at dates whose Earth orientation astropy holds; InputError naming
+    ``observer`` or ``times`` otherwise."""
+    if observer is None:
+        return
+    from astropy.coordinates import EarthLocation
+
+    from .solutions.apparent import earth_orientation_checked
+
+    if not isinstance(observer, EarthLocation) or observer.size != 1:
+        raise InputError("observer", _shown(observer), "one astropy EarthLocation, e.g. "
+                                                       "EarthLocation.from_geodetic(lon, lat, height), or None")
+    earth_orientation_checked(when)
+
+
+def _observer_said(observer):
+    """What meta says of the observer: the place and the Earth orientation that put it in the GCRS."""
+    from astropy.utils import iers
+
+    place = observer.reshape(()) if observer.shape else observer
+    lon, lat, height = place.to_geodetic()
+    return {"longitude_deg": float(lon.deg), "latitude_deg": float(lat.deg), "height_m": float(height.to_value("m")),
+            "earth_orientation": "astropy EarthLocation.get_gcrs_posvel: UT1 - UTC and polar motion from "
+                                 f"astropy's IERS table ({type(iers.earth_orientation_table.get()).__name__})",
+            "apparent": "light time (the Moon at the light's departure) and aberration (ERFA ab); no light "
+                        "deflection (below 0.3 mas for the Moon)"}
+
+
+def _with_observer(table, solution, t, when, source, observer, frame):
+    """A copy of ``table`` with the observer's columns (solutions.apparent)."""
+    import astropy.units as u
+
+    from .solutions import apparent
+
+    place = observer.reshape(()) if observer.shape else observer
+    try:
+        columns = apparent.observed(solution, t, when, source, place, frame)
+    except InputError as exc:
+        if exc.name != "source":
+            raise
+        raise InputError("observer", f"ephemeris={source!r}", "an ephemeris that is a JPL kernel ('de421', "
+                                                              "'de440' or a .bsp) for an observer's view") from None
+    table = table.copy()
+    for name, value in columns.items():
+        table[name] = np.degrees(value) * u.deg
+    return table
 
 
 def _with_optical(table, source):

@@ -30,10 +30,18 @@ COLUMNS = {
     "libration_node": "physical libration in node sigma: the lunar equator's node on the mean ecliptic of date minus "
                       "(Om + 180 deg); large (~5600\") because it is the node's offset, sigma ~ rho / sin I",
     "sub_earth_longitude": "longitude of the Earth's geometric direction (no light time, no aberration) in the "
-                           "Moon's principal-axis frame, not the mean-Earth selenographic frame (the total "
+                           "Moon's principal-axis frame (frame='ME': the mean-Earth/polar-axis frame) (the total "
                            "libration in longitude: optical + physical)",
     "sub_earth_latitude": "latitude of the Earth's geometric direction in the Moon's principal-axis frame (the "
                           "total libration in latitude)",
+    "sub_observer_longitude": "the apparent topocentric libration in longitude: the longitude, in the frame "
+                              "meta['frame'] names, of the direction from the Moon to the observer against its "
+                              "apparent place (light time and aberration), the lunar frame at the light's "
+                              "departure",
+    "sub_observer_latitude": "the apparent topocentric libration in latitude (as sub_observer_longitude)",
+    "axis_position_angle": "the position angle of the Moon's axis (the z axis of the frame meta['frame'] names) "
+                           "on the observer's sky, from the north of the true equator of date (IAU 2006/2000A) "
+                           "eastward",
     "optical_libration_longitude": "optical libration in longitude: the sub-Earth longitude of the Cassini state "
                                    "(tau = rho = sigma = 0)",
     "optical_libration_latitude": "optical libration in latitude: the sub-Earth latitude of the Cassini state",

@@ -159,6 +159,16 @@ def quat_rate(q, omega_body):
                      0.5 * (w * b - x * c + z * a), 0.5 * (w * c + x * b - y * a)])
 
 
+def frame_rotation(axis, angle):
+    """The matrix [angle]_axis (axis 1, 2 or 3; rad) taking a vector's coordinates to the frame turned by
+    ``angle`` about that axis (SPICE's ``rotate``; Rz below)."""
+    c, s = np.cos(angle), np.sin(angle)
+    i, j = [(1, 2), (2, 0), (0, 1)][axis - 1]
+    m = np.eye(3)
+    m[i, i], m[i, j], m[j, i], m[j, j] = c, s, -s, c
+    return m
+
+
 def matrix_from_euler313(phi, theta, psi):
     """ICRF-to-body matrix M = Rz(psi) Rx(theta) Rz(phi) (JPL lunar convention), rad.
 

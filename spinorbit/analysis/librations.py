@@ -25,10 +25,16 @@ def physical_librations(icrf_to_body, icrf_to_ecliptic, mean_longitude, node, ea
     ``mean_longitude`` L and ``node`` Om of the Moon (n,) rad; ``earth_from_moon`` (n, 3) ICRF, any unit.
     """
     ecl = euler313_from_matrix(np.einsum("nij,nkj->nik", icrf_to_body, icrf_to_ecliptic))
-    u = np.einsum("nij,nj->ni", icrf_to_body, earth_from_moon / np.linalg.norm(earth_from_moon, axis=1, keepdims=True))
+    lon, lat = sub_point(icrf_to_body, earth_from_moon)
     return {"tau": _wrap(ecl[:, 0] + ecl[:, 2] - mean_longitude - np.pi), "rho": ecl[:, 1] - INCLINATION_RAD,
-            "sigma": _wrap(ecl[:, 0] - node - np.pi),
-            "sub_earth_lon": np.arctan2(u[:, 1], u[:, 0]), "sub_earth_lat": np.arcsin(u[:, 2])}
+            "sigma": _wrap(ecl[:, 0] - node - np.pi), "sub_earth_lon": lon, "sub_earth_lat": lat}
+
+
+def sub_point(icrf_to_frame, direction):
+    """(longitude, latitude) rad of the directions (n, 3) ICRF, any length, in the body frames ``icrf_to_frame``
+    (n, 3, 3): the sub-Earth (sub-observer) point of the direction from the body to the Earth (the observer)."""
+    u = np.einsum("nij,nj->ni", icrf_to_frame, direction / np.linalg.norm(direction, axis=1, keepdims=True))
+    return np.arctan2(u[:, 1], u[:, 0]), np.arcsin(np.clip(u[:, 2], -1.0, 1.0))
 
 
 def optical_librations(icrf_to_ecliptic, mean_longitude, node, earth_from_moon):

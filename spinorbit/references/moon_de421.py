@@ -28,6 +28,22 @@ from ..rotations import matrix_from_euler313, omega_body_from_euler313_rates
 from .base import Comparable
 
 FREE_LIBRATION_LONGITUDE_PERIOD_D = 1056.16     # DE421's free libration in longitude (Yang et al. 2017)
+# DE421's mean-Earth/polar-axis frame from its principal axes (MOON_ME_DE421 from MOON_PA_DE421): NAIF's
+# moon_080317.tf, frame 31007, TKFRAME angles (67.92, 78.56, 0.30) arcsec about the axes (3, 2, 1), from
+# Williams, Boggs & Folkner (2008) (the IOM below)
+MEAN_EARTH_TK_ANGLES = ((3, 67.92), (2, 78.56), (1, 0.30))     # (axis, arcsec), as the frame kernel lists them
+
+
+def principal_to_mean_earth():
+    """The matrix taking vectors from DE421's principal-axis frame to its mean-Earth/polar-axis frame:
+    [-0.30"]_1 [-78.56"]_2 [-67.92"]_3 (frame rotations), what SPICE makes of the TK frame's angles."""
+    from ..constants import ARCSEC
+    from ..rotations import frame_rotation
+
+    m = np.eye(3)
+    for axis, angle in MEAN_EARTH_TK_ANGLES:
+        m = frame_rotation(axis, -angle * ARCSEC) @ m
+    return m
 
 
 def libration_span():

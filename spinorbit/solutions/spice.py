@@ -3,7 +3,9 @@
 * Each body with an attitude: a binary PCK of type 2 -- Chebyshev series of the 3-1-3 Euler angles (phi,
   theta, psi) of its ICRF-to-body rotation Rz(psi) Rx(theta) Rz(phi) relative to J2000, the layout of JPL's
   ``moon_pa_de421_1900-2050.bpc`` (NAIF, PCK Required Reading, "Binary PCK Kernel Format", type 2) -- and a text
-  frame kernel naming its frame (``<BODY>_PA_SPINORBIT``, class 2: a PCK frame), as JPL's ``moon_080317.tf``.
+  frame kernel naming its frame (``<BODY>_PA_SPINORBIT``, class 2: a PCK frame), as JPL's ``moon_080317.tf``
+  (for the Moon also ``MOON_ME_SPINORBIT_<id>``, its mean-Earth/polar-axis frame: a TK frame relative to the PA one,
+  as JPL's MOON_ME_DE421 is to MOON_PA_DE421).
   The angles are refitted on the solution's own grid at its Chebyshev points; the difference of the rotation
   they give from the solution's, measured between those points, is returned.
 * The positions of the integrated bodies: an SPK of type 2 (Chebyshev positions; SPK Required Reading) in the
@@ -44,7 +46,7 @@ from .tracks import body_code, tracks
 FRAME_BASE = 1_400_000
 FRAME_BLOCKS = 150_000                  # (2 000 000 - 1 400 000) / FRAMES_PER_SOLUTION
 FRAMES_PER_SOLUTION = 4
-AXES = ("PA",)                          # the principal axes: the frame the PCK's angles turn to
+AXES = ("PA", "ME")                     # the principal axes (the PCK's angles turn to them); the Moon's mean Earth
 COMMENT_LINE = 80                       # a comment line's longest (spiceypy.dafec reads lines of up to ~80)
 SPICE_FILE_NAME = 255                   # SPICE's longest file name: a longer one is cut (FILEN, SPICE Toolkit)
 
@@ -132,10 +134,31 @@ def frame_kernel(body, solution_id):
     about = (f"{name}: the principal axes of {body} integrated by spinorbit (solution {solution_id}); a binary "
              f"PCK of type 2 gives its 3-1-3 angles relative to J2000.  Each exported solution names its "
              f"frames <BODY>_<AXES>_SPINORBIT_<solution id>, IDs {FRAME_BASE} + {FRAMES_PER_SOLUTION} x "
-             f"(id mod {FRAME_BLOCKS}) + the axes' place (PA 0).")
-    return (f"KPL/FK\n\n{_wrapped(about)}\n\n\\begindata\n\n"
+             f"(id mod {FRAME_BLOCKS}) + the axes' place (PA 0, the Moon's ME 1).")
+    text = (f"KPL/FK\n\n{_wrapped(about)}\n\n\\begindata\n\n"
             f"    FRAME_{name} = {code}\n    FRAME_{code}_NAME = '{name}'\n    FRAME_{code}_CLASS = 2\n"
             f"    FRAME_{code}_CLASS_ID = {code}\n    FRAME_{code}_CENTER = {body_code(body)}\n\n\\begintext\n")
+    return text + mean_earth_frame(name, solution_id) if body == "moon" else text
+
+
+def mean_earth_frame(principal, solution_id):
+    """The Moon's mean-Earth/polar-axis frame as a TK frame relative to its principal-axis frame ``principal``,
+    turned as MOON_ME_DE421 is from MOON_PA_DE421 (NAIF's moon_080317.tf, frame 31007:
+    references.moon_de421.MEAN_EARTH_TK_ANGLES)."""
+    from ..references.moon_de421 import MEAN_EARTH_TK_ANGLES
+
+    code, name = frame_id(solution_id, "ME"), frame_name("moon", solution_id, "ME")
+    angles = "  ".join(f"{angle:.2f}" for _, angle in MEAN_EARTH_TK_ANGLES)
+    axes = ", ".join(str(axis) for axis, _ in MEAN_EARTH_TK_ANGLES)
+    about = (f"{name}: the Moon's mean-Earth/polar-axis frame, the principal axes above turned as MOON_ME_DE421 "
+             "is from MOON_PA_DE421 (NAIF's moon_080317.tf, frame 31007; the angles from Williams, Boggs & Folkner "
+             "2008, JPL IOM 335-JW,DB,WF-20080314-001).")
+    return (f"\n{_wrapped(about)}\n\n\\begindata\n\n"
+            f"    FRAME_{name} = {code}\n    FRAME_{code}_NAME = '{name}'\n    FRAME_{code}_CLASS = 4\n"
+            f"    FRAME_{code}_CLASS_ID = {code}\n    FRAME_{code}_CENTER = {body_code('moon')}\n"
+            f"    TKFRAME_{code}_SPEC = 'ANGLES'\n    TKFRAME_{code}_RELATIVE = '{principal}'\n"
+            f"    TKFRAME_{code}_ANGLES = ( {angles} )\n    TKFRAME_{code}_AXES = ( {axes} )\n"
+            f"    TKFRAME_{code}_UNITS = 'ARCSECONDS'\n\n\\begintext\n")
 
 
 def _wrapped(text):

@@ -2,11 +2,16 @@
 (scenes.<kind>.compare): the columns a run would have given at those dates, without the run."""
 import numpy as np
 
+FRAMES = {"PA": "the Moon's principal axes (the integrated figure, as DE421's MOON_PA_DE421)",
+          "ME": "the Moon's mean-Earth/polar-axis frame: the principal axes turned as DE421's MOON_ME_DE421 is "
+                "from MOON_PA_DE421 (NAIF moon_080317.tf; Williams, Boggs & Folkner 2008)"}
 
-def moon(solution, t, source):
+
+def moon(solution, t, source, frame="PA"):
     """The Moon scene's table (comparisons.moon_de421.table) at TDB days ``t``: the JPL angles, their
-    differences from DE421 where its series has data, the physical librations and the sub-Earth point."""
-    from ..analysis.librations import icrf_to_body
+    differences from DE421 where its series has data, the physical librations and the sub-Earth point in
+    ``frame`` (FRAMES)."""
+    from ..analysis.librations import icrf_to_body, sub_point
     from ..comparisons import moon_de421 as vs
     from ..references import eckhardt
 
@@ -17,7 +22,24 @@ def moon(solution, t, source):
     earth = values[:, solution.layout["earth.from_moon"]] if "earth.from_moon" in solution.layout else \
         earth_from_moon(source, t)
     lib = eckhardt.physical_librations(t, mats, earth)
-    return vs.table(states, mats, de421, covered, lib)
+    if frame == "ME":
+        lib["sub_earth_lon"], lib["sub_earth_lat"] = sub_point(in_frame(mats, frame), earth)
+    table = vs.table(states, mats, de421, covered, lib)
+    if frame == "ME":
+        for name, what in (("longitude", "longitude"), ("latitude", "latitude")):
+            table[f"sub_earth_{name}"].info.description = (
+                f"{what} of the Earth's geometric direction (no light time, no aberration) in the Moon's "
+                "mean-Earth/polar-axis frame (DE421's MOON_ME_DE421 from its principal axes)")
+    return table
+
+
+def in_frame(icrf_to_body, frame):
+    """ICRF-to-``frame`` matrices (n, 3, 3) of ICRF-to-principal-axes ones."""
+    if frame == "PA":
+        return icrf_to_body
+    from ..references.moon_de421 import principal_to_mean_earth
+
+    return np.einsum("ij,njk->nik", principal_to_mean_earth(), icrf_to_body)
 
 
 def earth_moon(solution, t):
