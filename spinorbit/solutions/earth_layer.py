@@ -3,115 +3,167 @@ and nutation about it, and IAU 2006/2000A's CIP beside them, as a Solution of th
 
 Each of these is the Earth scene's own (the tides' secular turn, starts.earth_tides; the transfer function
 applied term by term to the rigid nutation fitted on the luni-solar arguments, comparisons.earth_nonrigid;
-the mean pole fitted with IAU 2000A's terms, comparisons.earth_iau.precession_nutation), a fit over a run,
-so the layer is computed once over the stored rigid solution's whole span -- the non-rigid fit on the scene's
-own output grid, continued over the span (_grid, _nonrigid), the rest at the solution's Chebyshev points --
-and fitted there like the rigid run; its provenance says over which span (``fit_over_tdb_d``).  It is stored
-beside the rigid solution and computed again when that is extended.  IAU's CIP is fitted too (ERFA takes
-~0.2 ms a date): the fit's error, measured at a tenth of the segments' in-between points, is in
-``fit_error``.
+the mean pole fitted with IAU 2000A's terms, comparisons.earth_iau.precession_nutation), a fit over a run.  The
+fits are made over fixed windows, so that an answer at a date never depends on how far the store reaches
+elsewhere: the scene's own span (the validated century) and its repeats either side (:func:`windows`), each
+window fitted on the scene's output grid shifted onto it and answering for the dates between its edges rounded
+to the solution's segments (so that a segment takes one window's fit); the layer spans the windows the stored
+rigid solution covers whole, evaluated at the solution's Chebyshev points and fitted there like the rigid run;
+its provenance lists the windows (``fit_windows_tdb_d``).  It is stored beside the rigid solution and computed
+again when that is extended.  IAU's CIP is fitted too (ERFA takes ~0.2 ms a date): the fit's error, measured at
+every tenth segment's in-between points, is in ``fit_error``.
 """
+import math
+from dataclasses import dataclass
+
 import numpy as np
 
+from ..errors import InputError
 from ..layout import Layout
 from . import store
 from .chebyshev import Segments, interpolating
-from .fit import errors
+from .models import KINDS
 from .solution import Solution
 
 LAYOUT = Layout([("earth.pole", 3, "vector", ""), ("iau.cip", 2, "vector", "rad"),
                  ("nutation.mean", 2, "vector", "rad"), ("nutation.offset", 2, "vector", "rad")])
-CHECKED_EVERY = 10          # segments
+CHECKED_EVERY = 10          # segments (those whose index on the grid is a multiple), at their inner extrema
+FITS = "fixed windows: the scene's span and its repeats"      # in the record: layers fitted otherwise are not read
+
+
+@dataclass(frozen=True)
+class Window:
+    """A fit window: the fits are made on ``grid`` (the scene's output times shifted by whole spans) and answer
+    for the dates in [lo, hi] (its edges on the segment grid)."""
+
+    grid: np.ndarray
+    lo: float
+    hi: float
+
+    @property
+    def reach(self):
+        """(first, last) TDB days the rigid solution must cover for this window."""
+        return min(self.lo, self.grid[0]), max(self.hi, self.grid[-1])
+
+
+def windows(scenario, t_first, t_last):
+    """The fit windows answering for the dates in [t_first, t_last] (TDB days), in time order."""
+    times = np.sort(scenario.output_times())
+    origin, length = times[0], times[-1] - times[0]
+    grid = KINDS["earth_precession_nutation"].grid
+
+    def edge(k):
+        return grid.origin_d + round((origin + k * length - grid.origin_d) / grid.length_d) * grid.length_d
+
+    def index(t):
+        k = math.floor((t - origin) / length)
+        return k - 1 if t < edge(k) else k + 1 if t >= edge(k + 1) else k
+
+    return [Window(times + k * length, edge(k), edge(k + 1))
+            for k in range(index(t_first), index(t_last) + 1)]
+
+
+def reach(scenario, t_first, t_last):
+    """(first, last) TDB days the rigid solution must cover to answer for [t_first, t_last]."""
+    found = windows(scenario, t_first, t_last)
+    return found[0].reach[0], found[-1].reach[1]
+
+
+def covered(scenario, span):
+    """The windows a rigid solution over ``span`` covers whole (none: InputError)."""
+    found = [w for w in windows(scenario, *span) if span[0] <= w.reach[0] and w.reach[1] <= span[1]]
+    if not found:
+        raise InputError("span", f"{span[0]:.6g}..{span[1]:.6g} TDB days",
+                         "a rigid Earth solution covering at least one fit window (the scene's whole span)")
+    return found
 
 
 def layer(rigid, scenario, nonrigid):
-    """The layer (a Solution over ``rigid``'s span) of the Earth scene ``scenario``, non-rigid or not."""
+    """The layer (a Solution over the fit windows ``rigid`` covers whole) of the Earth scene ``scenario``,
+    non-rigid or not."""
     from ..comparisons import earth_nonrigid as nr
     from ..starts import earth_tides as tides
 
+    fits = covered(scenario, rigid.span)
+
     def computed(_, lo, hi):
         rates = tides.rates(scenario["earth.tides"], scenario["orbit.source"])
-        return _computed(rigid, nr.settings(scenario) if nonrigid else None, rates, _grid(rigid, scenario))
+        return _computed(rigid, nr.settings(scenario) if nonrigid else None, rates, fits)
 
-    return store.solve(_record(scenario, nonrigid), *rigid.span, computed)
+    return store.solve(_record(scenario, nonrigid), fits[0].lo, fits[-1].hi, computed)
 
 
 def stored(scenario, nonrigid, t_start, t_end):
-    """The stored layer when it covers [t_start, t_end] and was fitted over the whole stored rigid solution
-    (its span is the rigid one's: the solution is extended only at its ends), else None."""
+    """The stored layer when it covers [t_start, t_end], else None."""
     rec = _record(scenario, nonrigid)
     try:
         found = store.read(store.path_of(rec), rec)
     except store.Unreadable:
         return None
-    rigid = store.entry_span(store.path_of(store.record(scenario)))
-    if found is None or rigid is None or tuple(found.span) != tuple(rigid) or not found.covers(t_start, t_end):
-        return None
-    return found
+    return found if found is not None and found.covers(t_start, t_end) else None
 
 
 def _record(scenario, nonrigid):
-    return {**store.record(scenario), "scene": "earth_layer", "nonrigid": nonrigid,
+    return {**store.record(scenario), "scene": "earth_layer", "nonrigid": nonrigid, "fits": FITS,
             "transfer_function": scenario["earth.transfer_function"] if nonrigid else None}
 
 
-def _grid(rigid, scenario):
-    """The scene's own output times, continued at its step over the rest of the stored span: where the
-    non-rigid layer's fit is made (as the scene makes it)."""
-    t, step = np.sort(scenario.output_times()), scenario["span.step"]
-    lo, hi = rigid.span
-    before = np.arange(t[0] - step, lo - 1e-9, -step)[::-1]
-    return np.concatenate([before, t[(t >= lo) & (t <= hi)], np.arange(t[-1] + step, hi + 1e-9, step)])
+def _basis(times):
+    from ..analysis import nonrigid
+    from ..references import arguments
+
+    phases, _ = arguments.phases(times, nonrigid.LUNISOLAR_ARGUMENTS)
+    return np.hstack([np.exp(1j * phases).T, np.exp(-1j * phases).T])
 
 
-def _counted_from(start, t):
-    """``t`` with ``start`` before it, unless it begins there: the scene's turns count from its first time."""
-    return t if t[0] == start else np.concatenate([[start], t])
+def _offsets(times, poles):
+    from ..references import erfa_pole
+
+    return np.array(erfa_pole.about_mean_pole(times, poles)), np.sin(erfa_pole.mean_angles(times)[3])
 
 
-def _nonrigid(t, z, grid, pole_at, settings, start):
-    """The non-rigid poles at ``t`` (n, 3) from the rigid ones ``z``: the scene's non-rigid layer
-    (comparisons.earth_nonrigid.nonrigid_pole) applied on ``grid`` (``pole_at(times)``: the rigid poles), and
-    its change to the nutation -- a sum of circular terms on the luni-solar arguments, what the transfer
-    function and MHB2000's add-on terms make of the fitted ones -- refitted on those terms and evaluated at
-    ``t``; MHB2000's nonlinear precession counted from ``start``."""
+def _nonrigid_terms(grid, pole_at, settings):
+    """The non-rigid layer's change to the nutation over a window's ``grid`` (``pole_at(times)``: the rigid
+    poles): the scene's layer (comparisons.earth_nonrigid.nonrigid_pole) applied there, less MHB2000's nonlinear
+    precession it adds, fitted as a sum of circular terms on the luni-solar arguments -- what the transfer
+    function and MHB2000's add-on terms make of the fitted ones."""
     from ..analysis import nonrigid
     from ..comparisons import earth_nonrigid as nr
-    from ..references import arguments, erfa_pole
 
-    fit_t = _counted_from(start, grid)
     z_grid = pole_at(grid)
-    changed = nr.nonrigid_pole(fit_t, pole_at(fit_t), **settings)[fit_t.size - grid.size:]
-
-    def basis(times):
-        phases, _ = arguments.phases(times, nonrigid.LUNISOLAR_ARGUMENTS)
-        return np.hstack([np.exp(1j * phases).T, np.exp(-1j * phases).T])
-
-    def offsets(times, poles):
-        return np.array(erfa_pole.about_mean_pole(times, poles)), np.sin(erfa_pole.mean_angles(times)[3])
-
-    (before, sin_grid), (after, _) = offsets(grid, z_grid), offsets(grid, changed)
-    precession = nonrigid.nonlinear_precession(grid - start)
+    changed = nr.nonrigid_pole(grid, z_grid, **settings)
+    (before, sin_grid), (after, _) = _offsets(grid, z_grid), _offsets(grid, changed)
+    precession = nonrigid.nonlinear_precession(grid - grid[0])
     dz = (after[0] - before[0] - precession) * sin_grid + 1j * (after[1] - before[1])
-    terms = np.linalg.lstsq(basis(grid), dz, rcond=None)[0]
-    (dpsi, deps), sin_t = offsets(t, z)
-    dz_t = basis(t) @ terms
+    return np.linalg.lstsq(_basis(grid), dz, rcond=None)[0]
+
+
+def _nonrigid(t, z, terms, start):
+    """The non-rigid poles at ``t`` (n, 3) from the rigid ones ``z``: the fitted ``terms`` added to the
+    nutation, MHB2000's nonlinear precession counted from ``start``."""
+    from ..analysis import nonrigid
+    from ..references import erfa_pole
+
+    (dpsi, deps), sin_t = _offsets(t, z)
+    dz_t = _basis(t) @ terms
     return erfa_pole.from_mean_pole(t, dpsi + dz_t.real / sin_t + nonrigid.nonlinear_precession(t - start),
                                     deps + dz_t.imag)
 
 
-def _computed(rigid, settings, tide_rates, grid):
-    """The layer over the rigid solution's span; the tides' secular turn (``tide_rates``, "/cy) and MHB2000's
+def _computed(rigid, settings, tide_rates, fits):
+    """The layer over the windows ``fits``; the tides' secular turn (``tide_rates``, "/cy) and MHB2000's
     nonlinear precession accumulate from the solution's start, as the scene's from its span's; the non-rigid
-    layer's fit is made on ``grid`` (_nonrigid)."""
+    layer and the mean pole are fitted window by window."""
     from ..comparisons import earth_iau as vs
     from ..references import erfa_pole
     from ..starts import earth_tides as tides
+    from .fit import errors
 
-    segments = rigid.segments
+    segments = rigid.segments.window(fits[0].lo, fits[-1].hi)
     count = len(segments.coefficients)
     nodes, checks = segments.nodes(segments.first, count)
-    t = np.concatenate([nodes.ravel(), checks[::CHECKED_EVERY].ravel()])
+    checked = (np.arange(segments.first, segments.first + count) % CHECKED_EVERY) == 0
+    t = np.concatenate([nodes.ravel(), checks[checked, 1:-1].ravel()])      # none on a window's edge
     order = np.argsort(t, kind="stable")
     start = rigid.provenance["runs"][0]["start_tdb_d"]
 
@@ -120,23 +172,28 @@ def _computed(rigid, settings, tide_rates, grid):
         return tides.tilted(counted, rigid.part("earth.pole", counted), *tide_rates)[1:]
 
     ts = t[order]
-    z = tilted(ts)
-    if settings is not None:
-        z = _nonrigid(ts, z, grid, tilted, settings, start)
-    iau = erfa_pole.IauPole()(ts)
-    _, _, nutation = vs.precession_nutation(ts, z, iau)
-    values = np.empty((t.size, LAYOUT.size))
-    values[order] = np.column_stack([z, iau["cip_x_rad"], iau["cip_y_rad"], nutation["psi_mean"],
-                                     nutation["eps_mean"], nutation["dpsi"], nutation["deps"]])
+    z, iau = tilted(ts), erfa_pole.IauPole()(ts)
+    columns = np.empty((ts.size, LAYOUT.size))
+    for window in fits:
+        inside = (ts >= window.lo) & (ts < window.hi)
+        zw, iau_w = z[inside], {key: value[inside] for key, value in iau.values.items()}
+        if settings is not None:
+            zw = _nonrigid(ts[inside], zw, _nonrigid_terms(window.grid, tilted, settings), start)
+        _, _, nutation = vs.precession_nutation(ts[inside], zw, iau_w)
+        columns[inside] = np.column_stack([zw, iau_w["cip_x_rad"], iau_w["cip_y_rad"], nutation["psi_mean"],
+                                           nutation["eps_mean"], nutation["dpsi"], nutation["deps"]])
+    values = np.empty_like(columns)
+    values[order] = columns
     n = nodes.size
     at_nodes = values[:n].reshape(count, segments.degree + 1, -1).transpose(0, 2, 1)
     fitted = Segments(segments.origin_d, segments.length_d, segments.first, interpolating(at_nodes))
     provenance = {"scene": "earth_layer", "layer": "non-rigid" if settings else "rigid",
-                  "nonrigid": settings, "fit_over_tdb_d": list(rigid.span), "rigid": rigid.provenance,
+                  "nonrigid": settings, "fit_windows_tdb_d": [[w.grid[0], w.grid[-1]] for w in fits],
+                  "rigid": rigid.provenance,
                   "fit_error": errors(LAYOUT, LAYOUT.normalise(fitted.evaluate(t[n:])), values[n:]),
                   "state_size": 0, "integrator": rigid.provenance["integrator"]}
-    return Solution(fitted, LAYOUT, provenance, {"start": (rigid.span[0], np.zeros(0)),
-                                                 "end": (rigid.span[1], np.zeros(0))})
+    return Solution(fitted, LAYOUT, provenance, {"start": (fitted.span[0], np.zeros(0)),
+                                                 "end": (fitted.span[1], np.zeros(0))})
 
 
 def table(solution, t):
