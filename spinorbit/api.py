@@ -130,6 +130,8 @@ def moon_librations(times, *, level=3, ephemeris=None, optical=False, frame="PA"
     _check_observer(observer, when)
     first, last = min(t.min(), MOON_START) - 2.0, max(t.max(), MOON_START) + 2.0
     source, why = _ephemeris(ephemeris, t, (first, last))
+    if observer is not None:
+        _check_observer_ephemeris(source)
     solution = _solution("moon_libration", {"orbit.source": source, "model.level": level}, t, 1.0)
     table = tables.moon(solution, t, source, frame)
     columns = MOON_COLUMNS + (("optical_libration_longitude", "optical_libration_latitude") if optical else ())
@@ -509,6 +511,18 @@ def _check_observer(observer, when):
     earth_orientation_checked(when)
 
 
+def _check_observer_ephemeris(source):
+    """The observer's view reads the Earth and the Moon from a JPL kernel: InputError naming ``observer``
+    (before any integration) when ``source`` is none."""
+    from .orbits.kernel import kernel_path
+
+    try:
+        kernel_path(source)
+    except InputError:
+        raise InputError("observer", f"ephemeris={source!r}", "an ephemeris that is a JPL kernel ('de421', "
+                                                              "'de440' or a .bsp) for an observer's view") from None
+
+
 def _observer_said(observer):
     """What meta says of the observer: the place and the Earth orientation that put it in the GCRS."""
     from astropy.utils import iers
@@ -529,13 +543,7 @@ def _with_observer(table, solution, t, when, source, observer, frame):
     from .solutions import apparent
 
     place = observer.reshape(()) if observer.shape else observer
-    try:
-        columns = apparent.observed(solution, t, when, source, place, frame)
-    except InputError as exc:
-        if exc.name != "source":
-            raise
-        raise InputError("observer", f"ephemeris={source!r}", "an ephemeris that is a JPL kernel ('de421', "
-                                                              "'de440' or a .bsp) for an observer's view") from None
+    columns = apparent.observed(solution, t, when, source, place, frame)
     table = table.copy()
     for name, value in columns.items():
         table[name] = np.degrees(value) * u.deg

@@ -185,3 +185,5 @@ def test_an_observer_is_one_earth_location_and_its_dates_within_the_iers_tables(
     place = EarthLocation.from_geodetic(PLACE["lon_deg"] * u.deg, PLACE["lat_deg"] * u.deg, PLACE["height_m"] * u.m)
     with pytest.raises(InputError, match="^times: .*1960-01-01.*expected dates whose UT1 astropy's IERS tables hold"):
         spinorbit.moon_librations(Time(["1960-01-01", "2021-02-11"], scale="utc"), observer=place)
+    with pytest.raises(InputError, match="^observer: got \"ephemeris='rebound'\"; expected an ephemeris that is"):
+        spinorbit.moon_librations(DATES_OBSERVED, observer=place, ephemeris="rebound")
