@@ -13,10 +13,11 @@
   and skyfield-data ship hold measured UT1 and polar motion), in both frames, against skyfield's own chain
   (tests/test_api_frames.observed_by_skyfield: its UT1, skyfield-data's polar motion, ``observe().apparent()``
   on DE421, JPL's lunar PCK and frame kernel): the sub-observer point and the axis's position angle, and how far
-  astropy and skyfield place the observer (m).
+  astropy and skyfield place the observer (m); the call's time for the N dates without and with the observer.
 """
 import argparse
 import json
+import time
 import warnings
 
 import numpy as np
@@ -140,6 +141,11 @@ def observer(count):
         out[frame] = {"sub_observer_max_mas": float(point.max()), "sub_observer_rms_mas": float(np.sqrt(np.mean(
             point ** 2))), "axis_position_angle_max_mas": float(turn.max())}
     out["observer_astropy_minus_skyfield_max_m"] = observer_apart(t, place)
+    out["call_s"] = {}
+    for label, options in (("without observer", {}), ("with observer", {"observer": place})):
+        started = time.perf_counter()
+        spinorbit.moon_librations(t, **options)
+        out["call_s"][label] = time.perf_counter() - started
     return out
 
 
