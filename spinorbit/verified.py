@@ -12,16 +12,19 @@ Every cache of numbers spinorbit keeps on disk goes through these few calls, so 
   ``meta`` (a JSON dict: provenance, not compared) and a ``sha256`` over all of them (each name, dtype, shape
   and bytes: :func:`arrays_hash`).  Written aside (``.<name>.tmp-<pid>-*`` in the same folder), synced, then
   renamed over ``path``: a reader sees the old file or the new one, never a part; a write that fails (a full
-  disk: ENOSPC, EFBIG) removes what it wrote and raises its OSError.
+  disk: ENOSPC, EFBIG) removes what it wrote and raises its OSError; one that succeeds removes what writes of
+  ``path`` killed before their rename left (``remove_leftovers``).
 - ``read(path, record=None)``: :class:`Entry` (arrays, record, meta), or None when there is no file.
   :class:`Damaged` (its one-line reason) when the file itself is bad: not a regular file, not an npz this room
   wrote (read with ``allow_pickle=False``: nothing in it runs), an array missing or added, its content not its
   sha256, or another ``record`` than the one asked for (the differing keys named).  The caller deletes it
   (:func:`discard`) and makes it again.  An OSError that says nothing about the file (EIO, EMFILE, EACCES) is
   raised as it is: the caller answers without the cache, and never deletes the file for it.
-- ``lock(path, wait_s=None)``: the exclusive lock of ``path`` (``<name>.lock`` beside it, a regular file) held
-  for the ``with`` block; waits at most ``wait_s`` seconds (None: as long as it takes, saying once that it
-  waits; 0: not at all) and then raises :class:`Busy`.  ``locked_elsewhere(path)``: whether another process
+- ``lock(path, wait_s=None, repair=True)``: the exclusive lock of ``path`` (``<name>.lock`` beside it, a regular
+  file) held for the ``with`` block; waits at most ``wait_s`` seconds (None: as long as it takes, saying once
+  that it waits; 0: not at all) and then raises :class:`Busy`.  Something else at the lock's place (a FIFO, a
+  folder, a link to a device) is made again, said in one line (``repair=False``, for a file the user named:
+  refused, NotRegular).  ``locked_elsewhere(path)``: whether another process
   holds it now.
 - ``clear(folder, pattern)``: deletes the files matching ``pattern`` with their locks and leftovers of killed
   writes, except those another live process holds the lock of (kept, and said); ``remove_leftovers(path)``
@@ -124,6 +127,7 @@ def write(path, arrays, record, meta=None):
     finally:
         if os.path.lexists(tmp):
             os.unlink(tmp)
+    remove_leftovers(path)
 
 
 # what a reader raises for a file that is not an npz (zipfile, zlib) or not one of ours (numpy: ValueError)
@@ -179,11 +183,27 @@ def lock_path(path):
     return path.with_name(path.name + ".lock")
 
 
+def _open_lock(path, repair):
+    """The lock file of ``path`` opened; with ``repair`` (a folder of the room's own) something other than a
+    regular file there (a FIFO, a folder, a link to a device) is removed, said in one line, and the lock made."""
+    try:
+        return open_lock(lock_path(path))
+    except OSError as exc:
+        if not repair or os.path.isfile(lock_path(path)) and not os.path.islink(lock_path(path)):
+            raise
+        print(f"spinorbit: the lock {lock_path(path)} was not a regular file ({exc.strerror or exc}); made again",
+              file=sys.stderr)
+        discard(lock_path(path))
+        return open_lock(lock_path(path))
+
+
 @contextlib.contextmanager
-def lock(path, wait_s=None):
+def lock(path, wait_s=None, repair=True):
     """Hold the exclusive lock of ``path`` for the block: at once if free, else waiting at most ``wait_s`` seconds
-    (None: without limit, said once on stderr; 0: not at all), then Busy."""
-    with open_lock(lock_path(path)) as handle:
+    (None: without limit, said once on stderr; 0: not at all), then Busy.  ``repair``: the folder is the room's
+    (``folder``, ``private``): a lock that is not a regular file is made again (said); without it, refused
+    (NotRegular, an OSError)."""
+    with _open_lock(path, repair) as handle:
         started, said = time.monotonic(), False
         while True:
             try:

@@ -42,3 +42,16 @@ def test_an_unreadable_record_is_refused_in_one_line_and_made_again(tmp_path, ca
         said = [line for line in capfd.readouterr().err.splitlines() if "refused" in line]
         assert len(said) == 1 and str(path) in said[0]
         assert cv.stored(path, stamp) == hashed_directly(package)
+
+
+def test_a_folder_in_place_of_the_record_is_replaced(tmp_path):
+    """Found by benchmarks/fuzz_store.py: a folder where the record belongs was a traceback (os.replace)."""
+    package, cache = tmp_path / "pkg", tmp_path / "cache"
+    package.mkdir()
+    cache.mkdir()
+    (package / "a.py").write_text("x = 1\n")
+    path = cv.record_path(cache, package)
+    path.mkdir()
+    (path / "inside").write_text("x")
+    assert cv.content_version(package, cache) == hashed_directly(package)
+    assert path.is_file()

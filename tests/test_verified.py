@@ -129,3 +129,20 @@ def test_a_folder_others_can_write_is_refused(tmp_path):
     with pytest.raises(InputError, match="writable by others") as info:
         verified.private(folder)
     assert "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("what", ["fifo", "folder", "device"])
+def test_a_lock_that_is_not_a_regular_file_is_made_again_in_one_line(written, capfd, what):
+    """Found by benchmarks/fuzz_store.py: a FIFO at the lock's place was a traceback (ENXIO)."""
+    path, _ = written
+    place = verified.lock_path(path)
+    {"fifo": os.mkfifo, "folder": os.mkdir, "device": lambda p: os.symlink("/dev/zero", p)}[what](place)
+    with verified.lock(path, wait_s=0):
+        pass
+    assert place.is_file() and not place.is_symlink()
+    assert capfd.readouterr().err.count("\n") == 1
+    os.unlink(place)
+    os.mkfifo(place)
+    with pytest.raises(OSError):
+        with verified.lock(path, wait_s=0, repair=False):
+            pass

@@ -252,7 +252,7 @@ def solve(settings, t_start, t_end, path=None, label="orbital solution"):
 def _locked(path):
     """Hold the lock beside ``path`` (verified.lock, not waited on: Busy) if it is a regular file (or none yet): a
     FIFO there never blocks, a missing folder is one line."""
-    held = verified.lock(path, wait_s=0)
+    held = verified.lock(path, wait_s=0, repair=False)
     try:
         held.__enter__()
     except NotRegular:

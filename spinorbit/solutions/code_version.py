@@ -12,6 +12,7 @@ import functools
 import hashlib
 import json
 import os
+import shutil
 from pathlib import Path
 
 from ..files import open_regular
@@ -77,6 +78,8 @@ def stored(path, stamp):
 def store(path, stamp, content):
     """Write the record aside and rename it over ``path`` (atomic)."""
     tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
+    if path.is_dir() and not path.is_symlink():          # a folder where the record belongs (the cache is ours)
+        shutil.rmtree(path, ignore_errors=True)
     try:
         with open(tmp, "w") as f:
             json.dump({"fingerprint": stamp, "content": content}, f)
@@ -93,7 +96,11 @@ def content_version(package, directory):
     content = stored(path, stamp)
     if content is None:
         content = content_hash(package, files)
-        store(path, stamp, content)
+        try:
+            store(path, stamp, content)
+        except OSError as exc:               # the version stands; only its record is not kept
+            cache.say(f"the code-version record {path} could not be written ({exc.strerror or exc}); the sources "
+                      "are hashed again next time")
     return content
 
 
