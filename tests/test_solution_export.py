@@ -1,9 +1,11 @@
 """A Solution exported as SPICE kernels and read back by spiceypy and skyfield: the Moon's orientation (binary PCK
-type 2 + frame kernel) and the positions of an integrated system's bodies (SPK type 2: the closed Earth-Moon's
-Moon and Earth about their barycentre; the solar system's every body, about 0 and the Earth-Moon barycentre)
-reproduce the solution within 1 uas and 1 mm -- or, for a barycentric outer planet, within what two sums of
-the same series in doubles can differ by; the solar system's read back against DE421 within its scene's
-tolerances."""
+type 2 + a frame kernel naming it per solution) and the positions of an integrated system's bodies (SPK type 2:
+the closed Earth-Moon's Moon and Earth about their barycentre and that barycentre about 0 from DE421; the solar
+system's every body about 0 and the Earth-Moon barycentre, each on DE421's record length) reproduce the solution
+within 1 uas and 1 mm plus each track's stated refit error -- or, for a barycentric outer planet, within what two
+sums of the same series in doubles can differ by; the solar system's read back against DE421 within its scene's
+tolerances.  ``spinorbit export`` writes exactly the model and span asked, comment lines dafec reads, and
+nothing outside --out however long."""
 import numpy as np
 import pytest
 

@@ -3,9 +3,10 @@
 * Each body with an attitude: a binary PCK of type 2 -- Chebyshev series of the 3-1-3 Euler angles (phi,
   theta, psi) of its ICRF-to-body rotation Rz(psi) Rx(theta) Rz(phi) relative to J2000, the layout of JPL's
   ``moon_pa_de421_1900-2050.bpc`` (NAIF, PCK Required Reading, "Binary PCK Kernel Format", type 2) -- and a text
-  frame kernel naming its frame (``<BODY>_PA_SPINORBIT``, class 2: a PCK frame), as JPL's ``moon_080317.tf``
-  (for the Moon also ``MOON_ME_SPINORBIT_<id>``, its mean-Earth/polar-axis frame: a TK frame relative to the PA one,
-  as JPL's MOON_ME_DE421 is to MOON_PA_DE421).
+  frame kernel naming its frame (``<BODY>_PA_SPINORBIT_<solution id>``, class 2: a PCK frame; one name and ID
+  per solution, :func:`frame_name`, :func:`frame_id`), as JPL's ``moon_080317.tf`` (for the Moon also
+  ``MOON_ME_SPINORBIT_<id>``, its mean-Earth/polar-axis frame: a TK frame relative to the PA one, as JPL's
+  MOON_ME_DE421 is to MOON_PA_DE421).
   The angles are refitted on the solution's own grid at its Chebyshev points; the difference of the rotation
   they give from the solution's, measured between those points, is returned.
 * The positions of the integrated bodies: an SPK of type 2 (Chebyshev positions; SPK Required Reading) in the
@@ -19,10 +20,13 @@
   301, the Earth 399.  The comments state, per body, the fit's error and how far it lies from DE421 over the
   span (heliocentric planets and Earth, the geocentric Moon, the Sun about 0: the barycentre's drift).
 
-Every kernel's comment area names what made it: the scene, every key, the ephemeris, the integrator, the code's
-version, the span, the grid and the fit's error.  Read back by spiceypy (``furnsh``; ``pxform("J2000", frame,
-et)``, ``spkezr`` / ``spkpos``) or skyfield (``PlanetaryConstants.read_text`` / ``read_binary`` /
-``build_frame_named``; ``load_file`` / ``SpiceKernel`` for the SPK).
+Every kernel's comment area (lines of at most COMMENT_LINE characters) names what made it: the scene, every key
+of its model and of the scenario asked, the ephemeris, the integrator, the code's version, the span, the grid and
+the fit's error.  SPICE writes each kernel under a short name in a private temporary folder (it cuts a file
+name at SPICE_FILE_NAME characters); it is then copied beside its place and renamed there.  Read back by
+spiceypy (``furnsh``; ``pxform("J2000", frame, et)``, ``spkezr`` / ``spkpos``) or skyfield
+(``PlanetaryConstants.read_text`` / ``read_binary`` / ``build_frame_named``; ``load_file`` / ``SpiceKernel``
+for the SPK).
 """
 import hashlib
 import json

@@ -6,9 +6,10 @@ the Earth about their barycentre 4 d), so a slow planet is not written on the Mo
 A track is refitted from the solution's series (or, for the coupled Earth-Moon's barycentre, which the
 solution does not integrate, from the run's ephemeris) by interpolation at each record's Chebyshev points
 (solutions.chebyshev) and checked against what it was fitted to at the extrema of T_(n+1) between them: that
-difference is the track's stated fit error.  Records tile the export's span exactly (their length the body's
-own, shortened to a whole number of records).  The Moon and the Earth about their barycentre keep the
-solution's own series.
+difference is the track's stated fit error.  Records tile the export's span exactly, each a whole number of
+the solution's segments (record_count: the body's length where the span allows, else shorter; for the
+scene's 1950-2050, 9132 segments of 4 d, Mars to Pluto get 24 d).  The Moon and the Earth about their
+barycentre keep the solution's own series.
 """
 from dataclasses import dataclass
 
@@ -17,7 +18,7 @@ import numpy as np
 from ..bodies.table import BODIES, EMB, gm_km3_d2
 from .chebyshev import Segments, interpolating_at
 
-# (record length d, degree) of each body's track: DE421's lengths, the degree the least (with one to spare)
+# (longest record d, degree) of each body's track: DE421's lengths, the degree the least (with one to spare)
 # whose refit of the solution's series holds 1 mm, or the rounding floor of positions of its size, (n + 1) eps
 # |r| (Saturn to Pluto: 2-7 mm), measured over 1950-2050 (benchmarks/bench_solutions.py export).
 RECORDS = {"sun": (16.0, 10), "mercury": (8.0, 13), "venus": (16.0, 11), EMB: (16.0, 13), "mars": (32.0, 12),
@@ -65,7 +66,7 @@ def tracks(solution):
         series = Segments(own.origin_d, own.length_d, own.first, own.coefficients[:, part.index, :])
         if part in barycentric:
             length, degree = RECORDS.get(body, (own.length_d, own.degree))
-            segments, error = refitted(series.evaluate, solution.span, length, degree)
+            segments, error = refitted(series.evaluate, solution.span, record_count(own, length), degree)
             out.append(Track(position_code(body), 0, body, segments, error, "the solution"))
             continue
         primary = part.unit.split("from ")[1].split(",")[0]
@@ -110,16 +111,26 @@ def barycentre_track(solution):
 
         def positions(t):
             return np.asarray(orbits.positions(t))[:, 0]
-    segments, error = refitted(positions, (lo, hi), *RECORDS[EMB])
+    length, degree = RECORDS[EMB]
+    segments, error = refitted(positions, (lo, hi), record_count(solution.segments, length), degree)
     return Track(position_code(EMB), 0, EMB, segments, error, f"the ephemeris {name}")
 
 
-def refitted(positions, span, length_d, degree):
-    """(Segments of ``degree`` tiling ``span`` (TDB days) exactly with records of at most ``length_d``, fitted to
-    ``positions`` (t -> (n, 3) km) at their Chebyshev points; the largest distance, km, between them and
-    ``positions`` at the extrema of T_(n+1))."""
+def record_count(own, length_d):
+    """The fewest records tiling the span of ``own`` (the solution's segments), each a whole number of its
+    segments and at most ``length_d`` long (or one segment): the records' ends are the solution's segment ends,
+    exact doubles in days and in seconds where those are (SPICE, in seconds, and the series, in days, then place
+    a date alike in its record: an end one ulp off at 1e9 s moves Mars by 4 mm)."""
+    count = len(own.coefficients)
+    joined = [m for m in range(1, count + 1) if count % m == 0 and m * own.length_d <= length_d * (1 + 1e-12)]
+    return count // max(joined, default=1)
+
+
+def refitted(positions, span, count, degree):
+    """(``count`` Segments of ``degree`` tiling ``span`` (TDB days) exactly, fitted to ``positions`` (t -> (n, 3)
+    km) at their Chebyshev points; the largest distance, km, between them and ``positions`` at the extrema of
+    T_(n+1))."""
     lo, hi = span
-    count = max(1, int(np.ceil((hi - lo) / length_d - 1e-9)))
     empty = Segments(lo, (hi - lo) / count, 0, np.zeros((count, 3, degree + 1)))
     nodes, checks = empty.nodes(0, count)
     values = np.asarray(positions(nodes.ravel())).reshape(count, degree + 1, 3)
