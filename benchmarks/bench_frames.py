@@ -98,7 +98,7 @@ def me(count):
             for path in [*_pck_paths(), str(kernel_path("de421")), *written["files"]]:
                 spiceypy.furnsh(path)
             jpl = cspice_sub_earth(spiceypy, "MOON_ME_DE421", seconds)
-            exported = cspice_sub_earth(spiceypy, written["frames"]["moon"].replace("_PA_", "_ME_"), seconds)
+            exported = cspice_sub_earth(spiceypy, written["frames"]["moon_mean_earth"], seconds)
             pa_to_me = np.array(spiceypy.pxform("MOON_PA_DE421", "MOON_ME_DE421", 0.0))
             earth_icrf = np.array([spiceypy.spkpos("EARTH", et, "J2000", "NONE", "MOON")[0] for et in seconds])
         finally:

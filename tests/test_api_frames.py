@@ -104,7 +104,7 @@ def test_the_exported_moon_carries_the_mean_earth_frame_as_jpls(tmp_path, monkey
         for path in [*written["files"], *jpl_lunar_kernels()]:
             spiceypy.furnsh(path)
         principal = written["frames"]["moon"]
-        mean_earth = principal.replace("_PA_", "_ME_")
+        mean_earth = written["frames"]["moon_mean_earth"]
         ours = np.array(spiceypy.pxform(principal, mean_earth, 0.0))
         jpls = np.array(spiceypy.pxform("MOON_PA_DE421", "MOON_ME_DE421", 0.0))
         read_lon, read_lat = sub_earth_by_cspice(spiceypy, mean_earth, tdb_seconds(when))

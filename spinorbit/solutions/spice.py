@@ -78,8 +78,8 @@ def frame_id(solution_id, axes="PA"):
 
 def export(solution, directory, asked=None):
     """Write the solution's kernels into ``directory`` (created); ``asked``: {key: value} of the scenario asked
-    for, written in the comments beside the solution's own.  Returns {"files": [...], "frames": {body: name},
-    "fit_error": {...}}."""
+    for, written in the comments beside the solution's own.  Returns {"files": [...], "frames": {body: name,
+    "moon_mean_earth": the Moon's ME frame's name}, "fit_error": {...}}."""
     try:
         import spiceypy
     except ImportError:
@@ -96,6 +96,8 @@ def export(solution, directory, asked=None):
     files, frames, error = [], {}, {}
     for body in attitudes:
         frames[body] = frame_name(body, solution_id)
+        if body == "moon":
+            frames["moon_mean_earth"] = frame_name(body, solution_id, "ME")
         coefficients, error[f"{body}_angles_arcsec"] = angle_series(solution, body)
         lines = comments(solution, f"the orientation of {body} (frame {frames[body]})", asked)
         files.append(_written(directory / f"{name}_{body}.bpc", lambda path, b=body, c=coefficients, k=lines:
