@@ -20,6 +20,8 @@ Every cache of numbers spinorbit keeps on disk goes through these few calls, so 
   sha256, or another ``record`` than the one asked for (the differing keys named).  The caller deletes it
   (:func:`discard`) and makes it again.  An OSError that says nothing about the file (EIO, EMFILE, EACCES) is
   raised as it is: the caller answers without the cache, and never deletes the file for it.
+- ``peek(path, names)``: some arrays read without the hash checked (a listing; a span compared), None if
+  unreadable.
 - ``lock(path, wait_s=None, repair=True)``: the exclusive lock of ``path`` (``<name>.lock`` beside it, a regular
   file) held for the ``with`` block; waits at most ``wait_s`` seconds (None: as long as it takes, saying once
   that it waits; 0: not at all) and then raises :class:`Busy`.  Something else at the lock's place (a FIFO, a
@@ -160,6 +162,17 @@ def read(path, record=None):
         if differ:
             raise Damaged(f"it was made with another {', '.join(differ)}")
     return Entry(held, stored, meta)
+
+
+def peek(path, names):
+    """{name: array} of some arrays of the file at ``path``, read without checking its hash (what a listing shows,
+    or a span compared before the file is read whole with :func:`read`); None when the file cannot be read or
+    lacks one of them."""
+    try:
+        with open_regular(path) as f, np.load(f, allow_pickle=False) as data:
+            return {name: data[name] for name in names}
+    except (OSError, *_BAD_FORMAT):
+        return None
 
 
 def _first_line(exc):

@@ -253,30 +253,29 @@ def offer(solution, rec):
 
 
 def entry_span(path):
-    """(start, end) TDB days of the solution stored at ``path`` (checked), or None."""
-    try:
-        entry = verified.read(path)
-        origin, length, first, count = entry.arrays["grid"]
-    except (verified.Damaged, OSError, AttributeError, KeyError, ValueError):
+    """(start, end) TDB days of the solution stored at ``path``, read from its grid alone (not checked), or
+    None."""
+    held = verified.peek(path, ["grid"])
+    if held is None or held["grid"].shape != (4,):
         return None
+    origin, length, first, count = held["grid"]
     return float(origin + first * length), float(origin + (first + count) * length)
 
 
 def entries():
-    """[(path, scene, (start, end) TDB days, bytes)] of the stored solutions: a file of another code version
-    says so after its scene (no run of this code reads it; `spinorbit cache clear` removes it), a damaged or
-    unreadable one is "unreadable", span None."""
+    """[(path, scene, (start, end) TDB days, bytes)] of the stored solutions, read without their hash checked
+    (a listing): a file of another code version says so after its scene (no run of this code reads it;
+    `spinorbit cache clear` removes it), an unreadable one has span None."""
     out = []
     for path in sorted(directory().glob("*.npz")):
         scene, span = "unreadable", None
+        held = verified.peek(path, ["record", "grid"])
         try:
-            entry = verified.read(path)
-            rec = entry.record
+            rec = json.loads(str(held["record"]))
             scene = rec["scene"] if rec.get("code") == code_version() else \
                 f"{rec['scene']} (code {rec.get('code')}, not this one's)"
-            origin, length, first, count = entry.arrays["grid"]
-            span = (origin + first * length, origin + (first + count) * length)
-        except (verified.Damaged, OSError, AttributeError, KeyError, ValueError, TypeError):
+            span = entry_span(path)
+        except (TypeError, KeyError, ValueError):
             pass
         out.append((path, scene, span, path.stat().st_size))
     return out
