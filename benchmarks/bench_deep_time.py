@@ -5,6 +5,8 @@
     python benchmarks/bench_deep_time.py ladder    # error against run time: the N-body's and the spin's steps
     python benchmarks/bench_deep_time.py cost      # 1 Myr end to end, first (empty cache) and cached
     python benchmarks/bench_deep_time.py chaos [--myr 20]   # two solutions 1e-10 apart: their divergence
+    python benchmarks/bench_deep_time.py mars [--myr 1]     # Mars against La2004 Mars: the rate, the tides
+    python benchmarks/bench_deep_time.py mars_band --sweep runs/mars_sweep   # a Mars sweep's divergence
 
 Each prints Markdown for benchmarks/results_deep_time.md.  The N-body runs take minutes of CPU: run them with
 ``nice -n 10``; solutions go to spinorbit's cache (``SPINORBIT_CACHE_DIR``) and are reused.
@@ -225,12 +227,61 @@ def chaos(myr=20.0, displacement=1e-10, window_kyr=10.0):
           "(Laskar 1989: a Lyapunov time of ~5 Myr)")
 
 
+MARS = (("La2004's parameters (p -7.597\"/yr, k2 0.149, Q 92)", []),
+        ("p -7.590: La2004's p without the geodesic 0.0068\"/yr", ["mars.precession_rate=-7.59025 arcsec/yr"]),
+        ("p -7.5830 (0.18 % below La2004's)", ["mars.precession_rate=-7.5833 arcsec/yr"]),
+        ("p -7.6083 (Konopliv et al. 2016)", ["mars.precession_rate=-7.6083 arcsec/yr"]),
+        ("p -7.576 (La2003's, Folkner et al. 1997)", ["mars.precession_rate=-7.576 arcsec/yr"]),
+        ("k2 0.169 (Konopliv et al. 2016)", ["tides.k2=0.169"]),
+        ("Q 50 (La2003's)", ["tides.Q=50"]),
+        ("no tides (k2 0)", ["tides.k2=0"]))
+
+
+def mars(myr=1.0):
+    """The Mars scene over ``myr`` with the rate and the tides changed, against La2004 Mars (La2003 beside)."""
+    from spinorbit import run_scenario
+
+    windows = [w for w in ("1myr", "5myr", "20myr") if float(w.removesuffix("myr")) <= myr + 1e-9]
+    print("| 0 to -%g Myr | " % myr + " | ".join(f"obliquity max ° ({w})" for w in windows)
+          + " | ϖ̄ at the end ° | e max |\n|---" * 1 + "|---" * (len(windows) + 2) + "|")
+    for label, overrides in MARS:
+        c = run_scenario(ROOT / "scenarios/mars_deep_time.toml",
+                         [f'span.end="-{myr:g} Myr"', "output.plots=false", *overrides]).summary["comparison"]
+        cells = [f"{c[f'la2004_obliquity_max_deg_{w}']:.3f}" for w in windows]
+        print(f"| {label} | {' | '.join(cells)} | {c['la2004_perihelion_longitude_end_deg_span']:+.2f} | "
+              f"{c['la2004_eccentricity_max_span']:.1e} |")
+    cells = [f"{c[f'la2003_minus_la2004_obliquity_max_deg_{w}']:.3f}" for w in windows]
+    print(f"| La2003 Mars - La2004 Mars | {' | '.join(cells)} | "
+          f"{c['la2003_minus_la2004_perihelion_longitude_end_deg_span']:+.2f} | 0 |")
+
+
+def mars_band(sweep):
+    """A Mars sweep's (``spinorbit sweep``) obliquity spread against time and its e-folding time: the spread's
+    growth fitted where it is above 10x its start and below 5 deg (before it saturates at the chaotic band)."""
+    from astropy.table import QTable
+
+    from spinorbit.comparisons.mars_deep_time import band
+
+    tables = [QTable.read(p, format="ascii.ecsv") for p in sorted(Path(sweep).glob("*/timeseries.ecsv"))]
+    t_kyr, low, high, _ = band(tables)
+    spread = high - low
+    print(f"{len(tables)} members\n\n| kyr | obliquity spread ° |\n|---|---|")
+    for k in np.unique(np.geomspace(1, len(t_kyr) - 1, 16).astype(int)):
+        print(f"| {t_kyr[k]:.0f} | {spread[k]:.3g} |")
+    window = (spread > 10 * spread[1]) & (spread < 5.0)
+    slope = np.polyfit(np.abs(t_kyr[window]) / 1000, np.log(spread[window]), 1)[0]
+    print(f"\ne-folding of the spread over {np.abs(t_kyr[window]).min() / 1000:.2f}-"
+          f"{np.abs(t_kyr[window]).max() / 1000:.2f} Myr: {1 / slope:.2f} Myr")
+
+
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("part", choices=("moon", "factors", "ladder", "cost", "chaos"))
-    parser.add_argument("--myr", type=float, default=20.0)
+    parser.add_argument("part", choices=("moon", "factors", "ladder", "cost", "chaos", "mars", "mars_band"))
+    parser.add_argument("--myr", type=float, default=None)
+    parser.add_argument("--sweep", default="runs/mars_sweep")
     args = parser.parse_args()
     parts = {"moon": moon, "factors": factors, "ladder": ladder, "cost": cost,
-             "chaos": lambda: chaos(args.myr)}
+             "chaos": lambda: chaos(args.myr or 20.0), "mars": lambda: mars(args.myr or 1.0),
+             "mars_band": lambda: mars_band(args.sweep)}
     parts[args.part]()

@@ -426,3 +426,27 @@ def _milankovitch_periods(fig, age_gyr, models, band, proxies):
     axes[0].legend(fontsize=7)
     axes[-1].set_xlabel("age [Gyr before present]")
     axes[-1].invert_xaxis()
+
+
+def obliquity_band(t_kyr, low, high, nominal, reference, name):
+    """A sweep's obliquity band (deg, min to max over its members at each time) shaded, its first member and
+    the reference (e.g. La2004 Mars) over it, against kyr from J2000; below, the band's width."""
+    draw = partial(_obliquity_band, t_kyr=t_kyr, low=low, high=high, nominal=nominal, reference=reference,
+                   name=name)
+    draw.figsize = (8, 6)
+    return titled(draw, f"obliquity: the sweep's band and {name}")
+
+
+def _obliquity_band(fig, t_kyr, low, high, nominal, reference, name):
+    axes = fig.subplots(2, 1, sharex=True, height_ratios=(3, 1))
+    axes[0].fill_between(t_kyr, low, high, color="0.75", label="sweep (min to max)")
+    axes[0].plot(*thinned(t_kyr, nominal), lw=0.8, label="first member")
+    if reference is not None:
+        axes[0].plot(*thinned(t_kyr[:len(reference)], reference), lw=0.8, ls="--", label=name)
+    axes[0].set_ylabel("obliquity [deg]")
+    axes[0].legend(fontsize=8)
+    axes[1].semilogy(t_kyr, np.maximum(high - low, 1e-6), lw=0.8)
+    axes[1].set_ylabel("band width [deg]")
+    axes[1].set_xlabel("kyr from J2000")
+    for ax in axes:
+        ax.grid(alpha=0.3)

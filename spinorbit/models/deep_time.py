@@ -1,5 +1,7 @@
-"""The Earth's spin axis over millions of years: the averaged precession of an oblate Earth torqued by the Sun
-and the orbit-averaged Moon, on a given orbit of the Earth, with geodesic precession and tidal dissipation.
+"""A planet's spin axis over millions of years: the averaged precession of an oblate planet torqued by the Sun
+and (the Earth) the orbit-averaged Moon, on a given orbit of the planet, with geodesic precession and tidal
+dissipation.  Written for the Earth below; a planet without a large moon (Mars) has the Moon's terms zero and
+the Sun's tide instead (:func:`planet_parameters`).
 
 The averaged equations (Ward 1974; Bills 1990; Neron de Surgy & Laskar 1997, A&A 318, 975, in Andoyer
 variables; Laskar et al. 2004, A&A 428, 261, sect. 3) in vector form, as Zeebe & Lourens (2022, snvec)
@@ -25,6 +27,15 @@ alpha ~ omega.  The tides also tilt the axis away from n: d(eps)/dt = Td x 2.4 m
 here, ~ a_m^-6 with the lunar tidal torque.  Td and Ed scale today's dissipation and dynamical ellipticity
 (snvec's keys).
 
+A planet without a large moon (Mars): alpha = (3/2) (E_d / omega) GM_sun / (a^3 (1 - e^2)^(3/2)), its figure
+fixed (C - A constant, not hydrostatic: alpha ~ 1/omega), and the Sun's tide with a constant Q slowing the
+rotation and tilting the axis (Mignard 1980; Neron de Surgy & Laskar 1997, eqs. 23-24; Correia & Laskar 2010,
+in Exoplanets, ed. Seager, eqs. 9-10, for omega >> n, e -> 0):
+
+    omega' = -(G/C) [(1 + cos^2 eps)/2 - (n/omega) cos eps],   eps' = (G/(C omega)) sin eps [cos eps/2 - n/omega],
+
+    G = (3/2) (k2/Q) GM_sun^2 R^5 / (G a^6), so G/C = (3/2) (k2/Q) GM_sun^2 R^3 / (GM (C/MR^2) a^6).
+
 State y = (s_x, s_y, s_z, a_m/a_m0, omega/omega0); time TDB days from J2000; rates rad/day.  The orbit comes
 as samples of the normal and the eccentricity vector on a uniform grid, interpolated by cubic Lagrange
 polynomials (``orbit_at`` in the rhs, ``orbit_series`` for output times).
@@ -44,8 +55,9 @@ from ..rotations import cross3, dot3
 from .ode import Ode
 
 LAMBECK_SPIN_TIDE = 51.0          # omega' = 51 n_m' (Lambeck 1980; Quinn et al. 1991 eq. 11)
-# Indices into the model's constants (``parameters``).
-ALPHA0, SOLAR0, BETA0, GEODESIC, RECESSION, SPIN_TIDE, TILT = range(7)
+# Indices into the model's constants (``parameters``): FIGURE the power of omega in alpha (+1 hydrostatic,
+# -1 a fixed figure); SOLAR_TIDE the Sun's tidal G/(C omega0) (1/day), MEAN_MOTION n/omega0.
+ALPHA0, SOLAR0, BETA0, GEODESIC, RECESSION, SPIN_TIDE, TILT, FIGURE, SOLAR_TIDE, MEAN_MOTION = range(10)
 
 
 @njit(cache=True, nogil=True)
@@ -76,7 +88,7 @@ def orbit_series(t, grid, t0, h):
 
 @cached(nogil=True)
 def rhs(t, y, p):
-    """dy/dt of the averaged spin axis and the Earth-Moon tidal evolution; p = (grid, t0, h, constants)."""
+    """dy/dt of the averaged spin axis and the tidal evolution; p = (grid, t0, h, constants)."""
     grid, t0, h, c = p
     n, e = orbit_at(t, grid, t0, h)
     s = y[:3]
@@ -85,18 +97,21 @@ def rhs(t, y, p):
     recession = c[RECESSION] * distance ** -5.5
     solar = one_e2 ** -1.5
     lunar = c[BETA0] * distance ** -3.0
-    alpha = c[ALPHA0] * spin * (solar + lunar) / (c[SOLAR0] + c[BETA0])
+    alpha = c[ALPHA0] * spin ** c[FIGURE] * (solar + lunar) / (c[SOLAR0] + c[BETA0])
     cos_eps = dot3(n, s)
     rate = c[GEODESIC] / one_e2 - alpha * cos_eps
     ds = rate * cross3(n, s)
-    # the tides' own tilt of the axis away from n, ~ sin(eps) cos(eps) and the lunar tidal torque (a_m^-6)
-    tilt = c[TILT] * cos_eps * distance**-6.0
+    # the tides' own tilt of the axis away from n (eps' / sin eps): the Moon's, ~ sin(eps) cos(eps) and the
+    # lunar tidal torque (a_m^-6); the Sun's on a planet without a large moon
+    nu = c[MEAN_MOTION] / spin
+    tilt = c[TILT] * cos_eps * distance**-6.0 + c[SOLAR_TIDE] / spin * (0.5 * cos_eps - nu)
     for i in range(3):
         ds[i] += tilt * (s[i] * cos_eps - n[i])
     out = np.empty(5)
     out[0], out[1], out[2] = ds[0], ds[1], ds[2]
     out[3] = recession
-    out[4] = -c[SPIN_TIDE] * distance ** -2.5 * recession
+    out[4] = (-c[SPIN_TIDE] * distance ** -2.5 * recession
+              - c[SOLAR_TIDE] * (0.5 * (1.0 + cos_eps * cos_eps) - nu * cos_eps))
     return out
 
 
@@ -143,7 +158,8 @@ def parameters(grid, t0, h, alpha0, eccentricity0, semi_major_axis_km, c_km_d, s
     if not td >= 0:
         raise InputError("Td", td, "a factor >= 0 of today's tidal dissipation")
     n_moon = math.sqrt((gm_km3_d2("earth") + gm_km3_d2("moon")) / moon.MEAN_DISTANCE_KM**3)
-    constants = np.zeros(7)
+    constants = np.zeros(10)
+    constants[FIGURE] = 1.0                    # the Earth's figure follows its rotation (E_d ~ omega^2)
     constants[ALPHA0] = alpha0 * ed
     constants[SOLAR0] = (1 - eccentricity0**2) ** -1.5
     constants[BETA0] = lunar_ratio(semi_major_axis_km)
@@ -154,9 +170,39 @@ def parameters(grid, t0, h, alpha0, eccentricity0, semi_major_axis_km, c_km_d, s
     return (np.ascontiguousarray(grid, dtype=float), float(t0), float(h), constants)
 
 
-LAYOUT = Layout([("earth.spin", 3, "vector", "unit spin axis, inertial (GCRS) axes"),
-                 ("moon.distance", 1, "vector", "a_m / a_m0"),
-                 ("earth.rotation", 1, "vector", "omega / omega0")])
+def planet_parameters(grid, t0, h, alpha0, eccentricity0, semi_major_axis_km, c_km_d, spin_rad_d,
+                      solar_tide_rad_d=0.0):
+    """The rhs's p for a planet without a large moon (Mars): the precession constant ``alpha0`` (rad/day, the
+    Sun's alone) at J2000 where the eccentricity is ``eccentricity0``, a fixed figure (alpha ~ 1/omega), the
+    Sun's tide ``solar_tide_rad_d`` = G/(C omega0) (:func:`solar_tide`), the planet's mean semi-major axis (km)
+    and today's rotation rate omega0 (rad/day)."""
+    constants = np.zeros(10)
+    constants[ALPHA0] = alpha0
+    constants[SOLAR0] = (1 - eccentricity0**2) ** -1.5
+    constants[GEODESIC] = geodesic_rate(semi_major_axis_km, c_km_d)
+    constants[FIGURE] = -1.0
+    constants[SOLAR_TIDE] = solar_tide_rad_d
+    constants[MEAN_MOTION] = math.sqrt(gm_km3_d2("sun") / semi_major_axis_km**3) / spin_rad_d
+    return (np.ascontiguousarray(grid, dtype=float), float(t0), float(h), constants)
+
+
+def solar_tide(k2, q, gm_planet, radius_km, moment, semi_major_axis_km, spin_rad_d):
+    """G/(C omega0), 1/day: the Sun's constant-Q tidal torque on a planet (Love number ``k2``, quality factor
+    ``q``, polar moment ``moment`` = C/(M R^2)) over its spin angular momentum, on a circular orbit."""
+    if not k2 >= 0:
+        raise InputError("k2", k2, "a Love number >= 0")
+    if not q > 0:
+        raise InputError("Q", q, "a tidal quality factor > 0")
+    gm_sun = gm_km3_d2("sun")
+    return (1.5 * k2 / q * gm_sun**2 * radius_km**3 / (gm_planet * moment * semi_major_axis_km**6)
+            / spin_rad_d)
+
+
+def layout(planet):
+    """The state's layout for ``planet`` ("earth", "mars")."""
+    return Layout([(f"{planet}.spin", 3, "vector", "unit spin axis, inertial (ICRF/GCRS) axes"),
+                   ("moon.distance", 1, "vector", "a_m / a_m0 (1: no large moon)"),
+                   (f"{planet}.rotation", 1, "vector", "omega / omega0")])
 
 
 class AveragedSpin(Ode):
@@ -168,9 +214,10 @@ class AveragedSpin(Ode):
         return orbit_series(t, grid, t0, h)
 
 
-def averaged_spin(params, spin_axis):
-    """The equations with ``params`` (from :func:`parameters`), started at J2000 on ``spin_axis``."""
-    return AveragedSpin(rhs, params, 0.0, start_state(spin_axis), LAYOUT, name="earth_deep_time")
+def averaged_spin(params, spin_axis, planet="earth"):
+    """The equations with ``params`` (from :func:`parameters` or :func:`planet_parameters`), started at J2000
+    on ``spin_axis``."""
+    return AveragedSpin(rhs, params, 0.0, start_state(spin_axis), layout(planet), name=f"{planet}_deep_time")
 
 
 def start_state(spin_axis):

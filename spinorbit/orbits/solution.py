@@ -12,10 +12,11 @@ ring of the Moon's orbit, J2 R^2 = nu <rho^2> / 2 (1 - 3/2 sin^2 i_m), nu = m_E 
 0.04"/yr) and leaves its node alone; "ring" (the default) takes MOON's measured share of it; "none": a point
 mass.
 
-Outputs every ``output_d`` (a multiple of the step, so that outputs fall on steps): the EMB's heliocentric
-osculating orbit normal and eccentricity vector (ICRF axes, the ephemeris's) and semi-major axis, TDB days
-from J2000, ascending.  The two branches (backward and forward from J2000) keep their last state, so a file is
-extended bit for bit; it is written every ``SAVE_EVERY_S`` and when a run stops, and reloaded by the next.
+Outputs every ``output_d`` (a multiple of the step, so that outputs fall on steps): the heliocentric osculating
+orbit normal, eccentricity vector (ICRF axes, the ephemeris's) and semi-major axis of each body of ``OUTPUTS``
+(the EMB, Mars: the bodies whose spin deep time follows), TDB days from J2000, ascending.  The two branches
+(backward and forward from J2000) keep their last state, so a file is extended bit for bit; it is written every
+``SAVE_EVERY_S`` and when a run stops, and reloaded by the next.
 
 A file is input like any other, kept in the verified room (spinorbit.verified): opened only when it is a regular
 file, read without pickles, and used only when every array it holds (the outputs, the settings and the end states
@@ -53,7 +54,8 @@ from .interrupts import python_sigint
 
 BODIES = heliocentric_set()
 SUN, EMB = BODIES.index("sun"), BODIES.index("earth_moon_barycenter")
-FORMAT = 2                      # the file's layout: every array covered by its hash
+OUTPUTS = ("earth_moon_barycenter", "mars")     # the bodies whose heliocentric orbits a solution keeps
+FORMAT = 3                      # the file's layout: every array covered by its hash
 SAVE_EVERY_S = 30.0
 POLL_S = 5.0
 # The Moon's orbit-averaged quadrupole on the EMB, as a factor of the static ring's (``lunar_ring_j2``):
@@ -121,24 +123,58 @@ def cache_directory():
     return verified.folder("orbital_solutions")
 
 
-class OrbitalSolution:
-    """The EMB's heliocentric orbit at ``t_d`` (ascending TDB days from J2000): ``normal`` and
-    ``eccentricity_vector`` (k, 3) in ICRF axes, ``semi_major_axis_km`` (k,); ``ends``: {"backward",
-    "forward"}: (t, states (n_bodies, 6)) where each branch stopped; ``record``: the settings;
-    ``provenance``: how it was made."""
+@dataclass(frozen=True)
+class HeliocentricOrbit:
+    """One body's heliocentric osculating orbit at a solution's times: ``normal`` and ``eccentricity_vector``
+    (k, 3) in ICRF axes, ``semi_major_axis_km`` (k,)."""
 
-    def __init__(self, t_d, normal, eccentricity_vector, semi_major_axis_km, ends, record, provenance):
-        self.t_d, self.normal, self.eccentricity_vector = t_d, normal, eccentricity_vector
-        self.semi_major_axis_km, self.ends = semi_major_axis_km, ends
+    normal: np.ndarray
+    eccentricity_vector: np.ndarray
+    semi_major_axis_km: np.ndarray
+
+    @property
+    def eccentricity(self):
+        return np.linalg.norm(self.eccentricity_vector, axis=1)
+
+
+ORBIT_ARRAYS = ("normal", "eccentricity_vector", "semi_major_axis_km")
+
+
+class OrbitalSolution:
+    """The heliocentric orbits of OUTPUTS at ``t_d`` (ascending TDB days from J2000): ``orbits`` {body:
+    HeliocentricOrbit} (``of(body)``; ``normal``, ``eccentricity_vector``, ``semi_major_axis_km`` and
+    ``eccentricity`` are the EMB's); ``ends``: {"backward", "forward"}: (t, states (n_bodies, 6)) where each
+    branch stopped; ``record``: the settings; ``provenance``: how it was made."""
+
+    def __init__(self, t_d, orbits, ends, record, provenance):
+        self.t_d, self.orbits, self.ends = t_d, orbits, ends
         self.record, self.provenance = record, provenance
+
+    def of(self, body):
+        """The HeliocentricOrbit of ``body`` (one of OUTPUTS)."""
+        if body not in self.orbits:
+            raise InputError("body", body, f"a body whose orbit the solution keeps: {list(self.orbits)}")
+        return self.orbits[body]
 
     @property
     def span(self):
         return float(self.t_d[0]), float(self.t_d[-1])
 
     @property
+    def normal(self):
+        return self.orbits[BODIES[EMB]].normal
+
+    @property
+    def eccentricity_vector(self):
+        return self.orbits[BODIES[EMB]].eccentricity_vector
+
+    @property
+    def semi_major_axis_km(self):
+        return self.orbits[BODIES[EMB]].semi_major_axis_km
+
+    @property
     def eccentricity(self):
-        return np.linalg.norm(self.eccentricity_vector, axis=1)
+        return self.orbits[BODIES[EMB]].eccentricity
 
     def covers(self, t_start, t_end):
         return self.span[0] <= min(t_start, t_end) and max(t_start, t_end) <= self.span[1]
@@ -151,8 +187,9 @@ class OrbitalSolution:
         """{name: array} of everything the file holds but the record and the provenance."""
         ends = {f"end_{name}_{part}": value for name, (t, states) in self.ends.items()
                 for part, value in (("t", np.float64(t)), ("states", np.asarray(states)))}
-        return {"t_d": self.t_d, "normal": self.normal, "eccentricity_vector": self.eccentricity_vector,
-                "semi_major_axis_km": self.semi_major_axis_km, **ends}
+        orbits = {f"{body}_{name}": getattr(orbit, name) for body, orbit in self.orbits.items()
+                  for name in ORBIT_ARRAYS}
+        return {"t_d": self.t_d, **orbits, **ends}
 
     def save(self, path):
         """Write atomically, every array hashed (spinorbit.verified.write)."""
@@ -170,8 +207,9 @@ class OrbitalSolution:
             held, stored, provenance = entry.arrays, entry.record, entry.meta
             ends = {name: (float(held[f"end_{name}_t"]), held[f"end_{name}_states"])
                     for name in ("backward", "forward") if f"end_{name}_t" in held}
-            arrays = (held[k] for k in ("t_d", "normal", "eccentricity_vector", "semi_major_axis_km"))
-            solution = cls(*arrays, ends, stored, provenance)
+            orbits = {body: HeliocentricOrbit(*(held[f"{body}_{name}"] for name in ORBIT_ARRAYS))
+                      for body in OUTPUTS}
+            solution = cls(held["t_d"], orbits, ends, stored, provenance)
         except verified.Damaged as exc:
             raise InputError("orbit_file", str(path), f"{accepted}; {exc}") from None
         except (OSError, KeyError, ValueError) as exc:
@@ -271,11 +309,11 @@ def _extend(solution, settings, record, lo, hi, path, label):
     the file every SAVE_EVERY_S and when the run stops."""
     sign = {"backward": -1.0, "forward": 1.0}
     target = {"backward": lo, "forward": hi}
-    rows = {"backward": [], "forward": []}          # (t, normal, eccentricity vector, a) from J2000 outward
+    rows = {"backward": [], "forward": []}          # (t, each output's normal, e vector, a) from J2000 outward
     ends = {} if solution is None else dict(solution.ends)
     if solution is not None:
-        table = np.column_stack([solution.t_d, solution.normal, solution.eccentricity_vector,
-                                 solution.semi_major_axis_km])
+        table = np.column_stack([solution.t_d, *(getattr(solution.of(body), name) for body in OUTPUTS
+                                                 for name in ORBIT_ARRAYS)])
         j2000 = int(np.searchsorted(solution.t_d, 0.0))
         rows = {"backward": list(table[:j2000 + 1][::-1]), "forward": list(table[j2000:])}
     earlier = 0.0 if solution is None else solution.provenance.get("wall_s", 0.0)
@@ -287,8 +325,9 @@ def _extend(solution, settings, record, lo, hi, path, label):
     def current():
         table = np.array(rows["backward"][::-1] + rows["forward"][1 if rows["backward"] else 0:])
         provenance = {"wall_s": earlier + time.perf_counter() - started, **_describe(settings)}
-        return OrbitalSolution(table[:, 0], table[:, 1:4], table[:, 4:7], table[:, 7], dict(ends), record,
-                               provenance)
+        orbits = {body: HeliocentricOrbit(table[:, 1 + 7 * k:4 + 7 * k], table[:, 4 + 7 * k:7 + 7 * k],
+                                          table[:, 7 + 7 * k]) for k, body in enumerate(OUTPUTS)}
+        return OrbitalSolution(table[:, 0], orbits, dict(ends), record, provenance)
 
     total = sum(abs(target[n] - (rows[n][-1][0] if rows[n] else 0.0)) for n in rows if todo(n)) / 365250.0
     try:
@@ -325,7 +364,8 @@ def _describe(settings):
                if MOON[settings.moon] else ""),
             "bodies": ", ".join(BODIES) + " (DE421's GMs)",
             "start": f"{settings.ephemeris} barycentric states at J2000 (TDB)",
-            "output": f"the EMB's heliocentric osculating orbit every {settings.output_d:g} d, ICRF axes"}
+            "output": f"the heliocentric osculating orbits of {', '.join(OUTPUTS)} every "
+                      f"{settings.output_d:g} d, ICRF axes"}
 
 
 class _Run:
@@ -363,22 +403,23 @@ class _Run:
 
     def _orient(self):
         if MOON[self.settings.moon]:
-            self.sim.particles[EMB].params["Omega"] = self.vec3d(*self.elements()[0])
+            self.sim.particles[EMB].params["Omega"] = self.vec3d(*self.elements(EMB)[0])
 
-    def elements(self):
-        """The EMB's heliocentric (normal, eccentricity vector, semi-major axis km)."""
+    def elements(self, index):
+        """Body ``index``'s heliocentric (normal, eccentricity vector, semi-major axis km)."""
         p = self.sim.particles
-        sun, emb = p[SUN], p[EMB]
-        r = np.array([emb.x - sun.x, emb.y - sun.y, emb.z - sun.z])
-        v = np.array([emb.vx - sun.vx, emb.vy - sun.vy, emb.vz - sun.vz])
-        mu = sun.m + emb.m
+        sun, body = p[SUN], p[index]
+        r = np.array([body.x - sun.x, body.y - sun.y, body.z - sun.z])
+        v = np.array([body.vx - sun.vx, body.vy - sun.vy, body.vz - sun.vz])
+        mu = sun.m + body.m
         h = np.cross(r, v)
         distance = np.linalg.norm(r)
         return h / np.linalg.norm(h), np.cross(v, h) / mu - r / distance, 1.0 / (2.0 / distance - v @ v / mu)
 
     def output(self):
-        normal, ecc, a = self.elements()
-        return np.array([self.sim.t, *normal, *ecc, a])
+        """(t, then each of OUTPUTS' normal, eccentricity vector, semi-major axis)."""
+        return np.array([self.sim.t, *(x for body in OUTPUTS for normal, ecc, a in
+                                       [self.elements(BODIES.index(body))] for x in (*normal, *ecc, a))])
 
     def advance(self):
         """Step to the next output (outputs fall on steps) and synchronise; the ring's axis follows the orbit.

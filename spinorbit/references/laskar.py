@@ -4,7 +4,8 @@ La2004 (Laskar et al. 2004, A&A 428, 261) and La93 (Laskar, Joutel & Boudin 1993
 distributes them and ``inso`` ships them (``inso/astrofiles/``): t in kyr from J2000, the eccentricity e, the
 obliquity eps (rad) and the longitude of perihelion from the moving equinox varpi_bar (rad), every kyr.
 La2004: 0 to -51 Myr (``INSOLN.LA2004.BTL.ASC``), to -101 Myr at 6 decimals (``...BTL.100.ASC``), 0 to +21 Myr
-(``INSOLP...``).  La93 with (CMAR, FGAM) = (0, 1), no tidal dissipation, and (1, 1), Quinn et al. 1991's
+(``INSOLP...``).  Mars's La2004 and La2003 (Laskar et al. 2004, Icarus 170, 343): -21 to +11 Myr, the same
+columns for Mars.  La93 with (CMAR, FGAM) = (0, 1), no tidal dissipation, and (1, 1), Quinn et al. 1991's
 tides: 0 to -20 Myr and 0 to +10 Myr.  Fortran ``D`` exponents.
 """
 import functools
@@ -25,6 +26,12 @@ SOLUTIONS = {
                 "Laskar, Joutel & Boudin 1993, A&A 270, 522: no tidal dissipation (CMAR 0, FGAM 1)"),
     "La93_11": (("Laskar1993/INSOLN.LA93_11.BTL.ASC", "Laskar1993/INSOLP.LA93_11.BTL.ASC"),
                 "Laskar, Joutel & Boudin 1993, A&A 270, 522: Quinn et al. 1991's tides (CMAR 1, FGAM 1)"),
+    "La2004_Mars": (("LaskarMars2003-2004/INSOLN.LA2004.MARS.ASC", "LaskarMars2003-2004/INSOLP.LA2004.MARS.ASC"),
+                    "Laskar et al. 2004, Icarus 170, 343: Mars, initial conditions after Yoder et al. 2003, "
+                    "p = -7.597\"/yr, k2 = 0.149, Q = 92 (the files' README)"),
+    "La2003_Mars": (("LaskarMars2003-2004/INSOLN.LA2003.MARS.ASC", "LaskarMars2003-2004/INSOLP.LA2003.MARS.ASC"),
+                    "Laskar et al. 2004, Icarus 170, 343: Mars, La2003, p = -7.576\"/yr (Folkner et al. 1997), "
+                    "k2 = 0.14, Q = 50 (the files' README)"),
 }
 
 

@@ -27,6 +27,7 @@ SCENES = {
     "earth_moon_coupled": "spinorbit.scenes.earth_moon_coupled",
     "solar_system": "spinorbit.scenes.solar_system",
     "earth_deep_time": "spinorbit.scenes.earth_deep_time",
+    "mars_deep_time": "spinorbit.scenes.mars_deep_time",
     "earth_moon_history": "spinorbit.scenes.earth_moon_history",
     "mars_orientation": "spinorbit.scenes.mars_orientation",
 }

@@ -7,12 +7,49 @@ import numpy as np
 
 from ..constants import ARCSEC, DAY_S, JULIAN_CENTURY_D, JULIAN_YEAR_D
 from ..errors import InputError, ScenarioError
+from ..schema import Key
 
 KYR_D = 1000 * JULIAN_YEAR_D
 MYR_D = 1000 * KYR_D
 ERFA_SPAN_D = 2 * KYR_D               # the orbit reaches at least this far: ERFA's comparison
+ORBIT_SCHEMA = {  # the orbital solution's keys (earth_deep_time, mars_deep_time)
+    "orbit.ephemeris": Key(type=str, default="de421", choices=("de421", "de440"),
+                           help="the JPL ephemeris whose J2000 state starts the solar system"),
+    "orbit.step": Key(unit="d", default=5.0, min=1.0, max=5.0,
+                      help="WHFast step, 1 to 5 d (5 d: the e vector within 7e-8 of 1 d's over 200 kyr; 8 d "
+                           "meets a step resonance, 7e-5)"),
+    "orbit.output": Key(unit="d", default=36525.0, min=365.0, max=182625.0,
+                        help="cadence of the orbital solution, a whole number of steps (at most 500 yr)"),
+    "orbit.moon": Key(type=str, default="ring", choices=("ring", "static_ring", "none"),
+                      help="the Moon as the barycentre's quadrupole: measured against the Moon as a body, "
+                           "the first-order ring, or none"),
+    "orbit.relativity": Key(type=bool, default=True, help="the Sun's GR on the orbits"),
+    "orbit.file": Key(type=str, default="", help="an orbital solution file (default: the cache's)"),
+}
+MAX_SPAN_D = 100 * MYR_D
 ORBIT_KEYS = {"step": "orbit.step", "output": "orbit.output", "moon": "orbit.moon",
               "orbit_file": "orbit.file"}
+
+
+def check_span(p):
+    """ScenarioError unless the span starts at J2000, reaches at most 100 Myr, and rk8 steps at most 1 kyr."""
+    if abs(p.t_start) > 1e-6:
+        raise ScenarioError("span.start", p.span.start, "J2000, '2000-01-01T12:00:00' (the solar "
+                            "system starts from the ephemeris's state and the axis from its pole there)")
+    if abs(p.t_end) > MAX_SPAN_D:
+        raise ScenarioError("span.end", p.span.end, "at most 100 Myr either way of J2000 (the "
+                            "tidal law and the averaged Moon are not vouched for beyond; La2004 stops at "
+                            "-101 Myr)")
+    if p.integrator.method != "rk8":
+        raise ScenarioError("integrator.method", p.integrator.method, "rk8 (the compiled fixed step)")
+    step = p.integrator.step or 0.0                             # rk8's own default: 1 d
+    if step > KYR_D:
+        raise ScenarioError("integrator.step", step, "at most 1 kyr (26 steps a precession cycle)")
+
+
+def nbody_counts(p):
+    """The N-body stage the up-front estimate counts: the orbital solution's steps not yet in the cache."""
+    return {"WHFast steps": steps_to_compute(p)}
 
 
 def settings(scenario):

@@ -15,29 +15,16 @@ precession), compared with ERFA's long-term precession over the first 2 kyr and 
 """
 import time
 
-from ...errors import ScenarioError
 from ...scene import Model, Outcome, Scene
 from ...schema import Key
-from ...starts.earth_deep_time import KYR_D, MYR_D
+from ...starts.earth_deep_time import MYR_D, ORBIT_SCHEMA, check_span, nbody_counts
 from ...verdict import Check, Verdict
 
-MAX_SPAN_D = 100 * MYR_D
 # The physics La2004 is judged against (numerical keys, the ephemeris and the file may change).
 NOMINAL = {"model.Td": 1.0, "model.Ed": 1.0, "model.precession": "iau2006_rate", "model.tidal_tilt": True,
            "orbit.moon": "ring", "orbit.relativity": True}
 SCHEMA = {
-    "orbit.ephemeris": Key(type=str, default="de421", choices=("de421", "de440"),
-                           help="the JPL ephemeris whose J2000 state starts the solar system"),
-    "orbit.step": Key(unit="d", default=5.0, min=1.0, max=5.0,
-                      help="WHFast step, 1 to 5 d (5 d: the e vector within 7e-8 of 1 d's over 200 kyr; 8 d "
-                           "meets a step resonance, 7e-5)"),
-    "orbit.output": Key(unit="d", default=36525.0, min=365.0, max=182625.0,
-                        help="cadence of the orbital solution, a whole number of steps (at most 500 yr)"),
-    "orbit.moon": Key(type=str, default="ring", choices=("ring", "static_ring", "none"),
-                      help="the Moon as the barycentre's quadrupole: measured against the Moon as a body, "
-                           "the first-order ring, or none"),
-    "orbit.relativity": Key(type=bool, default=True, help="the Sun's GR on the orbits"),
-    "orbit.file": Key(type=str, default="", help="an orbital solution file (default: the cache's)"),
+    **ORBIT_SCHEMA,
     "model.Td": Key(unit="", default=1.0, min=0.0, max=2.0,
                     help="tidal dissipation, factor of today's (38.30 mm/yr lunar recession); 0 to 2"),
     "model.Ed": Key(unit="", default=1.0, min=0.98, max=1.02,
@@ -73,28 +60,6 @@ def verdict(p, comparison):
                        for name, tol, unit in targets]
     note = "" if nominal else f"a variant of the nominal model ({NOMINAL}): compared with La2004, not judged"
     return Verdict("ERFA long-term precession; La2004", tuple(checks), note)
-
-
-def check_span(p):
-    if abs(p.t_start) > 1e-6:
-        raise ScenarioError("span.start", p.span.start, "J2000, '2000-01-01T12:00:00' (the solar "
-                            "system starts from DE421's state and the axis from IAU 2006's pole there)")
-    if abs(p.t_end) > MAX_SPAN_D:
-        raise ScenarioError("span.end", p.span.end, "at most 100 Myr either way of J2000 (the "
-                            "tidal law and the averaged Moon are not vouched for beyond; La2004 stops at "
-                            "-101 Myr)")
-    if p.integrator.method != "rk8":
-        raise ScenarioError("integrator.method", p.integrator.method, "rk8 (the compiled fixed step)")
-    step = p.integrator.step or 0.0                             # rk8's own default: 1 d
-    if step > KYR_D:
-        raise ScenarioError("integrator.step", step, "at most 1 kyr (26 steps a precession cycle)")
-
-
-def nbody_counts(p):
-    """The N-body stage the up-front estimate counts: the orbital solution's steps not yet in the cache."""
-    from ...starts.earth_deep_time import steps_to_compute
-
-    return {"WHFast steps": steps_to_compute(p)}
 
 
 def build(p, times):

@@ -1,0 +1,59 @@
+"""Mars's obliquity and precession over Myr on its orbit in earth_deep_time's (cached) orbital solution: the
+averaged precession under the Sun set by the present rate, the Sun's tide, from the IAU 2015 mean pole
+(spinorbit.starts.mars_deep_time), against La2004 Mars over 1, 5 and 20 Myr; a sweep's obliquity band."""
+import time
+
+from ...scene import Model, Outcome, Scene
+from ...schema import Key
+from ...starts.earth_deep_time import MYR_D, ORBIT_SCHEMA, check_span, nbody_counts
+
+SCHEMA = {
+    **ORBIT_SCHEMA,
+    "mars.precession_rate": Key(unit="arcsec/yr", default=-7.597, min=-7.7, max=-7.5,
+                                help="present precession rate in longitude (La2004: -7.597; Konopliv et al. "
+                                     "2016: -7.6083 +- 0.0021), sets the dynamical ellipticity"),
+    "tides.k2": Key(unit="", default=0.149, min=0.0, max=0.5, help="Mars's Love number k2 (the Sun's tide)"),
+    "tides.Q": Key(unit="", default=92.0, min=10.0, max=1000.0, help="Mars's tidal quality factor"),
+}
+
+
+def verdict(p, comparison):
+    from ...comparisons.mars_deep_time import LA2004, TARGET
+    from ...verdict import Check, Verdict
+
+    judged = all(p[key] == value for key, value in LA2004.items()) and abs(p.t_end) >= MYR_D - 1.0
+    checks = (Check("obliquity vs La2004 Mars (1myr)", "la2004_obliquity_max_deg_1myr", 0.1, "°", TARGET,
+                    min_span_d=MYR_D - 1.0),) if judged else ()
+    return Verdict("La2004 Mars (Laskar et al. 2004, Icarus 170, 343)", checks,
+                   "" if judged else f"not La2004's parameters {LA2004} over 1 Myr: compared, not judged")
+
+
+def build(p, times):
+    from ...starts import earth_deep_time as orbits
+    from ...starts import mars_deep_time as model
+
+    check_span(p)
+    started = time.perf_counter()
+    orbit = orbits.orbital_solution(p, "mars_deep_time: orbital solution")
+    wall = time.perf_counter() - started
+    return Model((spin := model.spin_model(p, orbit)).system, spin=spin, orbit=orbit, orbit_wall=wall)
+
+
+def compare_run(p, run):
+    from ...comparisons import mars_deep_time as compare
+
+    q = compare.quantities(run.times, run.solution.y, run.model.spin)
+    metrics, not_measured, provenance, la2004 = compare.laskar_metrics(run.times, q)
+    figures = {} if la2004 is None else {"obliquity_climatic_precession": compare.figure(q, la2004)}
+    return Outcome(metrics, figures=figures, sections=compare.sections(run.model, provenance),
+                   not_measured=not_measured, table=compare.table(run.times, q))
+
+
+def sweep_figures(tables):
+    from ...comparisons import mars_deep_time as compare
+
+    return {"band_obliquity": compare.band_figure(tables)}
+
+
+SCENE = Scene(SCHEMA, build, compare_run, verdict, backward=True, nbody_counts=nbody_counts,
+              sweep_figures=sweep_figures)
