@@ -173,7 +173,7 @@ def test_orbit_file_with_altered_arrays_is_refused(tmp_path):
     solution.solve(settings, -100 * YEAR_D, 0.0, path=tmp_path / "a.npz")
     with np.load(tmp_path / "a.npz") as data:                          # new numbers beside the old hash
         arrays = {name: data[name] for name in data.files}
-    arrays["eccentricity_vector"][0, 0] += 1e-9
+    arrays["mars_eccentricity_vector"][0, 0] += 1e-9
     with open(tmp_path / "a.npz", "wb") as f:
         np.savez(f, **arrays)
     with pytest.raises(InputError, match="do not match their hash"):
