@@ -395,7 +395,7 @@ def _at(args):
     table["time"] = table["time"].isot
     table.rename_column("time", f"time_{args.scale}")
     if args.format == "csv":
-        table = table.copy()
+        table = _flat_columns(table)
         for name in table.colnames:
             unit = getattr(table[name], "unit", None)
             if unit is not None and str(unit):
@@ -404,6 +404,21 @@ def _at(args):
     table.write(text, format="ascii.ecsv" if args.format == "ecsv" else "ascii.csv")
     sys.stdout.write(text.getvalue())
     return 0
+
+
+def _flat_columns(table):
+    """A copy of ``table`` whose columns of arrays (the Earth's GCRS-to-CIRS matrix) are one column per element,
+    ``<name>_<row><column>`` from 1, in their place: CSV holds one value a cell."""
+    import numpy as np
+
+    table = table.copy()
+    for name in [n for n in table.colnames if table[n].ndim > 1]:
+        column, at = table[name], table.colnames.index(name)
+        table.remove_column(name)
+        for k, index in enumerate(np.ndindex(column.shape[1:])):
+            table.add_column(column[(slice(None), *index)], name=f"{name}_{''.join(str(i + 1) for i in index)}",
+                             index=at + k)
+    return table
 
 
 def _solution_lines(entries):

@@ -34,6 +34,24 @@ def test_the_cio_locator_and_the_celestial_to_intermediate_matrix_are_iau_2006_2
     assert np.max(rotation_angle(matrices, erfa.c2i06a(tt.jd1, tt.jd2))) < 1 * mas
 
 
+@pytest.mark.slow
+def test_spinorbit_at_earth_writes_the_matrix_one_element_a_csv_column(capsys):
+    """CSV holds one value a cell: the GCRS-to-CIRS matrix is nine columns, row by row, each ERFA c2i06a's within
+    1 mas (the model's CIP's distance from IAU's)."""
+    import csv
+    import io
+
+    import erfa
+
+    from spinorbit.cli import main
+
+    assert main(["--quiet", "at", "earth", "2024-07-30T06:00", "--scale", "tt"]) == 0
+    row = next(csv.DictReader(io.StringIO(capsys.readouterr().out)))
+    matrix = np.array([[float(row[f"celestial_to_intermediate_{i}{j}"]) for j in (1, 2, 3)] for i in (1, 2, 3)])
+    tt = Time("2024-07-30T06:00", scale="tt")
+    assert rotation_angle(matrix[None], erfa.c2i06a(tt.jd1, tt.jd2)[None])[0] < 1 * mas
+
+
 def jpl_lunar_kernels():
     """JPL's moon_pa_de421_1900-2050.bpc and moon_080317.tf (shipped by lunarsky) and DE421's .bsp (skyfield-data)."""
     from spinorbit.orbits.kernel import kernel_path
