@@ -105,9 +105,14 @@ def test_a_finished_run_does_not_wait_on_the_stores_lock(place):
     path = store.path_of(store.record(scenario))
     handle = open(verified.lock_path(path), "w")
     fcntl.flock(handle, fcntl.LOCK_EX)
-    threading.Timer(20.0, handle.close).start()
+    release = threading.Timer(20.0, handle.close)
+    release.start()
     started = time.monotonic()
-    result = run_scenario(scenario)
+    try:
+        result = run_scenario(scenario)
+    finally:
+        release.cancel()
+        handle.close()
     assert time.monotonic() - started < 15.0
     assert result.summary["solution"]["stored"] is None
     assert "another process" in result.summary["solution"]["not_stored_because"]
