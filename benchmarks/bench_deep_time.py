@@ -255,23 +255,31 @@ def mars(myr=1.0):
           f"{c['la2003_minus_la2004_perihelion_longitude_end_deg_span']:+.2f} | 0 |")
 
 
-def mars_band(sweep):
-    """A Mars sweep's (``spinorbit sweep``) obliquity spread against time and its e-folding time: the spread's
-    growth fitted where it is above 10x its start and below 5 deg (before it saturates at the chaotic band)."""
+def mars_band(sweep, block_kyr=50):
+    """A Mars sweep's (``spinorbit sweep``) obliquity spread (max - min over the members) against time: its
+    envelope (the spread's max over ``block_kyr``), the e-folding time of the envelope's growth where it is
+    between 10x its first block and 5 deg (before it fills the chaotic band), and its power-law index there
+    (1: the members dephase linearly, a regular motion; growing: exponential)."""
     from astropy.table import QTable
 
     from spinorbit.comparisons.mars_deep_time import band
 
     tables = [QTable.read(p, format="ascii.ecsv") for p in sorted(Path(sweep).glob("*/timeseries.ecsv"))]
     t_kyr, low, high, _ = band(tables)
-    spread = high - low
-    print(f"{len(tables)} members\n\n| kyr | obliquity spread ° |\n|---|---|")
-    for k in np.unique(np.geomspace(1, len(t_kyr) - 1, 16).astype(int)):
-        print(f"| {t_kyr[k]:.0f} | {spread[k]:.3g} |")
-    window = (spread > 10 * spread[1]) & (spread < 5.0)
-    slope = np.polyfit(np.abs(t_kyr[window]) / 1000, np.log(spread[window]), 1)[0]
-    print(f"\ne-folding of the spread over {np.abs(t_kyr[window]).min() / 1000:.2f}-"
-          f"{np.abs(t_kyr[window]).max() / 1000:.2f} Myr: {1 / slope:.2f} Myr")
+    blocks = len(t_kyr) // block_kyr
+    envelope = (high - low)[1:blocks * block_kyr + 1].reshape(blocks, block_kyr).max(axis=1)
+    mid = np.abs(t_kyr[1:blocks * block_kyr + 1].reshape(blocks, block_kyr).mean(axis=1)) / 1000
+    print(f"{len(tables)} members, envelope over {block_kyr} kyr\n\n| Myr | obliquity spread ° |\n|---|---|")
+    for k in np.unique(np.linspace(0, blocks - 1, 21).astype(int)):
+        print(f"| {mid[k]:.2f} | {envelope[k]:.3g} |")
+    window = (envelope > 10 * envelope[0]) & (envelope < 5.0)
+    if window.sum() < 3:
+        print("\nthe envelope never grows between 10x its start and 5 deg: no e-folding measured")
+        return
+    slope = np.polyfit(mid[window], np.log(envelope[window]), 1)[0]
+    index = np.polyfit(np.log(mid[window]), np.log(envelope[window]), 1)[0]
+    print(f"\nover {mid[window].min():.2f}-{mid[window].max():.2f} Myr: e-folding {1 / slope:.2f} Myr, "
+          f"power-law index {index:.2f}")
 
 
 if __name__ == "__main__":
