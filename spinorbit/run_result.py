@@ -14,7 +14,7 @@ class RunResult:
     """``scenario``: the Scenario run; ``table``: QTable (``time`` column TDB + unit-carrying columns);
     ``summary``: JSON-ready dict whose metric keys carry their unit in the name;
     ``figures``: name -> function(matplotlib Figure) drawing one plot; ``states``: the main run's states at
-    the outputs (integrators.base.Solution; evaluated from ``solution`` where there is one); ``solution``: the
+    the outputs (integrators.base.Trajectory; evaluated from ``solution`` where there is one); ``solution``: the
     main run as a continuous Solution (spinorbit.solutions) for a scene kept as one, the one integration the
     table was evaluated from, else None with ``solution_absent`` saying why."""
 

@@ -4,8 +4,8 @@
 (options.py) and follows the contract in base.py.  Nothing outside this package calls a method's ``solve``:
 :func:`simulate` (simulation.py) does, for the scenes, the models' starts, the ladders and the Lyapunov flows.
 """
-from .base import Integrator, Solution
+from .base import Integrator, Trajectory
 from .registry import METHODS, get_method
 from .simulation import simulate
 
-__all__ = ["METHODS", "Integrator", "Solution", "get_method", "simulate"]
+__all__ = ["METHODS", "Integrator", "Trajectory", "get_method", "simulate"]

@@ -13,7 +13,7 @@ Contract for subclass authors (numbered so reviews can point at it):
    fine, of the method's work-precision ladder (``spinorbit bench``).
 3. ``solve(system, t_out)`` integrates a System (spinorbit.models: ``rhs``,
    ``params``, ``t0``, ``y0`` and the state's ``layout``) from ``system.t0`` and
-   returns a :class:`Solution` holding the state at every time in ``t_out``
+   returns a :class:`Trajectory` holding the state at every time in ``t_out``
    (running away from ``system.t0`` in one direction: ascending for a forward
    run, descending for a backward one), every quaternion slice of the layout
    renormalised.
@@ -21,7 +21,7 @@ Contract for subclass authors (numbered so reviews can point at it):
    splitting method needs ``system.torque``); ``solve`` raises InputError
    otherwise.
 5. Failure (NaN, step-size underflow, max steps) raises IntegrationError with
-   the time and state, advice, and ``.partial`` = the Solution up to there.
+   the time and state, advice, and ``.partial`` = the Trajectory up to there.
 6. ``nfev`` counts right-hand-side (or torque) evaluations, ``nsteps`` the steps (None where the
    method does not report them: scipy's solve_ivp); ``wall_s`` is the
    wall time of the solve excluding one-off compilation (warm up first).
@@ -39,7 +39,7 @@ from ..errors import InputError, IntegrationError
 
 
 @dataclass
-class Solution:
+class Trajectory:
     """States at output times: t (n,) in the system's time unit, y (n, dim) laid out by ``layout``."""
 
     t: np.ndarray

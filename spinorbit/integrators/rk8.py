@@ -23,7 +23,7 @@ from ..linker import free, link, template
 from ..progress import progress, stage
 from ..rotations import put
 from . import dop853_tableau as dop853
-from .base import Integrator, Solution, normalised, output_chunks
+from .base import Integrator, Trajectory, normalised, output_chunks
 from .options import MAX_STEPS, STEP
 
 rhs = free("rhs")    # bound by link()
@@ -213,7 +213,7 @@ class RK8(Integrator):
         start = time.perf_counter()
         run.drive(self.label, self.checkpoint)
         wall = time.perf_counter() - start
-        solution = Solution(t_out[:run.done], normalised(system, run.y_out[:run.done]), self.name,
+        solution = Trajectory(t_out[:run.done], normalised(system, run.y_out[:run.done]), self.name,
                             run.steps * len(self.B) + run.extra, run.steps, wall, dict(self.settings), system.layout)
         if run.done < t_out.size:
             over = run.steps >= int(self.settings["max_steps"])

@@ -10,7 +10,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from ..errors import IntegrationError
-from .base import Integrator, Solution, check_finite, normalised
+from .base import Integrator, Trajectory, check_finite, normalised
 from .options import ATOL, MAX_STEP, RTOL
 
 
@@ -45,7 +45,7 @@ class ScipyIVP(Integrator):
         if not np.all(np.isfinite(fun(system.t0, system.y0))):   # (also compiles outside the timed region)
             err = IntegrationError(f"{self.name}: the right-hand side is not finite at the start", system.t0,
                                    system.y0, "Check the initial state and the model's parameters.")
-            err.partial = Solution(np.empty(0), np.empty((0, system.y0.size)), self.name, 1, None, 0.0,
+            err.partial = Trajectory(np.empty(0), np.empty((0, system.y0.size)), self.name, 1, None, 0.0,
                                    dict(self.settings))
             raise err                      # scipy's first step would be NaN and never shrink below its floor
         nfev[0] = 0
@@ -56,7 +56,7 @@ class ScipyIVP(Integrator):
         wall = time.perf_counter() - start
         t = np.asarray(sol.t, dtype=float)                # lists when it failed before the first output
         y = np.asarray(sol.y, dtype=float).reshape(system.y0.size, t.size).T
-        partial = Solution(t, normalised(system, y), self.name, nfev[0], None, wall, dict(self.settings),
+        partial = Trajectory(t, normalised(system, y), self.name, nfev[0], None, wall, dict(self.settings),
                            system.layout)               # solve_ivp does not report its steps
         if sol.status != 0:
             t_fail, y_fail, nan = last_finite

@@ -1,4 +1,4 @@
-"""System + output times + integrator -> Solution, with its own error estimate: the one integrator door.
+"""System + output times + integrator -> Trajectory, with its own error estimate: the one integrator door.
 
 Every integration goes through :func:`simulate` (the scenes, the starts of the models, the ladders and the
 Lyapunov flows of the analyses): it splits a span on both sides of t0 into runs away from it, hooks the
@@ -23,7 +23,7 @@ import numpy as np
 from ..constants import ARCSEC
 from ..errors import InputError, IntegrationError
 from ..rotations import quat_angle, vector_angle
-from .base import Solution, normalised
+from .base import Trajectory, normalised
 from .registry import get_method
 
 
@@ -158,7 +158,7 @@ def _gathered(system, t_out, runs, done, method, options, estimate_error):
     y = states[first[np.searchsorted(distinct, t_out)]]
     solutions = [solution for solution, _ in done]
     steps = [solution.nsteps for solution in solutions]
-    merged = Solution(t_out.copy(), y, method_cls.name, sum(s.nfev for s in solutions),
+    merged = Trajectory(t_out.copy(), y, method_cls.name, sum(s.nfev for s in solutions),
                       None if None in steps else sum(steps), sum(s.wall_s for s in solutions),
                       dict(solutions[0].options if solutions else {**method_cls.defaults(), **(options or {})}),
                       system.layout)

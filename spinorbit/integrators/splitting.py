@@ -52,7 +52,7 @@ from ..errors import InputError, IntegrationError
 from ..linker import free, link, template
 from ..progress import progress
 from ..rotations import put
-from .base import Integrator, Solution, output_chunks
+from .base import Integrator, Trajectory, output_chunks
 from .options import FREE_FLOW, MAX_STEPS, STEP
 
 torque, frame_rate = free("torque", "frame_rate")    # bound by link()
@@ -231,7 +231,7 @@ class Strang(Integrator):
                 advance_to(t)
         t_fail = t
         wall = time.perf_counter() - start
-        solution = Solution(t_out[:n_done], y[:n_done], self.name, nfev, steps, wall, dict(self.settings),
+        solution = Trajectory(t_out[:n_done], y[:n_done], self.name, nfev, steps, wall, dict(self.settings),
                             system.layout)
         if n_done < t_out.size:
             reason = "exceeded max_steps" if steps > self.settings["max_steps"] else "state became non-finite"

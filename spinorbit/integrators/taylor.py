@@ -22,7 +22,7 @@ import numpy as np
 
 from ..errors import InputError, IntegrationError
 from ..progress import progress
-from .base import Integrator, Solution, normalised, output_chunks
+from .base import Integrator, Trajectory, normalised, output_chunks
 from .options import COMPACT_MODE, OPT_LEVEL, TOLERANCE
 
 
@@ -122,7 +122,7 @@ class Taylor(Integrator):
                     break
                 advance_to(ta.time)
         wall = time.perf_counter() - start
-        solution = Solution(t_out[:done], normalised(system, y_out[:done]), self.name, steps, steps, wall,
+        solution = Trajectory(t_out[:done], normalised(system, y_out[:done]), self.name, steps, steps, wall,
                             dict(self.settings), system.layout)
         if done < t_out.size:
             err = IntegrationError(f"{self.name}: {outcome} (heyoka)", float(ta.time), ta.state * factors,

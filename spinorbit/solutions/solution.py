@@ -41,16 +41,16 @@ class Solution:
         return self.components(t)[:, self.layout[name]]
 
     def states(self, t, components=None):
-        """The integrator's kind of Solution (integrators.base) at TDB days ``t``: what a scene's analysis
+        """The integrator's Trajectory (integrators.base: states at times) at TDB days ``t``: what a scene's analysis
         reads (from ``components``, :meth:`components` at ``t``, when the caller has evaluated them already)."""
-        from ..integrators.base import Solution as States
+        from ..integrators.base import Trajectory
 
         t = np.atleast_1d(np.asarray(t, dtype=float))
         values = self.components(t) if components is None else components
         state_size = self.provenance["state_size"]
         state_layout = Layout([(s.name, s.stop - s.start, s.kind, s.unit) for s in self.layout.slices
                                if s.stop <= state_size])
-        return States(t, values[:, :state_size], self.provenance["integrator"]["method"], layout=state_layout)
+        return Trajectory(t, values[:, :state_size], self.provenance["integrator"]["method"], layout=state_layout)
 
     def quantities(self, t):
         """{column name: (values (n,), astropy unit name)} of the named quantities at TDB days ``t``."""
