@@ -269,7 +269,7 @@ def from_de421(held, span):
     t = np.linspace(*span, DE421_DATES)
     try:
         de421 = open_ephemeris("de421", *span)
-    except EphemerisRangeError:
+    except (EphemerisRangeError, InputError):          # beyond its span, or the de421 package not installed
         return {}
     by_name = {track.name: track for track in held}
     at = {name: track.segments.evaluate(t) for name, track in by_name.items()}
