@@ -132,40 +132,6 @@ def test_no_import_cycle_between_rooms():
         f"  {a} -> {b}: {', '.join(edges[a, b])}" for a, b in zip(cycle, cycle[1:]))
 
 
-SCENE_MODULES = sorted(p for p in (PACKAGE / "scenes").rglob("*.py") if "__pycache__" not in p.parts)
-MAX_SCENE_LINES, MAX_LINE_CHARS = 150, 110
-
-
-def scene_id(path):
-    return path.relative_to(PACKAGE / "scenes").as_posix()
-
-
-@pytest.mark.parametrize("path", SCENE_MODULES, ids=scene_id)
-def test_scene_modules_are_thin(path):
-    """A scene declares (bodies, terms, orbit source, integrator, reference, analyses) in at most 150 lines;
-    models, fits and comparisons live below it."""
-    assert len(path.read_text().splitlines()) <= MAX_SCENE_LINES
-
-
-@pytest.mark.parametrize("path", SCENE_MODULES, ids=scene_id)
-def test_scene_lines_are_at_most_110_characters(path):
-    """A scene module is read, not scrolled: no line over 110 characters."""
-    lines = enumerate(path.read_text().splitlines(), 1)
-    long = [f"{k}: {len(line)}" for k, line in lines if len(line) > MAX_LINE_CHARS]
-    assert not long, f"lines over {MAX_LINE_CHARS} characters (line: length): {', '.join(long)}"
-
-
-MEAN_SCENE_LINES = 110          # issue 32: the scenes declare; starts/, comparisons/, analysis/ do the work
-
-
-def test_the_scenes_are_declarations_of_110_lines_on_average():
-    """All of spinorbit/scenes/ within 110 lines a scene kind (2 000 for the first 18): a scene's comparison,
-    start and table live below it, and a new body's scene adds a declaration."""
-    total = sum(len(path.read_text().splitlines()) for path in SCENE_MODULES)
-    kinds = sum(1 for path in SCENE_MODULES if path.name == "__init__.py" and path.parent.name != "scenes")
-    assert SCENE_MODULES and total <= MEAN_SCENE_LINES * kinds, f"spinorbit/scenes/ holds {total} lines"
-
-
 # --- compiled right-hand sides -------------------------------------------------------------------------
 
 COMPILERS = {"njit", "jit", "cfunc", "template", "generated_jit", "cached"}   # numba's, the linker's
