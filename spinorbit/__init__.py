@@ -5,7 +5,7 @@ The angles at your dates (spinorbit.api), astropy Time in, QTable out::
     import spinorbit
     from astropy.time import Time
     t = Time(["2027-03-01", "2027-06-01"])
-    spinorbit.moon_librations(t), spinorbit.earth_pole(t), spinorbit.earth_moon(t)
+    spinorbit.moon_librations(t), spinorbit.earth_pole(t), spinorbit.earth_moon(t), spinorbit.orientation("mars", t)
 
 A scene, built in (``spinorbit list``) or a scenario file::
 
@@ -43,7 +43,7 @@ def run_scenario(scenario, overrides=()):
     return _run(scenario, overrides)
 
 
-_API = ("moon_librations", "earth_pole", "earth_moon")
+_API = ("moon_librations", "earth_pole", "earth_moon", "orientation")
 
 
 def __getattr__(name):

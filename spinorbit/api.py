@@ -35,7 +35,7 @@ ISO_YEARS = ("1000-01-01", "9999-12-31")   # the dates a scene's span can name (
 API_TIME_LIMIT_S = 600.0                  # the longest N-body stage (ephemeris='rebound') an API call starts
 DE421_LUNAR = (-36550.5, 73047.5)         # where the scenes start: inside DE421's lunar series (1899-12-04 ..)
 VALIDATED_EARTH = (-18262.5, 18262.5)     # 1950-2050, the validated non-rigid scene
-MOON_START = 0.0                          # J2000: where the Moon's and the Earth-Moon system's solutions start
+MOON_START = 0.0                          # J2000: where the Moon's, Mars's and the Earth-Moon system's solutions start
 BEYOND_DE421 = ("not compared: DE421's lunar series (1899-12-04 to 2200-02-01) has no data at {dates}; the run is "
                 "integrated out from DE421's state at its nearest date on {source}'s orbits")
 # What the answers' meta says beyond the tolerances (those are the validated scenes' own verdicts: expected()):
@@ -60,6 +60,11 @@ ACCURACY = {
                                  "differ by: the largest over 1950-2050 (measured 58.1 / 53.0 mas in X / Y)",
                     "basis": "the rigid Earth against IAU 2006/2000A: what it differs by is the real Earth's "
                              "non-rigid response"},
+    "mars": {"statistic": "a bound at every date of 1980-2030: the largest angle of the pole from IAU 2015's",
+             "basis": "the Mars scene against IAU 2015 (Archinal et al. 2018) over 1980-2030 (measured 0.17\"; "
+                      "0.31\" at 1950): IAU 2015's precession is a fitted circle, 12 mas/yr faster than the "
+                      "model's, whose rate is 14.5 mas/yr slower than Konopliv et al. 2016's (benchmarks/RESULTS.md)",
+             "beyond_de421": "no reference judges these dates"},
     "earth_moon": {"statistic": "a bound at every date: the largest difference from DE421 over 1950-2050",
                    "basis": "the coupled scene's tolerances against DE421 over 1950-2050 (measured 0.084\", 9.7 m, "
                             "0.0023\", 0.073\")",
@@ -77,6 +82,7 @@ TOLERANCES = {
                                 "longitude_arcsec": "longitude_error_max_arcsec"}),
     "earth": ("earth_precession_nutation_nonrigid", {"cip_rms_mas": "x_rms_mas"}),
     "earth_rigid": ("earth_precession_nutation", {"cip_rms_mas": "x_rms_mas"}),
+    "mars": ("mars_orientation", {"pole_arcsec": "pole_minus_iau2015_max_arcsec"}),
     "earth_moon": ("earth_moon_coupled", {"moon_direction_arcsec": "moon_direction_error_max_arcsec",
                                           "moon_range_km": "moon_range_error_max_km",
                                           "pole_arcsec": "pole_error_max_arcsec",
@@ -102,6 +108,31 @@ EARTH_COLUMNS = ("cip_x", "cip_y", "cip_x_minus_erfa", "cip_y_minus_erfa", "prec
 EARTH_MOON_COLUMNS = ("moon_geocentric_x", "moon_geocentric_y", "moon_geocentric_z", "phi", "theta", "psi",
                       "moon_direction_error", "moon_range_error", "pole_error", "longitude_error",
                       "earth_axis_x", "earth_axis_y", "earth_axis_z")
+
+
+MARS_COLUMNS = ("pole_ra", "pole_dec", "prime_meridian", "pole_minus_iau2015")
+BODIES = ("mars", "moon", "earth")
+
+
+def orientation(body, times, *, ephemeris=None):
+    """A body's orientation at ``times`` from its stored solution: ``"mars"`` -- its pole (right ascension and
+    declination, ICRF) and prime meridian W (IAU conventions), with the pole's angle from IAU 2015's -- from the
+    rigid Mars scene started at J2000 on IAU 2015's pole (``mars_orientation``); ``"moon"`` and ``"earth"``:
+    :func:`moon_librations` and :func:`earth_pole` (their defaults)."""
+    _check_choice("body", body, BODIES)
+    if body == "moon":
+        return moon_librations(times, ephemeris=ephemeris)
+    if body == "earth":
+        return earth_pole(times, ephemeris=ephemeris)
+    from .solutions import attitude, tables
+
+    t, when = tdb_days(times, "times")
+    first, last = min(t.min(), MOON_START) - 2.0, max(t.max(), MOON_START) + 2.0
+    source, why = _ephemeris(ephemeris, t, (first, last))
+    values = {"orbit.source": source}
+    layer = attitude(_scenario("mars_orientation", values), _solution("mars_orientation", values, t, 1.0))
+    return _answer(tables.attitude(layer, body, t), t, when, MARS_COLUMNS, _summary(layer, "mars_orientation"),
+                   expected("mars"), {"source": source, "why": why})
 
 
 def moon_librations(times, *, level=3, ephemeris=None, optical=False, frame="PA", observer=None):

@@ -129,7 +129,7 @@ def against_iau(t, poles):
     IAU 2015's own rate fitted alike over the run."""
     iau = mars_iau2015.pole(t)
     inside = (t >= IAU_WINDOW_D[0]) & (t <= IAU_WINDOW_D[1])
-    separation = np.arccos(np.clip(np.sum(poles * iau, axis=1), -1.0, 1.0))
+    separation = _angle(poles, iau)
     comparison, not_measured = {}, {}
     if inside.any():
         comparison["pole_minus_iau2015_max_arcsec"] = float(separation[inside].max() / ARCSEC)
@@ -139,6 +139,11 @@ def against_iau(t, poles):
     if rate_refusal(float(np.ptp(t))) is None:
         comparison["iau2015_rate_mas_per_yr"] = rate_mas_yr(fitted(t, iau)[0])
     return comparison, not_measured, separation
+
+
+def _angle(a, b):
+    """Angles (rad) between unit vectors (n, 3), accurate when small."""
+    return np.arctan2(np.linalg.norm(np.cross(a, b), axis=1), np.sum(a * b, axis=1))
 
 
 def prime_meridian(t, poles, spin_rate, t0):
@@ -224,6 +229,18 @@ def table(t, poles, w, columns, separation):
               "mars_nutation_obliquity": columns["nutation_obliquity"][0] / MAS,
               "pole_minus_iau2015": separation / ARCSEC}
     return quantity_table(t, values, COLUMNS)
+
+
+def answer_table(t, poles, w):
+    """The API's table (spinorbit.orientation): the pole, W in [0, 360) deg and the angle from IAU 2015's pole."""
+    from ..columns import quantity_table
+
+    separation = _angle(poles, mars_iau2015.pole(t))
+    ra, dec = np.arctan2(poles[:, 1], poles[:, 0]) % (2 * math.pi), np.arcsin(np.clip(poles[:, 2], -1.0, 1.0))
+    values = {"pole_ra": np.degrees(ra), "pole_dec": np.degrees(dec), "prime_meridian": np.degrees(w) % 360.0,
+              "pole_minus_iau2015": separation / ARCSEC}
+    columns = {**COLUMNS, "prime_meridian": ("deg", COLUMNS["prime_meridian"][1].replace("continuous", "0-360"))}
+    return quantity_table(t, values, {name: columns[name] for name in values})
 
 
 def figures(t, poles, columns, separation):

@@ -14,7 +14,7 @@ from . import models, store
 from .fit import Grid, integrate
 from .solution import Solution, joined
 
-__all__ = ["Solution", "solve", "for_scenario", "for_export", "for_run", "keep"]
+__all__ = ["Solution", "solve", "for_scenario", "for_export", "for_run", "keep", "attitude"]
 
 MICROARCSEC = 1e-6                  # arcsec
 # What a fit may differ from the integrator by when the integration's own estimate is smaller (or, for
@@ -69,11 +69,22 @@ def for_export(scenario):
 
     kind, start = models.KINDS[scenario.kind], models.own_start(scenario)
     if start is None or abs(start - float(parse_tdb_days("anchor", kind.anchor))) < 1e-9:
-        return for_scenario(scenario).window(*scenario.bounds)
+        return attitude(scenario, for_scenario(scenario)).window(*scenario.bounds)
     solution, why = for_run(scenario, models.system(scenario, None))
     if solution is None:
         raise InputError("scene", scenario.kind, f"a model whose run can be fitted: {why}")
-    return solution
+    return attitude(scenario, solution)
+
+
+def attitude(scenario, solution):
+    """``solution`` itself, or where the kind's body (``Kind.attitude``) is gyroscopic its attitude layer: the
+    figure axis and the prime meridian that SPICE kernels and the API carry (attitude_layer)."""
+    body = models.KINDS[scenario.kind].attitude
+    if body is None or f"{body}.spin" not in solution.layout:     # none, or its attitude integrated (a full model)
+        return solution
+    from .attitude_layer import layer
+
+    return layer(solution, scenario, body)
 
 
 def _extended(scenario, solution, lo, hi):
@@ -250,10 +261,19 @@ def fit_beyond_run(fit_error, run, rounding_km=0.0):
 
 def not_fitted(scenario, system):
     """Why a run of ``system`` (its scene's main System) is not fitted, or "": a scene kind not kept as a
-    solution."""
+    solution, or an attitude turning in the shortest segment tried through more radians than half its series'
+    degree (a day resolved on 8-d segments; the run is then integrated to its outputs)."""
     if scenario.kind not in models.KINDS:
         return (f"scene kind {scenario.kind} is not kept as a solution (the kinds that are: "
                 f"{', '.join(sorted(models.KINDS))})")
+    grid = models.KINDS[scenario.kind].grid
+    finest = grid.length_d / 2 ** REFINEMENTS
+    for part in system.layout.slices:
+        if part.name.endswith(".omega") and system.y0 is not None:
+            turn = float(np.linalg.norm(system.y0[part.index])) * finest
+            if turn > grid.degree / 2:
+                return (f"{part.name.split('.')[0]} turns {turn:.3g} rad in a {finest:g}-d segment (the grid's "
+                        f"halved {REFINEMENTS} times), more than a series of degree {grid.degree} follows to 1 uas")
     return ""
 
 

@@ -25,12 +25,14 @@ class Kind:
     grid: Grid
     anchor: str | None
     kernels: bool = True
+    attitude: str | None = None       # a gyroscopic body whose attitude layer it answers with (attitude_layer)
 
 
 KINDS = {"moon_libration": Kind("moon_libration", Grid(0.0, 4.0, 13), J2000_ISO),
          "earth_precession_nutation": Kind("earth_precession_nutation", Grid(0.0, 8.0, 14), None, kernels=False),
          "earth_moon_coupled": Kind("earth_moon_coupled", Grid(0.0, 4.0, 13), J2000_ISO),
-         "solar_system": Kind("solar_system", Grid(0.0, 4.0, 13), DE421_EPOCH_ISO)}
+         "solar_system": Kind("solar_system", Grid(0.0, 4.0, 13), DE421_EPOCH_ISO),
+         "mars_orientation": Kind("mars_orientation", Grid(0.0, 8.0, 14), J2000_ISO, attitude="mars")}
 
 
 def iso(t):
@@ -64,6 +66,9 @@ def own_start(scenario):
         return start_epoch(scenario)
     if scenario.kind == "solar_system" and scenario["start.epoch"] == "span":
         return float(scenario.t_start)
+    if scenario.kind == "mars_orientation":
+        from ..starts.mars import start_epoch
+        return start_epoch(scenario)
     return None
 
 

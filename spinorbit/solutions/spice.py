@@ -50,7 +50,11 @@ from .tracks import body_code, tracks
 FRAME_BASE = 1_400_000
 FRAME_BLOCKS = 150_000                  # (2 000 000 - 1 400 000) / FRAMES_PER_SOLUTION
 FRAMES_PER_SOLUTION = 4
-AXES = ("PA", "ME")                     # the principal axes (the PCK's angles turn to them); the Moon's mean Earth
+# The axes a PCK's angles turn to: the principal axes (a body whose solution holds its attitude; the Moon's
+# mean Earth beside them), or the figure axis and the prime meridian (IAU convention: a gyroscopic body's
+# solutions.attitude_layer).
+AXES = ("PA", "ME", "PM")
+AXES_SAID = {"PA": "the principal axes", "PM": "the figure axis (z) and prime meridian (x)"}
 COMMENT_LINE = 80                       # a comment line's longest (spiceypy.dafec reads lines of up to ~80)
 SPICE_FILE_NAME = 255                   # SPICE's longest file name: a longer one is cut (FILEN, SPICE Toolkit)
 
@@ -85,7 +89,9 @@ def export(solution, directory, asked=None):
     except ImportError:
         raise InputError("export", "spiceypy not installed", 'pip install "spinorbit[spice]"') from None
     name = solution.provenance.get("scene", "solution")
-    attitudes = [s.name.split(".")[0] for s in solution.layout.slices if s.kind == "quaternion"]
+    attitudes = {s.name.split(".")[0]: "PA" for s in solution.layout.slices if s.kind == "quaternion"}
+    attitudes.update({s.name.split(".")[0]: "PM" for s in solution.layout.slices
+                      if s.name.endswith(".prime_meridian")})
     positions = any(s.name.endswith(".r") for s in solution.layout.slices)
     if not attitudes and not positions:
         raise InputError("scene", f"{name} (its solution holds {', '.join(solution.layout.names)})",
@@ -94,16 +100,16 @@ def export(solution, directory, asked=None):
     directory.mkdir(parents=True, exist_ok=True)
     solution_id = identity(solution)
     files, frames, error = [], {}, {}
-    for body in attitudes:
-        frames[body] = frame_name(body, solution_id)
+    for body, axes in attitudes.items():
+        frames[body] = frame_name(body, solution_id, axes)
         if body == "moon":
             frames["moon_mean_earth"] = frame_name(body, solution_id, "ME")
         coefficients, error[f"{body}_angles_arcsec"] = angle_series(solution, body)
         lines = comments(solution, f"the orientation of {body} (frame {frames[body]})", asked)
-        files.append(_written(directory / f"{name}_{body}.bpc", lambda path, b=body, c=coefficients, k=lines:
-                              _pck(spiceypy, solution, b, c, k, solution_id, path)))
+        files.append(_written(directory / f"{name}_{body}.bpc", lambda path, b=body, c=coefficients, k=lines, a=axes:
+                              _pck(spiceypy, solution, b, c, k, frame_id(solution_id, a), path)))
         files.append(_written(directory / f"{name}_{body}.tf",
-                              lambda path, b=body: path.write_text(frame_kernel(b, solution_id))))
+                              lambda path, b=body, a=axes: path.write_text(frame_kernel(b, solution_id, a))))
     if positions:
         def spk(path):
             error.update(_spk(spiceypy, solution, asked, path))
@@ -115,32 +121,47 @@ def export(solution, directory, asked=None):
 def angle_series(solution, body):
     """(Chebyshev coefficients (segments, 3, degree + 1) of the 3-1-3 angles of ``body`` on the solution's grid,
     the largest rotation (arcsec) between the angles' series and the solution's attitude between the points)."""
-    from ..analysis.librations import icrf_to_body
-    from ..rotations import euler313_from_matrix, matrix_from_euler313
+    from ..rotations import matrix_from_euler313
 
     segments = solution.segments
     count, degree = len(segments.coefficients), segments.degree
     nodes, checks = segments.nodes(segments.first, count)
-    angles = euler313_from_matrix(icrf_to_body(solution.part(f"{body}.q", nodes.ravel())))
-    angles = np.unwrap(angles.reshape(count, degree + 1, 3), axis=1)         # continuous within a segment
+    angles = body_angles(solution, body, nodes.ravel()).reshape(count, degree + 1, 3)
+    turning = 3 if f"{body}.q" in solution.layout else 2     # a prime meridian's series is continuous already
+    angles[..., :turning] = np.unwrap(angles[..., :turning], axis=1)         # continuous within a segment
     coefficients = interpolating_at(angles.transpose(0, 2, 1), segments.normalised(nodes, segments.first))
     turns = np.round(coefficients[:, :, 0] / (2 * np.pi))
     coefficients[:, :, 0] -= 2 * np.pi * turns                               # the same rotation, small values
     series = Segments(segments.origin_d, segments.length_d, segments.first, coefficients)
     fitted = series.at_normalised(segments.normalised(checks, segments.first)).reshape(-1, 3)
     mats = matrix_from_euler313(*np.moveaxis(fitted, -1, 0))
-    truth = icrf_to_body(solution.part(f"{body}.q", checks.ravel()))
+    truth = matrix_from_euler313(*body_angles(solution, body, checks.ravel()).T)
     difference = np.linalg.norm(mats - truth, axis=(1, 2)) / np.sqrt(2.0)     # the angle, for small angles
     return coefficients, float(difference.max() / ARCSEC)
 
 
-def frame_kernel(body, solution_id):
+def body_angles(solution, body, t):
+    """The 3-1-3 angles (n, 3) of ``body``'s ICRF-to-body rotation at TDB days ``t``: from its attitude
+    quaternion, or from its pole and prime meridian (phi = alpha + 90 deg, theta = 90 deg - delta, psi = W)."""
+    from ..analysis.librations import icrf_to_body
+    from ..rotations import euler313_from_matrix
+
+    if f"{body}.q" in solution.layout:
+        return euler313_from_matrix(icrf_to_body(solution.part(f"{body}.q", t)))
+    values = solution.components(t)
+    pole = values[:, solution.layout[f"{body}.pole"]]
+    pole = pole / np.linalg.norm(pole, axis=1)[:, None]
+    return np.column_stack([np.arctan2(pole[:, 1], pole[:, 0]) + np.pi / 2, np.arccos(pole[:, 2]),
+                            values[:, solution.layout[f"{body}.prime_meridian"]][:, 0]])
+
+
+def frame_kernel(body, solution_id, axes="PA"):
     """The text frame kernel naming ``body``'s PCK frame (as JPL's moon_080317.tf names MOON_PA_DE421)."""
-    code, name = frame_id(solution_id), frame_name(body, solution_id)
-    about = (f"{name}: the principal axes of {body} integrated by spinorbit (solution {solution_id}); a binary "
+    code, name = frame_id(solution_id, axes), frame_name(body, solution_id, axes)
+    about = (f"{name}: {AXES_SAID[axes]} of {body} integrated by spinorbit (solution {solution_id}); a binary "
              f"PCK of type 2 gives its 3-1-3 angles relative to J2000.  Each exported solution names its "
              f"frames <BODY>_<AXES>_SPINORBIT_<solution id>, IDs {FRAME_BASE} + {FRAMES_PER_SOLUTION} x "
-             f"(id mod {FRAME_BLOCKS}) + the axes' place (PA 0, the Moon's ME 1).")
+             f"(id mod {FRAME_BLOCKS}) + the axes' place (PA 0, the Moon's ME 1, PM 2).")
     text = (f"KPL/FK\n\n{_wrapped(about)}\n\n\\begindata\n\n"
             f"    FRAME_{name} = {code}\n    FRAME_{code}_NAME = '{name}'\n    FRAME_{code}_CLASS = 2\n"
             f"    FRAME_{code}_CLASS_ID = {code}\n    FRAME_{code}_CENTER = {body_code(body)}\n\n\\begintext\n")
@@ -208,12 +229,12 @@ def _flat(values, prefix=""):
     return out
 
 
-def _pck(spiceypy, solution, body, coefficients, lines, solution_id, path):
+def _pck(spiceypy, solution, body, coefficients, lines, code, path):
     first, last, length = _seconds(solution)
     handle = spiceypy.pckopn(str(path), f"spinorbit {body}", sum(len(line) + 1 for line in lines))
     try:
         spiceypy.dafac(handle, lines)
-        spiceypy.pckw02(handle, frame_id(solution_id), "J2000", first, last, f"spinorbit {body} orientation"[:40],
+        spiceypy.pckw02(handle, code, "J2000", first, last, f"spinorbit {body} orientation"[:40],
                         length, len(coefficients), solution.segments.degree,
                         np.ascontiguousarray(coefficients).ravel(), first)
     finally:

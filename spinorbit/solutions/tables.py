@@ -55,6 +55,20 @@ def earth_moon(solution, t):
     return vs.table(t, r, mats, errors, axis)
 
 
+def attitude(layer, body, t):
+    """A gyroscopic body's table at TDB days ``t`` from its attitude layer (attitude_layer): its pole and prime
+    meridian, and what its scene compares them with (comparisons.<its scene>.answer_table)."""
+    from importlib import import_module
+
+    from .spice import body_angles
+
+    angles = body_angles(layer, body, t)
+    ra, dec = angles[:, 0] - np.pi / 2, np.pi / 2 - angles[:, 1]
+    poles = np.column_stack([np.cos(dec) * np.cos(ra), np.cos(dec) * np.sin(ra), np.sin(dec)])
+    comparison = import_module(f"spinorbit.comparisons.{layer.provenance['scene']}")
+    return comparison.answer_table(t, poles, angles[:, 2])
+
+
 def earth_from_moon(source, t):
     """The Earth seen from the Moon (n, 3) km, ICRF, at TDB days ``t`` from orbit source ``source``: read from
     the ephemeris at the dates where it is a JPL kernel, else sampled (orbits.sources)."""

@@ -102,13 +102,15 @@ def iau_start(t0):
 
 def build(p, switches=None):
     """Mars started at mars.start on the IAU 2015 pole and spin, on its forced motion (``switches``: as
-    :func:`system`'s)."""
+    :func:`system`'s); its prime meridian there in ``meta["prime_meridian_rad"]``."""
     from ..models.start import on_pole
+    from ..references import mars_iau2015
 
     t0 = start_epoch(p)
     built = system(p, t0, switches)
     pole, x_axis, spin_rate = iau_start(t0)
     built.y0 = built.layout.pack(on_pole(built, "mars", t0, pole, spin_rate, x_axis))
+    built.meta["prime_meridian_rad"] = mars_iau2015.angles([t0])[2][0]     # what a gyroscopic state lacks
     return built
 
 
