@@ -27,7 +27,7 @@ FORCE_HELP = ("write into an --out holding entries spinorbit did not write: they
               "the names the run writes, which it overwrites")
 MAX_LISTED_BYTES = 1 << 20          # `list` reads at most this much of a file (a scenario is a few kB)
 # spinorbit at BODY: the API function that answers for it
-ANSWERS = {"moon": "moon_librations", "earth": "earth_pole"}
+ANSWERS = ("earth", "mars", "moon")    # the bodies spinorbit.orientation answers for (api.BODIES)
 _COMMAND = False                     # this process is the spinorbit command (console), not a caller of main
 
 
@@ -83,10 +83,10 @@ def main(argv=None):
                         help="set a key, e.g. --set span.end=2100-01-01 (repeatable; spinorbit show SCENE lists "
                              "the keys)")
     export.add_argument("--out", required=True, help="directory the kernels are written into")
-    at = sub.add_parser("at", help="the Moon's librations or the Earth's pole at dates, from the stored solutions "
-                                   "(as spinorbit.moon_librations / earth_pole answer)")
-    at.add_argument("body", choices=sorted(ANSWERS), help="moon: the lunar angles and librations; earth: the CIP, "
-                                                          "precession and nutation")
+    at = sub.add_parser("at", help="a body's orientation at dates, from the stored solutions (as "
+                                   "spinorbit.orientation answers: moon_librations, earth_pole)")
+    at.add_argument("body", choices=ANSWERS, help="moon: the lunar angles and librations; earth: the CIP, "
+                                                  "precession and nutation; mars: the pole and prime meridian")
     at.add_argument("dates", nargs="+", metavar="DATE", help="ISO dates or times, e.g. 2027-03-01 "
                                                              "2027-03-01T12:00:00")
     at.add_argument("--scale", default="utc", choices=["utc", "tt", "tdb"], help="the dates' time scale "
@@ -391,7 +391,7 @@ def _at(args):
         times = Time(args.dates, scale=args.scale)
     except ValueError:
         raise InputError("DATE", args.dates, "ISO dates or times, e.g. 2027-03-01 or 2027-03-01T12:00:00") from None
-    table = getattr(api, ANSWERS[args.body])(times)
+    table = api.orientation(args.body, times)
     table["time"] = table["time"].isot
     table.rename_column("time", f"time_{args.scale}")
     if args.format == "csv":

@@ -15,17 +15,17 @@ from spinorbit.runner import run_scenario
 from spinorbit.scenarios import load_scenario
 from spinorbit.solutions import store
 from spinorbit.solutions.spice import FRAME_BASE, body_angles
-from tests.units import arcsec, mas
+from tests.units import arcsec, deg, mas
 
 spiceypy = pytest.importorskip("spiceypy")
 uas = arcsec * 1e-6
 SPAN = ["span.start=1999-01-01", "span.end=2001-01-01"]
-DECADES = ["span.start=1980-01-01", "span.end=2020-01-01"]
+DECADES = ["span.start=1990-01-01", "span.end=2010-01-01"]
 
 
 @pytest.fixture(scope="module")
 def mars(tmp_path_factory):
-    """The stored Mars solution over 1980-2020 (a private store), its attitude layer and its kernels."""
+    """The stored Mars solution over 1990-2010 (a private store), its attitude layer and its kernels."""
     place = tmp_path_factory.mktemp("mars")
     saved = dict(store.PLACE)
     store.PLACE["directory"] = place / "store"
@@ -66,8 +66,8 @@ def test_the_layer_is_the_scenes_run(mars):
 
 def test_the_pck_read_back_by_spiceypy_matches_the_layer(mars):
     """A frame of its own (MARS_PM_SPINORBIT_<id>, an ID in NAIF's users' range, above JPL's) within 1 uas over
-    1980-2020 (W turns by 4e4 rad in 20 years: turned_part keeps it to the last bit), at dates whose TDB seconds
-    are exact doubles (a day count rounded to its last bit turns Mars by up to 1.4 uas in 2020)."""
+    1990-2010 (W turns by 2e4 rad in 10 years: turned_part keeps it to the last bit), at dates whose TDB seconds
+    are exact doubles (a day count rounded to its last bit turns Mars by up to 0.7 uas in 2010)."""
     _, layer, written = mars
     frame = written["frames"]["mars"]
     assert frame.startswith("MARS_PM_SPINORBIT_") and written["fit_error"]["mars_angles_arcsec"] < 1e-6
@@ -131,3 +131,15 @@ def test_turned_part_is_exact_to_the_last_bit():
         exact = Decimal(rate) * Decimal(d)
         exact -= two_pi * (exact / two_pi).to_integral_value()
         assert abs(float(Decimal(got) - exact)) < 1e-15
+
+
+def test_spinorbit_at_mars_prints_the_answer(mars, capsys):
+    """`spinorbit at mars DATE`: the API's row as CSV, units in the header."""
+    from spinorbit.cli import main
+
+    assert main(["--quiet", "at", "mars", "2000-06-01T00:00", "--scale", "tdb"]) == 0
+    header, row = (line.split(",") for line in capsys.readouterr().out.splitlines()[:2])
+    answer = spinorbit.orientation("mars", Time(["2000-06-01T00:00"], scale="tdb"))
+    for name, unit in (("pole_ra", "deg"), ("pole_dec", "deg"), ("prime_meridian", "deg")):
+        assert float(row[header.index(f"{name} [{unit}]")]) * deg == pytest.approx(answer[name].value[0] * deg,
+                                                                                   abs=1 * uas)
