@@ -308,9 +308,8 @@ def _cache(action):
     print("\n".join(caches.listing()))
     for line in _solution_lines(store.entries()):
         print(line)
-    print(f"stored solutions are kept within {store.LIMIT['bytes'] / 1e9:g} GB: beyond it the least recently "
-          "written go first")
-    print(f"({cache.ENVIRONMENT} moves them; `spinorbit cache clear` empties them)")
+    print(f"({cache.ENVIRONMENT} moves them; `spinorbit cache clear` empties them; the stored solutions are kept "
+          f"within {store.LIMIT['bytes'] / 1e9:g} GB, the least recently written removed first)")
     return 0
 
 

@@ -28,8 +28,8 @@ Every cache of numbers spinorbit keeps on disk goes through these few calls, so 
   folder, a link to a device) is made again, said in one line (``repair=False``, for a file the user named:
   refused, NotRegular).  ``locked_elsewhere(path)``: whether another process
   holds it now.
-- ``clear(folder, pattern)``: deletes the files matching ``pattern`` with their locks and leftovers of killed
-  writes, except those another live process holds the lock of (kept, and said); ``remove_leftovers(path)``
+- ``clear(folder, pattern)``: deletes the files matching ``pattern`` and the leftovers of their killed writes,
+  except those another live process holds the lock of (kept, and said; lock files stay); ``remove_leftovers(path)``
   deletes the temporary files of writes whose process is gone.
 - ``prune(folder, pattern, max_bytes, keep)``: deletes the least recently written files (their locks free, not
   ``keep``) until those matching ``pattern`` take at most ``max_bytes``.
@@ -261,8 +261,10 @@ def remove_leftovers(path):
 
 
 def clear(directory, pattern="*.npz"):
-    """Delete the files matching ``pattern`` in ``directory`` with their locks and leftovers, except those whose
-    lock another process holds (kept, and said on stdout); return the number of files removed."""
+    """Delete the files matching ``pattern`` in ``directory`` and the leftovers of their killed writes, except
+    those whose lock another process holds (kept with their temporary files, and said on stdout); return the
+    number of files removed.  The lock files stay: removing one that another process has opened and waits on
+    would let a third take a new one and two write at once."""
     removed = 0
     for path in sorted(Path(directory).glob(pattern)):
         if path.is_symlink() or not path.is_file():
@@ -274,9 +276,6 @@ def clear(directory, pattern="*.npz"):
                 removed += 1
         except Busy:
             print(f"kept {path}: another process is writing it")
-            continue
-        lock_path(path).unlink(missing_ok=True)
-        removed += 1
     return removed
 
 
@@ -308,7 +307,6 @@ def prune(directory, pattern, max_bytes, keep=()):
                 path.unlink(missing_ok=True)
         except Busy:
             continue
-        lock_path(path).unlink(missing_ok=True)
         total -= size
         removed.append(path)
     return removed

@@ -15,7 +15,8 @@ answer computed without the store; a write that fails (a full disk) is warned of
 A lock beside each file makes one process at a time extend it, the others waiting and then reading what it wrote;
 a finished run offers its solution without waiting (``offer``: at most OFFER_WAIT_S).  The store keeps within
 ``LIMIT["bytes"]`` (default 2 GB): after each write the least recently written files go first (`spinorbit
-cache` states the bound).
+cache` states the bound).  Lock files stay (`spinorbit cache clear` too): one removed while another process waits on
+it would let a third write at once.
 
 A query outside the stored span extends the solution from its nearer end (forward from its end, backward
 from its start), the same System started at the state where the last run stopped.
@@ -282,19 +283,13 @@ def entries():
 
 
 def clear():
-    """Delete every stored solution no process holds (with its lock and the leftovers of killed writes) and the
-    code-version records; a solution another live process holds the lock of is kept, with its lock and
-    temporary files, and said.  Returns the number of files removed."""
+    """Delete every stored solution no process holds (and the leftovers of killed writes) and the code-version
+    records; a solution another live process holds the lock of is kept, with its lock and temporary files, and
+    said (spinorbit.verified.clear).  Returns the number of files removed."""
     folder = directory()
     removed = verified.clear(folder, "*.npz")
     for path in folder.glob("*.json"):
         if path.is_file() and not path.is_symlink():
             path.unlink()
             removed += 1
-    for lock in folder.glob("*.npz.lock"):              # a lock whose solution is gone, no process holding it
-        stored = lock.with_name(lock.name.removesuffix(".lock"))
-        if not os.path.lexists(stored) and not verified.locked_elsewhere(stored):
-            lock.unlink(missing_ok=True)
-            removed += 1
-            removed += verified.remove_leftovers(stored)
     return removed
