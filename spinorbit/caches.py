@@ -3,7 +3,8 @@
 
 All live in spinorbit's private cache directory (spinorbit.linker.cache: ``$SPINORBIT_CACHE_DIR``, else
 ``~/.cache/spinorbit``): the compiled kernels, heyoka's compiled integrators, the deep-time orbital solutions
-(spinorbit.orbits.solution) and the stored continuous solutions (spinorbit.solutions.store).  To add a cache:
+(spinorbit.orbits.solution), the stored continuous solutions (spinorbit.solutions.store) and the tidal
+history's ocean tables.  To add a cache:
 an entry in :data:`CACHES` (a name, its folder, and how to clear it).
 """
 import os
@@ -85,10 +86,19 @@ def _clear_stored(folder):
     return store.clear()
 
 
+def _tables():
+    """The tidal history's tables (the ocean basins' responses: starts.earth_moon_history.keep_table)."""
+    from .linker import cache
+
+    folder = cache.kernels_dir().parent / "tables"
+    return folder if folder.is_dir() and not folder.is_symlink() else None
+
+
 CACHES = (Cache("compiled kernels", _kernels, _clear_kernels),
           Cache("heyoka's compiled integrators", _heyoka, _clear_files),
           Cache("orbital solutions", _solutions, _clear_solutions),
-          Cache("stored solutions", _stored, _clear_stored))
+          Cache("stored solutions", _stored, _clear_stored),
+          Cache("tidal-history tables", _tables, _clear_solutions))
 
 
 def listing():

@@ -2,7 +2,7 @@
 
     python -m spinorbit.fit_tides            # prints the fit of the ocean with its continent (the default)
     python -m spinorbit.fit_tides --write    # and stores it in spinorbit/models/tidal_history/ocean_fit.json
-    python -m spinorbit.fit_tides --model global_ocean --write      # the global ocean: global_ocean_fit.json
+    python -m spinorbit.fit_tides --model global_ocean --write      # another ocean (tides.TIDES): its own file
     python -m spinorbit.fit_tides --set 'tides.continent_colatitude="0 deg"' --bracket 3 9   # other keys: printed
 
 At each depth the drag is the one whose recession today is LLR's 3.830 cm/yr (Williams & Boggs 2016;
@@ -20,14 +20,17 @@ import math
 import os
 from pathlib import Path
 
+from .models.tidal_history.tides import FITS, TIDES
+
 SCENE = Path(__file__).with_name("builtin_scenarios") / "earth_moon_history.toml"
 MOON_AGE_GYR = 4.425
 RECESSION_CM_PER_YR = 3.830
 AGE_TOLERANCE_GYR = 0.001
-BRACKETS_KM = {"ocean": (8.6, 8.76), "global_ocean": (4.0, 6.0)}
-DEPTH_KEYS = {"ocean": "tides.ocean_depth", "global_ocean": "tides.global_ocean_depth"}
-COMMANDS = {"ocean": "python -m spinorbit.fit_tides --write",
-            "global_ocean": "python -m spinorbit.fit_tides --model global_ocean --write"}
+OCEANS = {name: tide for name, tide in TIDES.items() if tide.depth is not None}
+
+
+def command(model):
+    return "python -m spinorbit.fit_tides" + ("" if model == "ocean" else f" --model {model}") + " --write"
 
 
 def moon_age_gyr(depth_km, model="ocean", overrides=()):
@@ -36,7 +39,7 @@ def moon_age_gyr(depth_km, model="ocean", overrides=()):
     scene's other keys ("key=value")."""
     from .runner import run_scenario
 
-    summary = run_scenario(SCENE, [*overrides, f'tides.model="{model}"', f'{DEPTH_KEYS[model]}="{depth_km!r} km"',
+    summary = run_scenario(SCENE, [*overrides, f'tides.model="{model}"', f'{OCEANS[model].depth.key}="{depth_km!r} km"',
                                    "compare.models=false", "integrator.estimate_error=false",
                                    'span.end="-4.6 Gyr"', f'tides.recession_rate="{RECESSION_CM_PER_YR} cm/yr"'
                                    ]).summary
@@ -47,7 +50,7 @@ def moon_age_gyr(depth_km, model="ocean", overrides=()):
 def fit(model="ocean", bracket=None, log=print, overrides=()):
     """{depth_km, drag_per_day, moon_age_gyr, ...}: the depth bisected inside ``bracket`` (km), whose ends'
     ages lie on either side of the Moon's (inf: the Moon never reaches the Roche limit within 4.6 Gyr)."""
-    low, high = bracket or BRACKETS_KM[model]
+    low, high = bracket or OCEANS[model].depth.bracket_km
     age_low, _ = moon_age_gyr(low, model, overrides)
     age_high, _ = moon_age_gyr(high, model, overrides)
     if (age_low - MOON_AGE_GYR) * (age_high - MOON_AGE_GYR) >= 0.0:
@@ -61,7 +64,7 @@ def fit(model="ocean", bracket=None, log=print, overrides=()):
                     "moon_age_gyr": age, "recession_rate_cm_per_yr": RECESSION_CM_PER_YR,
                     "targets": {"recession_rate_cm_per_yr": "3.830 +- 0.008 (LLR, Williams & Boggs 2016)",
                                 "moon_age_gyr": "4.425 +- 0.025 (Maurice et al. 2020)"},
-                    "overrides": list(overrides), "command": COMMANDS[model],
+                    "overrides": list(overrides), "command": command(model),
                     "date": datetime.date.today().isoformat()}
         low, high = (middle, high) if (age < MOON_AGE_GYR) == (age_low < MOON_AGE_GYR) else (low, middle)
 
@@ -83,7 +86,7 @@ def write_fit(path, result):
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--write", action="store_true", help="store the fit in the package")
-    parser.add_argument("--model", choices=tuple(DEPTH_KEYS), default="ocean", help="the ocean to fit")
+    parser.add_argument("--model", choices=tuple(OCEANS), default="ocean", help="the ocean to fit")
     parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                         help="another value of one of the scene's keys (e.g. the continent's); not with --write")
     parser.add_argument("--bracket", nargs=2, type=float, metavar=("LOW_KM", "HIGH_KM"),
@@ -94,10 +97,7 @@ def main(argv=None):
     result = fit(args.model, args.bracket, overrides=tuple(args.set))
     print(json.dumps(result, indent=2))
     if args.write:
-        from .models.tidal_history.calibration import GLOBAL_OCEAN_FIT, OCEAN_FIT
-
-        path = OCEAN_FIT if args.model == "ocean" else GLOBAL_OCEAN_FIT
-        write_fit(path, result)
+        write_fit(FITS / OCEANS[args.model].depth.fit_file, result)
 
 
 if __name__ == "__main__":

@@ -230,7 +230,7 @@ def test_cache_lists_every_cache_and_clear_empties_them_all(cache):
     show = subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache"], capture_output=True, text=True,
                           check=False, env=environment(cache))
     lines = show.stdout.splitlines()
-    assert show.returncode == 0 and len(lines) == 5, show.stdout + show.stderr
+    assert show.returncode == 0 and len(lines) == 7, show.stdout + show.stderr
     files = [p for p in (cache / "kernels").rglob("*") if p.is_file()]
     kernels = sum(p.stat().st_size for p in files)
     assert lines[0].split()[:4] == ["compiled", "kernels", str(len(files)), "files"]
@@ -243,7 +243,8 @@ def test_cache_lists_every_cache_and_clear_empties_them_all(cache):
     assert cleared.stdout.splitlines() == [f"compiled kernels: removed {len(files)} files from {cache}/kernels/",
                                                f"heyoka's compiled integrators: removed 1 files from {cache}/heyoka/",
                                                f"orbital solutions: removed 2 files from {solutions}/",
-                                               f"stored solutions: removed 0 files from {cache}/solutions/"]
+                                               f"stored solutions: removed 0 files from {cache}/solutions/",
+                                               "tidal-history tables: removed 0 files"]
     assert [p.name for p in (cache / "kernels").iterdir()] == ["numba"]
     assert not list((cache / "kernels" / "numba").iterdir()) and not list((cache / "heyoka").iterdir())
     assert [p.name for p in solutions.iterdir()] == ["de421-0123.npz.lock"]

@@ -11,7 +11,8 @@ from spinorbit.bodies import earth
 from spinorbit.bodies.table import gm_km3_d2
 from spinorbit.constants import JULIAN_YEAR_D
 from spinorbit.integrators import simulate
-from spinorbit.models.tidal_history import calibration, equations, response, secular
+from spinorbit.models.tidal_history import equations, response, secular
+from spinorbit.models.tidal_history.tides import TIDES
 
 GM_E, GM_M = gm_km3_d2("earth"), gm_km3_d2("moon")
 R = earth.EQUATORIAL_RADIUS_KM
@@ -103,19 +104,18 @@ def test_the_dissipated_power_is_never_negative():
 
 
 def calibrated(c, y0, name):
-    """The tide ``name`` fitted to 3.830 cm/yr (an ocean at its stored fitted depth; the continent at the
-    scene's defaults: 90 deg, centred on the equator, until 2.5 Gyr, none from 3.5 Gyr; its Andrade solid Earth)."""
-    from spinorbit.models.tidal_history import cap_ocean, ocean, solid
+    """The tide ``name`` fitted to 3.830 cm/yr (an ocean at its stored fitted depth, with the continent it
+    was fitted with: the scene's default, or Farhat et al.'s equatorial hemisphere for the ocean without the
+    Coriolis force; until 2.5 Gyr, none from 3.5 Gyr; its Andrade solid Earth)."""
+    from spinorbit.models.tidal_history.tides import TIDES, Continent, Setting
+    from spinorbit.scenes.earth_moon_history.keys import SCHEMA
+    from spinorbit.starts.earth_moon_history import keep_table
 
-    if name not in ("global_ocean", "ocean"):
-        return calibration.calibrated(c, response.MODELS[name], y0, 3.830)
-    water = ocean.constants(GM_E / R**2, R)
-    fit, andrade = calibration.ocean_fit(calibration.GLOBAL_OCEAN_FIT), None
-    if name == "ocean":
-        water = cap_ocean.constants(water, 90.0, 90.0, 2.5 * GYR_D, 3.5 * GYR_D)
-        fit, andrade = calibration.ocean_fit(calibration.OCEAN_FIT), solid.constants(2 * (SPIN - mean_motion()))
-    drag = calibration.ocean_drag(c, y0, fit["depth_km"], 3.830, 0.3 / 280, water, name, andrade)
-    return response.responses(name, 0.3 / 280, depth=fit["depth_km"], drag=drag, ocean=water, solid=andrade)
+    tide = TIDES[name]
+    depth = None if tide.depth is None else tide.depth.fitted()["depth_km"]
+    continent = Continent(90.0, 90.0, 2.5, 3.5) if name == "ocean_without_coriolis" else \
+        Continent(SCHEMA["tides.continent_radius"].default, SCHEMA["tides.continent_colatitude"].default, 2.5, 3.5)
+    return tide.response(Setting(c, y0, 3.830, depth, continent, keep_table))
 
 
 def test_angular_momentum_is_kept_over_the_moons_age():
@@ -124,7 +124,7 @@ def test_angular_momentum_is_kept_over_the_moons_age():
     c = constants(gm_sun=gm_km3_d2("sun"))
     y0 = equations.state(c, A, 0.0549, SPIN, math.radians(23.4393), math.radians(5.145))
     t = -np.linspace(0.0, 4.5 * GYR_D, 451)[1:]
-    for name in response.MODELS:
+    for name in TIDES:
         system = equations.history(c, calibrated(c, y0, name), y0)
         try:
             solution, _ = simulate(system, t, "dop853", {"rtol": 1e-10, "atol": 1e-12}, False)
@@ -249,21 +249,23 @@ def test_ocean_response_is_converged_in_degree():
             assert coarse == pytest.approx(fine, rel=1e-9)
 
 
-@pytest.mark.parametrize("model", ["ocean", "global_ocean"])
+@pytest.mark.parametrize("model", [name for name, tide in TIDES.items() if tide.depth is not None])
 def test_the_stored_ocean_fits_hold_their_two_constraints(model):
-    """The scene with each ocean at its stored depth (python -m spinorbit.fit_tides [--model global_ocean]):
-    today's recession 3.830 cm/yr and the Moon's age 4.425 +- 0.025 Gyr (Maurice et al. 2020), the angular
-    momentum kept; the proxies are reported, never fitted.  The global ocean's history ends at the Roche
-    limit; the default ocean's where the eccentricity runs away within 6 Earth radii (the O(e^2) tides' end)."""
+    """The scene with each ocean at its stored depth (python -m spinorbit.fit_tides [--model NAME]): today's
+    recession 3.830 cm/yr and the Moon's age 4.425 +- 0.025 Gyr (Maurice et al. 2020), the angular momentum
+    kept; the proxies are reported, never fitted.  A history ends at the Roche limit or where the
+    eccentricity runs away (the O(e^2) tides' end)."""
     from spinorbit import run_scenario
 
+    overrides = ['tides.continent_radius="90 deg"', 'tides.continent_colatitude="90 deg"'] \
+        if model == "ocean_without_coriolis" else []          # fitted with Farhat et al.'s hemisphere
     summary = run_scenario("scenarios/earth_moon_history.toml",
-                           ["compare.models=false", f'tides.model="{model}"']).summary
+                           ["compare.models=false", f'tides.model="{model}"', *overrides]).summary
     c = summary["comparison"]
     assert c["recession_rate_today_cm_per_yr"] == pytest.approx(3.830, abs=1e-9)
     assert c["moon_age_gyr"] == pytest.approx(4.425, abs=0.025)
     assert c["angular_momentum_relative_error_max"] <= 1e-9
-    assert ("Roche" if model == "global_ocean" else "e = ") in summary["stop"]["reason"]
+    assert "Roche" in summary["stop"]["reason"] or "eccentricity" in summary["stop"]["reason"]
     assert all(c[name] is not None for name in ("elatina_lod_residual_h", "xiamaling_distance_residual_km",
                                                  "xiamaling_precession_constant_residual_arcsec_per_yr",
                                                  "joffre_distance_residual_km",
@@ -386,3 +388,31 @@ def test_the_day_at_a_distance_is_read_on_the_first_crossing_back():
     q = {"semi_major_axis": a, "length_of_day": 24.0 - (384_400.0 - a) * 1e-4}
     assert day_at_distance(q, 340_900.0) == pytest.approx(24.0 - 43_500.0 * 1e-4, rel=1e-12)
     assert day_at_distance(q, 200_000.0) is None
+
+
+def test_a_kept_table_is_read_back_and_a_damaged_one_computed_again(tmp_path, capsys):
+    """starts.earth_moon_history.keep_table on spinorbit.verified: computed once, read back equal; a file
+    damaged in place is refused in one line and computed again."""
+    from spinorbit import verified
+    from spinorbit.starts.earth_moon_history import keep_table
+
+    calls = []
+    settings = {"test": str(tmp_path)}                   # a record of its own: this test's file alone
+
+    def compute():
+        calls.append(1)
+        return np.arange(12.0).reshape(3, 4)
+
+    first = keep_table("test_table", settings, compute)
+    again = keep_table("test_table", settings, compute)
+    assert len(calls) == 1 and np.array_equal(first, again)
+    [path] = [p for p in verified.folder("tables").glob("test_table-*.npz")
+              if verified.read(p).record.get("test") == str(tmp_path)]
+    data = bytearray(path.read_bytes())
+    data[len(data) // 2] ^= 0xFF
+    path.write_bytes(bytes(data))
+    capsys.readouterr()
+    assert np.array_equal(keep_table("test_table", settings, compute), first) and len(calls) == 2
+    said = capsys.readouterr().err.strip().splitlines()
+    assert len(said) == 1 and "damaged" in said[0]
+    path.unlink()

@@ -76,6 +76,27 @@ def metrics(history, q):
     return out, not_measured
 
 
+RESONANCE_PROMINENCE = 0.02            # of the log of the recession rate: a peak 2% above its valleys
+
+
+def resonances(q):
+    """The distance history's fast steps (the tide's resonances crossed): [{age_gyr, width_myr,
+    recession_rate_cm_per_yr}] at the peaks of the recession rate |da/dt| over the outputs, before the final
+    collapse (the last 1% of the history, where the rate only grows), whose log stands RESONANCE_PROMINENCE
+    above the valleys beside it; the width is the peak's full width at half that prominence."""
+    from scipy.signal import find_peaks, peak_widths
+
+    age_myr = -q["t_gyr"] * 1e3
+    if age_myr.size < 5:
+        return []
+    rate = np.abs(np.gradient(q["semi_major_axis"], age_myr)) * 0.1                 # km/Myr -> cm/yr
+    log_rate = np.log(rate[age_myr <= 0.99 * age_myr[-1]])
+    peaks, _ = find_peaks(log_rate, prominence=RESONANCE_PROMINENCE)
+    widths = peak_widths(log_rate, peaks, rel_height=0.5)[0] * (age_myr[1] - age_myr[0])
+    return [{"age_gyr": float(age_myr[k] / 1e3), "width_myr": float(w), "recession_rate_cm_per_yr": float(rate[k])}
+            for k, w in zip(peaks, widths)]
+
+
 def day_at_distance(q, distance_km):
     """The history's length of day (h) where the Moon is at ``distance_km`` (the first crossing back in time),
     None if it never is: the day the model's own angular-momentum bookkeeping ties to a distance."""

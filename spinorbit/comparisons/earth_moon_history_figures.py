@@ -35,21 +35,11 @@ def proxies():
     return out
 
 
-def description(history):
-    """The tide's fitted parameter and the run's stop, for the summary."""
-    from ..models.tidal_history import response
-    from ..models.tidal_history.calibration import time_lag_s
-    from ..starts.earth_moon_history import LOVE_K2
+def description(history, model):
+    """The tide's fitted parameters (tides.TIDES[model].describe) for the summary."""
+    from ..models.tidal_history.tides import TIDES
 
-    strength = float(history.response[response.STRENGTH])
-    if history.response[response.MODEL] in (response.GLOBAL_OCEAN, response.OCEAN_WITH_CONTINENT):
-        drag = float(history.response[response.DRAG])
-        return {"ocean_depth_km": float(history.response[response.DEPTH]), "ocean_drag_per_day": drag,
-                "ocean_drag_per_s": drag / 86400.0, "solid_k2_over_q": strength}
-    if history.response[response.MODEL] == response.CONSTANT_TIME_LAG:
-        return {"k2_time_lag_s": strength * 86400.0,
-                "time_lag_s_for_k2_0.30": time_lag_s(history.response, LOVE_K2)}
-    return {"k2_over_q": strength, "q_for_k2_0.30": LOVE_K2 / strength if strength else float(np.inf)}
+    return TIDES[model].describe(history.response)
 
 
 BAND_KEYS = ("distance", "length_of_day", "precession_constant", "obliquity_period", "precession_period")

@@ -15,8 +15,6 @@ GYR_D = 1e9 * JULIAN_YEAR_D
 AU_KM = 1.495978707e8                  # IAU 2012 Resolution B2
 SUN_ECCENTRICITY = 0.0167086           # the Earth-Moon barycentre's, J2000 (Simon et al. 1994)
 OBLIQUITY_DEG = 23.4392911             # IAU 2006, J2000
-LOVE_K2 = 0.30                         # the solid Earth's degree-2 Love number, to quote a time lag
-SOLID_Q = 280.0                        # the solid Earth's Q at M2 (Ray, Eanes & Lemoine 2001, GJI 146, 781)
 STOP_REFINEMENT = 1000                 # outputs that bracket the stop inside one output step
 
 
@@ -54,31 +52,59 @@ def today(c):
 
 
 def tide(p, c, y0, model):
-    """The tidal response of ``model`` calibrated to tides.recession_rate (cm/yr): the one parameter of the
-    simple tides, an ocean's drag at its depth (tides.ocean_depth for the ocean with its continent,
-    tides.global_ocean_depth for the global one; each depth fitted with the Moon's age by ``python -m
-    spinorbit.fit_tides``)."""
+    """The tidal response of ``model`` (tides.TIDES) calibrated to tides.recession_rate (cm/yr): the one
+    parameter of the simple tides, an ocean's drag at its depth (its key; fitted with the Moon's age by
+    ``python -m spinorbit.fit_tides``), the continent from its keys; costly tables kept in the cache."""
     from ..errors import ScenarioError
-    from ..models.tidal_history import calibration, cap_ocean, equations, ocean, response, solid
+    from ..models.tidal_history.tides import TIDES, Continent, Setting
 
-    rate = p["tides.recession_rate"]
-    if model not in ("global_ocean", "ocean"):
-        return calibration.calibrated(c, response.MODELS[model], y0, rate)
-    radius = c[equations.RADIUS]
-    water = ocean.constants(c[equations.GM_EARTH] / radius**2, radius)
-    key = "tides.ocean_depth" if model == "ocean" else "tides.global_ocean_depth"
-    andrade = None
-    if model == "ocean":
-        water = cap_ocean.constants(water, p["tides.continent_radius"], p["tides.continent_colatitude"],
-                                    p["tides.continent_until"] * GYR_D, p["tides.global_ocean_from"] * GYR_D)
-        mean_motion = math.sqrt((c[equations.GM_EARTH] + c[equations.GM_MOON]) / y0[0] ** 3)
-        andrade = solid.constants(2.0 * (y0[2] - mean_motion))                 # today's M2
-    depth = p[key]
-    drag = calibration.ocean_drag(c, y0, depth, rate, LOVE_K2 / SOLID_Q, water, model, andrade)
-    if drag is None:
-        raise ScenarioError(key, depth, f"a depth at which some drag gives the recession "
-                            f"tides.recession_rate = {rate} cm/yr (e.g. 3 to 8 km)")
-    return response.responses(model, LOVE_K2 / SOLID_Q, depth=depth, drag=drag, ocean=water, solid=andrade)
+    chosen = TIDES[model]
+    depth = None if chosen.depth is None else p[chosen.depth.key]
+    continent = Continent(p["tides.continent_radius"], p["tides.continent_colatitude"],
+                          p["tides.continent_until"], p["tides.global_ocean_from"])
+    setting = Setting(c, y0, p["tides.recession_rate"], depth, continent, keep_table)
+    try:
+        return chosen.response(setting)
+    except ValueError:
+        raise ScenarioError(chosen.depth.key, depth, "a depth at which some drag gives the recession "
+                            f"tides.recession_rate = {setting.recession_cm_per_yr} cm/yr (e.g. 3 to 8 km)")
+
+
+def keep_table(name, settings, compute):
+    """``compute()``'s array kept in spinorbit's verified cache (spinorbit.verified: ``<cache>/tables/<name>-<hash>
+    .npz``, its record the settings and the tidal-history modules' source, every array hashed, written aside
+    and renamed), else computed and kept there; a damaged file is computed again, said in one line; a cache
+    that cannot be read or written is done without, said in one line."""
+    import hashlib
+    import json
+    from pathlib import Path
+
+    from .. import verified
+    from ..linker import cache
+    from ..models import tidal_history
+
+    source = hashlib.sha256()
+    for module in sorted(Path(tidal_history.__file__).parent.glob("*.py")):
+        source.update(module.read_bytes())
+    record = {**settings, "source": source.hexdigest()}
+    key = hashlib.sha256(json.dumps(record, sort_keys=True).encode()).hexdigest()[:24]
+    try:
+        path = verified.folder("tables") / f"{name}-{key}.npz"
+        entry = verified.read(path, record)
+        if entry is not None:
+            return entry.arrays["values"]
+    except verified.Damaged as exc:
+        cache.say(f"the table {path} is damaged ({exc}); computing it again")
+        verified.discard(path)
+    except OSError as exc:
+        cache.say(f"the tables' cache could not be read ({exc.strerror}); computing the {name} table unkept")
+        return compute()
+    values = np.ascontiguousarray(compute())
+    try:
+        verified.write(path, {"values": values}, record)
+    except OSError as exc:
+        cache.say(f"the {name} table could not be kept in {path.parent} ({exc.strerror}); it is used unkept")
+    return values
 
 
 def run(p, model, t, integrate, part=None):

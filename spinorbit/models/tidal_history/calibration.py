@@ -1,8 +1,6 @@
 """Today's tidal rates of the Earth-Moon equations, and the strength of a one-parameter tide (constant time
 lag, constant Q) that gives a recession rate: da/dt is linear in the strength, so the fit is exact."""
-import json
 import math
-from pathlib import Path
 
 import numpy as np
 
@@ -11,16 +9,7 @@ from .equations import GM_EARTH, GM_MOON, GM_SUN, INERTIA, RADIUS, SUN_A, rhs
 from .response import STRENGTH, responses
 
 CM_PER_KM = 1e5
-OCEAN_FIT = Path(__file__).with_name("ocean_fit.json")
-GLOBAL_OCEAN_FIT = Path(__file__).with_name("global_ocean_fit.json")
-
-
-def ocean_fit(path=OCEAN_FIT):
-    """An ocean's fitted depth and drag, with the command that fitted them (ocean_fit.json: the ocean with
-    its continent; global_ocean_fit.json: the global ocean)."""
-    return json.loads(Path(path).read_text())
-
-
+DRAG_FLOOR = 0.05                       # rad/day: the weakest drag calibrated
 def solar_day_h(rotation_rad_d, c):
     """The length of the (mean solar) day in hours for rotation rates (rad/day): 2 pi / (Omega - n_sun)."""
     n_sun = math.sqrt((c[GM_SUN] + c[GM_EARTH] + c[GM_MOON]) / c[SUN_A] ** 3)
@@ -57,19 +46,18 @@ def time_lag_s(response, k2):
     return response[STRENGTH] / k2 * DAY_S
 
 
-def ocean_drag(c, y0, depth_km, recession_cm_per_yr, solid_k2_over_q, water, model="global_ocean", solid=None):
-    """The drag frequency (rad/day) of an ocean of ``depth_km`` whose recession today is the one given: on
-    the rising side of the rate's dependence on the drag (the weaker drag of the two that give it) when the
-    weakest drag tried (1e-3/day) gives less, else on the falling side (near a resonance); None when no drag
-    gives it.  ``water``: ocean.constants(...) for "global_ocean", cap_ocean.constants(...) for "ocean" (with
-    ``solid``: solid.constants(...), its Andrade solid Earth)."""
+def ocean_drag(c, y0, recession_cm_per_yr, response_at):
+    """The drag frequency (rad/day) of an ocean whose recession today is the one given, ``response_at(drag)``
+    its response array at a drag: on the rising side of the rate's dependence on the drag (the weaker drag
+    of the two that give it) when the weakest drag tried gives less, else on the falling side (near a
+    resonance); None when no drag gives it.  The drags tried run from DRAG_FLOOR: a weaker one (a decay
+    time beyond 20 days, against the ocean's ~1-2 days) only finds the rate on a resonance's needle."""
     from scipy.optimize import brentq
 
     def rate(drag):
-        response = responses(model, solid_k2_over_q, depth=depth_km, drag=drag, ocean=water, solid=solid)
-        return today_rates(c, response, y0)["recession_rate_cm_per_yr"] - recession_cm_per_yr
+        return today_rates(c, response_at(drag), y0)["recession_rate_cm_per_yr"] - recession_cm_per_yr
 
-    drags = np.geomspace(1e-3, 30.0, 60)
+    drags = np.geomspace(DRAG_FLOOR, 30.0, 60)
     rates = np.array([rate(d) for d in drags])
     top = int(np.argmax(rates))
     if rates[top] < 0.0:

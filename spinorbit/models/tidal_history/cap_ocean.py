@@ -24,22 +24,16 @@ degree-2 response of the block mu is
 
 lambda'_p the eigenvalues of D^(1/2) (1 - S) D^(1/2) (eigenvectors q_p) and a_p = (q_p . D^(1/2) b)^2 >= 0:
 damped oscillators whose frequencies eps lambda'_p and weights depend on the cap alone, not on H or the
-drag, so they are tabulated once over theta_c (kept in spinorbit's cache, ``stored_table``) and the rhs sums
-them.  Without a cap this is the global
+drag, so they are tabulated once over theta_c (kept by the caller's cache, ``constants(keep=...)``) and the
+rhs sums them.  Without a cap this is the global
 ocean's closed form (one pole, lambda' = 6 (1 - alpha_2), a = 6).
 
 A cap centred at colatitude theta_0 turns the Earth's Y_2^m into sum_mu d^2_{m mu}(theta_0) Y_2^mu of the cap's
 frame (Wigner); the response each block gives back on Y_2^m, the part that carries the torque (the other
 orders beat at other frequencies and average out), is sum_mu d^2_{m mu}(theta_0)^2 times the block's.
 """
-import hashlib
-import json
 import math
-import os
-import zipfile
-import zlib
 from functools import lru_cache
-from pathlib import Path
 
 import numpy as np
 from numba import njit
@@ -65,7 +59,7 @@ def _legendre_nodes(size, nodes):
     return t, w, legendre, d_legendre
 
 
-def _ritz_basis(mu, x_c, size, nodes):
+def ritz_basis(mu, x_c, size, nodes):
     """(x, weights, phi, dphi/dx) of the basis (1 - x^2)^(mu/2) L_i(t(x)) at Gauss-Legendre nodes on [x_c, 1]."""
     t, w, legendre, d_legendre = _legendre_nodes(size, nodes)
     half = 0.5 * (1.0 - x_c)
@@ -79,7 +73,7 @@ def _ritz_basis(mu, x_c, size, nodes):
     return x, weights, phi, dphi
 
 
-def _gram(f, weights, g):
+def gram(f, weights, g):
     """sum_k f[i, k] weights[k] g[j, k] (einsum: these small products are slower through a threaded BLAS)."""
     return np.einsum("ik,jk->ij", f * weights, g)
 
@@ -88,19 +82,19 @@ def neumann_modes(mu, cap_deg, size=RITZ, nodes=NODES):
     """(lambda, F, x, weights): the ocean's Neumann eigenvalues nu (nu + 1) of order mu outside a cap of radius
     cap_deg, ascending, and their eigenfunctions F (size, nodes) at the nodes x, orthonormal on [x_c, 1]."""
     x_c = -math.cos(math.radians(cap_deg))
-    x, w, phi, dphi = _ritz_basis(mu, x_c, size, nodes)
+    x, w, phi, dphi = ritz_basis(mu, x_c, size, nodes)
     s2 = 1.0 - x * x
-    stiffness = _gram(dphi, w * s2, dphi)
+    stiffness = gram(dphi, w * s2, dphi)
     if mu:
-        stiffness += mu * mu * _gram(phi, w / s2, phi)
-    values, vectors = eigh(stiffness, _gram(phi, w, phi))
+        stiffness += mu * mu * gram(phi, w / s2, phi)
+    values, vectors = eigh(stiffness, gram(phi, w, phi))
     return values, np.einsum("ij,ik->jk", vectors, phi), x, w
 
 
 def projections(modes, x, weights, mu, degrees=SAL_DEGREES):
     """c_jn = <F_j, Y_n^mu> over the ocean, n = mu .. degrees (columns n - mu), Y_n^mu at cos(theta') = -x."""
     harmonics = assoc_legendre_p_all(degrees, mu, -x, norm=True)[0, mu:, mu]      # int_{-1}^{1} ybar^2 = 1
-    return _gram(modes, weights, harmonics)
+    return gram(modes, weights, harmonics)
 
 
 def load_factors(mu, density_ratio, load_k2, load_h2, degrees=SAL_DEGREES):
@@ -139,48 +133,6 @@ def table(density_ratio, load_k2, load_h2, size=RITZ):
     return caps, lam, weight
 
 
-def _digest(lam, weight):
-    return hashlib.sha256(np.ascontiguousarray(lam).tobytes() + np.ascontiguousarray(weight).tobytes()).hexdigest()
-
-
-@lru_cache(maxsize=4)
-def stored_table(density_ratio, load_k2, load_h2):
-    """``table(...)`` read from spinorbit's cache (``<cache>/tables/``, an npz read without pickle, named after
-    the settings and this module's source, its arrays checked against their sha256), else computed and
-    written there atomically; a damaged file is computed again, said in one line."""
-    from ...files import open_regular
-    from ...linker import cache
-
-    settings = json.dumps({"density_ratio": density_ratio, "load_k2": load_k2, "load_h2": load_h2,
-                           "ritz": RITZ, "nodes": NODES, "sal_degrees": SAL_DEGREES,
-                           "caps": CAP_GRID_DEG.tolist(),
-                           "source": hashlib.sha256(Path(__file__).read_bytes()).hexdigest()}, sort_keys=True)
-    path = cache.private_folder("tables") / f"cap_ocean-{hashlib.sha256(settings.encode()).hexdigest()[:20]}.npz"
-    try:
-        with open_regular(path, follow_links=False) as f, np.load(f, allow_pickle=False) as data:
-            lam, weight, digest = data["lam"], data["weight"], str(data["sha256"])
-        if digest == _digest(lam, weight) and lam.shape == (CAP_GRID_DEG.size, ORDERS, RITZ):
-            return CAP_GRID_DEG, lam, weight
-        cache.say(f"the cap-ocean table {path} was damaged (its arrays do not match their hash); computing it again")
-    except FileNotFoundError:
-        pass
-    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile, zlib.error) as exc:
-        cache.say(f"the cap-ocean table {path} could not be read ({type(exc).__name__}); computing it again")
-    caps, lam, weight = table(density_ratio, load_k2, load_h2)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    try:
-        with open(tmp, "wb") as f:
-            np.savez(f, lam=lam, weight=weight, sha256=np.array(_digest(lam, weight)))
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except OSError as exc:
-        cache.say(f"the cap-ocean table could not be kept in {path.parent} ({exc.strerror}); it is used unkept")
-    finally:
-        tmp.unlink(missing_ok=True)
-    return caps, lam, weight
-
-
 def orientation_weights(colatitude_deg):
     """W[|m|, |mu|] = sum over the signs of mu of d^2_{m mu}(theta_0)^2: how the Earth's Y_2^m shares itself
     among the cap frame's orders (each row sums to 1)."""
@@ -205,9 +157,19 @@ def orientation_weights(colatitude_deg):
 RADIUS_TODAY, FULL_UNTIL, GLOBAL_FROM, WEIGHTS, CAPS, POLES, STEP, TABLES = 0, 1, 2, 3, 12, 13, 14, 15
 
 
-def constants(water, radius_deg, colatitude_deg, full_until_d, global_from_d):
-    """The cap ocean's constants: ``water`` (ocean.constants(...)) followed by the continent's (above)."""
-    caps, lam, weight = stored_table(float(water[DENSITY_RATIO]), float(water[LOAD_K2]), float(water[LOAD_H2]))
+def constants(water, radius_deg, colatitude_deg, full_until_d, global_from_d, keep=None):
+    """The cap ocean's constants: ``water`` (ocean.constants(...)) followed by the continent's (above);
+    ``keep(name, settings, compute)``: the caller's cache for the poles' table (computed when None)."""
+    loads = (float(water[DENSITY_RATIO]), float(water[LOAD_K2]), float(water[LOAD_H2]))
+    settings = {"density_ratio": loads[0], "load_k2": loads[1], "load_h2": loads[2], "ritz": RITZ,
+                "nodes": NODES, "sal_degrees": SAL_DEGREES, "caps": CAP_GRID_DEG.tolist()}
+
+    def compute():
+        _, lam, weight = table(*loads)
+        return np.stack([lam, weight])
+
+    lam, weight = compute() if keep is None else keep("cap_ocean", settings, compute)
+    caps = CAP_GRID_DEG
     head = np.zeros(TABLES)
     head[RADIUS_TODAY], head[FULL_UNTIL], head[GLOBAL_FROM] = radius_deg, full_until_d, global_from_d
     head[WEIGHTS:WEIGHTS + 9] = orientation_weights(colatitude_deg).ravel()

@@ -59,11 +59,17 @@ def wigner_squared(m, k, c):
 @cached(nogil=True)
 def lags(spin, n, response, t):
     """K(m spin - q n) for m = -2..2 (rows m + 2) and q = -3..3 (columns q + 3) at the time t (days): each
-    term's lag, computed once for every orientation the rates are averaged over."""
+    term's lag, computed once for every orientation the rates are averaged over.  The term (-m, -q) is the
+    conjugate of (m, q): K(-sigma) of the order -m is -K(sigma) of the order m for every response (a real
+    tide's), so half the table is computed and the other half follows."""
     out = np.zeros((5, 7))
-    for m in range(-2, 3):
+    for m in range(0, 3):
         for q in range(-3, 4):
-            out[m + 2, q + 3] = dissipation(m * spin - q * n, m, spin, response, t)
+            if m == 0 and q <= 0:
+                continue
+            value = dissipation(m * spin - q * n, m, spin, response, t)
+            out[m + 2, q + 3] = value
+            out[2 - m, 3 - q] = -value
     return out
 
 

@@ -4,12 +4,13 @@ limit, with the precession constant and the Milankovitch periods through time.
 The model (spinorbit.models.tidal_history): the lunar orbit (a, e, i) and the Earth's spin (rate, obliquity)
 averaged over the orbits and the precessions, under the tides the Moon and the Sun raise on the Earth, with
 the angular momentum kept (the solar tide's share tracked in the state).  The tide is ``tides.model``:
-"ocean" (the default: after Farhat et al. 2022, an ocean of uniform depth with drag outside one continent, a
-spherical cap whose size follows the age back to a global ocean, plus the solid Earth; its drag fitted to
-today's recession at tides.ocean_depth, whose default was fitted to the Moon's age by ``python -m
-spinorbit.fit_tides``), "global_ocean" (a global ocean on the rotating Earth, fitted the same way),
-"constant_time_lag" (Mignard 1979) or "constant_q" (Goldreich 1966), their one parameter fitted to today's
-recession rate (tides.recession_rate, lunar laser ranging 3.830 +- 0.008 cm/yr, Williams & Boggs 2016).
+one of spinorbit.models.tidal_history.tides.TIDES: "ocean" (the default: after Farhat et al. 2022, an
+ocean of uniform depth with drag outside one continent on the rotating Earth, the continent's area
+shrinking with the age to a global ocean, plus the solid Earth; its drag fitted to today's recession at
+tides.ocean_depth, whose default was fitted to the Moon's age by ``python -m spinorbit.fit_tides``), the same
+ocean without the Coriolis force, a global ocean (fitted the same way), a constant time lag (Mignard 1979)
+or a constant Q (Goldreich 1966), their one parameter fitted to today's recession rate (tides.recession_rate,
+lunar laser ranging 3.830 +- 0.008 cm/yr, Williams & Boggs 2016).
 Started from today's mean lunar orbit and the Earth's rotation at J2000; run back through
 integrators.simulate until the span's end or the state where the equations stop (the Roche limit, or the
 eccentricity beyond the O(e^2) tides), which gives the Moon's age.
@@ -24,10 +25,11 @@ one-parameter tides are the classical models, whose collision ~1.5 Ga is the kno
 tide resolves).
 """
 from ...errors import ScenarioError
+from ...models.tidal_history.tides import TIDES
 from ...scene import Model, Outcome, Scene
 from ...starts.earth_moon_history import GYR_D
 from ...verdict import Check, Verdict
-from .keys import MODELS, OCEANS, SCHEMA
+from .keys import MODELS, SCHEMA
 
 LLR = "Williams & Boggs 2016 (LLR): 3.830 +- 0.008 cm/yr; the parameter (the ocean's drag) is fitted to it"
 EXACT = "a Runge-Kutta method keeps a linear invariant to rounding (issue 33's target: 1e-9)"
@@ -36,15 +38,15 @@ PERIODS = ("Laskar et al. 2004 (La2004): p = 50.475838\"/yr, s3 = -18.85\"/yr, g
 AGE = ("Maurice et al. 2020 (Sci. Adv. 6, eaba8949): 4.425 +- 0.025 Ga; the ocean's depth is fitted to "
        "it.  The model's figure is where the history stops: the Roche limit, or the eccentricity at 0.3, "
        "the O(e^2) tides' limit (summary 'stop' says which)")
-GLOBAL_NOTE = ("the global ocean's Moon's age is judged (its depth is fitted to it); its proxies are "
-               "reported: Xiamaling is the default ocean's target")
+OTHER_OCEAN_NOTE = ("this ocean's Moon's age is judged (its depth is fitted to it); its proxies are "
+                    "reported: Xiamaling is the default ocean's target")
 XIAMALING = ("Meyers & Malinverno 2018 (PNAS 115, 6363), 2 sigma: the precession constant they measured "
              "and the distance it gives; their derived day is reported beside the history's day there")
-NOT_JUDGED = ("the one-parameter tides' Moon's age and proxies are reported, not judged: they are the "
-              "classical models that reach the Earth ~1.5 Ga, not at the Moon's age (4.425 +- 0.025 Ga, "
-              "Maurice et al. 2020)")
-OCEAN_NOTE = ("the ocean with its continent, derived here without the Coriolis force "
-              "(docs/TIDAL_HISTORY.md); the other proxies are reported in their own sigma")
+NOT_JUDGED = ("this tide's Moon's age and proxies are reported, not judged: the one-parameter tides are the "
+              "classical models that reach the Earth ~1.5 Ga; the ocean without the Coriolis force keeps the "
+              "depth fitted for Farhat et al.'s hemisphere (docs/TIDAL_HISTORY.md)")
+OCEAN_NOTE = ("the ocean with its continent on the rotating Earth (docs/TIDAL_HISTORY.md); the other "
+              "proxies are reported in their own sigma")
 
 
 def verdict(p, comparison):
@@ -58,12 +60,13 @@ def verdict(p, comparison):
         Check("obliquity period today", "obliquity_period_today_kyr", 0.05, " kyr", PERIODS, expected=41.0),
         Check("precession period today", "precession_period_today_kyr", 0.05, " kyr", PERIODS,
               expected=23.7))
-    if p["tides.model"] not in OCEANS:
+    judged = TIDES[p["tides.model"]].judged
+    if "moon_age" not in judged:
         return Verdict("lunar laser ranging; La2004's periods", checks, NOT_JUDGED)
     checks += (Check("Moon's age (the history's stop)", "moon_age_gyr", 0.025, " Gyr", AGE, expected=4.425,
                      min_span_d=4.45 * GYR_D),)
-    if p["tides.model"] == "global_ocean":
-        return Verdict("lunar laser ranging; the Moon's age; La2004's periods", checks, GLOBAL_NOTE)
+    if "xiamaling" not in judged:
+        return Verdict("lunar laser ranging; the Moon's age; La2004's periods", checks, OTHER_OCEAN_NOTE)
     checks += (Check("Xiamaling distance", "xiamaling_distance_residual_sigma", 2.0, " sigma", XIAMALING,
                      min_span_d=1.4 * GYR_D),
                Check("Xiamaling precession constant", "xiamaling_precession_constant_residual_sigma", 2.0,
@@ -113,10 +116,12 @@ def compare_run(p, run):
     quantities = {name: compare.quantities(h) for name, h in histories.items()}
     main = histories[chosen]
     comparison, not_measured = compare.metrics(main, quantities[chosen])
-    sections = {"run": main.point, "model": {"tides": chosen, **figures.description(main)},
+    sections = {"run": main.point, "model": {"tides": chosen, **figures.description(main, chosen)},
+                "resonances": compare.resonances(quantities[chosen]),      # the distance's fast steps
                 "stop": {"reason": main.stop_reason or "the span's end",
                          "t_gyr": None if main.stop_t is None else main.stop_t / GYR_D},
-                "other_models": {name: {**compare.metrics(h, quantities[name])[0], **figures.description(h),
+                "other_models": {name: {**compare.metrics(h, quantities[name])[0],
+                                        **figures.description(h, name),
                                         "stop": h.stop_reason or "the span's end"}
                                  for name, h in histories.items() if name != chosen},
                 "reference": provenance()}

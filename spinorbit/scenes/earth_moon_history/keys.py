@@ -1,35 +1,35 @@
 """The earth_moon_history scene's keys: the tidal model and its parameters, the continent's size, position and
 history, where the history stops, and the comparison."""
-from ...models.tidal_history.calibration import GLOBAL_OCEAN_FIT, OCEAN_FIT, ocean_fit
+from ...models.tidal_history.tides import TIDES
 from ...schema import Key
 
-_OCEAN = ocean_fit(OCEAN_FIT)
-_GLOBAL = ocean_fit(GLOBAL_OCEAN_FIT)
+MODELS = tuple(TIDES)
+OCEANS = tuple(name for name, tide in TIDES.items() if tide.depth is not None)
 
-MODELS = ("ocean", "global_ocean", "constant_time_lag", "constant_q")
-OCEANS = ("ocean", "global_ocean")
+
+def _depth_key(tide):
+    fit, depth = tide.depth.fitted(), tide.depth
+    return Key(unit="km", default=fit["depth_km"], min=depth.low_km, max=depth.high_km,
+               help=f"the depth of {tide.name} (its drag is fitted to tides.recession_rate); "
+                    f"{fit['depth_km']:.4f} km fits the Moon's age too ({fit['command']}"
+                    + (f"; with {fit['fitted_with']}" if "fitted_with" in fit else "")
+                    + f"); {depth.low_km:g} to {depth.high_km:g} km")
+
+
 SCHEMA = {
     "tides.model": Key(type=str, default="ocean", choices=MODELS,
-                       help="the Earth's tidal response: an ocean with its continent (after Farhat et al. "
-                            "2022), a global ocean on the rotating Earth, a constant time lag (Mignard 1979) "
-                            "or a constant phase lag, Q (Goldreich 1966); the oceans with the solid Earth "
-                            "(docs/TIDAL_HISTORY.md)"),
-    "tides.ocean_depth": Key(unit="km", default=_OCEAN["depth_km"], min=2.0, max=10.0,
-                             help="the depth of the ocean with its continent (its drag is fitted to "
-                                  f"tides.recession_rate); {_OCEAN['depth_km']:.4f} km fits the Moon's age "
-                                  f"too ({_OCEAN['command']}); 2 to 10 km"),
-    "tides.global_ocean_depth": Key(unit="km", default=_GLOBAL["depth_km"], min=2.0, max=8.0,
-                                    help="the global ocean's depth (its drag is fitted to "
-                                         f"tides.recession_rate); {_GLOBAL['depth_km']:.4f} km fits the "
-                                         "Moon's age too "
-                                         f"({_GLOBAL['command']}); 2 to 8 km"),
-    "tides.continent_radius": Key(unit="deg", default=90.0, min=0.0, max=90.0,
-                                  help="the continent's angular radius today (a spherical cap; 90 deg: the "
-                                       "hemispheric continent of Farhat et al. 2022); 0 to 90 deg"),
-    "tides.continent_colatitude": Key(unit="deg", default=90.0, min=0.0, max=180.0,
-                                      help="the colatitude of the continent's centre (90 deg: centred "
-                                           "on the equator, the ocean bounded by two meridians as Webb "
-                                           "1982's); 0 to 180 deg"),
+                       help="the Earth's tidal response: " + "; ".join(f"{name}: {tide.summary}"
+                                                                      for name, tide in TIDES.items())
+                            + " (docs/TIDAL_HISTORY.md)"),
+    **{tide.depth.key: _depth_key(tide) for tide in TIDES.values() if tide.depth is not None},
+    "tides.continent_radius": Key(unit="deg", default=65.4, min=0.0, max=90.0,
+                                  help="the continent's angular radius today (a spherical cap: 65.4 deg "
+                                       "holds the land's 29.2% of the Earth's surface; 90 deg: Farhat et "
+                                       "al. 2022's hemispheric continent); 0 to 90 deg"),
+    "tides.continent_colatitude": Key(unit="deg", default=43.0, min=0.0, max=180.0,
+                                      help="the colatitude of the continent's centre (43 deg: the centre of "
+                                           "the land hemisphere, ~47 N; 90 deg: on the equator, the ocean "
+                                           "bounded by two meridians as Webb 1982's); 0 to 180 deg"),
     "tides.continent_until": Key(unit="Gyr", default=2.5, min=0.0, max=4.6,
                                  help="the age until which the continent keeps today's size (the emergence "
                                       "of the continents ~2.5 Ga, Bindeman et al. 2018); before it its area "
