@@ -3,7 +3,8 @@
     python benchmarks/bench_earth_moon_history.py numbers   # per model: today's rates, the Moon's age, the
                                                             # angular momentum, every proxy's residual
     python benchmarks/bench_earth_moon_history.py cost      # the scene end to end: first (empty numba and
-                                                            # kernel caches) and warm, the four models
+                                                            # kernel caches) and warm, the five models
+    python benchmarks/bench_earth_moon_history.py resonances  # the default ocean's resonance crossings
 
 Each prints Markdown for benchmarks/results_earth_moon_history.md.
 """
@@ -23,15 +24,17 @@ SCENE = ROOT / "scenarios" / "earth_moon_history.toml"
 
 def numbers():
     from spinorbit import run_scenario
+    from spinorbit.models.tidal_history.tides import TIDES
     from spinorbit.references.lunar_proxies import PROXIES
 
     print("| tidal model | fitted parameter | recession today cm/yr | LOD rate today ms/cy | de/dt today /Gyr "
           "| Moon's age (where it stops) Gyr | max abs(dL/L) over the history | obliquity rate today mas/cy "
           "| integration error (a, rel) |\n|---|---|---|---|---|---|---|---|---|")
     residuals = {}
-    for model in ("ocean", "global_ocean", "constant_time_lag", "constant_q"):
+    for model in TIDES:
         summary = run_scenario(str(SCENE), [f'tides.model="{model}"', "compare.models=false"]).summary
         c, m, run = summary["comparison"], summary["model"], summary["run"]
+        c = {**c, "moon_age_gyr": c["moon_age_gyr"] if c["moon_age_gyr"] is not None else float("nan")}
         if "ocean_depth_km" in m:
             fitted = (f"depth {m['ocean_depth_km']:.4f} km, drag {m['ocean_drag_per_s']:.4g}/s (solid k2/Q "
                       f"{m['solid_k2_over_q']:.5f})")
@@ -57,6 +60,16 @@ def numbers():
         print(f"| {p.name} | {p.age_gyr} | {p.value:g} | " + " | ".join(cells) + " |")
 
 
+def resonances():
+    from spinorbit import run_scenario
+
+    summary = run_scenario(str(SCENE), ["compare.models=false"]).summary
+    print("| resonance (the distance's fast step) age Gyr | full width at half prominence Myr | recession rate "
+          "there cm/yr |\n|---|---|---|")
+    for step in summary["resonances"]:
+        print(f"| {step['age_gyr']:.3f} | {step['width_myr']:.0f} | {step['recession_rate_cm_per_yr']:.2f} |")
+
+
 def cost():
     with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out:
         env = {**os.environ, "NUMBA_CACHE_DIR": str(Path(cache) / "numba"),
@@ -74,5 +87,5 @@ def cost():
 
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("what", choices=("numbers", "cost"))
-    {"numbers": numbers, "cost": cost}[parser.parse_args().what]()
+    parser.add_argument("what", choices=("numbers", "cost", "resonances"))
+    {"numbers": numbers, "cost": cost, "resonances": resonances}[parser.parse_args().what]()
