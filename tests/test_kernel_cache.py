@@ -230,7 +230,7 @@ def test_cache_lists_every_cache_and_clear_empties_them_all(cache):
     show = subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache"], capture_output=True, text=True,
                           check=False, env=environment(cache))
     lines = show.stdout.splitlines()
-    assert show.returncode == 0 and len(lines) == 7, show.stdout + show.stderr
+    assert show.returncode == 0 and len(lines) == 6, show.stdout + show.stderr
     files = [p for p in (cache / "kernels").rglob("*") if p.is_file()]
     kernels = sum(p.stat().st_size for p in files)
     assert lines[0].split()[:4] == ["compiled", "kernels", str(len(files)), "files"]
