@@ -31,7 +31,7 @@ def test_rate_sets_the_dynamical_ellipticity_konopliv_found_with_it():
     geodesic = deep_time.geodesic_rate(a_km, header()["CLIGHT"] * DAY_S) / (1 - e0**2)
     alpha = deep_time.constant_from_rate(7.594 * ARCSEC / JULIAN_YEAR_D, obliquity, geodesic)
     solar = 1.5 * gm_km3_d2("sun") / a_km**3 / mars.ROTATION_RATE_RAD_D * (1 - e0**2) ** -1.5
-    assert alpha / solar == pytest.approx(mars.dynamical_ellipticity(), rel=0.0005 / 0.3644)
+    assert alpha / solar == pytest.approx(mars.dynamical_ellipticity(mars.C_MR2_KONOPLIV_2011), rel=0.0005 / 0.3644)
     assert geodesic / (ARCSEC / JULIAN_YEAR_D) * 1000 == pytest.approx(6.7, abs=0.1)   # mas/yr
 
 

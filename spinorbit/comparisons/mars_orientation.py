@@ -36,8 +36,10 @@ BUDGET = {"solar": {"orbit.source": "kepler", "orbit.planets": False, "mars.sate
           "geodesic": {"mars.geodesic_precession": True}}
 
 
-_RATE = ("Konopliv et al. 2016 (Icarus 274, 253): -7608.3 +- 2.1 mas/yr from landers and orbiters; the "
-         "model predicts it from J2, C/MR^2 (+-0.0005: +-10 mas/yr) and the torques, not from the rate")
+_RATE = ("Konopliv et al. 2016 (Icarus 274, 253): -7608.3 +- 2.1 mas/yr from landers and orbiters; the model "
+         "predicts it from MRO120D's J2, the torques and C/MR^2 = 0.36367 +- 0.00010 (+-2.1 mas/yr), which Baland "
+         "et al. 2020 (CMDA 132, 47) fitted to this rate with their rigid model: a check of these torques against "
+         "theirs, not an independent measurement")
 _NUTATION = ("the rigid series Konopliv et al. 2006 adopt (Reasenberg & King 1979), per frequency; its "
              "amplitudes scale with the precession constant it was computed for")
 _IAU = ("IAU 2015 (Archinal et al. 2018) fits Opportunity's tracking (Kuchynka et al. 2014) over 1980-2030; "

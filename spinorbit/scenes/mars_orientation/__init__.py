@@ -1,7 +1,8 @@
 """Mars's orientation (Euler ch. 16 P91/P96): its precession and nutation against Konopliv et al. 2016's rate,
 the rigid-Mars nutation series and the IAU 2015 pole.
 
-Rigid Mars (spinorbit.bodies.mars: MRO120D's J2 and C22, C/MR^2 = 0.3644; models.assemblies.planet) under
+Rigid Mars (spinorbit.bodies.mars: MRO120D's J2 and C22, C/MR^2 = 0.36367, Baland et al. 2020's from
+Konopliv et al. 2016's rate; models.assemblies.planet) under
 the Sun's torque on its figure, with Phobos and Deimos as rings held to its equator
 (models.interactions.rings), the planets' direct torques and the geodesic precession, each a key; the Sun
 and the planets from DE421 (or DE440), or the Sun on its Kepler ellipse; started at mars.start on the IAU 2015
@@ -19,7 +20,7 @@ SCHEMA = {
     "mars.model": Key(type=str, default="gyroscopic", choices=MODELS,
                       help="the spin angular momentum alone, or Euler's equations with the day (and C22)"),
     "mars.c_mr2": Key(unit="", default=mars.C_MR2, min=0.2, max=0.4,
-                      help="polar moment C/(M R^2) at 3396 km"),
+                      help="polar moment C/(M R^2) at 3396 km (Baland et al. 2020; Konopliv et al. 2011: 0.3644)"),
     "mars.start": Key(type=str, default="2000-01-01T12:00:00", help="ISO TDB epoch of the IAU 2015 start"),
     "mars.satellites": Key(type=bool, default=True, help="Phobos and Deimos as rings on the equator"),
     "mars.geodesic_precession": Key(type=bool, default=True),
