@@ -14,18 +14,15 @@ The fit is a developer's command: its result is a reviewed data file of the repo
 depth), written aside and renamed over the old one, so a failed write (a full disk) leaves the old fit whole.
 """
 import argparse
-import datetime
 import json
 import math
 import os
 from pathlib import Path
 
+from .models.tidal_history.fit import RECESSION_CM_PER_YR, Trial, fit_depth
 from .models.tidal_history.tides import FITS, TIDES
 
 SCENE = Path(__file__).with_name("builtin_scenarios") / "earth_moon_history.toml"
-MOON_AGE_GYR = 4.425
-RECESSION_CM_PER_YR = 3.830
-AGE_TOLERANCE_GYR = 0.001
 OCEANS = {name: tide for name, tide in TIDES.items() if tide.depth is not None}
 
 
@@ -33,10 +30,9 @@ def command(model):
     return "python -m spinorbit.fit_tides" + ("" if model == "ocean" else f" --model {model}") + " --write"
 
 
-def moon_age_gyr(depth_km, model="ocean", overrides=()):
-    """(the age at which the ocean's history of this depth stops (the Roche limit, or the eccentricity at the
-    O(e^2) tides' limit), Gyr; inf if it does not within 4.6 Gyr, the drag (rad/day)); ``overrides``: the
-    scene's other keys ("key=value")."""
+def history_at(depth_km, model="ocean", overrides=()):
+    """The Trial of the ocean's history at this depth (the scene run back 4.6 Gyr, its drag fitted to LLR's
+    rate, no error estimate); ``overrides``: the scene's other keys ("key=value")."""
     from .runner import run_scenario
 
     summary = run_scenario(SCENE, [*overrides, f'tides.model="{model}"', f'{OCEANS[model].depth.key}="{depth_km!r} km"',
@@ -44,29 +40,15 @@ def moon_age_gyr(depth_km, model="ocean", overrides=()):
                                    'span.end="-4.6 Gyr"', f'tides.recession_rate="{RECESSION_CM_PER_YR} cm/yr"'
                                    ]).summary
     age = summary["comparison"]["moon_age_gyr"]
-    return (math.inf if age is None else age), summary["model"]["ocean_drag_per_day"]
+    return Trial(depth_km, summary["model"]["ocean_drag_per_day"], math.inf if age is None else age)
 
 
 def fit(model="ocean", bracket=None, log=print, overrides=()):
-    """{depth_km, drag_per_day, moon_age_gyr, ...}: the depth bisected inside ``bracket`` (km), whose ends'
-    ages lie on either side of the Moon's (inf: the Moon never reaches the Roche limit within 4.6 Gyr)."""
-    low, high = bracket or OCEANS[model].depth.bracket_km
-    age_low, _ = moon_age_gyr(low, model, overrides)
-    age_high, _ = moon_age_gyr(high, model, overrides)
-    if (age_low - MOON_AGE_GYR) * (age_high - MOON_AGE_GYR) >= 0.0:
-        raise RuntimeError(f"the bracket {(low, high)} km does not straddle the Moon's age: ages {age_low}, {age_high}")
-    while True:
-        middle = 0.5 * (low + high)
-        age, drag = moon_age_gyr(middle, model, overrides)
-        log(f"depth {middle:.6f} km, drag {drag:.6g}/d: the history stops {age:.4f} Gyr ago")
-        if abs(age - MOON_AGE_GYR) <= AGE_TOLERANCE_GYR or high - low < 1e-9:
-            return {"model": model, "depth_km": middle, "drag_per_day": drag, "drag_per_s": drag / 86400.0,
-                    "moon_age_gyr": age, "recession_rate_cm_per_yr": RECESSION_CM_PER_YR,
-                    "targets": {"recession_rate_cm_per_yr": "3.830 +- 0.008 (LLR, Williams & Boggs 2016)",
-                                "moon_age_gyr": "4.425 +- 0.025 (Maurice et al. 2020)"},
-                    "overrides": list(overrides), "command": command(model),
-                    "date": datetime.date.today().isoformat()}
-        low, high = (middle, high) if (age < MOON_AGE_GYR) == (age_low < MOON_AGE_GYR) else (low, middle)
+    """The fit's record (models.tidal_history.fit.Fit.record): the depth bisected inside ``bracket`` (km;
+    default the tide's own), whose ends' histories stop on either side of the Moon's age."""
+    result = fit_depth(model, bracket or OCEANS[model].depth.bracket_km,
+                       lambda depth: history_at(depth, model, overrides), log)
+    return result.record(command(model), overrides)
 
 
 def write_fit(path, result):

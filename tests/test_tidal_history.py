@@ -416,3 +416,35 @@ def test_a_kept_table_is_read_back_and_a_damaged_one_computed_again(tmp_path, ca
     said = capsys.readouterr().err.strip().splitlines()
     assert len(said) == 1 and "damaged" in said[0]
     path.unlink()
+
+
+def test_the_depth_fit_bisects_to_the_moons_age():
+    """models.tidal_history.fit.fit_depth on a history whose stop age is linear in the depth (4.0 Gyr at 4 km,
+    +1 Gyr per km): the depth 4.425 km to the tolerance; a bracket both of whose ends stop on one side of
+    the Moon's age refused."""
+    from spinorbit.models.tidal_history.fit import AGE_TOLERANCE_GYR, Trial, fit_depth
+
+    def age_at(depth):
+        return Trial(depth, 1.0, 4.0 + (depth - 4.0))
+
+    result = fit_depth("ocean", (4.0, 5.0), age_at, log=lambda line: None)
+    assert abs(result.best.moon_age_gyr - 4.425) <= AGE_TOLERANCE_GYR
+    assert result.best.depth_km == pytest.approx(4.425, abs=AGE_TOLERANCE_GYR)
+    assert result.record("python -m spinorbit.fit_tides --write")["depth_km"] == result.best.depth_km
+    with pytest.raises(ValueError, match="does not straddle"):
+        fit_depth("ocean", (4.5, 5.0), age_at, log=lambda line: None)
+
+
+def test_the_resonances_are_the_recession_rates_peaks_with_their_widths():
+    """comparisons.earth_moon_history.resonances on a history whose recession rate is 3 + exp(-((age - 2
+    Gyr) / 100 Myr)^2) cm/yr: one step at 2.000 Gyr, 4 cm/yr, its full width at half the log's prominence
+    2 x 100 Myr x sqrt(-ln((sqrt(12) - 3))) = 175.2 Myr (closed form)."""
+    from spinorbit.comparisons.earth_moon_history import resonances
+
+    age_myr = np.arange(0.0, 4001.0)
+    rate = 3.0 + np.exp(-(((age_myr - 2000.0) / 100.0) ** 2))              # cm/yr
+    a = 384_400.0 - np.concatenate([[0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]))]) * 10.0   # km (1 Myr steps)
+    [step] = resonances({"t_gyr": -age_myr / 1e3, "semi_major_axis": a})
+    assert step["age_gyr"] == pytest.approx(2.0, abs=1e-3)
+    assert step["recession_rate_cm_per_yr"] == pytest.approx(4.0, rel=1e-3)
+    assert step["width_myr"] == pytest.approx(200.0 * math.sqrt(-math.log(math.sqrt(12.0) - 3.0)), abs=2.0)
