@@ -40,8 +40,10 @@ _RATE = ("Konopliv et al. 2016 (Icarus 274, 253): -7608.3 +- 2.1 mas/yr from lan
          "predicts it from MRO120D's J2, the torques and C/MR^2 = 0.36367 +- 0.00010 (+-2.1 mas/yr), which Baland "
          "et al. 2020 (CMDA 132, 47) fitted to this rate with their rigid model: a check of these torques against "
          "theirs, not an independent measurement")
-_NUTATION = ("the rigid series Konopliv et al. 2006 adopt (Reasenberg & King 1979), per frequency; its "
-             "amplitudes scale with the precession constant it was computed for")
+_NUTATION = ("the rigid series Konopliv et al. 2006 adopt (Reasenberg & King 1979), per frequency: its amplitudes "
+             "scale with a precession constant it does not state (0.65 % under this moment's), its arguments put "
+             "the Sun 0.036 deg behind DE421's (summary orbit_argument_lead_deg); Baland et al. 2020's BMAN20, for "
+             "this moment, is the series a 1 mas check needs")
 _IAU = ("IAU 2015 (Archinal et al. 2018) fits Opportunity's tracking (Kuchynka et al. 2014) over 1980-2030; "
         "its precession is a fitted circle (its rate: summary iau2015_rate_mas_per_yr)")
 
@@ -55,7 +57,7 @@ def verdict(p, comparison):
     if complete and p.orbit.source != "kepler":
         checks.insert(0, Check("ψ rate − Konopliv 2016", "rate_minus_konopliv2016_mas_per_yr", 5.0,
                                " mas/yr", _RATE, min_span_d=RATE_MIN_SPAN_D))
-    return Verdict("Konopliv et al. 2016, rigid nutation, IAU 2015", tuple(checks))
+    return Verdict("Konopliv et al. 2016 (moment: Baland et al. 2020), rigid nutation, IAU 2015", tuple(checks))
 
 
 def outcome(p, run):
@@ -67,6 +69,7 @@ def outcome(p, run):
     comparison, not_measured, columns = precession_nutation(t, poles)
     iau, iau_not_measured, separation = against_iau(t, poles)
     comparison.update(iau)
+    comparison.update(argument_leads(t, system.motion.externals, comparison))
     not_measured.update(iau_not_measured)
     if p.comparison.budget and comparison.get("precession_rate_mas_per_yr") is not None:
         comparison.update(budget(p, run, t))
@@ -124,6 +127,36 @@ def precession_nutation(t, poles):
     columns = {"precession_psi": (psi, "rad"), "obliquity": (inc, "rad"), "nutation_psi": (psi - mean_psi, "rad"),
                "nutation_obliquity": (inc - mean_inc, "rad")}
     return comparison, not_measured, columns
+
+
+def argument_leads(t, externals, comparison):
+    """{"orbit_argument_lead_deg", "nutation_2M_lead_deg"}: how far the run's Sun leads the series' arguments in
+    mean longitude from Mars's mean equinox (:func:`solar_longitude_lead`), and how far the model's 2M nutation
+    term leads the series' in phase (about twice the former: the 2M + q term, 25 times the 2M one, goes as 2
+    lambda); empty when the span is too short for the nutation."""
+    if comparison.get("nutation_2M_dpsi_sin_mas") is None or "sun" not in externals.names:
+        return {}
+    sun = externals.positions(t)[:, externals.names.index("sun")]
+    series = mars_nutation.by_frequency()["2M"]
+    model = complex(comparison["nutation_2M_dpsi_sin_mas"], comparison["nutation_2M_dpsi_cos_mas"])
+    lead = math.degrees(np.angle(model / complex(series[0], series[1])))
+    return {"orbit_argument_lead_deg": solar_longitude_lead(t, sun), "nutation_2M_lead_deg": lead}
+
+
+def solar_longitude_lead(t, sun):
+    """The Sun's mean longitude seen from Mars (``sun``: (n, 3) km, ICRF, at TDB days t), counted along the J2000
+    mean orbit from Mars's equinox (the node of IAU 2015's pole's equator), minus the series' M + q/2, deg at
+    J2000: the difference fitted as a constant, a drift and the equation of centre's harmonics of M, modulo 180
+    deg (the nutation sees 2 lambda)."""
+    local = sun @ start.mean_orbit_frame().T
+    psi = angles(mars_iau2015.pole(t))[0]
+    series = mars_nutation.mean_anomaly(t) + 0.5 * math.radians(mars_nutation.Q_DEG)
+    gap = np.unwrap(np.arctan2(local[:, 1], local[:, 0]) - psi - series)
+    m = mars_nutation.mean_anomaly(t)
+    design = np.column_stack([np.ones_like(t), t / JULIAN_YEAR_D]
+                             + [f(k * m) for k in range(1, 5) for f in (np.sin, np.cos)])
+    lead = math.degrees(np.linalg.lstsq(design, gap, rcond=None)[0][0])
+    return (lead + 90.0) % 180.0 - 90.0
 
 
 def against_iau(t, poles):
@@ -266,7 +299,9 @@ def figures(t, poles, columns, separation):
 
 
 def provenance():
-    return {"rate": "Konopliv et al. 2016, Icarus 274, 253", "nutation": mars_nutation.CITATION,
+    return {"rate": "Konopliv et al. 2016, Icarus 274, 253",
+            "moment": "Baland et al. 2020, CMDA 132, 47 (C/MR^2 = 0.36367 +- 0.00010 from Konopliv et al. 2016's rate)",
+            "nutation": mars_nutation.CITATION,
             "pole": mars_iau2015.CITATION}
 
 

@@ -9,6 +9,13 @@ with the arguments k M (k = 1, 2, 3) and k M + q (k = 1..6), M = Mars's mean ano
 (as tabulated in NASA JEOD's RNPMars model, models/environment/RNP/RNPMars).  Two terms of a frequency k n do
 not separate over any span: the model is compared on each frequency's in-phase (sin) and quadrature (cos)
 parts, which the table's terms give in closed form (:func:`by_frequency`).
+
+What the table does not say: the precession constant (H) its amplitudes were computed for (a rigid series' terms
+go as H), and its arguments to better than 0.01 deg: with M0 and q as tabulated, M + q/2, the Sun's mean longitude
+from Mars's equinox that the main term goes with (as 2 lambda), is 0.036 deg behind DE421's Sun at J2000
+(comparisons.mars_orientation.solar_longitude_lead; Simon et al. 1994, A&A 282, 663, have M0 = 19.3728 deg).
+Baland et al. 2020 (CMDA 132, 47) give BMAN20 and a recomputed Roosbeek 1999 series with both stated
+(https://lara.oma.be/RigidNutations/BMAN20.html).
 """
 import math
 
