@@ -22,7 +22,7 @@ import numpy as np
 
 from ..errors import InputError, IntegrationError
 from ..progress import progress
-from .base import Integrator, Trajectory, normalised, output_chunks
+from .base import Integrator, Trajectory, normalised
 from .options import COMPACT_MODE, OPT_LEVEL, TOLERANCE
 
 
@@ -76,6 +76,22 @@ def scales(layout, y):
 _BUILT = {}
 
 
+class StepCounter:
+    """heyoka's step callback: advances the progress bar (``advance_to(t)``) every ``EVERY`` steps; a signal
+    raised meanwhile (Ctrl-C) stops the propagation there."""
+
+    EVERY = 256
+
+    def __init__(self, advance_to):
+        self.steps, self.advance_to = 0, advance_to
+
+    def __call__(self, ta):
+        self.steps += 1
+        if self.steps % self.EVERY == 0:
+            self.advance_to(ta.time)
+        return True
+
+
 class Taylor(Integrator):
     """heyoka's adaptive Taylor integrator; options ``tolerance`` (relative per step), ``compact_mode`` (None:
     compact for every System but a free body) and ``opt_level`` (LLVM's; 2 by default, which runs these systems
@@ -105,24 +121,16 @@ class Taylor(Integrator):
         started = time.perf_counter()
         ta, factors = built(system, tolerance, compact, int(self.settings["opt_level"]))
         self.compile_s = time.perf_counter() - started
-        y_out = np.empty((t_out.size, system.y0.size))
-        done, steps, outcome = 0, 0, None
         start = time.perf_counter()
+        at_start = t_out[0] == ta.time                           # heyoka's grid starts at its time
+        grid = t_out if at_start else np.concatenate([[ta.time], t_out])
         with progress(self.label, float(system.t0), float(t_out[-1])) as advance_to:
-            for part in output_chunks(t_out.size, 20 if self.label else 1):    # a call costs ~10 us
-                at_start = t_out[part.start] == ta.time          # heyoka's grid starts at its time, once
-                grid = t_out[part] if at_start else np.concatenate([[ta.time], t_out[part]])
-                outcome, _, _, more, _, states = ta.propagate_grid(grid)
-                states = states if at_start else states[1:]
-                steps += more
-                finite = int(np.all(np.isfinite(states), axis=1).cumprod().sum())
-                y_out[part.start:part.start + finite] = states[:finite] * factors
-                done += finite
-                if outcome != heyoka().taylor_outcome.time_limit or finite < part.stop - part.start:
-                    break
-                advance_to(ta.time)
+            outcome, _, _, steps, _, states = ta.propagate_grid(grid, callback=StepCounter(advance_to))
+        states = states if at_start else states[1:]
+        done = int(np.all(np.isfinite(states), axis=1).cumprod().sum())
+        y_out = states[:done] * factors
         wall = time.perf_counter() - start
-        solution = Trajectory(t_out[:done], normalised(system, y_out[:done]), self.name, steps, steps, wall,
+        solution = Trajectory(t_out[:done], normalised(system, y_out), self.name, steps, steps, wall,
                             dict(self.settings), system.layout)
         if done < t_out.size:
             err = IntegrationError(f"{self.name}: {outcome} (heyoka)", float(ta.time), ta.state * factors,
