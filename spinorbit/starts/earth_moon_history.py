@@ -109,12 +109,14 @@ def keep_table(name, settings, compute):
 
 def run(p, model, t, integrate, part=None):
     """The history of ``model`` over the output times t (from J2000 back), integrated by the runner's
-    ``integrate(system, times, part, ...)`` (spinorbit.scene.Run)."""
+    ``integrate(system, times, part, ...)`` (spinorbit.scene.Run); its error estimated as the scenario says
+    for the main run (``part`` None), not for a tide beside it (the summary reports the main run's alone)."""
     from ..models.tidal_history import equations
 
     c = constants(p["moon.stop_distance"])
     y0 = today(c)
     system = equations.history(c, tide(p, c, y0, model), y0)
+    integrate = partial(integrate, estimate_error=None if part is None else False)
     try:
         solution, point = integrate(system, t, part)
         reached = t.size
