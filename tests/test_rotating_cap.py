@@ -23,10 +23,10 @@ TIDES = ((-2, 2 * (SPIN - N)), (-1, SPIN - N), (0, 2 * N))
 TRUNCATION = 5e-3
 
 
-@pytest.mark.parametrize("colatitude", [0.0, 90.0])
-def test_without_a_cap_the_rotating_basin_is_the_global_ocean(colatitude):
-    """No continent: the basin's Galerkin solution in a frame tilted by the colatitude (where the Coriolis
-    parameter couples every order) is the global ocean's spectral chain, at two depths and drags."""
+def test_without_a_cap_the_rotating_basin_is_the_global_ocean():
+    """No continent: the basin's Galerkin solution in a frame tilted by 90 deg (where the Coriolis parameter
+    couples every order) is the global ocean's spectral chain, at two depths and drags."""
+    colatitude = 90.0
     basin = rotating_cap.basin(0.0, colatitude, *LOADS)
     for depth, drag in ((4.0, 1.0), (8.0, 0.5)):
         for m, w in TIDES:
@@ -35,7 +35,7 @@ def test_without_a_cap_the_rotating_basin_is_the_global_ocean(colatitude):
             assert abs(k - reference) <= TRUNCATION * abs(reference), (colatitude, depth, m)
 
 
-@pytest.mark.parametrize("cap, colatitude", [(90.0, 90.0), (60.0, 30.0), (65.4, 43.0)])
+@pytest.mark.parametrize("cap, colatitude", [(90.0, 90.0), (65.4, 43.0)])
 def test_without_rotation_the_basin_is_the_caps_damped_resonances(cap, colatitude, monkeypatch):
     """Spin zero: the Galerkin solution is cap_ocean's sum of damped resonances, weighted by the orientation
     (each computed with its own basis: MODES per order against 48; cap_ocean's table reduced to this cap)."""
