@@ -300,6 +300,7 @@ def test_scene_holds_todays_rates_and_stops_at_the_roche_limit():
                                            ('tides.model="webb"', "tides.model"),
                                            ('tides.global_ocean_from="2 Gyr"', "tides.global_ocean_from"),
                                            ('tides.ocean_depth="20 km"', "tides.ocean_depth"),
+                                           ('tides.ocean_depth="2.5 km"', "tides.ocean_depth"),   # no drag
                                            ('moon.stop_distance=1.0', "moon.stop_distance")])
 def test_scene_refuses_what_the_model_cannot_vouch_for(override, key):
     from spinorbit import run_scenario

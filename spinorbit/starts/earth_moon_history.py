@@ -56,7 +56,7 @@ def tide(p, c, y0, model):
     parameter of the simple tides, an ocean's drag at its depth (its key; fitted with the Moon's age by
     ``python -m spinorbit.fit_tides``), the continent from its keys; costly tables kept in the cache."""
     from ..errors import ScenarioError
-    from ..models.tidal_history.tides import TIDES, Continent, Setting
+    from ..models.tidal_history.tides import TIDES, Continent, NoDrag, Setting
 
     chosen = TIDES[model]
     depth = None if chosen.depth is None else p[chosen.depth.key]
@@ -65,9 +65,10 @@ def tide(p, c, y0, model):
     setting = Setting(c, y0, p["tides.recession_rate"], depth, continent, keep_table)
     try:
         return chosen.response(setting)
-    except ValueError:
+    except NoDrag:
         raise ScenarioError(chosen.depth.key, depth, "a depth at which some drag gives the recession "
-                            f"tides.recession_rate = {setting.recession_cm_per_yr} cm/yr (e.g. 3 to 8 km)")
+                            f"tides.recession_rate = {setting.recession_cm_per_yr} cm/yr with this continent "
+                            f"(the stored fit's {chosen.depth.fitted()['depth_km']:.4g} km does with the default)")
 
 
 def keep_table(name, settings, compute):

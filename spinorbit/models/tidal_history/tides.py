@@ -61,6 +61,10 @@ class Depth:
         return json.loads((FITS / self.fit_file).read_text())
 
 
+class NoDrag(ValueError):
+    """No drag gives the recession rate at this depth."""
+
+
 class Tide:
     """A tidal model: ``response(setting)`` the rhs's constants calibrated to the setting's recession rate,
     ``describe(response)`` its fitted parameters for the summary.  ``judged``: what the scene's verdict
@@ -117,7 +121,7 @@ class _Ocean(Tide):
         at, full = self.responses(setting)
         drag = self.drag(setting, at)
         if drag is None:
-            raise ValueError(f"no drag gives the recession {setting.recession_cm_per_yr} cm/yr at the depth "
+            raise NoDrag(f"no drag gives the recession {setting.recession_cm_per_yr} cm/yr at the depth "
                              f"{setting.depth_km} km")
         return full(drag)
 
