@@ -1,6 +1,7 @@
 """Answers from stored solutions (spinorbit.solutions) against runs, side by side in one run.
 
-    python benchmarks/bench_solutions.py [latency|agreement|extension|fit_points|export|grid|readme|all] [--busy N]
+    python benchmarks/bench_solutions.py [latency|agreement|extension|fit_points|export|grid|readme|read_path|all]
+                                         [--busy N]
 
 * latency: a process asks for 100 dates spread over 2021-2041, its ends included (the store then holds the
   span); a new process asks ``earth_pole`` and ``moon_librations`` for 10^4 other dates there: the call's wall
@@ -21,6 +22,10 @@
   against DE421 (mas, m, km);
 * grid: the solar system's series against its integrator between the nodes, each body (mm): the kept grid
   over the scene's 1950-2050, other grids side by side over 1969-1970;
+* read_path: a new process answering 10^4 dates from a warm store (``moon_librations``), beside one reading
+  JPL's lunar PCK (moon_pa_de421_1900-2050.bpc, the copy the lunarsky package ships) with skyfield at the same
+  dates, and beside a process that only takes astropy Time and returns a QTable (the floor of the API's types),
+  interleaved; then what the spinorbit process imports, by package (python -X importtime);
 * readme: the README's API example (ten dates of 2027, ``moon_librations`` and ``earth_pole``) from empty
   caches (a fresh SPINORBIT_CACHE_DIR and NUMBA_CACHE_DIR), beside a scene per call.
 """
@@ -485,25 +490,103 @@ print(json.dumps({{"wall_s": time.perf_counter() - started}}))
 
 def readme():
     rows = {}
-    for label, api in (("solutions", ""), ("a scene per call", SCENE_PER_CALL)):
+    for label, api in (("solutions", ""), ("a scene per call", SCENE_PER_CALL), ("main job", None)):
         empty = tempfile.mkdtemp(prefix="empty-cache-")
-        rows[label] = python(README_EXAMPLE.format(api=api), ROOT, {"SPINORBIT_CACHE_DIR": f"{empty}/spinorbit",
-                                                                     "NUMBA_CACHE_DIR": f"{empty}/numba"})["wall_s"]
-    print("\n## the README's API example from empty caches (s, import included)\n")
+        caches = {"SPINORBIT_CACHE_DIR": f"{empty}/spinorbit", "NUMBA_CACHE_DIR": f"{empty}/numba"}
+        if api is not None:
+            rows[label] = python(README_EXAMPLE.format(api=api), ROOT, caches)["wall_s"]
+            continue
+        started = time.perf_counter()                 # the README's first command, its first run
+        subprocess.run([sys.executable, "-m", "spinorbit", "--quiet", "run",
+                        str(ROOT / "scenarios/moon_libration.toml"), "--out", f"{empty}/run"], check=True,
+                       capture_output=True,
+                       env={**os.environ, "PYTHONPATH": str(ROOT), **caches})
+        rows["main job: spinorbit run scenarios/moon_libration.toml"] = time.perf_counter() - started
+    print("\n## the README's API example and its main job, each from empty caches (s, import included)\n")
     print("| code | wall |\n|---|---|")
     for label, wall in rows.items():
         print(f"| {label} | {wall:.1f} |")
+
+
+READ_DAYS = "np.sort(np.random.default_rng(11).uniform(7670.5, 9862.0, 10_000))"     # 2021-2027, TDB days
+READ_SPINORBIT = """import numpy as np
+from astropy.time import Time
+import spinorbit
+t = Time(2451545.0, {days}, format="jd", scale="tdb")
+table = spinorbit.moon_librations(t)
+assert len(table) == 10_000
+""".format(days=READ_DAYS)
+READ_SKYFIELD = """import importlib.resources
+import numpy as np
+from skyfield.api import load
+from skyfield.planetarylib import PlanetaryConstants
+data = importlib.resources.files("lunarsky") / "data"
+constants = PlanetaryConstants()
+constants.read_text(load.open(str(data / "fk" / "satellites" / "moon_080317.tf")))
+constants.read_binary(load.open(str(data / "pck" / "moon_pa_de421_1900-2050.bpc")))
+frame = constants.build_frame_named("MOON_PA_DE421")
+t = load.timescale().tdb_jd(2451545.0 + {days})
+m = frame.rotation_at(t)                                   # ICRF -> body, (3, 3, n)
+phi, theta = np.arctan2(m[2, 0], -m[2, 1]), np.arccos(m[2, 2])
+psi = np.arctan2(m[0, 2], m[1, 2])
+assert phi.size == 10_000
+""".format(days=READ_DAYS)
+READ_FLOOR = """import numpy as np
+import astropy.units as u
+from astropy.table import QTable
+from astropy.time import Time
+t = Time(2451545.0, {days}, format="jd", scale="tdb")
+days = t.tdb.jd1 - 2451545.0 + t.tdb.jd2
+table = QTable({{"time": t, **{{f"c{{i}}": np.sin(days * i) * u.arcsec for i in range(10)}}}})
+""".format(days=READ_DAYS)
+
+
+def read_path(repeats=5):
+    """A new process answering 10^4 dates from a warm store, beside skyfield reading JPL's lunar PCK at the same
+    dates, and beside the floor of an API that takes astropy Time and returns a QTable; interleaved, each the
+    median of ``repeats`` processes timed from outside (interpreter start to exit); then what the spinorbit
+    process imports (python -X importtime, exclusive microseconds summed by top-level package)."""
+    python(READ_SPINORBIT + "print('{}')", ROOT)                      # the store warm, the kernels compiled
+    codes = {"skyfield, JPL's moon_pa_de421 PCK (lunarsky's copy)": READ_SKYFIELD,
+             "spinorbit.moon_librations, warm store": READ_SPINORBIT,
+             "numpy + astropy Time in, QTable out (no computation)": READ_FLOOR}
+    walls = {label: [] for label in codes}
+    environment = {**os.environ, "PYTHONPATH": str(ROOT), "SPINORBIT_QUIET": "1"}
+    for _ in range(repeats):
+        for label, code in codes.items():
+            started = time.perf_counter()
+            subprocess.run([sys.executable, "-c", code], check=True, env=environment, cwd=tempfile.gettempdir())
+            walls[label].append(time.perf_counter() - started)
+    skyfield = float(np.median(walls[next(iter(codes))]))
+    print("\n## read path: a new process answering 10^4 dates of 2021-2027 (s, interpreter start to exit; "
+          f"median of {repeats}, interleaved)\n")
+    print("| process | wall | / skyfield |\n|---|---|---|")
+    for label, values in walls.items():
+        print(f"| {label} | {np.median(values):.2f} | {np.median(values) / skyfield:.1f} |")
+    done = subprocess.run([sys.executable, "-X", "importtime", "-c", READ_SPINORBIT], env=environment,
+                          cwd=tempfile.gettempdir(), capture_output=True, text=True, check=True)
+    by_package = {}
+    for line in done.stderr.splitlines():
+        if line.startswith("import time:") and "|" in line and "self" not in line:
+            own, _, name = line[len("import time:"):].split("|")
+            top = name.strip().split(".")[0]
+            by_package[top] = by_package.get(top, 0) + int(own)
+    print("\nwhat the spinorbit process imports (s, exclusive, by top-level package, the largest):\n")
+    print("| package | import |\n|---|---|")
+    for top, micro in sorted(by_package.items(), key=lambda kv: -kv[1])[:8]:
+        print(f"| {top} | {micro / 1e6:.2f} |")
 
 
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("part", nargs="?", default="all",
                         choices=["latency", "agreement", "extension", "fit_points", "export", "grid", "readme",
-                                 "all"])
+                                 "read_path", "all"])
     parser.add_argument("--busy", type=int, default=0,
                         help="latency: busy-loop processes competing with the solutions' calls (a crowded machine)")
     args = parser.parse_args()
-    parts = ["latency", "agreement", "extension", "fit_points", "export", "grid", "readme"] if args.part == "all" \
+    parts = ["latency", "agreement", "extension", "fit_points", "export", "grid", "readme", "read_path"] \
+        if args.part == "all" \
         else [args.part]
     for part in parts:
         globals()[part](**({"busy": args.busy} if part == "latency" else {}))

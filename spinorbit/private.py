@@ -1,15 +1,19 @@
 """The rule a folder must meet before spinorbit runs or unpickles anything kept in it (the kernel cache, numba's
 cache, heyoka's, the orbital solutions): a directory of yours, writable by you only, inside folders only you (or
 root) can rename.  A folder that breaks it is refused in one line naming the environment variable that chose it.
-Checked before ``numba`` is imported: ``NUMBA_CACHE_DIR`` is read once, when numba loads."""
+Checked before ``numba`` is imported: ``NUMBA_CACHE_DIR`` is read once, when numba loads.  The cache directory
+itself (``root``, ``kernels_dir``, ``private_folder``) is found here, without numba, so that reading a stored
+answer never imports it."""
 import functools
 import os
 import stat
+import sys
 from pathlib import Path
 
 from .errors import InputError
 
 NUMBA = "NUMBA_CACHE_DIR"
+ENVIRONMENT = "SPINORBIT_CACHE_DIR"
 
 
 def check_private(folder, named, variable, purpose="compiled kernels"):
@@ -60,3 +64,54 @@ def numba_cache_refusal():
         return InputError(NUMBA, named, f"a directory numba can use ({exc.strerror}); unset {NUMBA} or set it "
                                         "to one")
     return None
+
+
+def root():
+    """The cache directory named by the environment (not created)."""
+    named = os.environ.get(ENVIRONMENT)
+    if named:
+        return Path(named).expanduser().absolute()
+    home = os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache"
+    return Path(home).expanduser().absolute() / "spinorbit"
+
+
+@functools.cache
+def kernels_dir():
+    """The private directory of the generated modules (created 0700; refused if not private, and refused when
+    NUMBA_CACHE_DIR is not: spinorbit.private)."""
+    refusal = numba_cache_refusal()
+    if refusal is not None:
+        raise refusal
+    base = root()
+    try:
+        base.parent.mkdir(parents=True, exist_ok=True)
+        for folder in (base, base / "kernels", base / "kernels" / "numba"):
+            if not os.path.lexists(folder):
+                os.mkdir(folder, 0o700)
+        resolved = base.resolve()
+    except OSError as exc:
+        raise InputError(ENVIRONMENT, str(base), f"a directory spinorbit can create for its compiled kernels "
+                                                 f"({exc.strerror}); set {ENVIRONMENT} to one") from None
+    for folder in (resolved, resolved / "kernels", resolved / "kernels" / "numba"):
+        check_private(folder, base, ENVIRONMENT)
+    for folder in resolved.parents:
+        check_above(folder, base, ENVIRONMENT)
+    return resolved / "kernels"
+
+
+def private_folder(name):
+    """``<the cache directory>/<name>``, created private (0700) beside the kernels and refused, under the same
+    rule, when it is not (another user's, writable by others, or not a directory)."""
+    folder = kernels_dir().parent / name
+    try:
+        if not os.path.lexists(folder):
+            os.mkdir(folder, 0o700)
+    except OSError as exc:
+        raise InputError(ENVIRONMENT, str(root()), f"a directory spinorbit can create for its caches ({folder}: "
+                                                   f"{exc.strerror}); set {ENVIRONMENT} to one") from None
+    check_private(folder, root(), ENVIRONMENT, "spinorbit's caches")
+    return folder
+
+
+def say(message):
+    print(f"spinorbit: {message}", file=sys.stderr)

@@ -13,8 +13,6 @@ from dataclasses import dataclass, field
 from types import SimpleNamespace
 from typing import Callable
 
-from .integrators import simulate
-
 
 @dataclass(frozen=True)
 class Cost:
@@ -133,6 +131,8 @@ def integrate(scenario, system, times, part=None, method=None, options=None, est
     checkpointed when the command line gives a checkpoint, a further run ``part`` in a checkpoint of its own
     and a progress bar named for it; its error estimated as the scenario says (or as ``estimate_error``; a run
     with its own ``method``: not estimated, not checkpointed)."""
+    from .integrators import simulate
+
     label = scenario.name if part is None else f"{scenario.name} ({part})"
     if method is not None:
         return simulate(system, times, method, options or {}, bool(estimate_error), None, label)

@@ -52,7 +52,7 @@ from pathlib import Path
 import numpy as np
 
 from .files import NotRegular, open_lock, open_regular, process_alive
-from .private import check_private
+from .private import check_private, private_folder
 
 FORMAT = 1                  # the room's file layout: "record", "meta", "sha256" beside the caller's arrays
 RESERVED = ("record", "meta", "sha256", "room_format")
@@ -79,9 +79,7 @@ class Entry:
 
 def folder(name):
     """``<spinorbit's private cache>/<name>``, created 0700, refused in one line when not private."""
-    from .linker import cache
-
-    return cache.private_folder(name)
+    return private_folder(name)
 
 
 def private(path):

@@ -85,3 +85,15 @@ def test_a_kernel_and_its_callee_cached_by_different_processes_both_run(tmp_path
     assert tuple(sums) == expected
     assert tuple(run(tmp_path, SECOND.format(number=number), "numba_second")[:2]) == expected
     assert tuple(run(tmp_path, THIRD, "numba_second")[:2]) == expected
+
+
+def test_the_stored_answer_path_imports_no_numba():
+    """The modules that read a stored solution (the store, the verified room, the Solution and its series, the
+    cache folder's rule) and the packages a scene declaration names (models, integrators, scene) import numba
+    only where a kernel is compiled: none of it is loaded by importing them (docs/DEVELOPING.md)."""
+    code = ("import sys, spinorbit.solutions, spinorbit.solutions.store, spinorbit.verified, spinorbit.models, "
+            "spinorbit.integrators, spinorbit.scene\nprint(sorted(m for m in sys.modules if m.startswith('numba')))")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=False,
+                          env={**os.environ, "PYTHONPATH": str(ROOT)})
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "[]"

@@ -6,6 +6,14 @@
 """
 from .base import Integrator, Trajectory
 from .registry import METHODS, get_method
-from .simulation import simulate
 
 __all__ = ["METHODS", "Integrator", "Trajectory", "get_method", "simulate"]
+
+
+def __getattr__(name):
+    """``simulate`` imported when first asked for: the package's options and registry stay free of numba."""
+    if name == "simulate":
+        from .simulation import simulate
+
+        return simulate
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -23,7 +23,6 @@ deleted, the kernel compiled again, and said in one line.  Functions of the pack
 ``.pyc``) or in NUMBA_CACHE_DIR, which must meet the same rule: ``import spinorbit`` hides a NUMBA_CACHE_DIR
 that breaks it from numba, and the first kernel asked for refuses it in one line (spinorbit.private).
 """
-import functools
 import hashlib
 import importlib
 import importlib.abc
@@ -38,64 +37,11 @@ from pathlib import Path
 from numba import njit
 from numba.core.caching import CompileResultCacheImpl, FunctionCache, IndexDataCacheFile, _CacheLocator
 
-from ..errors import InputError
 from ..files import NotRegular, open_regular
-from ..private import check_above, check_private, numba_cache_refusal
+from ..private import ENVIRONMENT, kernels_dir, private_folder, root, say  # noqa: F401  (cache.root, ...)
 
-ENVIRONMENT = "SPINORBIT_CACHE_DIR"
 MAGIC = b"spinorbit numba cache 1\n"
 LOADED = {}                          # generated module name -> sha256 of its text, for this process
-
-
-def root():
-    """The cache directory named by the environment (not created)."""
-    named = os.environ.get(ENVIRONMENT)
-    if named:
-        return Path(named).expanduser().absolute()
-    home = os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache"
-    return Path(home).expanduser().absolute() / "spinorbit"
-
-
-@functools.cache
-def kernels_dir():
-    """The private directory of the generated modules (created 0700; refused if not private, and refused when
-    NUMBA_CACHE_DIR is not: spinorbit.private)."""
-    refusal = numba_cache_refusal()
-    if refusal is not None:
-        raise refusal
-    base = root()
-    try:
-        base.parent.mkdir(parents=True, exist_ok=True)
-        for folder in (base, base / "kernels", base / "kernels" / "numba"):
-            if not os.path.lexists(folder):
-                os.mkdir(folder, 0o700)
-        resolved = base.resolve()
-    except OSError as exc:
-        raise InputError(ENVIRONMENT, str(base), f"a directory spinorbit can create for its compiled kernels "
-                                                 f"({exc.strerror}); set {ENVIRONMENT} to one") from None
-    for folder in (resolved, resolved / "kernels", resolved / "kernels" / "numba"):
-        check_private(folder, base, ENVIRONMENT)
-    for folder in resolved.parents:
-        check_above(folder, base, ENVIRONMENT)
-    return resolved / "kernels"
-
-
-def private_folder(name):
-    """``<the cache directory>/<name>``, created private (0700) beside the kernels and refused, under the same
-    rule, when it is not (another user's, writable by others, or not a directory)."""
-    folder = kernels_dir().parent / name
-    try:
-        if not os.path.lexists(folder):
-            os.mkdir(folder, 0o700)
-    except OSError as exc:
-        raise InputError(ENVIRONMENT, str(root()), f"a directory spinorbit can create for its caches ({folder}: "
-                                                   f"{exc.strerror}); set {ENVIRONMENT} to one") from None
-    check_private(folder, root(), ENVIRONMENT, "spinorbit's caches")
-    return folder
-
-
-def say(message):
-    print(f"spinorbit: {message}", file=sys.stderr)
 
 
 def load_module(name, text):

@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from . import models, store
-from .fit import Grid, integrate
+from .chebyshev import Grid
 from .solution import Solution, joined
 
 __all__ = ["Solution", "solve", "for_scenario", "for_export", "for_run", "keep", "attitude"]
@@ -108,6 +108,8 @@ def _piece(scenario, kind, start, lo, hi):
     """A Solution over [lo, hi] (rounded out to the kind's grid) of the scene's System started at ``start``."""
     grid = kind.grid
     lo, hi = grid.bounds(lo, hi)
+    from .fit import integrate
+
     stretch = models.stretch(scenario, lo, hi, start[0])
     system = models.system(stretch, start)
     method, options = stretch["integrator.method"], stretch.integrator_options()
@@ -199,6 +201,8 @@ def for_run(scenario, system):
     [integrator] and its error estimate as the scenario says, the series fitted; the segments halved (at most
     REFINEMENTS times) while the fit differs from the integrator by more than the run's own error
     (``fit_beyond_run``).  (None, why) for a run not fitted (``not_fitted``), or a fit never within the run."""
+    from .fit import integrate
+
     why = not_fitted(scenario, system)
     if why:
         return None, why

@@ -136,3 +136,17 @@ def grid_indices(origin_d, length_d, t_start, t_end):
     lo = int(np.floor((min(t_start, t_end) - origin_d) / length_d + ROUNDING))
     hi = int(np.ceil((max(t_start, t_end) - origin_d) / length_d - ROUNDING))
     return lo, max(hi - lo, 1)
+
+
+@dataclass(frozen=True)
+class Grid:
+    """Segments of ``length_d`` days, series of ``degree``, on the grid from ``origin_d`` (TDB days)."""
+
+    origin_d: float
+    length_d: float
+    degree: int
+
+    def bounds(self, lo, hi):
+        """[lo, hi] rounded out to the grid's segment ends."""
+        first, count = grid_indices(self.origin_d, self.length_d, lo, hi)
+        return self.origin_d + first * self.length_d, self.origin_d + (first + count) * self.length_d

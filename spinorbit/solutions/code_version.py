@@ -15,8 +15,8 @@ import os
 import shutil
 from pathlib import Path
 
+from .. import private
 from ..files import open_regular
-from ..linker import cache
 
 PACKAGE = Path(__file__).resolve().parents[1]
 HEX = frozenset("0123456789abcdef")
@@ -70,7 +70,7 @@ def stored(path, stamp):
     except FileNotFoundError:
         return None
     except (OSError, ValueError, KeyError, TypeError) as exc:
-        cache.say(f"the code-version record {path} was refused ({type(exc).__name__}: {exc}); hashing the "
+        private.say(f"the code-version record {path} was refused ({type(exc).__name__}: {exc}); hashing the "
                   "sources again")
         return None
 

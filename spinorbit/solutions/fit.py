@@ -17,21 +17,7 @@ from ..constants import ARCSEC
 from ..integrators import simulate
 from ..layout import Layout
 from ..rotations import quat_angle, vector_angle
-from .chebyshev import Segments, grid_indices, interpolating_at
-
-
-@dataclass(frozen=True)
-class Grid:
-    """Segments of ``length_d`` days, series of ``degree``, on the grid from ``origin_d`` (TDB days)."""
-
-    origin_d: float
-    length_d: float
-    degree: int
-
-    def bounds(self, lo, hi):
-        """[lo, hi] rounded out to the grid's segment ends."""
-        first, count = grid_indices(self.origin_d, self.length_d, lo, hi)
-        return self.origin_d + first * self.length_d, self.origin_d + (first + count) * self.length_d
+from .chebyshev import Grid, Segments, grid_indices, interpolating_at  # noqa: F401  (fit.Grid)
 
 
 @dataclass

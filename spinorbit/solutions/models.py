@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .fit import Grid
+from .chebyshev import Grid
 
 J2000_ISO = "2000-01-01T12:00:00"
 DE421_EPOCH_ISO = "1969-06-28T00:00:00"      # DE421's JDEPOC, 2440400.5 TDB: where its initial conditions hold

@@ -31,9 +31,8 @@ import warnings
 
 import numpy as np
 
-from .. import verified
+from .. import private, verified
 from ..layout import Layout
-from ..linker import cache
 from .chebyshev import Segments
 from .code_version import package_version
 from .solution import Solution
@@ -168,7 +167,7 @@ def read(path, rec):
     try:
         solution = load(path, rec)
     except Refused as exc:
-        cache.say(f"the stored solution {path} was refused ({exc}); computing it again")
+        private.say(f"the stored solution {path} was refused ({exc}); computing it again")
         verified.discard(path)
         return None
     except OSError as exc:

@@ -16,7 +16,6 @@ difference beside it.
 import numpy as np
 
 from ...constants import ARCSEC
-from ...models.assemblies.moon import LEVELS
 from ...orbits.sources import orbit_source
 from ...scene import Cost, Model, Outcome, Scene
 from ...schema import SAMPLE_STEP, Key
@@ -82,6 +81,7 @@ def compare_run(p, run):
     from ... import plots
     from ...analysis.librations import icrf_to_body
     from ...comparisons import moon_de421 as vs
+    from ...models.assemblies.moon import LEVELS
     from ...references import eckhardt
     from ...references.moon_de421 import FREE_LIBRATION_LONGITUDE_PERIOD_D
     from ...starts.moon import difference_driven_by
