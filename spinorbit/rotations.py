@@ -10,7 +10,8 @@ Conventions (docs/DEVELOPING.md):
   ``M = matrix_from_quat(q).T``.
 * Kinematics (Euler ch. 15 §809-811 in quaternion form): dq/dt = q * (0, omega_body) / 2.
 
-The functions the compiled kernels call are numba-compiled and take/return
+The functions the compiled kernels call are numba-compiled (when one is first asked for: importing this
+module imports no numba, linker.OnDemand) and take/return
 plain float64 arrays; the 3-vector and 3x3 helpers (dot3 ... solve3, put) are
 written out by element: numba compiles numpy's general array functions
 (np.cross, @ through BLAS, np.linalg.solve through LAPACK, np.outer, np.eye,
@@ -22,22 +23,25 @@ axes, so they need no compilation.
 import math
 
 import numpy as np
-from numba import njit
+
+from .linker import OnDemand
+
+compiled = OnDemand(cache=True)     # the kernels' helpers, compiled when first asked for
 
 
-@njit(cache=True)
+@compiled
 def dot3(a, b):
     """Scalar product a . b of two 3-vectors."""
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
-@njit(cache=True)
+@compiled
 def cross3(a, b):
     """Vector product a x b of two 3-vectors."""
     return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
 
 
-@njit(cache=True)
+@compiled
 def matvec3(m, v):
     """m @ v for a 3x3 matrix m and a 3-vector v."""
     return np.array([m[0, 0] * v[0] + m[0, 1] * v[1] + m[0, 2] * v[2],
@@ -45,7 +49,7 @@ def matvec3(m, v):
                      m[2, 0] * v[0] + m[2, 1] * v[1] + m[2, 2] * v[2]])
 
 
-@njit(cache=True)
+@compiled
 def mat_t_vec3(m, v):
     """m.T @ v for a 3x3 matrix m and a 3-vector v (e.g. inertial -> body axes with m = R(q))."""
     return np.array([m[0, 0] * v[0] + m[1, 0] * v[1] + m[2, 0] * v[2],
@@ -53,7 +57,7 @@ def mat_t_vec3(m, v):
                      m[0, 2] * v[0] + m[1, 2] * v[1] + m[2, 2] * v[2]])
 
 
-@njit(cache=True)
+@compiled
 def diag3(d):
     """The 3x3 diagonal matrix with diagonal d."""
     m = np.zeros((3, 3))
@@ -61,7 +65,7 @@ def diag3(d):
     return m
 
 
-@njit(cache=True)
+@compiled
 def solve3(m, b):
     """x with m @ x = b for a 3x3 matrix m, by Cramer's rule (cofactors of m).
 
@@ -84,7 +88,7 @@ def solve3(m, b):
                      (c02 * b[0] + c12 * b[1] + c22 * b[2]) / det])
 
 
-@njit(cache=True)
+@compiled
 def put(out, v):
     """out[:] = v for 1-d arrays of equal length, by element (numba's slice assignment
     compiles a shape-error formatter); out may be a view such as y[4:7] or k[s]."""
@@ -94,7 +98,7 @@ def put(out, v):
         out[i] = v[i]
 
 
-@njit(cache=True)
+@compiled
 def quat_multiply(a, b):
     """Hamilton product a * b of two scalar-first quaternions."""
     return np.array([
@@ -105,7 +109,7 @@ def quat_multiply(a, b):
     ])
 
 
-@njit(cache=True)
+@compiled
 def matrix_from_quat(q):
     """Body-to-inertial rotation matrix of a (not necessarily unit) quaternion."""
     w, x, y, z = q[0], q[1], q[2], q[3]
@@ -123,7 +127,7 @@ def matrices_from_quats(q):
     row by row it is slow, and a compiled function boxed for Python and loaded from numba's cache beside kernels
     compiled in another process can fail to return its array ("'descr' is NULL")."""
     columns = np.moveaxis(np.asarray(q, dtype=float), -1, 0)
-    return np.moveaxis(matrix_from_quat.py_func(columns), (0, 1), (-2, -1))
+    return np.moveaxis(compiled.source("matrix_from_quat")(columns), (0, 1), (-2, -1))
 
 
 def quat_from_matrix(m):
@@ -150,7 +154,7 @@ def quat_from_matrix(m):
     return np.array([sign * w / norm, sign * x / norm, sign * y / norm, sign * z / norm])
 
 
-@njit(cache=True)
+@compiled
 def quat_rate(q, omega_body):
     """dq/dt for body angular velocity omega_body (rad per time unit)."""
     w, x, y, z = q[0], q[1], q[2], q[3]
@@ -244,3 +248,6 @@ def vector_angle(a, b):
     """Angle (rad) between vectors a and b, shape (..., 3); atan2(|a x b|, a.b), accurate near 0 and pi."""
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
     return np.arctan2(np.linalg.norm(np.cross(a, b), axis=-1), np.sum(a * b, axis=-1))
+
+
+__getattr__ = compiled.hide(globals())

@@ -165,13 +165,15 @@ def test_bad_output_times_get_one_clear_error(t_out, torqued):
 def test_rk8_runs_one_compiled_loop_whatever_the_layout_of_the_output_times(torqued):
     """Output times given as a strided view (every other output, as the error estimate's coarse run takes them)
     run the loop compiled for contiguous ones: one specialisation, not one per array layout (each costs seconds)."""
+    from spinorbit import rotations
     from spinorbit.integrators.rk8 import rk_fixed, rk_step
     from spinorbit.linker import link
 
     system, t = torqued[0], np.linspace(0.0, 50.0, 1001)
     simulate(system, t, "rk8", {"step": 0.05}, estimate_error=False)[0]
     simulate(system, t[::2], "rk8", {"step": 0.1}, estimate_error=False)[0]
-    assert len(link(rk_fixed, rk_step=link(rk_step, rhs=system.rhs)).signatures) == 1
+    step = link(rk_step, rhs=system.rhs, put=rotations.put)
+    assert len(link(rk_fixed, rk_step=step, put=rotations.put).signatures) == 1
 
 
 @pytest.mark.parametrize("method, options", [("rk8", {"step": 0.05}), ("rk4", {"step": 0.005}),

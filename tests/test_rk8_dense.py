@@ -5,6 +5,7 @@ import math
 import numpy as np
 import pytest
 
+from spinorbit import rotations
 from spinorbit.integrators import simulate
 from spinorbit.integrators.rk8 import RK8, rk8_dense, rk_step
 from spinorbit.linker import link
@@ -26,7 +27,8 @@ def run(system, t_out, h, steps_per_call, carry):
     """The compiled dense loop over t_out, called for ``steps_per_call`` steps at a time; ``carry``: the last
     step's end-point rhs is handed to the next call (as RK8 does between its chunks), else every call computes
     its first stage afresh.  Returns (states, steps, rhs calls)."""
-    loop = link(rk8_dense, rhs=system.rhs, rk_step=link(rk_step, rhs=system.rhs))
+    step = link(rk_step, rhs=system.rhs, put=rotations.put)
+    loop = link(rk8_dense, rhs=system.rhs, rk_step=step, put=rotations.put)
     y_out, y, t0 = np.empty((t_out.size, system.y0.size)), system.y0, float(system.t0)
     k = np.empty((RK8.B.size + 4, y.size))
     i, steps, extra, known = 0, 0, 0, False

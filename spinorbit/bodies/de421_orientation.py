@@ -10,12 +10,14 @@ from functools import cache
 from pathlib import Path
 
 import numpy as np
-from numba import njit
 from numpy.polynomial import chebyshev
 
 from ..constants import J2000_JD
 from ..errors import EphemerisRangeError
+from ..linker import OnDemand
 from .de421_header import header
+
+compiled = OnDemand(cache=True, nogil=True)      # the kernels' series, compiled when first asked for
 
 
 @cache
@@ -57,7 +59,7 @@ def angles_and_rates(t_tdb_d):
     return angles, rates
 
 
-@njit(cache=True, nogil=True)
+@compiled
 def _chebyshev(c, x):
     """(sum c_k T_k(x), its derivative in x), by the recurrences T_k+1 = 2x T_k - T_k-1, U likewise."""
     t_prev, t_now, u_prev, u_now = 1.0, x, 0.0, 1.0
@@ -70,7 +72,7 @@ def _chebyshev(c, x):
     return value, slope
 
 
-@njit(cache=True, nogil=True)
+@compiled
 def mantle(t, coefficients, start, length):
     """(M (3, 3) ICRF -> body, w (3,) body axes rad/d) at TDB day t inside the series' span."""
     index = min(int((t - start) // length), coefficients.shape[0] - 1)
@@ -86,3 +88,6 @@ def mantle(t, coefficients, start, length):
                   [st * sf, -st * cf, ct]])
     omega = np.array([dphi * st * sp + dtheta * cp, dphi * st * cp - dtheta * sp, dphi * ct + dpsi])
     return m, omega
+
+
+__getattr__ = compiled.hide(globals())

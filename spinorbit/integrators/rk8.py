@@ -21,15 +21,14 @@ from ..errors import InputError, IntegrationError
 from ..layout import Layout
 from ..linker import free, link, template
 from ..progress import progress, stage
-from ..rotations import put
 from . import dop853_tableau as dop853
 from .base import Integrator, Trajectory, normalised, output_chunks
 from .options import MAX_STEPS, STEP
 
-rhs = free("rhs")    # bound by link()
+rhs, put = free("rhs", "put")    # bound by link(): the right-hand side, rotations.put
 
 
-@template("rhs")
+@template("rhs", "put")
 def rk_step(params, t, y, dt, a, b, c, k, ys, first):
     """One explicit Runge-Kutta step of size dt; fills the stages k from stage ``first`` (the stages before it are
     already in k); returns the new state."""
@@ -52,7 +51,7 @@ def rk_step(params, t, y, dt, a, b, c, k, ys, first):
     return y_new
 
 
-@template("rk_step")
+@template("rk_step", "put")
 def rk_fixed(params, t0, y0, t_out, h, a, b, c, max_steps):
     """Integrate with steps of at most |h|, landing exactly on every output time (either direction).
 
@@ -84,7 +83,7 @@ def rk_fixed(params, t0, y0, t_out, h, a, b, c, max_steps):
     return y_out, t_out.shape[0], steps, t
 
 
-@template("rhs", "rk_step")
+@template("rhs", "rk_step", "put")
 def rk8_dense(params, t_origin, y, steps, i, y_out, t_out, h, a, b, c, a_ext, c_ext, d, max_steps, k, known):
     """Steps of h (signed; the last one shortened to end on t_out[-1]) on the grid t_origin + steps h,
     from state ``y`` after ``steps`` steps, filling ``y_out`` from index i; outputs inside a step from
@@ -199,17 +198,20 @@ class RK8(Integrator):
              np.ascontiguousarray(dop853.D))
 
     def solve(self, system, t_out):
+        from .. import rotations
+
         t_out = self._check_times(system, t_out)
         h = float(self.settings["step"])
         if not h > 0:
             raise InputError("step", h, "a positive step in days")
         h = h if t_out[-1] >= system.t0 else -h
         with stage(None if self.label is None else f"{self.label}: compiling the integrator (once: cached after)"):
-            step = link(rk_step, rhs=system.rhs)
+            step = link(rk_step, rhs=system.rhs, put=rotations.put)
             if self.DENSE is not None and not self.lands and _landing_shortens(t_out, system.t0, h):
-                run = _Dense(link(rk8_dense, rhs=system.rhs, rk_step=step), self, system, t_out, h)
+                dense = link(rk8_dense, rhs=system.rhs, rk_step=step, put=rotations.put)
+                run = _Dense(dense, self, system, t_out, h)
             else:
-                run = _Landing(link(rk_fixed, rk_step=step), self, system, t_out, h)
+                run = _Landing(link(rk_fixed, rk_step=step, put=rotations.put), self, system, t_out, h)
         start = time.perf_counter()
         run.drive(self.label, self.checkpoint)
         wall = time.perf_counter() - start

@@ -41,11 +41,6 @@ import threading
 import types
 from pathlib import Path
 
-import numba
-
-from . import cache
-from .stamped import cached  # noqa: F401  (re-exported: linker.cached)
-
 PACKAGE_DIR = Path(__file__).resolve().parents[1]
 NAMES = "names unique per process"   # spinorbit.compiled_names: caches written before it are not read
 
@@ -80,6 +75,48 @@ def template(*free_names):
         return fn
 
     return mark
+
+
+def cached(function=None, **options):
+    """``@linker.cached``: :func:`spinorbit.linker.stamped.cached` (numba imported when a module applies it)."""
+    from .stamped import cached as stamped
+
+    return stamped(function, **options)
+
+
+class OnDemand:
+    """A module's plain-numba functions compiled (``njit(**options)``) when one is first asked for, so that
+    importing the module imports no numba: decorate each with the instance, then end the module with
+    ``__getattr__ = on_demand.hide(globals())``.  The first name asked for (``from module import dot3``, or
+    ``module.dot3``) compiles them all into the module's globals, where they find each other as numba needs;
+    ``source(name)`` is the Python function itself, for callers on whole arrays."""
+
+    def __init__(self, **options):
+        self.options, self.sources, self.namespace = options, {}, None
+
+    def __call__(self, function):
+        self.sources[function.__name__] = function
+        return function
+
+    def source(self, name):
+        return self.sources[name]
+
+    def hide(self, namespace):
+        for name in self.sources:
+            del namespace[name]
+        self.namespace = namespace
+        return self.attribute
+
+    def attribute(self, name):
+        if name not in self.sources:
+            raise AttributeError(f"module {self.namespace['__name__']!r} has no attribute {name!r}")
+        with _LOCK:
+            if name not in self.namespace:
+                from numba import njit
+
+                for key, function in self.sources.items():
+                    self.namespace[key] = njit(**self.options)(function)
+        return self.namespace[name]
 
 
 def link_source(name, source, **bindings):
@@ -132,6 +169,8 @@ def python_function(kernel):
     when ``kernel`` is not one."""
     if hasattr(kernel, "py_func"):
         return kernel.py_func
+    import numba
+
     return kernel if numba.config.DISABLE_JIT and isinstance(kernel, types.FunctionType) else None
 
 
@@ -152,12 +191,16 @@ def _link_generated(name, source, bindings):
 
 
 def _load(fn_name, text):
+    from . import cache
+
     name = f"spinorbit_{fn_name.strip('_')}_{hashlib.sha256(text.encode()).hexdigest()[:20]}"
     module = sys.modules.get(name) if name in cache.LOADED else None
     return getattr(module or cache.load_module(name, text), fn_name)
 
 
 def _reach(function, sources, seen, package):
+    from . import cache
+
     if function in seen:
         return
     seen.add(function)
@@ -224,6 +267,8 @@ def _top_in(top, root):
 
 def _source_of(module, function):
     """Bytes standing for a module's source: a generated module's hash, a file's bytes, else the code."""
+    from . import cache
+
     name = getattr(module, "__name__", None)
     if name in cache.LOADED:
         return cache.LOADED[name].encode()

@@ -8,7 +8,6 @@ import numpy as np
 
 from ..bodies import earth
 from ..constants import ARCSEC, JULIAN_CENTURY_D
-from ..models.assemblies.earth import ORBIT_ECCENTRICITY, SUN_MEAN_ANOMALY_RAD
 from ..references import ren2000
 
 PLANETS = ("mercury", "venus", "mars", "jupiter", "saturn")
@@ -47,6 +46,8 @@ def geodesic_nutation(t_tdb_d):
     precession (models.interactions.geodesic.GeodesicRate: Omega_gp (1 + 3 e cos l')) integrated,
     -(3 e Omega_gp / n') sin l' (Fukushima 1991)."""
     rate = earth.GEODESIC_PRECESSION_ARCSEC_CY * ARCSEC / JULIAN_CENTURY_D
+    from ..models.assemblies.earth import ORBIT_ECCENTRICITY, SUN_MEAN_ANOMALY_RAD
+
     l0, n = SUN_MEAN_ANOMALY_RAD
     return -3.0 * ORBIT_ECCENTRICITY * rate / n * np.sin(l0 + n * np.asarray(t_tdb_d))
 
