@@ -99,7 +99,7 @@ def content_version(package, directory):
         try:
             store(path, stamp, content)
         except OSError as exc:               # the version stands; only its record is not kept
-            cache.say(f"the code-version record {path} could not be written ({exc.strerror or exc}); the sources "
+            private.say(f"the code-version record {path} could not be written ({exc.strerror or exc}); the sources "
                       "are hashed again next time")
     return content
 
