@@ -12,6 +12,14 @@ and loops over its instances, which compiles the closed Earth-Moon system in sec
 takes minutes (and a body under one point mass in 0.4 s instead of 1.4 s), at about twice the run time.  The
 compiled code is kept in heyoka's on-disk cache, under spinorbit's cache directory (spinorbit.linker), so that a
 later process compiles nothing.
+
+The outputs come from the Taylor polynomials of one propagation (heyoka's ``propagate_grid``: dense output, each
+step's size from the state alone, only the step onto the last output shortened), so a trajectory does not depend
+on when it is sampled: outputs every 2 d or every 3 d are one orbit at the days they share, to the polynomials'
+rounding.  A propagation cut into pieces ending on outputs shortens a step at each cut and follows another
+sequence of steps after it: that moved the solar system's Mercury by up to 3.4 m over the century
+(benchmarks/RESULTS.md, with the double-precision floor that remains).  The progress bar advances from heyoka's
+step callback.
 """
 import copy
 import functools
