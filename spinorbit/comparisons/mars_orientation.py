@@ -53,8 +53,10 @@ def verdict(p, comparison):
     checks = [Check("nutation − rigid series", "nutation_minus_rigid_series_max_mas", 1.0, " mas", _NUTATION,
                     min_span_d=NUTATION_MIN_SPAN_D),
               Check("pole − IAU 2015 (1980–2030)", "pole_minus_iau2015_max_arcsec", 0.3, "″", _IAU)]
+    from ..orbits.sources import orbit_source
+
     complete = p.mars.satellites and p.mars.geodesic_precession and p.orbit.planets
-    if complete and p.orbit.source != "kepler":
+    if complete and not orbit_source(p.orbit.source).analytic:      # the orbit moved by the planets
         checks.insert(0, Check("ψ rate − Konopliv 2016", "rate_minus_konopliv2016_mas_per_yr", 5.0,
                                " mas/yr", _RATE, min_span_d=RATE_MIN_SPAN_D))
     return Verdict("Konopliv et al. 2016 (moment: Baland et al. 2020), rigid nutation, IAU 2015", tuple(checks))
