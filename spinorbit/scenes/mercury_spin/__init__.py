@@ -41,4 +41,5 @@ def compare_run(p, run):
     return compare(p, run)
 
 
-SCENE = Scene(SCHEMA, build, compare_run, verdict, Cost(step_s=6e-5, sample_bytes=400))
+# measured: the century's main run, 73 050 rk8 steps in 5.1 s (the precession runs as many again each)
+SCENE = Scene(SCHEMA, build, compare_run, verdict, Cost(step_s=7e-5, sample_bytes=400))
