@@ -7,6 +7,8 @@
     python benchmarks/bench_deep_time.py chaos [--myr 20]   # two solutions 1e-10 apart: their divergence
     python benchmarks/bench_deep_time.py mars [--myr 1]     # Mars against La2004 Mars: the rate, the tides
     python benchmarks/bench_deep_time.py mars_band --sweep runs/mars_sweep   # a Mars sweep's divergence
+    python benchmarks/bench_deep_time.py mars_asteroids      # Mars on an orbit with Ceres, Vesta, Pallas
+    python benchmarks/bench_deep_time.py mars_no_asteroids   # the same start and integration, without them
 
 Each prints Markdown for benchmarks/results_deep_time.md.  The N-body runs take minutes of CPU: run them with
 ``nice -n 10``; solutions go to spinorbit's cache (``SPINORBIT_CACHE_DIR``) and are reused.
@@ -229,7 +231,7 @@ def chaos(myr=20.0, displacement=1e-10, window_kyr=10.0):
 
 MARS = (("La2004's parameters (p -7.597\"/yr, k2 0.149, Q 92)", []),
         ("p -7.590: La2004's p without the geodesic 0.0068\"/yr", ["mars.precession_rate=-7.59025 arcsec/yr"]),
-        ("p -7.5830 (0.18 % below La2004's)", ["mars.precession_rate=-7.5833 arcsec/yr"]),
+        ("p -7.5833 (0.18 % below La2004's)", ["mars.precession_rate=-7.5833 arcsec/yr"]),
         ("p -7.6083 (Konopliv et al. 2016)", ["mars.precession_rate=-7.6083 arcsec/yr"]),
         ("p -7.576 (La2003's, Folkner et al. 1997)", ["mars.precession_rate=-7.576 arcsec/yr"]),
         ("k2 0.169 (Konopliv et al. 2016)", ["tides.k2=0.169"]),
@@ -282,14 +284,94 @@ def mars_band(sweep, block_kyr=50):
           f"power-law index {index:.2f}")
 
 
+def mars_asteroids(myr=1.0, with_asteroids=True):
+    """Mars against La2004 Mars on an orbit with Ceres, Vesta and Pallas (La2004 carries five asteroids; DE421's
+    masses, DE430's states at 1969-06-28 as benchmarks/asteroid_share.py takes them) or without them, both
+    started from DE421 at 1969-06-28 (IAS15 to J2000), then WHFast 5 d back ``myr`` as the orbital solution
+    (the Sun's GR, the Moon's ring on the EMB)."""
+    import rebound
+    import reboundx
+    from asteroid_share import STATES
+
+    from spinorbit.bodies import moon
+    from spinorbit.bodies.de421_header import header
+    from spinorbit.bodies.table import gm_km3_d2
+    from spinorbit.constants import DAY_S, J2000_JD
+    from spinorbit.integrators import simulate
+    from spinorbit.orbits import solution
+    from spinorbit.orbits.kernel import open_ephemeris
+    from spinorbit.references import laskar
+    from spinorbit.starts import mars_deep_time
+
+    h = header()
+    t0 = h["JDEPOC"] - J2000_JD
+    kernel = open_ephemeris("de421", t0, t0)
+    sim = rebound.Simulation()
+    sim.G = 1.0
+    for body in solution.BODIES:
+        gm = gm_km3_d2("earth") + gm_km3_d2("moon") if body == solution.BODIES[solution.EMB] else gm_km3_d2(body)
+        p, v = kernel.relative_states(body, "solar_system_barycenter", [t0])
+        sim.add(m=gm, x=p[0, 0], y=p[0, 1], z=p[0, 2], vx=v[0, 0], vy=v[0, 1], vz=v[0, 2])
+    for state, key in (STATES.values() if with_asteroids else ()):
+        x = np.array(state) * h["AU"]
+        sim.add(m=h[key] * h["AU"] ** 3, x=x[0], y=x[1], z=x[2], vx=x[3], vy=x[4], vz=x[5])
+    sim.t = t0
+    extras = reboundx.Extras(sim)
+    gr = extras.load_force("gr_potential")
+    extras.add_force(gr)
+    gr.params["c"] = h["CLIGHT"] * DAY_S
+    ring = extras.load_force("gravitational_harmonics")
+    extras.add_force(ring)
+    emb, sun, mars = (sim.particles[solution.BODIES.index(b)] for b in (solution.BODIES[solution.EMB], "sun",
+                                                                        "mars"))
+    emb.params["J2"] = solution.MOON["ring"] * solution.lunar_ring_j2()
+    emb.params["R_eq"] = moon.MEAN_DISTANCE_KM
+
+    def orbit(body):
+        r = np.array([body.x - sun.x, body.y - sun.y, body.z - sun.z])
+        v = np.array([body.vx - sun.vx, body.vy - sun.vy, body.vz - sun.vz])
+        n = np.cross(r, v)
+        return n / np.linalg.norm(n), np.cross(v, n) / (sun.m + body.m) - r / np.linalg.norm(r)
+
+    sim.integrator = "ias15"
+    for t in np.linspace(t0, 0.0, 32)[1:]:
+        emb.params["Omega"] = rebound.Vec3d(*orbit(emb)[0])
+        sim.integrate(t, exact_finish_time=1)
+    sim.integrator = "whfast"
+    sim.integrator.corrector = 11
+    sim.dt = -5.0
+    rows = []
+    for t in -np.arange(0.0, myr * 1000 * KYR_D + 1.0, 36525.0):
+        sim.integrate(t, exact_finish_time=0)
+        sim.synchronize()
+        emb.params["Omega"] = rebound.Vec3d(*orbit(emb)[0])
+        rows.append([sim.t, *orbit(mars)[0], *orbit(mars)[1]])
+    rows = np.array(rows[::-1])
+    path = solution.HeliocentricOrbit(rows[:, 1:4], rows[:, 4:7], np.full(len(rows), 2.279e8))
+    held = solution.OrbitalSolution(rows[:, 0], {"mars": path, solution.BODIES[solution.EMB]: path}, {}, {}, {})
+    out = -np.arange(0.0, myr * 1000 * KYR_D + 1.0, KYR_D)
+    reference = laskar.Insolation("La2004_Mars")(out)["obliquity_rad"]
+    label = "with Ceres, Vesta, Pallas" if with_asteroids else "without asteroids"
+    for rate in (-7.597, -7.5833):
+        scenario = {"mars.precession_rate": rate, "tides.k2": 0.149, "tides.Q": 92.0, "orbit.output": 36525.0}
+        model = mars_deep_time.spin_model(scenario, held)
+        y = simulate(model.system, out, "rk8", {"step": 36525.0}, estimate_error=False)[0].y
+        normal = model.system.orbit(out)[0]
+        obliquity = np.arccos(np.clip(np.sum(y[:, :3] * normal, axis=1), -1, 1))
+        print(f"| {label}, p {rate} | {np.degrees(np.abs(obliquity - reference)).max():.3f} |")
+
+
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("part", choices=("moon", "factors", "ladder", "cost", "chaos", "mars", "mars_band"))
+    parser.add_argument("part", choices=("moon", "factors", "ladder", "cost", "chaos", "mars", "mars_band",
+                                         "mars_asteroids", "mars_no_asteroids"))
     parser.add_argument("--myr", type=float, default=None)
     parser.add_argument("--sweep", default="runs/mars_sweep")
     args = parser.parse_args()
     parts = {"moon": moon, "factors": factors, "ladder": ladder, "cost": cost,
              "chaos": lambda: chaos(args.myr or 20.0), "mars": lambda: mars(args.myr or 1.0),
-             "mars_band": lambda: mars_band(args.sweep)}
+             "mars_band": lambda: mars_band(args.sweep),
+             "mars_asteroids": lambda: mars_asteroids(args.myr or 1.0),
+             "mars_no_asteroids": lambda: mars_asteroids(args.myr or 1.0, with_asteroids=False)}
     parts[args.part]()
