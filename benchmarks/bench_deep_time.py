@@ -342,8 +342,12 @@ def mars_asteroids(myr=1.0, with_asteroids=True):
     sim.dt = -5.0
     rows = []
     for t in -np.arange(0.0, myr * 1000 * KYR_D + 1.0, 36525.0):
-        sim.integrate(t, exact_finish_time=0)
-        sim.synchronize()
+        if t < 0:                                    # as the solution's _Run: a safe first step, then fast
+            sim.integrator.safe_mode = 1
+            sim.steps(1)
+            sim.integrator.safe_mode = 0
+            sim.integrate(t, exact_finish_time=0)
+            sim.synchronize()
         emb.params["Omega"] = rebound.Vec3d(*orbit(emb)[0])
         rows.append([sim.t, *orbit(mars)[0], *orbit(mars)[1]])
     rows = np.array(rows[::-1])
