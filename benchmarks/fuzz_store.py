@@ -21,8 +21,9 @@ from one whole run by the integration's own error, ~1e-8").
   part nothing reads, or rewritten whole), ``error`` (one line, exit 2).
 - ``folder``: the store's folder made writable by others, or another user's: ``error`` in one line, nothing
   served.
-- ``full-disk``: the file-size limit (RLIMIT_FSIZE) below the file's size: the answer with one warning that it
-  was not stored, no partial file left.
+- ``full-disk``: the file-size limit (RLIMIT_FSIZE) below the file's size, once the case's kernel cache is
+  written (a first call without the limit, its store then removed): the answer with one warning that it was not
+  stored, no partial file left.
 - ``concurrent``: three processes extending one solution over random spans and a `spinorbit cache clear` at
   once: every answer the reference's, the store whole after.
 
@@ -53,9 +54,10 @@ REFERENCE_UAS = 1.0
 WORKER = """
 import sys, json, numpy as np, warnings
 from spinorbit import solutions
-lo, hi, out = float(sys.argv[1]), float(sys.argv[2]), sys.argv[3]
+lo, hi = float(sys.argv[1]), float(sys.argv[2])
 s = solutions.solve("moon_libration", [], lo, hi)
-np.save(out, s.part("moon.q", np.linspace(-19.5, 59.5, 41)) if s.covers(-19.5, 59.5) else np.zeros((0, 4)))
+q = s.part("moon.q", np.linspace(-19.5, 59.5, 41)) if s.covers(-19.5, 59.5) else np.zeros((0, 4))
+print(json.dumps(q.tolist()))            # on stdout: a file-size limit meets spinorbit's writes, not this answer's
 """
 API = """
 import sys, numpy as np
@@ -124,9 +126,9 @@ def intact(cache):
 
 
 def answer(cache, lo, hi, tag, limit=None):
-    out = cache.parent / f"{tag}.npy"
-    code, _, err = run([sys.executable, "-c", WORKER, str(lo), str(hi), str(out)], environment(cache), limit=limit)
-    return code, err, (np.load(out) if code == 0 and out.exists() else None)
+    code, out, err = run([sys.executable, "-c", WORKER, str(lo), str(hi), "-"], environment(cache), limit=limit)
+    q = np.array(json.loads(out.splitlines()[-1])) if code == 0 and out.strip() else None
+    return code, err, (q if q is not None and q.size else None)
 
 
 def judge(code, err, q, reference):
@@ -147,7 +149,7 @@ def case_signal(rng, cache, reference):
     for k, (lo, hi) in enumerate(pieces[:-1]):
         answer(cache, lo, hi, f"piece{k}")
     lo, hi = pieces[-1]
-    proc = subprocess.Popen([sys.executable, "-c", WORKER, str(lo), str(hi), str(cache.parent / "x.npy")],
+    proc = subprocess.Popen([sys.executable, "-c", WORKER, str(lo), str(hi), "-"],
                             env=environment(cache), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     time.sleep(delay)
     finished = proc.poll() is not None
@@ -288,6 +290,8 @@ def case_folder(rng, cache, reference):
 
 
 def case_full_disk(rng, cache, reference):
+    answer(cache, 0.0, 4.0, "warm")             # the kernel cache written first: the limit meets the store's write
+    shutil.rmtree(cache / "solutions")
     limit = rng.choice([0, 1000, 20_000])
     code, err, q = answer(cache, -20.0, 60.0, "full", limit=limit)
     bad = judge(code, err, q, reference)
@@ -302,23 +306,23 @@ def case_full_disk(rng, cache, reference):
 
 def case_concurrent(rng, cache, reference):
     spans = [(-20.0, 60.0)] + [(float(rng.choice([-20, -8, 0])), float(rng.choice([8, 24, 60]))) for _ in range(2)]
-    procs = [subprocess.Popen([sys.executable, "-c", WORKER, str(lo), str(hi), str(cache.parent / f"c{k}.npy")],
-                              env=environment(cache), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-             for k, (lo, hi) in enumerate(spans)]
+    procs = [subprocess.Popen([sys.executable, "-c", WORKER, str(lo), str(hi), "-"], env=environment(cache),
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) for lo, hi in spans]
     time.sleep(rng.uniform(0.0, 2.0))
     clear = run([sys.executable, "-m", "spinorbit", "cache", "clear"], environment(cache))
-    errors = []
-    for k, proc in enumerate(procs):
+    errors, answers = [], []
+    for proc in procs:
         try:
-            _, err = proc.communicate(timeout=180)
+            out, err = proc.communicate(timeout=180)
         except subprocess.TimeoutExpired:
             proc.kill()
             return "hang", f"spans {spans}"
         if proc.returncode != 0 or "Traceback" in err:
             errors.append(said(err)[-1:])
+        answers.append(out)
     if errors or clear[0] != 0:
         return "traceback", f"spans {spans}: {errors} clear {clear[0]}"
-    q = np.load(cache.parent / "c0.npy")
+    q = np.array(json.loads(answers[0].splitlines()[-1]))
     if angle_uas(q, reference) > REFERENCE_UAS:
         return "wrong", f"spans {spans}"
     if not intact(cache):
