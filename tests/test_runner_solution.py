@@ -7,7 +7,7 @@ import pytest
 from astropy.time import Time
 
 import spinorbit
-from spinorbit import scene, solutions
+from spinorbit import runner, scene, solutions
 from spinorbit.integrators import simulate
 from spinorbit.rotations import quat_angle
 from spinorbit.runner import run_scenario
@@ -37,7 +37,7 @@ def simulations(monkeypatch):
         return run
 
     monkeypatch.setattr(fit, "simulate", counted("fit", fit.simulate))
-    monkeypatch.setattr(scene, "simulate", counted("scene", scene.simulate))
+    monkeypatch.setattr(runner, "integrate", counted("scene", scene.integrate))
     return counts
 
 
