@@ -313,3 +313,24 @@ def test_a_numba_cache_dir_others_can_write_is_refused_and_its_pickles_never_run
     os.chmod(shared, 0o700)                                             # a private one is used
     assert subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache"], capture_output=True,
                           env=env).returncode == 0
+
+
+def test_a_generated_module_that_cannot_be_written_runs_from_memory(tmp_path, monkeypatch, capfd):
+    """Found by benchmarks/fuzz_store.py: a full disk (EFBIG) while the cache wrote a generated module was an OSError
+    traceback; the module is run from its verified bytes, said in one line."""
+    from spinorbit.linker import cache
+
+    def full(path, data):
+        raise OSError(27, "File too large")
+
+    monkeypatch.setenv(cache.ENVIRONMENT, str(tmp_path / "cache"))
+    cache.kernels_dir.cache_clear()
+    monkeypatch.setattr(cache, "_write_atomically", full)
+    name = f"spinorbit_test_full_disk_{os.getpid()}"
+    try:
+        assert cache.load_module(name, "answer = 6 * 7\n").answer == 42
+    finally:
+        sys.modules.pop(name, None)
+        cache.kernels_dir.cache_clear()
+    said = capfd.readouterr().err.splitlines()
+    assert len(said) == 1 and "could not be written (File too large)" in said[0]

@@ -54,7 +54,11 @@ def load_module(name, text):
             say(f"the compiled-kernel cache entry {path} was damaged (its content does not match its name); "
                 "rebuilt")
             remove_compiled(name)
-        _write_atomically(path, expected)
+        try:
+            _write_atomically(path, expected)
+        except OSError as exc:              # a full disk: the module runs from the bytes in memory, not cached
+            say(f"the compiled-kernel cache entry {path} could not be written ({exc.strerror or exc}); compiled "
+                "for this process only")
     spec = importlib.util.spec_from_file_location(name, path, loader=_VerifiedSource(path, expected))
     module = importlib.util.module_from_spec(spec)
     LOADED[name] = hashlib.sha256(expected).hexdigest()
