@@ -13,7 +13,8 @@ file in the same directory, fsync, rename, ``importlib.invalidate_caches``) and 
 file's bytes are the text expected (so its hash matches its name): the verified bytes are compiled
 and executed as the module, registered in ``sys.modules`` (where numba's cache index and other
 generated modules find it), never imported through ``sys.path``.  A file that differs (truncated,
-damaged, edited) is rewritten, and said in one line.
+damaged, edited) is rewritten, and said in one line; one that cannot be written (a full disk) is run from the
+verified bytes in memory, said in one line.
 
 numba's cache files are pickles, so they are trusted only as far as they are checked: a generated
 kernel's index and data files live in the private ``kernels/numba/`` whatever NUMBA_CACHE_DIR says,
