@@ -5,6 +5,8 @@ downloaded: DE421 comes from the ``skyfield-data`` package, other kernels from
 ``ephemerides/<name>.bsp`` (in the working directory or this repository) or an
 installed ``naif-<name>`` package.
 """
+import functools
+import hashlib
 import importlib
 import importlib.util
 import weakref
@@ -39,6 +41,17 @@ def kernel_path(source):
         raise InputError("source", source,
                             f"'de421', a .bsp in ephemerides/ ({shipped or 'none there'}), "
                             f"or an installed naif-{source} package") from None
+
+
+@functools.lru_cache(maxsize=32)
+def file_sha256(path, size, mtime_ns, ctime_ns, inode, device):
+    """sha256 of the file at ``path``, hashed once per process for each (size, times, inode): any change to the
+    file changes one of them (ctime cannot be set back by a user)."""
+    digest = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
 
 
 def _open_spk(spk_class, path):

@@ -65,6 +65,10 @@ class OrbitSourceKind:
         """Days of N-body integration reading it over [t_start, t_end] costs (0: none, it is read)."""
         return 0.0
 
+    def file_identity(self):
+        """{"sha256", "bytes"} of the kernel file it reads, or None: it reads none."""
+        return None
+
     def open(self, t_start, t_end):
         raise InputError("source", self.name, "a JPL ephemeris: 'de421', 'de440', a .bsp name or path")
 
@@ -90,6 +94,21 @@ class JPLEphemeris(OrbitSourceKind):
         except EphemerisRangeError:
             return False
         return True
+
+    def file_identity(self):
+        """{"sha256", "bytes"} of the kernel file the name resolves to (kernel.kernel_path: a ``./ephemerides/``
+        file shadows a name), or None when there is no such file."""
+        import os
+
+        from .kernel import file_sha256, kernel_path
+
+        try:
+            path = kernel_path(self.name).resolve()
+            info = os.stat(path)
+        except (InputError, OSError):
+            return None
+        return {"sha256": file_sha256(str(path), info.st_size, info.st_mtime_ns, info.st_ctime_ns, info.st_ino,
+                                      info.st_dev), "bytes": info.st_size}
 
     def cover_text(self):
         from .kernel import JPLKernel, kernel_path
@@ -226,6 +245,15 @@ def orbit_source(name):
     named = {"de421": DE421, "rebound": Rebound, "circular": lambda: TwoBody("circular"),
              "kepler": lambda: TwoBody("kepler")}
     return named[name]() if name in named else JPLEphemeris(name)
+
+
+def ephemeris_identity(name):
+    """{"sha256", "bytes"} of the kernel file the orbit source called ``name`` reads, or None (a source that reads
+    no kernel file, or a name no source has: the run itself refuses it in one line)."""
+    try:
+        return orbit_source(name).file_identity() if isinstance(name, str) else None
+    except InputError:
+        return None
 
 
 def sample_orbits(source, center, bodies, t_start, t_end, step=None, measure=True):

@@ -22,7 +22,6 @@ A query outside the stored span extends the solution from its nearer end (forwar
 from its start), the same System started at the state where the last run stopped.
 """
 import contextlib
-import functools
 import hashlib
 import json
 import os
@@ -62,6 +61,7 @@ def record(scenario):
     """What decides a solution's numbers: the scene kind, its model keys, the ephemeris file's identity, the code's
     version (and the span, for a scene whose start depends on it: the Earth's is fitted over its span's
     outputs)."""
+    from ..orbits.sources import ephemeris_identity
     from .models import KINDS
 
     anchored = scenario.kind in KINDS and KINDS[scenario.kind].anchor is not None
@@ -72,36 +72,6 @@ def record(scenario):
     return {"scene": scenario.kind, "keys": json.loads(json.dumps(keys, default=str)), "code": code_version(),
             "ephemeris_file": ephemeris_identity(scenario.get("orbit.source"))}
 
-
-def ephemeris_identity(source):
-    """{"sha256", "bytes"} of the JPL kernel file the orbit source ``source`` names (orbits.kernel.kernel_path: a
-    ``./ephemerides/`` file shadows a name), or None for a source that reads no kernel file."""
-    from ..errors import InputError
-    from ..orbits.kernel import kernel_path
-    from ..orbits.sources import orbit_source
-
-    if not isinstance(source, str):
-        return None
-    try:
-        if not orbit_source(source).jpl_kernel:
-            return None
-        path = kernel_path(source).resolve()
-        info = os.stat(path)
-    except (InputError, OSError):
-        return None                      # no file to name: the run itself refuses the source in one line
-    return {"sha256": file_sha256(str(path), info.st_size, info.st_mtime_ns, info.st_ctime_ns, info.st_ino,
-                                  info.st_dev), "bytes": info.st_size}
-
-
-@functools.lru_cache(maxsize=32)
-def file_sha256(path, size, mtime_ns, ctime_ns, inode, device):
-    """sha256 of the file at ``path``, hashed once per process for each (size, times, inode): any change to the
-    file changes one of them (ctime cannot be set back by a user)."""
-    digest = hashlib.sha256()
-    with open(path, "rb") as f:
-        for block in iter(lambda: f.read(1 << 20), b""):
-            digest.update(block)
-    return digest.hexdigest()
 
 
 def path_of(rec):
