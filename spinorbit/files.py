@@ -1,7 +1,9 @@
 """Files spinorbit reads (and locks), opened only when they are regular files: a FIFO, a device or a socket (or
-a link to one) is refused without blocking, before anything is read from it."""
+a link to one) is refused without blocking, before anything is read from it; files it writes, written aside and
+renamed."""
 import os
 import stat
+import tempfile
 
 
 class NotRegular(OSError):
@@ -23,6 +25,21 @@ def open_regular(path, mode="rb", follow_links=True):
         os.close(fd)
         raise
     return os.fdopen(fd, mode)
+
+
+def write_atomically(path, fill, prefix=".tmp-"):
+    """Write ``path`` whole or not at all: ``fill(f)`` writes into a new file (named ``prefix``...) in the same
+    folder, which is synced and renamed over ``path``; on an error nothing is left of it and the error is raised."""
+    handle, tmp = tempfile.mkstemp(prefix=prefix, dir=os.path.dirname(os.fspath(path)) or ".")
+    try:
+        with os.fdopen(handle, "wb") as f:
+            fill(f)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    finally:
+        if os.path.lexists(tmp):
+            os.unlink(tmp)
 
 
 def open_lock(path):

@@ -42,7 +42,6 @@ import os
 import re
 import stat
 import sys
-import tempfile
 import time
 import zipfile
 import zlib
@@ -51,7 +50,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .files import NotRegular, open_lock, open_regular, process_alive
+from .files import NotRegular, open_lock, open_regular, process_alive, write_atomically
 from .private import check_private, private_folder
 
 FORMAT = 1                  # the room's file layout: "record", "meta", "sha256" beside the caller's arrays
@@ -117,16 +116,8 @@ def write(path, arrays, record, meta=None):
     on an OSError nothing is left of the write and the error is raised."""
     path = Path(path)
     held = _held(arrays, record, meta)
-    handle, tmp = tempfile.mkstemp(prefix=f".{path.name}.tmp-{os.getpid()}-", dir=path.parent)
-    try:
-        with os.fdopen(handle, "wb") as f:
-            np.savez(f, sha256=np.array(arrays_hash(held)), **held)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    finally:
-        if os.path.lexists(tmp):
-            os.unlink(tmp)
+    write_atomically(path, lambda f: np.savez(f, sha256=np.array(arrays_hash(held)), **held),
+                     prefix=f".{path.name}.tmp-{os.getpid()}-")
     remove_leftovers(path)
 
 

@@ -32,13 +32,12 @@ import os
 import pickle
 import stat
 import sys
-import tempfile
 from pathlib import Path
 
 from numba import njit
 from numba.core.caching import CompileResultCacheImpl, FunctionCache, IndexDataCacheFile, _CacheLocator
 
-from ..files import NotRegular, open_regular
+from ..files import NotRegular, open_regular, write_atomically
 from ..private import ENVIRONMENT, kernels_dir, private_folder, root, say  # noqa: F401  (cache.root, ...)
 
 MAGIC = b"spinorbit numba cache 1\n"
@@ -99,16 +98,7 @@ def _read_own(path):
 
 
 def _write_atomically(path, data):
-    handle, tmp = tempfile.mkstemp(prefix=".tmp-", dir=path.parent)
-    try:
-        with os.fdopen(handle, "wb") as f:
-            f.write(data)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    finally:
-        if os.path.lexists(tmp):
-            os.unlink(tmp)
+    write_atomically(path, lambda f: f.write(data))
     importlib.invalidate_caches()
 
 
