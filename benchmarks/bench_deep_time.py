@@ -244,6 +244,7 @@ def mars(myr=1.0):
     from spinorbit import run_scenario
 
     windows = [w for w in ("1myr", "5myr", "20myr") if float(w.removesuffix("myr")) <= myr + 1e-9]
+    windows += [] if f"{myr:g}myr" in windows else ["span"]
     print("| 0 to -%g Myr | " % myr + " | ".join(f"obliquity max ° ({w})" for w in windows)
           + " | ϖ̄ at the end ° | e max |\n|---" * 1 + "|---" * (len(windows) + 2) + "|")
     for label, overrides in MARS:
