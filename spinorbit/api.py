@@ -61,9 +61,9 @@ ACCURACY = {
                     "basis": "the rigid Earth against IAU 2006/2000A: what it differs by is the real Earth's "
                              "non-rigid response"},
     "mars": {"statistic": "a bound at every date of 1980-2030: the largest angle of the pole from IAU 2015's",
-             "basis": "the Mars scene against IAU 2015 (Archinal et al. 2018) over 1980-2030 (measured 0.17\"; "
-                      "0.31\" at 1950): IAU 2015's precession is a fitted circle, 12 mas/yr faster than the "
-                      "model's, whose rate is 14.5 mas/yr slower than Konopliv et al. 2016's (benchmarks/RESULTS.md)",
+             "basis": "the Mars scene against IAU 2015 (Archinal et al. 2018) over 1980-2030 (measured 0.072\"): "
+                      "IAU 2015's precession is a fitted circle, 3.0 mas/yr slower than the model's, whose rate "
+                      "is 0.75 mas/yr from Konopliv et al. 2016's (benchmarks/RESULTS.md)",
              "beyond_de421": "no reference judges these dates"},
     "earth_moon": {"statistic": "a bound at every date: the largest difference from DE421 over 1950-2050",
                    "basis": "the coupled scene's tolerances against DE421 over 1950-2050 (measured 0.084\", 9.7 m, "
@@ -545,13 +545,11 @@ def _check_observer(observer, when):
 def _check_observer_ephemeris(source):
     """The observer's view reads the Earth and the Moon from a JPL kernel: InputError naming ``observer``
     (before any integration) when ``source`` is none."""
-    from .orbits.kernel import kernel_path
+    from .orbits.sources import orbit_source
 
-    try:
-        kernel_path(source)
-    except InputError:
+    if not orbit_source(source).jpl_kernel:
         raise InputError("observer", f"ephemeris={source!r}", "an ephemeris that is a JPL kernel ('de421', "
-                                                              "'de440' or a .bsp) for an observer's view") from None
+                                                              "'de440' or a .bsp) for an observer's view")
 
 
 def _observer_said(observer):
