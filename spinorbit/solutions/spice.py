@@ -41,6 +41,7 @@ import numpy as np
 from ..bodies.table import EMB
 from ..constants import ARCSEC, DAY_S
 from ..errors import EphemerisRangeError, InputError
+from ..files import write_atomically
 from .chebyshev import Segments, interpolating_at
 from .tracks import body_code, tracks
 
@@ -317,20 +318,15 @@ def from_de421(held, span):
 
 def _written(path, write):
     """``write(draft)`` to a short-named file in a private temporary folder (SPICE cuts a longer name than
-    SPICE_FILE_NAME, and would write elsewhere), copied beside ``path`` and renamed over it: nothing
-    half-written is left, nothing is written outside ``path``'s folder but the temporary folder, removed."""
-    aside = path.with_name(f".{path.name}.tmp-{os.getpid()}")
-    try:
-        with tempfile.TemporaryDirectory(prefix="spinorbit-") as folder:
-            draft = Path(folder) / f"kernel{path.suffix}"
-            if len(str(draft)) > SPICE_FILE_NAME:
-                raise InputError("TMPDIR", folder, f"a temporary folder whose kernel paths fit SPICE's "
-                                                   f"{SPICE_FILE_NAME} characters")
-            write(draft)
-            shutil.copyfile(draft, aside)
-        with open(aside, "rb") as f:
-            os.fsync(f.fileno())
-        os.replace(aside, path)
-    finally:
-        aside.unlink(missing_ok=True)
+    SPICE_FILE_NAME, and would write elsewhere), then copied to ``path`` aside and renamed
+    (files.write_atomically): nothing half-written is left, nothing is written outside ``path``'s folder but the
+    temporary folder, removed."""
+    with tempfile.TemporaryDirectory(prefix="spinorbit-") as folder:
+        draft = Path(folder) / f"kernel{path.suffix}"
+        if len(str(draft)) > SPICE_FILE_NAME:
+            raise InputError("TMPDIR", folder, f"a temporary folder whose kernel paths fit SPICE's "
+                                               f"{SPICE_FILE_NAME} characters")
+        write(draft)
+        with open(draft, "rb") as source:
+            write_atomically(path, lambda f: shutil.copyfileobj(source, f), prefix=f".{path.name}.tmp-{os.getpid()}-")
     return path
