@@ -1,7 +1,6 @@
 """The scene protocol (spinorbit.scene): typed parameters alike from a file, --set and Python values; one runner
 that builds a scene's model once; what a scene declares is read from its Scene, not restated above it."""
 import dataclasses
-import importlib
 
 import astropy.units as u
 import numpy as np
@@ -10,7 +9,7 @@ import pytest
 from spinorbit import api
 from spinorbit.errors import ScenarioError
 from spinorbit.scenarios import load_scenario
-from spinorbit.scenes import SCENES, scene_of
+from spinorbit.scenes import SCENES, scene_module, scene_of
 
 
 def test_the_typed_record_is_the_same_from_set_text_and_from_python_values():
@@ -34,11 +33,12 @@ def test_a_python_value_in_the_wrong_unit_is_refused_in_one_line_naming_the_key(
 
 
 def test_every_scene_declares_a_scene_the_one_runner_runs():
-    for kind, module in SCENES.items():
-        scene = importlib.import_module(module).SCENE
+    for kind in SCENES:
+        module = scene_module(kind)
+        scene = module.SCENE
         assert scene.schema and scene.verdict is not None, kind
         assert scene.build is not None and scene.compare is not None, kind
-        assert not hasattr(importlib.import_module(module), "run"), kind        # no pipeline of its own
+        assert not hasattr(module, "run"), kind        # no pipeline of its own
 
 
 def test_the_runner_builds_a_scene_model_once(monkeypatch):

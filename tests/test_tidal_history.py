@@ -108,7 +108,7 @@ def calibrated(c, y0, name):
     was fitted with: the scene's default, or Farhat et al.'s equatorial hemisphere for the ocean without the
     Coriolis force; until 2.5 Gyr, none from 3.5 Gyr; its Andrade solid Earth)."""
     from spinorbit.models.tidal_history.tides import TIDES, Continent, Setting
-    from spinorbit.scenes.earth_moon_history.keys import SCHEMA
+    from spinorbit.scenes.earth_moon_history import SCHEMA
     from spinorbit.starts.earth_moon_history import keep_table
 
     tide = TIDES[name]

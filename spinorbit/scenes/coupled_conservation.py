@@ -15,12 +15,12 @@ under 10 yr is not compared.
 """
 import numpy as np
 
-from ...constants import JULIAN_CENTURY_D
-from ...models.assemblies.earth_moon import FIGURES
-from ...scene import Cost, Model, Outcome, Scene
-from ...schema import Key
-from ...verdict import Check, Verdict
-from .. import common
+from ..constants import JULIAN_CENTURY_D
+from ..models.assemblies.earth_moon import FIGURES
+from ..scene import Cost, Model, Outcome, Scene
+from ..schema import Key
+from ..verdict import Check, Verdict
+from . import common
 
 SCHEMA = {
     **{f"model.{name}": Key(type=bool, default=True, help=text) for name, text in FIGURES.items()},
@@ -47,11 +47,11 @@ def verdict(p, comparison):
 
 def build(p, times):
     """The closed Earth-Moon System of the scenario's figures and Earth, started from DE421 at span.start."""
-    from ...bodies import earth
-    from ...models.assemblies.earth_moon import closed
-    from ...models.rotators import Rigid
-    from ...models.start import earth_moon_de421
-    from ...references.erfa_pole import cip_vector
+    from ..bodies import earth
+    from ..models.assemblies.earth_moon import closed
+    from ..models.rotators import Rigid
+    from ..models.start import earth_moon_de421
+    from ..references.erfa_pole import cip_vector
 
     t0 = p.t_start
     rotator = Rigid() if p.model.earth_rotator == "rigid" else None
@@ -64,7 +64,7 @@ def build(p, times):
 def compare_run(p, run):
     from astropy.table import QTable
 
-    from ...schema import tdb_days_to_time
+    from ..schema import tdb_days_to_time
 
     t, t0, solution = run.times, p.t_start, run.solution
     energy, big_l = run.model.system.invariants(solution.y, t)

@@ -7,15 +7,15 @@ conditions (starts/earth.py); the CIP X, Y, the fitted precession and nutation, 
 (comparisons/earth_iau.py).  The rigid-minus-IAU nutation is the non-rigid response, not an error:
 ``earth.nonrigid`` applies it (comparisons/earth_nonrigid.py; REN-2000 and VLBI's observed pole beside).
 """
-from ...analysis.precession import RATE_MIN_SPAN_D
-from ...analysis.transfer.models import MODELS
-from ...bodies import earth
-from ...orbits.sources import orbit_source
-from ...references import euler_p96
-from ...scene import Cost, Model, Outcome, Scene
-from ...schema import SAMPLE_STEP, Key
-from ...starts.earth import restarted
-from ...verdict import Check, Verdict
+from ..analysis.precession import RATE_MIN_SPAN_D
+from ..analysis.transfer.models import MODELS
+from ..bodies import earth
+from ..orbits.sources import orbit_source
+from ..references import euler_p96
+from ..scene import Cost, Model, Outcome, Scene
+from ..schema import SAMPLE_STEP, Key
+from ..starts.earth import restarted
+from ..verdict import Check, Verdict
 
 SCHEMA = {
     "earth.model": Key(type=str, default="gyroscopic", choices=("full", "gyroscopic")),
@@ -89,7 +89,7 @@ def verdict(p, comparison):
 
 def build(p, times):
     """The rigid Earth on its orbits, started on the IAU pole (starts/earth.py)."""
-    from ...starts import earth as start
+    from ..starts import earth as start
 
     system, orbits, (z0, pole_ecl, plane_tilt) = start.build(p, times)
     twin = start.gyroscopic_twin(p, z0) if p.earth.model == "full" else None
@@ -97,12 +97,12 @@ def build(p, times):
 
 
 def compare_run(p, run):
-    from ... import plots
-    from ...comparisons import earth_iau as vs
-    from ...comparisons import earth_nonrigid as nr
-    from ...references import erfa_pole
-    from ...starts import earth_ellipticity as hd
-    from ...starts import earth_tides as tides
+    from .. import plots
+    from ..comparisons import earth_iau as vs
+    from ..comparisons import earth_nonrigid as nr
+    from ..references import erfa_pole
+    from ..starts import earth_ellipticity as hd
+    from ..starts import earth_tides as tides
 
     t, system, m = run.times, run.model.system, run.model
     z = system.figure_axes("earth", t, run.solution.y)
@@ -138,7 +138,7 @@ HALF_MONTH_D = 13.66                   # shortest period of the lunisolar torque
 
 def bench(p, model, times):
     """Attitude error against a converged rk8 run, rad."""
-    from ...analysis.ladder import converged_error
+    from ..analysis.ladder import converged_error
 
     model.system.meta["time_scale"] = HALF_MONTH_D
     error, agreement = converged_error(model.system, times, BENCH_REFERENCE_STEP_D[p.earth.model])

@@ -9,12 +9,12 @@ and the planets from DE421 (or DE440), or the Sun on its Kepler ellipse; started
 pole and spin (starts/mars.py).  The rate, the nutation, the pole against IAU 2015, the rate's budget and
 the verdict: comparisons/mars_orientation.py.
 """
-from ...bodies import mars
-from ...comparisons.mars_orientation import verdict
-from ...models.assemblies.planet import MODELS
-from ...scene import Cost, Model, Scene
-from ...schema import SAMPLE_STEP, Key
-from ...starts.mars import restarted
+from ..bodies import mars
+from ..comparisons.mars_orientation import verdict
+from ..models.assemblies.planet import MODELS
+from ..scene import Cost, Model, Scene
+from ..schema import SAMPLE_STEP, Key
+from ..starts.mars import restarted
 
 SCHEMA = {
     "mars.model": Key(type=str, default="gyroscopic", choices=MODELS,
@@ -34,13 +34,13 @@ SCHEMA = {
 
 def build(p, times):
     """Rigid Mars started on the IAU 2015 pole (starts/mars.py)."""
-    from ...starts import mars as start
+    from ..starts import mars as start
 
     return Model(start.build(p))
 
 
 def compare_run(p, run):
-    from ...comparisons import mars_orientation as vs
+    from ..comparisons import mars_orientation as vs
 
     return vs.outcome(p, run)
 

@@ -3,9 +3,9 @@ averaged precession under the Sun set by the present rate, the Sun's tide, from 
 (spinorbit.starts.mars_deep_time), against La2004 Mars over 1, 5 and 20 Myr; a sweep's obliquity band."""
 import time
 
-from ...scene import Model, Outcome, Scene
-from ...schema import Key
-from ...starts.earth_deep_time import MYR_D, ORBIT_SCHEMA, check_span, nbody_counts
+from ..scene import Model, Outcome, Scene
+from ..schema import Key
+from ..starts.earth_deep_time import MYR_D, ORBIT_SCHEMA, check_span, nbody_counts
 
 SCHEMA = {
     **ORBIT_SCHEMA,
@@ -18,8 +18,8 @@ SCHEMA = {
 
 
 def verdict(p, comparison):
-    from ...comparisons.mars_deep_time import LA2004, TARGET
-    from ...verdict import Check, Verdict
+    from ..comparisons.mars_deep_time import LA2004, TARGET
+    from ..verdict import Check, Verdict
 
     judged = all(p[key] == value for key, value in LA2004.items()) and abs(p.t_end) >= MYR_D - 1.0
     checks = (Check("obliquity vs La2004 Mars (1myr)", "la2004_obliquity_max_deg_1myr", 0.1, "°", TARGET,
@@ -29,8 +29,8 @@ def verdict(p, comparison):
 
 
 def build(p, times):
-    from ...starts import earth_deep_time as orbits
-    from ...starts import mars_deep_time as model
+    from ..starts import earth_deep_time as orbits
+    from ..starts import mars_deep_time as model
 
     check_span(p)
     started = time.perf_counter()
@@ -40,7 +40,7 @@ def build(p, times):
 
 
 def compare_run(p, run):
-    from ...comparisons import mars_deep_time as compare
+    from ..comparisons import mars_deep_time as compare
 
     q = compare.quantities(run.times, run.solution.y, run.model.spin)
     metrics, not_measured, provenance, la2004 = compare.laskar_metrics(run.times, q)
@@ -50,7 +50,7 @@ def compare_run(p, run):
 
 
 def sweep_figures(tables):
-    from ...comparisons import mars_deep_time as compare
+    from ..comparisons import mars_deep_time as compare
 
     return {"band_obliquity": compare.band_figure(tables)}
 

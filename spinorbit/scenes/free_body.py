@@ -8,15 +8,15 @@ Hairer-Lubich-Wanner test case (moments 2/3, 1, 2) can be run as published.
 """
 import numpy as np
 
-from ...analysis.invariants import invariant_drift
-from ...constants import ARCSEC
-from ...errors import PhysicsError, ScenarioError
-from ...models.assemblies.idealised import free_body
-from ...rotations import quat_angle, quat_from_euler313
-from ...scene import Model, Outcome, Scene
-from ...schema import ANGLE, SPIN, Key
-from ...verdict import Check, Verdict
-from .. import common
+from ..analysis.invariants import invariant_drift
+from ..constants import ARCSEC
+from ..errors import PhysicsError, ScenarioError
+from ..models.assemblies.idealised import free_body
+from ..rotations import quat_angle, quat_from_euler313
+from ..scene import Model, Outcome, Scene
+from ..schema import ANGLE, SPIN, Key
+from ..verdict import Check, Verdict
+from . import common
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A <= B <= C, any unit"),
@@ -35,7 +35,7 @@ VERDICT = Verdict("Euler's closed form", (
 
 def build(p, times):
     """The free body and its closed form (theory.FreeRigidBody) from the same start."""
-    from ...theory import FreeRigidBody
+    from ..theory import FreeRigidBody
 
     q0 = quat_from_euler313(*p.body.attitude0)
     try:

@@ -8,12 +8,12 @@ Euler's energy constant C as a multiple of n (-1, 0, 1, > 1: §826's cases).
 """
 import math
 
-from ...analysis.planar_libration import planar_system
-from ...comparisons.planar_libration_euler import compare_run
-from ...scene import Model, Scene
-from ...schema import DISTANCE, GM, RATE, Key
-from ...verdict import Check, Verdict
-from .. import common
+from ..analysis.planar_libration import planar_system
+from ..comparisons.planar_libration_euler import compare_run
+from ..scene import Model, Scene
+from ..schema import DISTANCE, GM, RATE, Key
+from ..verdict import Check, Verdict
+from . import common
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A < B <= C, any unit"),
@@ -36,8 +36,8 @@ def verdict(p, comparison):
 
 def build(p, times):
     """The body on Euler's circle with zeta = 0 and zeta' from the energy constant; the closed form."""
-    from ...orbits.analytic import CircularOrbits
-    from ...theory import PlanarLibration, libration_n
+    from ..orbits.analytic import CircularOrbits
+    from ..theory import PlanarLibration, libration_n
 
     body = common.rigid_body(p)
     gm, s, delta = p.orbit.gm, p.orbit.radius, p.orbit.rate

@@ -15,10 +15,10 @@ precession), compared with ERFA's long-term precession over the first 2 kyr and 
 """
 import time
 
-from ...scene import Model, Outcome, Scene
-from ...schema import Key
-from ...starts.earth_deep_time import MYR_D, ORBIT_SCHEMA, check_span, nbody_counts
-from ...verdict import Check, Verdict
+from ..scene import Model, Outcome, Scene
+from ..schema import Key
+from ..starts.earth_deep_time import MYR_D, ORBIT_SCHEMA, check_span, nbody_counts
+from ..verdict import Check, Verdict
 
 # The physics La2004 is judged against (numerical keys, the ephemeris and the file may change).
 NOMINAL = {"model.Td": 1.0, "model.Ed": 1.0, "model.precession": "iau2006_rate", "model.tidal_tilt": True,
@@ -65,7 +65,7 @@ def verdict(p, comparison):
 def build(p, times):
     """The orbital solution (REBOUND, cached: orbits/solution.py) and the averaged spin on it
     (starts/earth_deep_time.py)."""
-    from ...starts import earth_deep_time as model
+    from ..starts import earth_deep_time as model
 
     check_span(p)
     started = time.perf_counter()
@@ -76,10 +76,10 @@ def build(p, times):
 
 
 def compare_run(p, run):
-    from ...comparisons import earth_deep_time as compare
-    from ...comparisons import earth_deep_time_table as table
-    from ...plots import deep_time as deep_time_plot
-    from ...plots import deep_time_spectra
+    from ..comparisons import earth_deep_time as compare
+    from ..comparisons import earth_deep_time_table as table
+    from ..plots import deep_time as deep_time_plot
+    from ..plots import deep_time_spectra
 
     t, spin, orbit = run.times, run.model.spin, run.model.orbit
     q = table.quantities(t, run.solution.y, spin)

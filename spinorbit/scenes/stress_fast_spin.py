@@ -16,12 +16,12 @@ the precession rate fitted over the span (§847) against the closed form, first 
 Passes when the reference's figure axis agrees with the best other run to
 ``stress.reference_agreement_max`` rad and every full-span rate is within ``stress.rate_rel_tol``.
 """
-from ...comparisons.fast_spin_p96 import compare_run
-from ...models.assemblies.idealised import under_point_masses
-from ...scene import Model, Scene
-from ...schema import ANGLE, SPIN, Key
-from ...verdict import Check, Verdict
-from .. import common
+from ..comparisons.fast_spin_p96 import compare_run
+from ..models.assemblies.idealised import under_point_masses
+from ..scene import Model, Scene
+from ..schema import ANGLE, SPIN, Key
+from ..verdict import Check, Verdict
+from . import common
 
 
 def verdict(p, comparison):
@@ -52,8 +52,8 @@ RADIUS = 1.0          # F's distance (length unit arbitrary: only GM/s^3 enters)
 def build(p, times):
     """No main run (a converged reference and the ladder of ``stress.runs``, compare): the spinner started on
     Euler's forced solution (§844), its closed form."""
-    from ...orbits.analytic import CircularOrbits
-    from ...theory import SymmetricPrecession, p96_initial_state, precession_constant
+    from ..orbits.analytic import CircularOrbits
+    from ..theory import SymmetricPrecession, p96_initial_state, precession_constant
 
     body = common.rigid_body(p)
     a_, b_, aa = body.moments

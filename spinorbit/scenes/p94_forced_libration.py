@@ -8,13 +8,13 @@ with the full 3-D rigid body.  The neglected terms are O(alpha beta^2, n zeta^3)
 """
 import numpy as np
 
-from ...analysis.planar_libration import planar_system, zeta_from_solution
-from ...constants import ARCSEC
-from ...errors import ScenarioError
-from ...scene import Model, Outcome, Scene
-from ...schema import ANGLE, DISTANCE, GM, RATE, Key
-from ...verdict import Check, Verdict
-from .. import common
+from ..analysis.planar_libration import planar_system, zeta_from_solution
+from ..constants import ARCSEC
+from ..errors import ScenarioError
+from ..scene import Model, Outcome, Scene
+from ..schema import ANGLE, DISTANCE, GM, RATE, Key
+from ..verdict import Check, Verdict
+from . import common
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A < B <= C, any unit"),
@@ -34,8 +34,8 @@ VERDICT = Verdict("Euler's forced libration to second order (§835)", (
 
 def build(p, times):
     """The body with A towards F and the spin §838 prescribes (no free libration excited)."""
-    from ...orbits.analytic import UnevenCircle
-    from ...theory import forced_libration_initial_rate, libration_n
+    from ..orbits.analytic import UnevenCircle
+    from ..theory import forced_libration_initial_rate, libration_n
 
     body, o = common.rigid_body(p), p.orbit
     n = libration_n(body.moments, o.gm, o.f)
@@ -49,7 +49,7 @@ def build(p, times):
 
 
 def compare_run(p, run):
-    from ...theory import forced_libration
+    from ..theory import forced_libration
 
     o, n, dt = p.orbit, run.model.n, run.solution.t - p.t_start
     zeta_num = zeta_from_solution(run.solution, o.rate * dt + o.alpha * np.sin(o.frequency * dt))

@@ -5,10 +5,10 @@ started in its Cassini state: the obliquity it settles to and the 88-day forced 
 with the orbit's node precession scaled.  The model, its start and how each figure is measured:
 spinorbit.comparisons.mercury_spin.
 """
-from ...bodies import mercury
-from ...comparisons.mercury_spin import verdict
-from ...scene import Cost, Model, Scene
-from ...schema import ANGLE, SAMPLE_STEP, Key
+from ..bodies import mercury
+from ..comparisons.mercury_spin import verdict
+from ..scene import Cost, Model, Scene
+from ..schema import ANGLE, SAMPLE_STEP, Key
 
 SCHEMA = {
     "orbit.source": Key(type=str, default="de421", help="'de421', a .bsp name, or 'rebound'"),
@@ -28,7 +28,7 @@ SCHEMA = {
 
 
 def build(p, times):
-    from ...starts.mercury import model, scales
+    from ..starts.mercury import model, scales
 
     scales(p)
     system, context = model(p, times)
@@ -36,7 +36,7 @@ def build(p, times):
 
 
 def compare_run(p, run):
-    from ...comparisons.mercury_spin import compare
+    from ..comparisons.mercury_spin import compare
 
     return compare(p, run)
 

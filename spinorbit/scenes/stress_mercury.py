@@ -23,12 +23,12 @@ import math
 
 import numpy as np
 
-from ...analysis.planar_spin_orbit import kepler_orbit, libration_theory, rigid_body_system
-from ...comparisons.mercury_libration import compare_run
-from ...scene import Model, Scene
-from ...schema import DISTANCE, GM, Key
-from ...verdict import Check, Verdict
-from .. import common
+from ..analysis.planar_spin_orbit import kepler_orbit, libration_theory, rigid_body_system
+from ..comparisons.mercury_libration import compare_run
+from ..scene import Model, Scene
+from ..schema import DISTANCE, GM, Key
+from ..verdict import Check, Verdict
+from . import common
 
 RADAR_NOT_INDEPENDENT = ("Margot et al. (2007)'s 35.8\" radar amplitude is not compared: the (B - A)/C used "
                          "here was inferred from it, so agreement would be circular")

@@ -10,12 +10,12 @@ integrated 343 asteroids this does not; what they move in each planet is stated 
 (comparisons.solar_system_de421.ASTEROIDS_KM).
 Runs with the Taylor integrator (``integrator.method = "taylor"``) or any other.
 """
-from ...models.assemblies.solar_system import SWITCHES
-from ...plots import moon_vs_de421, planets_vs_de421
-from ...scene import Model, Outcome, Scene
-from ...schema import Key
-from ...verdict import Check, Verdict
-from .. import common
+from ..models.assemblies.solar_system import SWITCHES
+from ..plots import moon_vs_de421, planets_vs_de421
+from ..scene import Model, Outcome, Scene
+from ..schema import Key
+from ..verdict import Check, Verdict
+from . import common
 
 SCHEMA = {
     **{f"model.{name}": Key(type=bool, default=True, help=text) for name, text in SWITCHES.items()},
@@ -29,7 +29,7 @@ TARGET = ("the issue's target (INPOP05 re-integrated DE405 to 0.17 mas and 0.034
 
 def verdict(p, comparison):
     """The Moon against DE421 (direction, range, pole, longitude); each planet against what asteroids move."""
-    from ...comparisons.solar_system_de421 import ASTEROIDS_KM
+    from ..comparisons.solar_system_de421 import ASTEROIDS_KM
 
     checks = [Check("Moon direction", "moon_direction_error_max_mas", 1.0, " mas", TARGET),
               Check("Moon range", "moon_range_error_max_m", 0.1, " m", TARGET),
@@ -48,8 +48,8 @@ def build(p, times):
 
 def start_epoch(p):
     """TDB days of the run's start: DE421's epoch JDEPOC, or span.start."""
-    from ...bodies.de421_header import header
-    from ...constants import J2000_JD
+    from ..bodies.de421_header import header
+    from ..constants import J2000_JD
 
     return header()["JDEPOC"] - J2000_JD if p["start.epoch"] == "de421" else p.t_start
 
@@ -70,14 +70,14 @@ def switches(p):
 
 def restart(p, start):
     """The solar system of ``p`` started at a stored state ``start`` = (t0, y)."""
-    from ...models.assemblies.solar_system import solar_system
+    from ..models.assemblies.solar_system import solar_system
 
     return solar_system(switches(p), float(start[0])).with_start(*start)
 
 
 def bench(p, model, times):
     """The lunar attitude's error against a converged RK8 run, rad."""
-    from ...analysis.ladder import converged_error
+    from ..analysis.ladder import converged_error
 
     error, model.system.meta["reference_agreement_rad"] = converged_error(model.system, times, 0.125)
     return error
@@ -85,10 +85,10 @@ def bench(p, model, times):
 
 def system(scenario):
     """DE421's solar system with the scenario's switches, started as ``start.epoch`` says."""
-    from ...bodies import earth
-    from ...models.assemblies.solar_system import solar_system
-    from ...models.start import solar_system_de421
-    from ...references.erfa_pole import cip_vector
+    from ..bodies import earth
+    from ..models.assemblies.solar_system import solar_system
+    from ..models.start import solar_system_de421
+    from ..references.erfa_pole import cip_vector
 
     t0 = start_epoch(scenario)
     built = solar_system(switches(scenario), t0)
@@ -97,7 +97,7 @@ def system(scenario):
 
 
 def compare_run(p, run):
-    from ...comparisons import solar_system_de421 as vs
+    from ..comparisons import solar_system_de421 as vs
 
     t, solution, model = run.times, run.solution, run.model.system
     direction, distance = vs.orbit_errors(t, solution.part("moon.r"))

@@ -9,12 +9,12 @@ import math
 
 import numpy as np
 
-from ...constants import ARCSEC
-from ...models.assemblies.idealised import under_point_masses
-from ...scene import Model, Outcome, Scene
-from ...schema import DISTANCE, GM, Key
-from ...verdict import Check, Verdict
-from .. import common
+from ..constants import ARCSEC
+from ..models.assemblies.idealised import under_point_masses
+from ..scene import Model, Outcome, Scene
+from ..schema import DISTANCE, GM, Key
+from ..verdict import Check, Verdict
+from . import common
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments A <= B <= C, any unit"),
@@ -35,7 +35,7 @@ VERDICT = Verdict("Euler's first motion (§821-823)", (
 def build(p, times):
     """The body at rest, F fixed (rate 0) at ``force.direction``: a circle point (cos a, sin a cos i,
     sin a sin i)."""
-    from ...orbits.analytic import CircularOrbits
+    from ..orbits.analytic import CircularOrbits
 
     body = common.rigid_body(p)
     u = p.force.direction / np.linalg.norm(p.force.direction)
@@ -46,7 +46,7 @@ def build(p, times):
 
 
 def compare_run(p, run):
-    from ...theory import start_from_rest
+    from ..theory import start_from_rest
 
     solution = run.solution
     axis, cos_of, rate = start_from_rest(p.body.moments, run.model.direction, p.orbit.gm, p.orbit.radius)

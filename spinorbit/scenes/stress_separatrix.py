@@ -14,14 +14,14 @@ import math
 
 import numpy as np
 
-from ...analysis.ladder import settings, work_precision
-from ...analysis.planar_libration import crossing_times, planar_system, zeta_from_solution
-from ...errors import ScenarioError
-from ...integrators import METHODS
-from ...scene import Model, Outcome, Scene
-from ...schema import DISTANCE, GM, RATE, Key
-from ...verdict import Check, Verdict
-from .. import common
+from ..analysis.ladder import settings, work_precision
+from ..analysis.planar_libration import crossing_times, planar_system, zeta_from_solution
+from ..errors import ScenarioError
+from ..integrators import METHODS
+from ..scene import Model, Outcome, Scene
+from ..schema import DISTANCE, GM, RATE, Key
+from ..verdict import Check, Verdict
+from . import common
 
 
 def verdict(p, comparison):
@@ -44,8 +44,8 @@ SCHEMA = {
 
 
 def _setup(p, offset):
-    from ...orbits.analytic import CircularOrbits
-    from ...theory import PlanarLibration, libration_n
+    from ..orbits.analytic import CircularOrbits
+    from ..theory import PlanarLibration, libration_n
 
     gm, s, delta = p.orbit.gm, p.orbit.radius, p.orbit.rate
     n = libration_n(p.body.moments, gm, s)

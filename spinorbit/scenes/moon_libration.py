@@ -15,11 +15,11 @@ difference beside it.
 """
 import numpy as np
 
-from ...constants import ARCSEC
-from ...orbits.sources import orbit_source
-from ...scene import Cost, Model, Outcome, Scene
-from ...schema import SAMPLE_STEP, Key
-from ...verdict import Check, Verdict
+from ..constants import ARCSEC
+from ..orbits.sources import orbit_source
+from ..scene import Cost, Model, Outcome, Scene
+from ..schema import SAMPLE_STEP, Key
+from ..verdict import Check, Verdict
 
 # Targets (max over the run, arcsec) against DE421 per level: (pole, longitude, source).
 _RIGID = ("project target for level 2 (pole 12\", longitude 2\"): a rigid Moon lacks DE421's fluid core "
@@ -41,7 +41,7 @@ def verdict(p, comparison):
         notes.append("Euler's degree-2 Moon is held to the level-2 target; the Moon's degree-3 field it "
                      "lacks is what level 2 adds")
     if not orbit_source(source).lunar_angles:
-        from ...comparisons.moon_de421 import SOURCE_NOTES
+        from ..comparisons.moon_de421 import SOURCE_NOTES
         notes.append(SOURCE_NOTES.get(source, f"orbits from {source}: the libration follows that orbit's "
                                               "departure from DE421's"))
     checks = (Check("pole", "pole_error_max_arcsec", pole, "″", why),
@@ -71,20 +71,20 @@ ZOOM_D = 730.5                      # days
 
 def build(p, times):
     """The lunar model of the level, driven by orbit.source, started from DE421's state (starts/moon.py)."""
-    from ...starts.moon import build_system
+    from ..starts.moon import build_system
 
     system, orbits = build_system(p, p.orbit.source)
     return Model(system, orbits=orbits)
 
 
 def compare_run(p, run):
-    from ... import plots
-    from ...analysis.librations import icrf_to_body
-    from ...comparisons import moon_de421 as vs
-    from ...models.assemblies.moon import LEVELS
-    from ...references import eckhardt
-    from ...references.moon_de421 import FREE_LIBRATION_LONGITUDE_PERIOD_D
-    from ...starts.moon import difference_driven_by
+    from .. import plots
+    from ..analysis.librations import icrf_to_body
+    from ..comparisons import moon_de421 as vs
+    from ..models.assemblies.moon import LEVELS
+    from ..references import eckhardt
+    from ..references.moon_de421 import FREE_LIBRATION_LONGITUDE_PERIOD_D
+    from ..starts.moon import difference_driven_by
 
     solution, system, orbits, level = run.solution, run.model.system, run.model.orbits, p.model.level
     t, mats = solution.t, icrf_to_body(solution.quaternion)
@@ -124,7 +124,7 @@ def compare_run(p, run):
 
 def bench(p, model, times):
     """Attitude error against a converged rk8 run at 0.5 d, rad."""
-    from ...analysis.ladder import converged_error
+    from ..analysis.ladder import converged_error
 
     error, model.system.meta["reference_agreement_rad"] = converged_error(model.system, times, 0.5)
     return error
@@ -132,7 +132,7 @@ def bench(p, model, times):
 
 # the DE lunar integrations run both ways from their epoch: a span may end before it starts
 def restart(p, start):
-    from ...starts.moon import started_at
+    from ..starts.moon import started_at
 
     return started_at(p, start)
 

@@ -10,15 +10,15 @@ through analysis.ladder.work_precision.
 """
 import numpy as np
 
-from ...comparisons.free_body_stress import Q0, attitude_error, degenerate, flip, long_run, shapes
-from ...errors import ScenarioError
-from ...integrators import METHODS
-from ...models.assemblies.idealised import free_body
-from ...scene import Model, Outcome, Scene
-from ...schema import Key
-from ...theory import FreeRigidBody
-from ...verdict import Check, Verdict
-from .. import common
+from ..comparisons.free_body_stress import Q0, attitude_error, degenerate, flip, long_run, shapes
+from ..errors import ScenarioError
+from ..integrators import METHODS
+from ..models.assemblies.idealised import free_body
+from ..scene import Model, Outcome, Scene
+from ..schema import Key
+from ..theory import FreeRigidBody
+from ..verdict import Check, Verdict
+from . import common
 
 CASES = ("flip", "degenerate", "shapes", "long_run")
 VERDICT = Verdict("the case's closed form or invariant", (Check(

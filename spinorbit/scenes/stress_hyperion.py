@@ -20,11 +20,11 @@ an ensemble of ``lyapunov.ensemble`` starts 1e-3 rad apart around the nominal on
 
 import numpy as np
 
-from ...comparisons.hyperion_lyapunov import compare_run
-from ...scene import Model, Scene
-from ...schema import DISTANCE, GM, Key
-from ...verdict import Check, Verdict
-from .. import common
+from ..comparisons.hyperion_lyapunov import compare_run
+from ..scene import Model, Scene
+from ..schema import DISTANCE, GM, Key
+from ..verdict import Check, Verdict
+from . import common
 
 
 def verdict(p, comparison):

@@ -16,14 +16,14 @@ import math
 
 import numpy as np
 
-from ...analysis.figure_axis import fit_angles
-from ...constants import ARCSEC
-from ...errors import ResonanceError, ScenarioError
-from ...models.assemblies.idealised import under_point_masses
-from ...scene import Model, Outcome, Scene
-from ...schema import ANGLE, DISTANCE, GM, RATE, SPIN, Key
-from ...verdict import Check, Verdict
-from .. import common
+from ..analysis.figure_axis import fit_angles
+from ..constants import ARCSEC
+from ..errors import ResonanceError, ScenarioError
+from ..models.assemblies.idealised import under_point_masses
+from ..scene import Model, Outcome, Scene
+from ..schema import ANGLE, DISTANCE, GM, RATE, SPIN, Key
+from ..verdict import Check, Verdict
+from . import common
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="principal moments cc = cc < aa (symmetric, oblate)"),
@@ -56,8 +56,8 @@ def verdict(p, comparison):
 def build(p, times):
     """The spinner on Euler's forced solution (§844), or at its pole where the formulas fail (§849); the
     closed forms of Euler's text and with the pole's free rotation (``true``)."""
-    from ...orbits.analytic import CircularOrbits
-    from ...theory import SymmetricPrecession, p96_initial_state, precession_constant
+    from ..orbits.analytic import CircularOrbits
+    from ..theory import SymmetricPrecession, p96_initial_state, precession_constant
 
     body = common.rigid_body(p)
     cc, aa = body.moments[0], body.moments[2]

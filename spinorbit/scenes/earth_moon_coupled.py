@@ -18,13 +18,13 @@ import time
 
 import numpy as np
 
-from ...errors import ScenarioError
-from ...models.assemblies.earth_moon import EXTERNAL, PLANETS, SWITCHES
-from ...plots import moon_vs_de421
-from ...scene import Cost, Model, Outcome, Scene
-from ...schema import Key
-from ...verdict import Check, Verdict
-from .. import common
+from ..errors import ScenarioError
+from ..models.assemblies.earth_moon import EXTERNAL, PLANETS, SWITCHES
+from ..plots import moon_vs_de421
+from ..scene import Cost, Model, Outcome, Scene
+from ..schema import Key
+from ..verdict import Check, Verdict
+from . import common
 
 OFF_BY_DEFAULT = ()
 SCHEMA = {
@@ -66,7 +66,7 @@ def verdict(p, comparison):
 
 def start_epoch(scenario):
     """span.start, or the nearest epoch of DE421's lunar series (TDB days) when it lies outside."""
-    from ...bodies.de421_orientation import span
+    from ..bodies.de421_orientation import span
 
     first, last = span()
     return float(np.clip(scenario.t_start, first + 1.0, last - 1.0))
@@ -75,7 +75,7 @@ def start_epoch(scenario):
 def external_bodies(scenario):
     """(the Sun, planets and EMB sampled from orbit.source over the span and the start, the sampling's wall
     time s)."""
-    from ...orbits.sources import barycentric
+    from ..orbits.sources import barycentric
 
     t0, (first, last) = start_epoch(scenario), scenario.bounds
     names = EXTERNAL if scenario["model.planets"] else tuple(n for n in EXTERNAL if n not in PLANETS)
@@ -88,10 +88,10 @@ def external_bodies(scenario):
 def system(scenario, external, switches):
     """The Earth-Moon System on ``external`` with ``switches``, started from DE421 at span.start (or at the
     nearest epoch its lunar series covers, integrated out from there)."""
-    from ...bodies import earth
-    from ...models.assemblies.earth_moon import solar_system
-    from ...models.start import earth_moon_de421
-    from ...references.erfa_pole import cip_vector
+    from ..bodies import earth
+    from ..models.assemblies.earth_moon import solar_system
+    from ..models.start import earth_moon_de421
+    from ..references.erfa_pole import cip_vector
 
     t0 = start_epoch(scenario)
     built = solar_system(external, switches, t0)
@@ -109,7 +109,7 @@ def build(p, times):
 
 
 def compare_run(p, run):
-    from ...comparisons import earth_moon_de421 as vs
+    from ..comparisons import earth_moon_de421 as vs
 
     t, solution, m = run.times, run.solution, run.model
     direction, distance = vs.orbit_errors(t, solution.part("moon.r"))
@@ -140,7 +140,7 @@ def compare_run(p, run):
 
 def restart(p, start):
     """The Earth-Moon System of ``p`` started at a stored state ``start`` = (t0, y)."""
-    from ...models.assemblies.earth_moon import solar_system
+    from ..models.assemblies.earth_moon import solar_system
 
     switches = tuple(name for name in SWITCHES if getattr(p.model, name))
     return solar_system(external_bodies(p)[0], switches, float(start[0])).with_start(*start)

@@ -13,12 +13,12 @@ import math
 
 import numpy as np
 
-from ...errors import ScenarioError
-from ...models.assemblies.idealised import under_point_masses
-from ...scene import Model, Outcome, Scene
-from ...schema import ANGLE, DISTANCE, GM, SPIN, Key
-from ...verdict import Check, Verdict
-from .. import common
+from ..errors import ScenarioError
+from ..models.assemblies.idealised import under_point_masses
+from ..scene import Model, Outcome, Scene
+from ..schema import ANGLE, DISTANCE, GM, SPIN, Key
+from ..verdict import Check, Verdict
+from . import common
 
 SCHEMA = {
     "body.moments": Key(unit="", size=3, help="symmetric body [cc, cc, aa]"),
@@ -40,7 +40,7 @@ VERDICT = Verdict("Euler's pole rates (§843a)", (
 
 def build(p, times):
     """The symmetric body spinning about a pole alpha from its figure axis, F fixed at ``force.direction``."""
-    from ...orbits.analytic import CircularOrbits
+    from ..orbits.analytic import CircularOrbits
 
     body, b = common.rigid_body(p), p.body
     cc, aa = body.moments[0], body.moments[2]
@@ -59,7 +59,7 @@ def build(p, times):
 
 
 def compare_run(p, run):
-    from ...theory import pole_rates_symmetric
+    from ..theory import pole_rates_symmetric
 
     solution, (cc, _, aa) = run.solution, p.body.moments
     gamma, alpha, rho = p.body.spin, p.body.pole_offset, p.body.pole_angle
