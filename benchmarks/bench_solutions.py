@@ -203,12 +203,12 @@ def extension():
     scenario = solutions.scenario_of("moon_libration", [])
     stretch = models.stretch(scenario, 50 * year, 100 * year, 50 * year)     # DE421's Moon at 2050, out to 2100
     t_out = stretch.output_times()
-    simulate(models.system(stretch, None), t_out[:10], "rk8", stretch.integrator_options(),
+    simulate(models.system(stretch, None), t_out[:10], "rk8", stretch.params.integrator.options(),
              estimate_error=False)                                              # compiled
     started = time.perf_counter()
     system = models.system(stretch, None)                                      # the orbits sampled, the start
     built_s = time.perf_counter() - started
-    _, bare = simulate(system, t_out, "rk8", stretch.integrator_options(), estimate_error=True)
+    _, bare = simulate(system, t_out, "rk8", stretch.params.integrator.options(), estimate_error=True)
     integrate_s = time.perf_counter() - started - built_s
     started = time.perf_counter()
     run_scenario("moon_libration", [f"span.start={models.iso(50 * year)[0]}", f"span.end={models.iso(100 * year)[0]}",
@@ -247,7 +247,7 @@ def fit_points():
     lo, hi = grid.bounds(t0, t0 + 730.0)
     stretch = models.stretch(scenario, lo, hi, t0)
     system = models.system(stretch, (t0, y0))
-    method, options = stretch["integrator.method"], stretch.integrator_options()
+    method, options = stretch.params.integrator.method, stretch.params.integrator.options()
     ephemeris = models.ephemeris(stretch, system, lo, hi)
     piece = fit.integrate(system, grid, lo, hi, method, options, estimate_error=False, ephemeris=ephemeris)
     count = len(piece.segments.coefficients)
@@ -439,7 +439,7 @@ def grid():
     start = models.first_start(scenario)
     kept = models.KINDS["solar_system"].grid
     rows = {f"{kept.length_d:g} d, degree {kept.degree}, 1950-2050": fit_errors(scenario, start, kept,
-                                                                                  *scenario.bounds)}
+                                                                                  *scenario.params.span.bounds)}
     year = (start[0], start[0] + 365.25)
     for length, degree in GRIDS:
         rows[f"{length:g} d, degree {degree}, 1969-1970"] = fit_errors(scenario, start,
@@ -467,7 +467,8 @@ def fit_errors(scenario, start, grid, lo, hi):
     nodes, checks = empty.nodes(first, count)
     t_out = np.concatenate([nodes.ravel(), checks.ravel()])
     times, rows = np.unique(t_out, return_inverse=True)
-    run, _ = simulate(system, times, stretch["integrator.method"], stretch.integrator_options(), estimate_error=False)
+    settings = stretch.params.integrator
+    run, _ = simulate(system, times, settings.method, settings.options(), estimate_error=False)
     values, n, layout = components(system, t_out, run.y[rows]), nodes.size, fitted_layout(system)
     at_nodes = values[:n].reshape(count, grid.degree + 1, -1).transpose(0, 2, 1)
     series = Segments(grid.origin_d, grid.length_d, first, interpolating_at(at_nodes, empty.normalised(nodes, first)))

@@ -164,7 +164,7 @@ def bench_scenario(path, methods=None, out=None, budget_s=10.0, overrides=(), fo
             error = scenario.scene.bench(scenario.params, model, t_out)
         command = " ".join(["spinorbit bench", str(path), *(f"--set {shlex.quote(o)}" for o in overrides),
                             *([f"--methods {','.join(methods)}"] if methods else [])])
-        title = scenario["scene.title"] or scenario.name
+        title = scenario.params.scene.title or scenario.name
         agreement = system.meta.get("reference_agreement_rad")
         note = "" if agreement is None else (f"Reference: a converged run (agrees with one at half its step "
                                              f"to {agreement:.1e} rad).")

@@ -12,6 +12,7 @@ import os
 import numpy as np
 
 from .errors import ScenarioError
+from .params import values_of
 from .schema import INTEGRATOR_OPTIONS, Key, has_key, lookup
 
 # The most a step over the span may ask for, whatever the time and memory limits.
@@ -45,7 +46,7 @@ def counts(scenario):
     steps ...), the largest where two keys count the same."""
     counts = {}
     for _, kind, step in count_keys(scenario):
-        counts[kind] = max(counts.get(kind, 0), abs(scenario.t_end - scenario.t_start) / step + 1)
+        counts[kind] = max(counts.get(kind, 0), scenario.params.span.length / step + 1)
     return {**counts, **nbody_counts(scenario)}
 
 
@@ -56,9 +57,9 @@ def nbody_counts(scenario):
     from .orbits.sources import orbit_source
 
     counts = dict(scenario.scene.nbody_counts(scenario.params)) if scenario.scene.nbody_counts else {}
-    source = scenario.values.get("orbit.source")
-    days = orbit_source(source).integration_days(scenario.t_start, scenario.t_end) if isinstance(source, str) \
-        and source else 0.0
+    source = values_of(scenario.params).get("orbit.source")
+    span = scenario.params.span
+    days = orbit_source(source).integration_days(span.start, span.end) if isinstance(source, str) and source else 0.0
     if days:
         counts["IAS15 days"] = days
     return counts
@@ -82,10 +83,11 @@ def step_cost(scenario, kind):
 
 def count_keys(scenario):
     """(key, count, step) of every step key that sets a count."""
-    steps = [(key, spec.count, scenario.values[key]) for key, spec in scenario.schema.items()
-             if spec.count and scenario.values[key] is not None]
+    values = values_of(scenario.params)
+    steps = [(key, spec.count, values[key]) for key, spec in scenario.schema.items()
+             if spec.count and values[key] is not None]
     steps += [(f"integrator.{name}", INTEGRATOR_OPTIONS[name].count, value)
-              for name, value in scenario.integrator_options().items()
+              for name, value in scenario.params.integrator.options().items()
               if name in INTEGRATOR_OPTIONS and INTEGRATOR_OPTIONS[name].count]
     return steps
 
@@ -93,7 +95,7 @@ def count_keys(scenario):
 def _check_counts(scenario):
     """Refuse a step that would ask for more rows, samples or steps than LIMITS, or a run the estimate
     says takes longer than limits.time or more memory than limits.memory."""
-    span = abs(scenario.t_end - scenario.t_start)
+    span = scenario.params.span.length
     for key, kind, step in count_keys(scenario):
         n = span / step + 1
         if n > LIMITS[kind]:
@@ -108,14 +110,14 @@ def _check_counts(scenario):
 
 
 def _check_time(scenario, culprits):
-    limit, total, items = scenario["limits.time"], estimate(scenario)["time_s"], counts(scenario)
+    limit, total, items = scenario.params.limits.time, estimate(scenario)["time_s"], counts(scenario)
     if total <= limit:
         return
     kind = max(items, key=lambda k: items[k] * step_cost(scenario, k))
     each = step_cost(scenario, kind)
     if kind in NBODY_KEYS:
         key, remedy = NBODY_KEYS[kind]
-        refuse(scenario, key, scenario.values.get(key), f"a run the estimate finishes within limits.time = "
+        refuse(scenario, key, values_of(scenario.params).get(key), f"a run the estimate finishes within limits.time = "
                                                         f"{_duration(limit)}: its N-body work, "
                                                         f"{_count(items[kind])} {kind} at ~{each * 1e6:.3g} us "
                                                         f"each (measured), is ~{_duration(items[kind] * each)} "
@@ -129,7 +131,7 @@ def _check_time(scenario, culprits):
 
 
 def _check_memory(scenario, culprits):
-    limit, total = scenario["limits.memory"] or physical_memory() / 2, estimate(scenario)["memory_bytes"]
+    limit, total = scenario.params.limits.memory or physical_memory() / 2, estimate(scenario)["memory_bytes"]
     if total <= limit:
         return
     cost, items = scenario.cost(), counts(scenario)
@@ -152,9 +154,10 @@ def refuse(scenario, key, value, accepted):
 def _check_cycles(scenario):
     """Refuse rate keys, and the time-scales the scene declares, that would make the run follow over
     MAX_CYCLES cycles."""
-    span = abs(scenario.t_end - scenario.t_start)
-    rates = [(key, float(np.linalg.norm(scenario.values[key])), "") for key, spec in scenario.schema.items()
-             if spec.unit == "rad/d" and scenario.values[key] is not None]
+    span = scenario.params.span.length
+    values = values_of(scenario.params)
+    rates = [(key, float(np.linalg.norm(values[key])), "") for key, spec in scenario.schema.items()
+             if spec.unit == "rad/d" and values[key] is not None]
     if scenario.scene.time_scales is not None:
         rates += [(s.key, s.rate, s.how) for s in scenario.scene.time_scales(scenario.params)]
     for key, rate, how in rates:

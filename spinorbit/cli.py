@@ -210,7 +210,7 @@ def _run(args):
         print(note, file=sys.stderr)
     out = Path(args.out or Path("runs") / scenario.name)
     # the painter is forked before the lock is taken, so that it never holds it
-    with painter(scenario["output.plots"]) as paint, RunDirectory(out, force=args.force) as run_dir:
+    with painter(scenario.params.output.plots) as paint, RunDirectory(out, force=args.force) as run_dir:
         scenario.checkpoint = Checkpoint(run_dir.checkpoint, args.resume, scenario.data)
         if args.resume and not os.path.lexists(run_dir.checkpoint):
             print(f"no checkpoint at {run_dir.checkpoint}: starting from the beginning", file=sys.stderr)
@@ -345,7 +345,9 @@ def _export(args):
     _out_folder(args.out)
     solution = for_export(scenario)
     started = time.perf_counter()
-    written = solution.export(args.out, asked=scenario.values)
+    from .params import values_of
+
+    written = solution.export(args.out, asked=values_of(scenario.params))
     wall = time.perf_counter() - started
     for path in written["files"]:
         print(f"wrote {path} ({os.path.getsize(path) / 1e6:.3g} MB)")

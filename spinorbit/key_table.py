@@ -2,7 +2,7 @@
 import math
 
 from .integrators import METHODS, get_method
-from .scenarios import COMMON_SCHEMA, load_scenario
+from .scenarios import load_scenario
 from .schema import INTEGRATOR_OPTIONS, REQUIRED, dotted_items
 
 
@@ -13,15 +13,15 @@ def key_table(scene):
     from .scenes import scene_module
 
     scenario = load_scenario(scene)
-    path, kind = scenario.path, scenario["scene.kind"]
+    path, kind = scenario.path, scenario.params.scene.kind
     module = scene_module(kind)
     given = dict(dotted_items(scenario.data))
-    method = given.get("integrator.method", COMMON_SCHEMA["integrator.method"].default)
+    method = scenario.params.integrator.method
     options = get_method(method).defaults() if method in METHODS else {}
     summary = " ".join((module.__doc__ or "").strip().split("\n\n")[0].split())
     rows = [("key", "value in the file", "default", "unit", "range", "meaning")]
     options_keys = {f"integrator.{name}": spec for name, spec in INTEGRATOR_OPTIONS.items() if name in options}
-    for key, spec in {**COMMON_SCHEMA, **scenario.scene.schema, **options_keys}.items():
+    for key, spec in {**scenario.schema, **options_keys}.items():
         name = key.removeprefix("integrator.")
         default = repr(options[name]) if key.startswith("integrator.") and name in options else \
             "(required)" if spec.default is REQUIRED else repr(spec.default)

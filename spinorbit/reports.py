@@ -32,7 +32,7 @@ def write_run(result, out_dir, status="ok", error=None, painter=None):
         summary["error"] = str(error)
     text = json.dumps(_jsonable(summary), indent=2, allow_nan=False) + "\n"
     written = [_atomic(out / "summary.json", lambda p: p.write_text(text))]
-    drawing = result.scenario["output.plots"]
+    drawing = result.scenario.params.output.plots
     if drawing and painter is not None:
         painter.draw(result.figures, summary, out)
     if result.table is not None and len(result.table):

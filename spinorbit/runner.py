@@ -45,7 +45,7 @@ def run_scenario(scenario, overrides=()):
         summary.setdefault("run", {})["resumed_after_outputs"] = resumed
     comparison = summary.get("comparison", {})
     spec = scenario.scene.verdict_for(scenario.params, comparison)
-    summary["verdict"] = evaluate(spec, comparison, abs(scenario.t_end - scenario.t_start), scenario.name,
+    summary["verdict"] = evaluate(spec, comparison, scenario.params.span.length, scenario.name,
                                   span_label(scenario), summary.get("not_measured"))
     summary["provenance"] = provenance(scenario)
     result.summary = summary
@@ -162,13 +162,16 @@ def partial_result(scenario, exc):
 
 
 def base_summary(scenario):
+    from .schema import tdb_days_to_time
+
+    p = scenario.params
+    start, end = tdb_days_to_time([p.span.start, p.span.end]).isot
     return {
         "scene": scenario.name,
         "kind": scenario.kind,
-        "title": title_for_span(scenario["scene.title"], scenario),
-        "span": {"start_tdb": scenario["span.start"], "end": scenario["span.end"],
-                 "step_d": scenario["span.step"], "years": span_label(scenario)},
-        "integrator": {"method": scenario["integrator.method"], **scenario.integrator_options()},
+        "title": title_for_span(p.scene.title, scenario),
+        "span": {"start_tdb": start, "end_tdb": end, "step_d": p.span.step, "years": span_label(scenario)},
+        "integrator": {"method": p.integrator.method, **p.integrator.options()},
     }
 
 
@@ -182,16 +185,16 @@ GEOLOGICAL_SPAN_YR = 1e8       # and these in Gyr
 def span_label(scenario):
     """The run's span for titles: calendar years "1900–2050" (Julian epochs), kyr or Gyr from J2000 for deep
     time, or its length in days."""
-    length = abs(scenario.t_end - scenario.t_start)
+    length = scenario.params.span.length
     if length < JULIAN_YEAR_D:
         return f"{length:.4g} d"
     if length >= GEOLOGICAL_SPAN_YR * JULIAN_YEAR_D:   # the Earth-Moon history: Gyr
-        g0, g1 = (t / JULIAN_YEAR_D / 1e9 for t in (scenario.t_start, scenario.t_end))
+        g0, g1 = (t / JULIAN_YEAR_D / 1e9 for t in (scenario.params.span.start, scenario.params.span.end))
         return f"{g0:.4g} to {g1:.4g} Gyr from J2000".replace("-", "−")
     if length >= LONG_SPAN_YR * JULIAN_YEAR_D:         # deep time: kyr from J2000, as La2004 counts
-        k0, k1 = (t / JULIAN_YEAR_D / 1000.0 for t in (scenario.t_start, scenario.t_end))
+        k0, k1 = (t / JULIAN_YEAR_D / 1000.0 for t in (scenario.params.span.start, scenario.params.span.end))
         return f"{k0:.0f} to {k1:.0f} kyr from J2000".replace("-", "−")
-    y0, y1 = (2000.0 + t / JULIAN_YEAR_D for t in (scenario.t_start, scenario.t_end))
+    y0, y1 = (2000.0 + t / JULIAN_YEAR_D for t in (scenario.params.span.start, scenario.params.span.end))
     digits = 0 if length >= 2 * JULIAN_YEAR_D else 1
     return f"{y0:.{digits}f}–{y1:.{digits}f}"
 
@@ -205,5 +208,5 @@ def title_for_span(title, scenario):
     if _YEAR_RANGE.search(title):
         return _YEAR_RANGE.sub(span_label(scenario), title, count=1)
     if _DURATION.search(title):
-        return _DURATION.sub(f"{abs(scenario.t_end - scenario.t_start) / JULIAN_YEAR_D:.3g} yr", title, count=1)
+        return _DURATION.sub(f"{scenario.params.span.length / JULIAN_YEAR_D:.3g} yr", title, count=1)
     return title

@@ -19,7 +19,8 @@ what the run asks for (rows, samples, steps, cycles, time, memory) must fit its
 limits (spinorbit.budget).  Files must be UTF-8, at most ``MAX_FILE_BYTES``, and
 nest at most ``MAX_DEPTH`` levels.  Python's values (the API's) go in through
 ``load_scenario(values=...)``, validated alike; a valid scenario carries them as
-its scene's typed record, ``scenario.params`` (schema.record).
+its scene's typed parameters, ``scenario.params`` (an instance of the scene's ``params`` class,
+spinorbit.params: ``scenario.params.orbit.source``).
 """
 import datetime
 import math
@@ -32,6 +33,7 @@ import numpy as np
 
 from . import budget
 from .errors import EphemerisRangeError, InputError, ScenarioError
+from .params import SpanTable, filled
 from .schema import (
     INTEGRATOR_OPTIONS,
     MAX_TEXT,
@@ -39,32 +41,14 @@ from .schema import (
     Key,
     checked_float,
     dotted_items,
-    filled,
     finite_float,
     has_key,
     lookup,
     parse_tdb_days,
-    record,
 )
 
 MAX_DEPTH = 8                  # nesting of tables and arrays in a scenario
 MAX_FILE_BYTES = 1 << 20       # a scenario file (a few kB; every string in it is at most schema.MAX_TEXT)
-COMMON_SCHEMA = {
-    "scene.kind": Key(type=str, help="what the scene runs (spinorbit.scenes.SCENES)"),
-    "scene.title": Key(type=str, default="", help="one line for reports and `spinorbit list`"),
-    "scene.description": Key(type=str, default="", help="free text, copied to the report"),
-    "span.start": Key(type=str, help="ISO time, TDB"),
-    "span.end": Key(type=str, help="ISO time (TDB) or a duration such as '100 yr'"),
-    "span.step": Key(unit="d", positive=True, count="output rows", help="output cadence"),
-    "integrator.method": Key(type=str, default="dop853", help="spinorbit.integrators.METHODS"),
-    "integrator.estimate_error": Key(type=bool, default=True, help="rerun at half the step (or a tenth the "
-                                                                   "tolerance) and report the difference"),
-    "output.plots": Key(type=bool, default=True, help="draw the scene's figures (PNG)"),
-    "limits.time": Key(unit="s", positive=True, default=3600.0, max=3.2e7,
-                       help="longest run the up-front estimate lets through (e.g. '10 h')"),
-    "limits.memory": Key(unit="byte", positive=True, default=None, max=1e15,
-                         help="largest memory the estimate lets through (default: half the machine's)"),
-}
 OPEN_TABLES = ("integrator",)     # [integrator] options go to the method, which checks their names
 MIN_SPAN_D = 1e-6              # shortest span, days (0.0864 s)
 SPAN_END_ACCEPTED = ("an ISO date in TDB without a time zone (e.g. '2030-01-01' or '2030-01-01T12:00:00'), or a "
@@ -72,7 +56,9 @@ SPAN_END_ACCEPTED = ("an ISO date in TDB without a time zone (e.g. '2030-01-01' 
 
 
 class Scenario:
-    """A validated scenario: ``scenario["body.moments"]`` gives the converted value."""
+    """A validated scenario: ``params``, its scene's typed parameters (``scenario.params.body.moments``: the
+    converted value), beside what running it needs (its ``scene`` and ``kind``, its file's ``name`` and ``path``,
+    the raw ``data``, a checkpoint, the API's extra output times)."""
 
     def __init__(self, data, path=None):
         self.data = data
@@ -88,54 +74,40 @@ class Scenario:
         if not isinstance(kind, str):
             raise ScenarioError("scene.kind", kind, "a string naming a scene kind")
         self.scene = scene_of(kind)
+        self.kind = kind
         method = data.get("integrator", {}).get("method") if isinstance(data.get("integrator"), dict) else None
         if method == "taylor" and not self.scene.taylor:
             raise ScenarioError("integrator.method", "taylor", f"a method other than 'taylor' for scene kind "
                                 f"'{kind}', which reads an ephemeris (taylor runs: {', '.join(taylor_kinds())})")
-        self.schema = {**COMMON_SCHEMA, **self.scene.schema}
+        self.schema = self.scene.schema
         self._check_keys()
-        self.values = {key: self._convert(key, spec) for key, spec in self.schema.items()}
-        self.kind = kind
-        self._options = self._integrator_options()
-        self.t_start, self.t_end = self._span()
-        options = {f"integrator.{name}": spec for name, spec in INTEGRATOR_OPTIONS.items()}
-        values = {**self.values, **{key: self._options.get(key.split(".")[1]) for key in options}}
-        self.params = filled(_record_type(kind, {**self.schema, **options}), values, self.t_start, self.t_end)
+        values = {key: self._convert(key, spec) for key, spec in self.schema.items()}
+        self.params = filled(self.scene.params, values, self._span(values), self._integrator_options())
+        self.validate()
+
+    def validate(self):
+        """Check what the parameters ask for against the limits and the method (budget.check; the method's
+        options), as a scenario is checked when it is loaded: after ``params`` is replaced, e.g. by
+        ``with_params``."""
         budget.check(self)
         from .integrators import get_method
 
         with scenario_errors(self):
-            get_method(self["integrator.method"])(**self.integrator_options())   # checks method and options
+            get_method(self.params.integrator.method)(**self.params.integrator.options())
 
-    def __getitem__(self, key):
-        if key not in self.values:
-            raise KeyError(f"{key} is not a key of scene kind '{self.kind}'")
-        return self.values[key]
+    def with_params(self, params):
+        """This scenario with ``params`` (a ``dataclasses.replace`` of its own), validated alike."""
+        import copy
 
-    def get(self, key, default=None):
-        value = self.values.get(key)
-        return default if value is None else value
-
-    def integrator_options(self):
-        """Options for the integrator (all of [integrator] but method/estimate_error), units -> days."""
-        return dict(self._options)
+        other = copy.copy(self)
+        other.params = params
+        other.validate()
+        return other
 
     def output_times(self):
-        """Output times in TDB days from J2000: start to end at span.step (end included), descending
-        when the span runs backward (end before start); with the API's ``extra_times`` among them."""
-        step = self["span.step"] * (1.0 if self.t_end > self.t_start else -1.0)
-        n = int(np.floor((self.t_end - self.t_start) / step + 1e-9))
-        times = self.t_start + step * np.arange(n + 1)
-        if not np.isclose(times[-1], self.t_end, rtol=0, atol=1e-9 * abs(step)):
-            times = np.append(times, self.t_end)
-        if self.extra_times is not None:
-            times = np.union1d(times, self.extra_times)[::1 if step > 0 else -1]
-        return times
-
-    @property
-    def bounds(self):
-        """(earliest, latest) TDB days of the span, whichever way it runs."""
-        return min(self.t_start, self.t_end), max(self.t_start, self.t_end)
+        """Output times in TDB days from J2000 (the span's, spinorbit.params.SpanTable.times), with the API's
+        ``extra_times`` among them."""
+        return self.params.span.times(self.extra_times)
 
     # --- validation -------------------------------------------------------
     def _check_keys(self):
@@ -198,7 +170,7 @@ class Scenario:
         """[integrator] names: the method's options (its class says which), method and estimate_error."""
         from .integrators import METHODS, get_method
 
-        method = content.get("method", COMMON_SCHEMA["integrator.method"].default)
+        method = content.get("method", self.schema["integrator.method"].default)
         known = set(get_method(method).options) if isinstance(method, str) and method in METHODS else \
             set(INTEGRATOR_OPTIONS)
         accepted = sorted(known | {"method", "estimate_error"})
@@ -216,9 +188,10 @@ class Scenario:
             options[key] = checked_float(f"integrator.{key}", value, spec)
         return options
 
-    def _span(self):
-        start = parse_tdb_days("span.start", self["span.start"])
-        end_text = self["span.end"]
+    def _span(self, values):
+        """The span's table: start and end in TDB days, the cadence in days."""
+        start_text, end_text = values["span.start"], values["span.end"]
+        start = parse_tdb_days("span.start", start_text)
         try:
             end = parse_tdb_days("span.end", end_text)
         except ScenarioError:
@@ -227,12 +200,12 @@ class Scenario:
             except ScenarioError:
                 raise ScenarioError("span.end", end_text, SPAN_END_ACCEPTED) from None
         if end < start and not self.scene.backward:
-            raise ScenarioError("span.end", end_text, f"a time after span.start ({self['span.start']}); "
+            raise ScenarioError("span.end", end_text, f"a time after span.start ({start_text}); "
                                 f"scene kind '{self.kind}' runs forward only (backward runs: "
                                 f"{', '.join(backward_kinds())})")
         if abs(end - start) < MIN_SPAN_D:
             raise ScenarioError("span.end", end_text, f"a span of at least {MIN_SPAN_D:g} d from span.start")
-        return start, end
+        return SpanTable(start=start, end=end, step=values["span.step"])
 
     def cost(self):
         """The measured per-item costs of this scene kind (its Scene's cost)."""
@@ -245,16 +218,6 @@ class Scenario:
     def estimate(self):
         """{"time_s", "memory_bytes"} of the run (spinorbit.budget.estimate)."""
         return budget.estimate(self)
-
-_RECORDS = {}
-
-
-def _record_type(kind, keys):
-    """The typed record of a scene kind's values (schema.record), made once per kind."""
-    if kind not in _RECORDS:
-        _RECORDS[kind] = record(f"{kind}_params", keys)
-    return _RECORDS[kind]
-
 
 # The library names an argument it cannot use (errors.InputError); the scenario key that sets it:
 ARGUMENT_KEYS = {"method": "integrator.method", "step": "integrator.step",
@@ -274,7 +237,7 @@ def scenario_errors(scenario):
         key = f"integrator.{exc.name}" if exc.name in options else ARGUMENT_KEYS.get(exc.name, exc.name)
         raise ScenarioError(key, exc.given, exc.accepted) from None
     except EphemerisRangeError as exc:
-        (first, last) = scenario.bounds
+        (first, last) = scenario.params.span.bounds
         asked_first, asked_last = exc.requested if isinstance(exc.requested, tuple) else (first, last)
         before, after = max(first - asked_first, 0.0), max(asked_last - last, 0.0)
         low, high = exc.span[0] + before, exc.span[1] - after

@@ -2,7 +2,7 @@
 
 A scene module defines ``SCENE = Scene(...)``: its keys, how it builds the System it integrates, what it
 compares, its verdict, its cost and the time-scales its run follows.  The runner does the rest for every
-scene: validate the scenario into the scene's typed parameters (``schema.record``), build, simulate, compare,
+scene: validate the scenario into the scene's typed parameters (its ``params`` class), build, simulate, compare,
 table, figures, summary, verdict, result.  A scene that needs further integrations (a twin model, a run driven
 by another orbit source, an ensemble of methods) asks the runner for them through ``Run.integrate``; a scene
 with nothing of its own to integrate (an ensemble compared method by method) builds ``Model(None)``.
@@ -93,7 +93,9 @@ class Outcome:
 
 @dataclass(frozen=True)
 class Scene:
-    """A scene's declarations.  ``schema``: its keys (schema.Key by dotted name); ``build(p, times) -> Model``;
+    """A scene's declarations.  ``params``: its parameter class (a spinorbit.params.Params with a table per
+    scenario table, each field declared with its key), which the scenario is loaded into and every function
+    below receives as ``p``; ``schema``: the keys read off it; ``build(p, times) -> Model``;
     ``compare(p, run) -> Outcome`` (a scene module names it ``compare_run``: the ``compare`` submodule some
     scenes have would shadow it); ``verdict``: a Verdict, or ``verdict(p, comparison) -> Verdict`` when it
     depends on the settings or the outcome; ``cost``: measured per-item costs (the up-front estimate);
@@ -108,7 +110,7 @@ class Scene:
     ``nbody_counts(p) -> {count: items}``: N-body work its run does (NBODY_COSTS' counts: an orbital solution
     or a REBOUND run first, or its own run where its integrator chooses its steps), for the up-front estimate."""
 
-    schema: dict
+    params: type
     build: Callable = None
     compare: Callable = None
     verdict: object = None
@@ -120,6 +122,13 @@ class Scene:
     restart: Callable = None
     sweep_figures: Callable = None
     nbody_counts: Callable = None
+
+    @property
+    def schema(self):
+        """{dotted key: schema.Key} the scene accepts, read off its parameter class (params.keys_of)."""
+        from .params import keys_of
+
+        return keys_of(self.params)
 
     def verdict_for(self, params, comparison):
         """The Verdict of a run with these parameters and this comparison (None: the scene declares none)."""
@@ -139,6 +148,7 @@ def integrate(scenario, system, times, part=None, method=None, options=None, est
     checkpoint = scenario.checkpoint
     if checkpoint is not None and part is not None:
         checkpoint = checkpoint.part(part)
-    estimate = scenario["integrator.estimate_error"] if estimate_error is None else estimate_error
-    return simulate(system, times, scenario["integrator.method"], scenario.integrator_options(), estimate,
+    settings = scenario.params.integrator
+    estimate = settings.estimate_error if estimate_error is None else estimate_error
+    return simulate(system, times, settings.method, settings.options(), estimate,
                     checkpoint, label)

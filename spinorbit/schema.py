@@ -8,7 +8,7 @@ ISO strings in TDB, TDB days from J2000.0 inside.
 """
 import math
 import warnings
-from dataclasses import dataclass, make_dataclass
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -223,48 +223,3 @@ def dotted_items(table, prefix="", is_table=None):
             yield from dotted_items(value, key + ".", is_table)
         else:
             yield key, value
-
-
-def record(name, keys):
-    """The typed record of a scene's values: a frozen dataclass with one frozen dataclass per table, so that
-    ``p.body.moments`` is the converted value of ``body.moments``; beside the tables, ``t_start`` and ``t_end``
-    (TDB days of the span) and ``bounds`` (earliest, latest); the [integrator] options are keys too
-    (``p.integrator.step``: None where the scenario leaves it to the method).  Built from the keys, never by hand: every
-    scene's record alike, from a TOML file, ``--set`` or the API (they all go through the scenario's
-    validation)."""
-    tables = {}
-    for key, spec in keys.items():
-        table, leaf = key.split(".", 1)
-        tables.setdefault(table, []).append((leaf, _python_type(spec)))
-    types = {table: make_dataclass(f"{name}_{table}", fields, frozen=True, eq=False)
-             for table, fields in tables.items()}
-    top = make_dataclass(name, [(table, cls) for table, cls in types.items()] + [("t_start", float),
-                                                                                 ("t_end", float)],
-                         frozen=True, eq=False, namespace={"__getitem__": _dotted, "bounds": property(_bounds)})
-    top.tables = types
-    return top
-
-
-def filled(record_type, values, t_start, t_end):
-    """An instance of ``record_type`` (schema.record) holding ``values`` (dotted key -> converted value)."""
-    tables = {table: cls(**{key.split(".", 1)[1]: value for key, value in values.items()
-                            if key.split(".", 1)[0] == table})
-              for table, cls in record_type.tables.items()}
-    return record_type(**tables, t_start=t_start, t_end=t_end)
-
-
-def _dotted(record, key):
-    """``p["body.moments"]``: a value by its dotted key, as the scenario names it."""
-    table, leaf = key.split(".", 1)
-    return getattr(getattr(record, table), leaf)
-
-
-def _bounds(record):
-    """(earliest, latest) TDB days of the span, whichever way it runs."""
-    return min(record.t_start, record.t_end), max(record.t_start, record.t_end)
-
-
-def _python_type(spec):
-    if spec.unit is None:
-        return spec.type
-    return np.ndarray if spec.size else float

@@ -23,7 +23,7 @@ def test_an_answer_in_the_first_window_is_the_same_after_the_store_reaches_the_n
     rigid solution reaches through the next window: equal within 1e-3 µas (the fits over the first window are the
     same; only rounding of the vectorised arguments differs).  The code before the windows moved them by 270 mas."""
     scenario = load_scenario("earth_precession_nutation_nonrigid", values=SHORT)
-    first, last = earth_layer.reach(scenario, scenario.t_start, scenario.t_start)
+    first, last = earth_layer.reach(scenario, scenario.params.span.start, scenario.params.span.start)
     t = np.linspace(first + 1.0, last - 1.0, 50)
     before = earth_layer.layer(for_scenario(scenario, first, last), scenario, True)
     _, further = earth_layer.reach(scenario, last + 300.0, last + 300.0)

@@ -94,10 +94,10 @@ def assert_sane(scenario):
     for key, value in scenario.values.items():
         if isinstance(value, (float, np.ndarray)):
             assert np.all(np.isfinite(value)), key
-    assert math.isfinite(scenario.t_start) and scenario.t_end > scenario.t_start
+    assert math.isfinite(scenario.params.span.start) and scenario.params.span.end > scenario.params.span.start
     assert len(scenario.output_times()) <= LIMITS["output rows"]
     for name in ("rtol", "atol"):
-        assert 0 < scenario.integrator_options().get(name, 1e-12) < 1
+        assert 0 < scenario.params.integrator.options().get(name, 1e-12) < 1
 
 
 @SETTINGS

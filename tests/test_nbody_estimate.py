@@ -56,7 +56,7 @@ def test_a_rebound_orbit_far_from_de421_counts_the_days_out():
     from spinorbit.orbits.kernel import DE421Arrays
 
     scenario = load_scenario("moon_libration_rebound", ['span.start="2400-01-01T12:00:00"', 'span.end="30 d"'])
-    out = scenario.t_start - DE421Arrays().span[1]
+    out = scenario.params.span.start - DE421Arrays().span[1]
     assert scenario.counts()["IAS15 days"] == pytest.approx(out + 30.0, rel=1e-12)
     with pytest.raises(ScenarioError) as info:
         load_scenario("moon_libration_rebound", ['span.start="2400-01-01T12:00:00"', 'span.end="30 d"',

@@ -59,7 +59,7 @@ def test_a_runs_table_is_its_solution_at_the_outputs_and_agrees_with_a_discrete_
 
     scenario = result.scenario
     system = scenario.scene.build(scenario.params, t).system
-    discrete, _ = simulate(system, t, scenario["integrator.method"], scenario.integrator_options(), False)
+    discrete, _ = simulate(system, t, scenario.params.integrator.method, scenario.params.integrator.options(), False)
     section = result.summary["solution"]
     bound = (2 * section["integration_error_attitude_arcsec"] + section["fit_error_attitude_arcsec"]) * arcsec
     assert quat_angle(at_outputs.quaternion, discrete.quaternion).max() <= bound

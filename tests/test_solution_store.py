@@ -74,7 +74,7 @@ def test_a_run_whose_last_output_rounds_past_its_segments_finishes(place, sets):
     result = run_scenario("moon_libration", [*sets, "output.plots=false"])
     times = result.scenario.output_times()
     assert len(result.table) == len(times)
-    assert abs(times[-1] - result.scenario.t_end) < 1e-9
+    assert abs(times[-1] - result.scenario.params.span.end) < 1e-9
 
 
 def test_a_short_run_is_stored_on_its_kinds_grid_and_a_failed_run_never(place, monkeypatch):

@@ -46,7 +46,7 @@ def test_fit_matches_the_dense_output_between_nodes(place):
     t0, y0 = models.first_start(solutions.scenario_of("moon_libration", []))
     scenario = solutions.piece_scenario("moon_libration", [], *solution.span, t0)
     system = models.system(scenario, (t0, y0))
-    direct, _ = simulate(system, t, scenario["integrator.method"], scenario.integrator_options(),
+    direct, _ = simulate(system, t, scenario.params.integrator.method, scenario.params.integrator.options(),
                          estimate_error=False)
     fitted = solution.part("moon.q", t)
     assert quat_angle(fitted, direct.quaternion).max() < 1 * uas
@@ -64,7 +64,7 @@ def test_the_stated_fit_error_bounds_the_series_between_its_check_points():
     t0, y0 = models.first_start(scenario)
     stretch = models.stretch(scenario, t0, t0 + 40.0, t0)
     system = models.system(stretch, (t0, y0))
-    method, options = stretch["integrator.method"], stretch.integrator_options()
+    method, options = stretch.params.integrator.method, stretch.params.integrator.options()
     grid = fit.Grid(t0, 4.0, 13)
     piece = fit.integrate(system, grid, t0, t0 + 40.0, method, options, estimate_error=False)
     t = (t0 + 4.0 * (np.arange(10)[:, None] + 0.5 + 0.5 * np.linspace(-1.0, 1.0, 101))).ravel()

@@ -22,8 +22,8 @@ def test_every_kind_taylor_takes_has_a_scene_here():
 def test_taylor_from_the_command_line_takes_the_files_tolerance_and_drops_what_it_cannot_use(scene):
     in_file = load_scenario(scene).data["integrator"]
     scenario = load_scenario(scene, ["integrator.method=taylor"])
-    options = scenario.integrator_options()
-    assert scenario["integrator.method"] == "taylor" and set(options) <= {"tolerance", "compact_mode", "opt_level"}
+    options = scenario.params.integrator.options()
+    assert scenario.params.integrator.method == "taylor" and set(options) <= {"tolerance", "compact_mode", "opt_level"}
     if "rtol" in in_file:                                       # a relative tolerance stays one
         assert options["tolerance"] == in_file["rtol"]
     for name in set(in_file) - {"method", "estimate_error", "tolerance"}:
@@ -37,7 +37,7 @@ def test_a_method_switch_never_touches_an_option_typed_with_it():
 
 def test_a_tolerance_out_of_the_new_options_range_is_dropped_and_said():
     scenario = load_scenario("solar_system", ["integrator.method=dop853"])    # Taylor's 1e-15 < rtol's 100 eps
-    assert "rtol" not in scenario.integrator_options()
+    assert "rtol" not in scenario.params.integrator.options()
     assert scenario.notes == ["integrator.tolerance = 1e-15 from the scene file dropped: method 'dop853' does "
                               "not take it (its default applies)"]
 
@@ -64,7 +64,7 @@ def test_a_bad_end_date_is_told_that_iso_dates_and_durations_are_accepted(end):
 @pytest.mark.parametrize("end, days", [("2 days", 2.0), ("2 d", 2.0), ("3 weeks", 21.0), ("1 years", 365.25)])
 def test_durations_in_plural_words_are_read(end, days):
     scenario = load_scenario("free_body", [f"span.end={end}"])
-    assert scenario.t_end - scenario.t_start == pytest.approx(days, rel=1e-15)
+    assert scenario.params.span.end - scenario.params.span.start == pytest.approx(days, rel=1e-15)
 
 
 def test_a_bad_start_date_says_iso_dates_in_tdb():

@@ -17,8 +17,8 @@ def erfa_metrics(scenario, model):
     from ..integrators import simulate
     from ..references.long_term_precession import LongTermPrecession
 
-    reach = min(ERFA_SPAN_D, abs(scenario.t_end))
-    t = math.copysign(1.0, scenario.t_end) * np.arange(ERFA_STEP_D, reach + 1.0, ERFA_STEP_D)
+    reach = min(ERFA_SPAN_D, abs(scenario.params.span.end))
+    t = math.copysign(1.0, scenario.params.span.end) * np.arange(ERFA_STEP_D, reach + 1.0, ERFA_STEP_D)
     solution, _ = simulate(model.system, t, "rk8", {"step": ERFA_STEP_D}, estimate_error=False)
     states = solution.y
     normal, _ = model.system.orbit(t)

@@ -84,7 +84,7 @@ def full_model_checks(p, run, twin, z_full):
     """The full model of ``run`` (spinorbit.scene.Run) against its gyroscopic ``twin`` on the same orbits and
     start (start.gyroscopic_twin), and the free nutation it started (a dense run over
     ``comparison.free_nutation_span``)."""
-    t, t0, system = run.times, p.t_start, run.model.system
+    t, t0, system = run.times, p.span.start, run.model.system
     twin_run, _ = run.integrate(twin, t, "gyroscopic twin", "rk8", {"step": p.comparison.gyroscopic_step})
     t_dense = t0 + np.arange(0.0, min(p.comparison.free_nutation_span, t[-1] - t0), 0.125)
     dense, _ = run.integrate(system, t_dense, "free nutation", estimate_error=False)

@@ -26,8 +26,8 @@ def settings(scenario):
     """The non-rigid layer's settings from an Earth scene: transfer function, run's H_d, geodesic nutation."""
     from ..starts.earth_ellipticity import dynamical_ellipticity
 
-    return {"model": scenario["earth.transfer_function"], "h_d": dynamical_ellipticity(scenario)[0],
-            "geodesic": scenario["earth.geodesic_nutation"] and scenario["earth.geodesic_precession"]}
+    return {"model": scenario.params.earth.transfer_function, "h_d": dynamical_ellipticity(scenario)[0],
+            "geodesic": scenario.params.earth.geodesic_nutation and scenario.params.earth.geodesic_precession}
 
 
 def nonrigid_pole(t, z, model, h_d, geodesic):

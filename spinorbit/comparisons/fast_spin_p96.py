@@ -43,13 +43,13 @@ def precession_rate(solution, t0, delta, eps_f):
 
 def compare_run(p, run):
     system, theory, delta = run.model.spinner, run.model.theory, run.model.delta
-    t, t0, span = run.times, p.t_start, p.t_end - p.t_start
+    t, t0, span = run.times, p.span.start, p.span.end - p.span.start
     closed_form = theory.precession_rate
-    ref_method, ref_opts, _ = options(p["stress.reference"][0], "stress.reference")
+    ref_method, ref_opts, _ = options(p.stress.reference[0], "stress.reference")
     reference = run.integrate(system, t, "reference", ref_method, ref_opts)[0]
     ref_axis, reference_rate = figure_axis(reference), precession_rate(reference, t0, delta, theory.eps_f)
     rows = []
-    for entry in p["stress.runs"]:
+    for entry in p.stress.runs:
         method, opts, fraction = options(entry)
         keep, full = t <= t0 + fraction * span * (1 + 1e-12), fraction >= 1.0
 
@@ -74,7 +74,7 @@ def compare_run(p, run):
                   "and max attitude error vs a converged run, and the fitted precession rate vs P96's "
                   "N cos n cc/aa; passes if the reference agrees with the best run to "
                   "stress.reference_agreement_max and every full-span rate is within stress.rate_rel_tol",
-        "spin_over_orbit": p["stress.spin_over_orbit"],
+        "spin_over_orbit": p.stress.spin_over_orbit,
         "precession_rate_closed_form_rad_per_d": closed_form,
         "precession_rate_reference_rel_error": reference_rate / closed_form - 1,
         "reference": label(ref_method, ref_opts),
@@ -83,9 +83,9 @@ def compare_run(p, run):
         "precession_rate_rel_error_max": max(rate_errors),
         "winner_axis_error": winner(full_rows, "axis_error_vs_converged_rad", (1e-6, 1e-8, 1e-10)),
         "winner_attitude_error": winner(full_rows, "error_vs_converged_rad", (1e-4, 1e-6, 1e-7)),
-        "passed": bool(agreement < p["stress.reference_agreement_max"]
+        "passed": bool(agreement < p.stress.reference_agreement_max
                        and not any("failed" in r for r in rows)
-                       and max(rate_errors) < p["stress.rate_rel_tol"]),
+                       and max(rate_errors) < p.stress.rate_rel_tol),
     }
     return Outcome(comparison, sections={"details": {"runs": rows},
                                          "run": {"method": ",".join(r["run"] for r in rows)}})

@@ -25,9 +25,9 @@ def attitude_error(exact):
 
 
 def flip(p):
-    moments, omega0 = p["body.moments"], p["body.omega0"]
+    moments, omega0 = p.body.moments, p.body.omega0
     period = FreeRigidBody(moments, omega0, Q0).period
-    t = np.arange(0.0, (p["stress.flips"] + 1.5) * period / 2, 0.005)
+    t = np.arange(0.0, (p.stress.flips + 1.5) * period / 2, 0.005)
 
     def measured(sol):
         wy = sol.omega[:, 1]
@@ -38,11 +38,11 @@ def flip(p):
         return {"flips": int(flips), "period_measured_d": period_d,
                 "period_rel_error_vs_closed_form": period_d / period - 1}
 
-    rows = work_precision(free_body(moments, Q0, omega0), t, settings(p["stress.methods"], step=5e-3),
+    rows = work_precision(free_body(moments, Q0, omega0), t, settings(p.stress.methods, step=5e-3),
                           measured)
     worst = max(abs(r["period_rel_error_vs_closed_form"]) for r in ok(rows))
     passed = (len(ok(rows)) == len(rows) and worst < 1e-3
-              and min(r["flips"] for r in rows) >= p["stress.flips"])
+              and min(r["flips"] for r in rows) >= p.stress.flips)
     comparison = {"period_closed_form_d": period, "period_design_reference_d": 12.335,
                   "period_rel_error_max": worst, "passed": bool(passed)}
     return comparison, {"methods": {r["method"]: r for r in rows}}
@@ -60,7 +60,7 @@ def degenerate(p):
               axisymmetric_attitude(np.array([1.0, 1.0, 1.3]), omega0, Q0, t, 2)))
     rows = {}
     for label, system, exact in cases:
-        for r in work_precision(system, t, settings(p["stress.methods"], step=0.01),
+        for r in work_precision(system, t, settings(p.stress.methods, step=0.01),
                                 attitude_error(exact)):
             rows[f"{label}/{r['method']}"] = {**r, "finite": "failed" not in r}
     worst = max(r["attitude_error_max_rad"] for r in ok(rows.values()))
@@ -72,13 +72,13 @@ def degenerate(p):
 def shapes(p):
     t = np.linspace(0.0, 100.0, 201)
     rows = {}
-    for f in p["stress.flattenings"]:
+    for f in p.stress.flattenings:
         for shape, moments, omega0, s in (("oblate", [1 - f, 1 - f, 1.0], [0.3, 0.2, 2.0], 2),
                                           ("prolate", [1 - f, 1.0, 1.0], [2.0, 0.3, 0.2], 0)):
             moments, omega0 = np.array(moments), np.array(omega0)
             exact = axisymmetric_attitude(moments, omega0, Q0, t, s)
             for r in work_precision(free_body(moments, Q0, omega0), t,
-                                    settings(p["stress.methods"], step=0.01), attitude_error(exact)):
+                                    settings(p.stress.methods, step=0.01), attitude_error(exact)):
                 rows[f"{shape}/{f:g}/{r['method']}"] = r.get("attitude_error_max_rad", math.inf)
     worst = max(rows.values())
     return {"attitude_error_max_rad": worst, "passed": bool(worst < 1e-9)}, {"attitude_error_max_rad": rows}
@@ -87,7 +87,7 @@ def shapes(p):
 def long_run(p):
     moments = np.array([2 / 3, 1.0, 2.0])
     omega0 = np.array([math.sin(1.1), 0.0, math.cos(1.1)]) / moments
-    h, steps = 0.1, p["stress.steps"]
+    h, steps = 0.1, p.stress.steps
     t = np.linspace(0.0, h * steps, 10001)
     tenth = t.size // 10
 
@@ -99,7 +99,7 @@ def long_run(p):
                 "energy_error_last_tenth": float(de[-tenth:].max())}
 
     # never 1e7 steps of scipy
-    fixed_step = [(m, o) for m, o in settings(p["stress.methods"], step=h) if o]
+    fixed_step = [(m, o) for m, o in settings(p.stress.methods, step=h) if o]
     rows = {r["method"]: r for r in work_precision(free_body(moments, Q0, omega0), t, fixed_step, drift)}
     split = [r for m, r in rows.items() if m in ("strang", "yoshida4", "suzuki4")]
     passed = bool(split) and len(ok(split)) == len(split) and all(

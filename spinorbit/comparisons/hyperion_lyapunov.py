@@ -13,36 +13,36 @@ from ..scene import Outcome
 
 def lyapunov_map(p, planar, period):
     """(theta grid, rate/n grid, exponent (n_rate, n_theta) in 1/T) at periapsis after map.orbits periods."""
-    n_theta, n_rate = (int(v) for v in p["map.grid"])
+    n_theta, n_rate = (int(v) for v in p.map.grid)
     theta = (np.arange(n_theta) + 0.5) * math.pi / n_theta
-    lo, hi = p["map.rate_range"]
+    lo, hi = p.map.rate_range
     rate = lo + (np.arange(n_rate) + 0.5) * (hi - lo) / n_rate
     th, rt = np.meshgrid(theta, rate)
-    running = planar_lyapunov(planar, th.ravel(), rt.ravel() * planar[0], p.t_start, period,
-                              p["map.orbits"], p["lyapunov.steps_per_orbit"] // 2,
-                              p["lyapunov.d0"])
+    running = planar_lyapunov(planar, th.ravel(), rt.ravel() * planar[0], p.span.start, period,
+                              p.map.orbits, p.lyapunov.steps_per_orbit // 2,
+                              p.lyapunov.d0)
     return theta, rate, running[-1].reshape(th.shape)
 
 
 def compare_run(p, run):
     from .. import plots
 
-    moments = p["body.moments"]
+    moments = p.body.moments
     gamma = (moments[1] - moments[0]) / moments[2]
-    gm, a, e = p["orbit.gm"], p["orbit.a"], p["orbit.e"]
-    t0, n, start = p.t_start, math.sqrt(gm / a**3), p["lyapunov.start"]
+    gm, a, e = p.orbit.gm, p.orbit.a, p.orbit.e
+    t0, n, start = p.span.start, math.sqrt(gm / a**3), p.lyapunov.start
     period, orbit, planar = 2 * math.pi / n, kepler_orbit(gm, a, e, t0), planar_params(n, e, t0, gamma)
-    orbits, steps = p["lyapunov.orbits"], p["lyapunov.steps_per_orbit"]
-    d0 = p["lyapunov.d0"]
+    orbits, steps = p.lyapunov.orbits, p.lyapunov.steps_per_orbit
+    d0 = p.lyapunov.d0
 
     planar_error, system = planar_vs_rigid_body(moments, orbit, planar, t0, period, start)
-    regular_orbits = p["lyapunov.regular_orbits"]
-    regular = planar_lyapunov(planar_params(n, e, t0, p["lyapunov.regular_gamma"]), 0.0, n, t0, period,
+    regular_orbits = p.lyapunov.regular_orbits
+    regular = planar_lyapunov(planar_params(n, e, t0, p.lyapunov.regular_gamma), 0.0, n, t0, period,
                               regular_orbits, steps, d0)[:, 0]
-    thetas = start[0] + 1e-3 * np.arange(p["lyapunov.ensemble"])
+    thetas = start[0] + 1e-3 * np.arange(p.lyapunov.ensemble)
     long_run = planar_lyapunov(planar, thetas, start[1] * n, t0, period, 2 * orbits, steps, d0)
     dop853 = planar_lyapunov(planar, thetas, start[1] * n, t0, period, orbits, steps, d0, "dop853")
-    tilted = rigid_body_lyapunov(system, period, p["lyapunov.orbits_3d"], steps, d0)
+    tilted = rigid_body_lyapunov(system, period, p.lyapunov.orbits_3d, steps, d0)
     theta, rate, exponent = lyapunov_map(p, planar, period)
 
     nominal = {"rk8_T": ensemble_mean(long_run[orbits - 1]), "rk8_2T": ensemble_mean(long_run[-1]),
@@ -50,7 +50,7 @@ def compare_run(p, run):
     sigmas = {f"{a}_vs_{b}": abs(nominal[a][0] - nominal[b][0]) / math.hypot(nominal[a][1], nominal[b][1])
               for a, b in (("rk8_T", "rk8_2T"), ("rk8_T", "dop853_T"))}
     decay = float(regular[-1] / regular[regular_orbits // 2 - 1])     # ln(t)/t: ~0.5 from T to 2T; chaos: ~1
-    chaotic_min = p["lyapunov.chaotic_min"]
+    chaotic_min = p.lyapunov.chaotic_min
     chaotic = exponent > chaotic_min
     comparison = {
         "checks": "maximal Lyapunov exponent (Benettin two-trajectory renormalisation every orbit, 1/T): "
@@ -76,9 +76,9 @@ def compare_run(p, run):
         "map_exponent_median_chaotic_per_T":
             float(np.median(exponent[chaotic])) if chaotic.any() else math.nan,
         "planar_vs_3d_theta_max_rad_5_orbits": planar_error,
-        "passed": bool(regular[-1] < p["lyapunov.regular_max"] and decay < 0.75
+        "passed": bool(regular[-1] < p.lyapunov.regular_max and decay < 0.75
                        and min(v[0] for v in nominal.values()) > chaotic_min
-                       and max(sigmas.values()) < p["lyapunov.max_sigma"] and planar_error < 1e-8),
+                       and max(sigmas.values()) < p.lyapunov.max_sigma and planar_error < 1e-8),
     }
     details = {"map": {"theta_minus_f_rad": theta, "rate_over_n": rate, "exponent_per_T": exponent},
                "method": "Benettin et al. (1980): two trajectories, renormalised to d0 every orbital period"}

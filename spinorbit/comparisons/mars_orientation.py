@@ -8,6 +8,7 @@ Mars's equator along it from its node on the ICRF equator, I the obliquity; both
 with the series' frequencies (analysis.precession.fit_pole), the linear coefficient the rate at J2000.
 """
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -27,13 +28,18 @@ from ..verdict import Check, Verdict
 
 NUTATION_MIN_SPAN_D = 10 * JULIAN_YEAR_D      # five Mars years: the annual term apart from the quadratic
 IAU_WINDOW_D = (-20 * JULIAN_YEAR_D, 30 * JULIAN_YEAR_D)      # 1980-2030, where IAU 2015's fit is compared
-# The budget's runs, each adding one effect to the last: name -> the switches it sets.
-BUDGET = {"solar": {"orbit.source": "kepler", "orbit.planets": False, "mars.satellites": False,
-                    "mars.geodesic_precession": False},
-          "phobos_deimos": {"mars.satellites": True},
-          "orbit_motion": {"orbit.source": None},           # the run's own ephemeris: the planets move the orbit
-          "planet_torques": {"orbit.planets": True},
-          "geodesic": {"mars.geodesic_precession": True}}
+# The budget's runs, each adding one effect to the last: name -> (the run's parameters, the last run's) -> its own.
+def _solar(p, last):
+    return replace(last, orbit=replace(last.orbit, source="kepler", planets=False),
+                   mars=replace(last.mars, satellites=False, geodesic_precession=False))
+
+
+BUDGET = {"solar": _solar,
+          "phobos_deimos": lambda p, last: replace(last, mars=replace(last.mars, satellites=True)),
+          # the run's own ephemeris: the planets move the orbit
+          "orbit_motion": lambda p, last: replace(last, orbit=replace(last.orbit, source=p.orbit.source)),
+          "planet_torques": lambda p, last: replace(last, orbit=replace(last.orbit, planets=True)),
+          "geodesic": lambda p, last: replace(last, mars=replace(last.mars, geodesic_precession=True))}
 
 
 _RATE = ("Konopliv et al. 2016 (Icarus 274, 253): -7608.3 +- 2.1 mas/yr from landers and orbiters; the model "
@@ -196,10 +202,10 @@ def prime_meridian(t, poles, spin_rate, t0):
 def budget(p, run, t):
     """(comparison, runs' rates): each effect's share of the rate, mas/yr, from runs adding one at a time
     (BUDGET), beside the closed forms of the solar and geodesic rows."""
-    rates, switches, last = {}, {}, None
+    rates, variant, last = {}, p, None
     for name, change in BUDGET.items():
-        switches |= {key: (p[key] if value is None else value) for key, value in change.items()}
-        system = start.build(p, dict(switches))
+        variant = change(p, variant)
+        system = start.build(variant)
         states, _ = run.integrate(system, t, f"budget: {name}", estimate_error=False)
         rate = rate_mas_yr(fitted(t, system.figure_axes("mars", t, states.y))[0])
         rates[name] = rate - (last if last is not None else 0.0)
@@ -207,7 +213,7 @@ def budget(p, run, t):
     comparison = {f"budget_{name}_mas_per_yr": value for name, value in rates.items()}
     comparison["budget_planets_mas_per_yr"] = rates["orbit_motion"] + rates["planet_torques"]
     comparison["budget_total_mas_per_yr"] = last
-    comparison.update(closed_forms(p["mars.c_mr2"]))
+    comparison.update(closed_forms(p.mars.c_mr2))
     return comparison
 
 

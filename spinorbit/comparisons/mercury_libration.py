@@ -34,7 +34,7 @@ def compare_run(p, run):
     import astropy.units as u
 
     solution, gamma, n, theory, e = run.solution, run.model.gamma, run.model.n, run.model.theory, p.orbit.e
-    dt = solution.t - p.t_start
+    dt = solution.t - p.span.start
     lib = theta_from_quaternions(solution.quaternion) - 1.5 * n * dt
     w0 = theory["w0_over_n"] * n
     names = [f"{2 * math.pi / (k * n):.3g}-d term" for k in range(1, HARMONICS + 1)] + ["free libration"]

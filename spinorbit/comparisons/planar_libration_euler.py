@@ -17,7 +17,7 @@ def compare_run(p, run):
     import astropy.units as u
 
     solution, theory, n, delta = run.solution, run.model.theory, run.model.n, p.orbit.rate
-    dt = solution.t - p.t_start
+    dt = solution.t - p.span.start
     zeta_num = zeta_from_solution(solution, delta * dt)
     zeta_cf = theory.zeta(dt)
     comparison = {"case": theory.case, "n_rad2_per_d2": n, "energy_over_n": theory.energy / n}

@@ -1,5 +1,6 @@
 """Pieces scene modules share: a rigid body from its moments, its time-scales, plots (spinorbit.plots)."""
 import math
+from dataclasses import fields
 
 import numpy as np
 
@@ -16,40 +17,38 @@ def u():
     return units
 
 
-def rigid_body(scenario, key="body.moments"):
-    """RigidBody from principal moments at ``key``; a non-physical body is a ScenarioError on that key."""
-    moments = scenario[key]
+def rigid_body(moments, key="body.moments"):
+    """RigidBody from the principal ``moments`` a scenario ``key`` gives; a non-physical body is a ScenarioError
+    on that key."""
     try:
         return RigidBody.from_principal(*moments, name=key)
     except PhysicsError as exc:
         raise ScenarioError(key, moments.tolist(), f"a rigid body ({exc})") from None
 
 
-DISTANCE_KEYS = ("orbit.radius", "orbit.f", "orbit.a")
+DISTANCES = ("radius", "f", "a")        # the orbit table's distance, by the name a scene gives it
 
 
-def rigid_body_time_scales(schema):
-    """``time_scales`` of a rigid body's scene with these keys: the body-frame rates Euler's equations make of
-    its spin keys (|rate| x the largest |B - C|/A of its moments, when over 1), and a centre of forces' torque
-    time-scale sqrt(3 GM/s^3)."""
-    spins = [key for key, spec in schema.items() if key.startswith("body.") and spec.unit == "rad/d"]
-    distance = next((key for key in DISTANCE_KEYS if key in schema), None)
-
-    def time_scales(p):
-        scales = []
-        moments = p["body.moments"] if "body.moments" in schema else None
-        if moments is not None and np.all(np.abs(moments) > 0):
-            a, b, c = (float(m) for m in moments)
-            euler = max(abs(b - c) / abs(a), abs(c - a) / abs(b), abs(a - b) / abs(c))
-            scales += [TimeScale("body.moments", float(np.linalg.norm(p[key])) * euler,
-                                 f" (the body-frame rate |{key}| x {euler:.3g}, Euler's equations)")
-                       for key in spins if p[key] is not None and euler > 1]
-        if "orbit.gm" in schema and distance:
-            rate = math.sqrt(3 * p["orbit.gm"] / p[distance] ** 3)
-            scales.append(TimeScale(distance, rate, f" (sqrt(3 orbit.gm/{distance}^3) = {rate:.3g} rad/d)"))
-        return scales
-
-    return time_scales
+def rigid_body_time_scales(p):
+    """``time_scales`` of a rigid body's scene: the body-frame rates Euler's equations make of its spin keys
+    (|rate| x the largest |B - C|/A of its moments, when over 1), and a centre of forces' torque time-scale
+    sqrt(3 GM/s^3)."""
+    scales = []
+    body, orbit = getattr(p, "body", None), getattr(p, "orbit", None)
+    moments = getattr(body, "moments", None)
+    if moments is not None and np.all(np.abs(moments) > 0):
+        a, b, c = (float(m) for m in moments)
+        euler = max(abs(b - c) / abs(a), abs(c - a) / abs(b), abs(a - b) / abs(c))
+        spins = [f.name for f in fields(body) if f.metadata["key"].unit == "rad/d"]
+        scales += [TimeScale("body.moments", float(np.linalg.norm(getattr(body, name))) * euler,
+                             f" (the body-frame rate |body.{name}| x {euler:.3g}, Euler's equations)")
+                   for name in spins if getattr(body, name) is not None and euler > 1]
+    distance = next((name for name in DISTANCES if hasattr(orbit, name)), None)
+    if hasattr(orbit, "gm") and distance:
+        rate = math.sqrt(3 * orbit.gm / getattr(orbit, distance) ** 3)
+        scales.append(TimeScale(f"orbit.{distance}", rate,
+                                f" (sqrt(3 orbit.gm/orbit.{distance}^3) = {rate:.3g} rad/d)"))
+    return scales
 
 
 def decimal_year(t):

@@ -17,19 +17,41 @@ import numpy as np
 
 from ..constants import JULIAN_CENTURY_D
 from ..models.assemblies.earth_moon import FIGURES
+from ..params import Params, key, table
 from ..scene import Cost, Model, Outcome, Scene
-from ..schema import Key
 from ..verdict import Check, Verdict
 from . import common
 
-SCHEMA = {
-    **{f"model.{name}": Key(type=bool, default=True, help=text) for name, text in FIGURES.items()},
-    "model.earth_rotator": Key(
+
+@table
+class ModelTable:
+    moon_figure: bool = key(type=bool, default=True, help=FIGURES["moon_figure"])
+    moon_harmonics: bool = key(type=bool, default=True, help=FIGURES["moon_harmonics"])
+    earth_figure: bool = key(type=bool, default=True, help=FIGURES["earth_figure"])
+    earth_harmonics: bool = key(type=bool, default=True, help=FIGURES["earth_harmonics"])
+    figure_figure: bool = key(type=bool, default=True, help=FIGURES["figure_figure"])
+    moon_figure: bool = key(type=bool, default=True, help=FIGURES["moon_figure"])
+    moon_harmonics: bool = key(type=bool, default=True, help=FIGURES["moon_harmonics"])
+    earth_figure: bool = key(type=bool, default=True, help=FIGURES["earth_figure"])
+    earth_harmonics: bool = key(type=bool, default=True, help=FIGURES["earth_harmonics"])
+    figure_figure: bool = key(type=bool, default=True, help=FIGURES["figure_figure"])
+    earth_rotator: str = key(
         type=str, default="gyroscopic", choices=("gyroscopic", "rigid"),
-        help="the DE421 scene's gyroscopic Earth, or a rigid Earth with its daily spin"),
-    "stress.tolerance_per_century": Key(unit="", default=1e-12, min=1e-16, max=1e-3,
-                                        help="pass: relative drift of |L|, L and E per century"),
-}
+        help="the DE421 scene's gyroscopic Earth, or a rigid Earth with its daily spin")
+
+
+@table
+class StressTable:
+    tolerance_per_century: float = key(unit="", default=1e-12, min=1e-16, max=1e-3,
+                                       help="pass: relative drift of |L|, L and E per century")
+
+
+@table
+class CoupledConservationParams(Params):
+    model: ModelTable
+    stress: StressTable
+
+
 METRICS = ("L_norm_rel_drift", "L_vector_rel_drift", "energy_rel_drift")
 # Scaled linearly to a century, the rounding walk (~eps sqrt(steps)) of a run under 10 yr exceeds 1e-12
 # by itself.
@@ -53,7 +75,7 @@ def build(p, times):
     from ..models.start import earth_moon_de421
     from ..references.erfa_pole import cip_vector
 
-    t0 = p.t_start
+    t0 = p.span.start
     rotator = Rigid() if p.model.earth_rotator == "rigid" else None
     built = closed(tuple(name for name in FIGURES if getattr(p.model, name)), t0, earth_rotator=rotator,
                    moon_core=False)
@@ -66,7 +88,7 @@ def compare_run(p, run):
 
     from ..schema import tdb_days_to_time
 
-    t, t0, solution = run.times, p.t_start, run.solution
+    t, t0, solution = run.times, p.span.start, run.solution
     energy, big_l = run.model.system.invariants(solution.y, t)
     norm = np.linalg.norm(big_l, axis=1)
     changes = {"L_norm_rel_drift": np.abs(norm / norm[0] - 1),
@@ -96,4 +118,4 @@ def compare_run(p, run):
     return Outcome(comparison, figures=figures, not_measured=not_measured, table=table)
 
 
-SCENE = Scene(SCHEMA, build, compare_run, verdict, Cost(step_s=1e-4), taylor=True)
+SCENE = Scene(CoupledConservationParams, build, compare_run, verdict, Cost(step_s=1e-4), taylor=True)

@@ -15,25 +15,34 @@ precession), compared with ERFA's long-term precession over the first 2 kyr and 
 """
 import time
 
+from ..params import Params, key, table, values_of
 from ..scene import Model, Outcome, Scene
-from ..schema import Key
-from ..starts.earth_deep_time import MYR_D, ORBIT_SCHEMA, check_span, nbody_counts
+from ..starts.earth_deep_time import MYR_D, DeepTimeOrbitTable, check_span, nbody_counts
 from ..verdict import Check, Verdict
 
 # The physics La2004 is judged against (numerical keys, the ephemeris and the file may change).
 NOMINAL = {"model.Td": 1.0, "model.Ed": 1.0, "model.precession": "iau2006_rate", "model.tidal_tilt": True,
            "orbit.moon": "ring", "orbit.relativity": True}
-SCHEMA = {
-    **ORBIT_SCHEMA,
-    "model.Td": Key(unit="", default=1.0, min=0.0, max=2.0,
-                    help="tidal dissipation, factor of today's (38.30 mm/yr lunar recession); 0 to 2"),
-    "model.Ed": Key(unit="", default=1.0, min=0.98, max=1.02,
-                    help="dynamical ellipticity, factor of today's; 0.98 to 1.02"),
-    "model.precession": Key(type=str, default="iau2006_rate", choices=("iau2006_rate", "iau2006_hd"),
-                            help="the precession constant from IAU 2006's rate in longitude, or its H_d"),
-    "model.tidal_tilt": Key(type=bool, default=True,
-                            help="the tides' own obliquity rate (+2.4 mas/cy, Williams 1994)"),
-}
+
+
+@table
+class ModelTable:
+    Td: float = key(unit="", default=1.0, min=0.0, max=2.0,
+                    help="tidal dissipation, factor of today's (38.30 mm/yr lunar recession); 0 to 2")
+    Ed: float = key(unit="", default=1.0, min=0.98, max=1.02,
+                    help="dynamical ellipticity, factor of today's; 0.98 to 1.02")
+    precession: str = key(type=str, default="iau2006_rate", choices=("iau2006_rate", "iau2006_hd"),
+                          help="the precession constant from IAU 2006's rate in longitude, or its H_d")
+    tidal_tilt: bool = key(type=bool, default=True,
+                           help="the tides' own obliquity rate (+2.4 mas/cy, Williams 1994)")
+
+
+@table
+class EarthDeepTimeParams(Params):
+    orbit: DeepTimeOrbitTable
+    model: ModelTable
+
+
 ISSUE = ("project target, not a published accuracy: La93 with and without tides differ by 3° in ϖ̄ at "
          "-1 Myr and 75° at -5 Myr (la93_tides_*), so La2004's own tidal model bounds what agreement can "
          "mean; 5e-4 in e(cos ϖ̄, sin ϖ̄) is about 1° of ϖ̄ at today's e")
@@ -46,14 +55,15 @@ def verdict(p, comparison):
     only (a variant is compared with La2004, not judged)."""
     checks = [Check("obliquity vs ERFA", "erfa_obliquity_max_arcsec", 1.0, "″", VCW),
               Check("mean equator vs ERFA", "erfa_equator_max_arcsec", 5.0, "″", VCW)]
-    nominal = all(p[key] == value for key, value in NOMINAL.items())
+    values = values_of(p)
+    nominal = all(values[key] == value for key, value in NOMINAL.items())
     if nominal:
         for window, targets in (("1myr", (("obliquity_max_deg", 0.005, "°"),
                                           ("climatic_precession_vector_max", 5e-4, ""))),
                                 ("10myr", (("eccentricity_max", 0.002, ""), ("obliquity_max_deg", 0.05, "°"),
                                            ("climatic_precession_vector_max", 2e-3, "")))):
             span = float(window.removesuffix("myr")) * MYR_D
-            if abs(p.t_end - p.t_start) < span - 1.0:
+            if p.span.length < span - 1.0:
                 continue                                    # a span shorter than the window: not asked
             checks += [Check(f"{name.removesuffix('_max_deg').removesuffix('_max')} vs La2004 ({window})",
                              f"la2004_{name}_{window}", tol, unit, ISSUE, min_span_d=span - 1.0)
@@ -98,4 +108,4 @@ def compare_run(p, run):
                    table=table.table(t, q))
 
 
-SCENE = Scene(SCHEMA, build, compare_run, verdict, backward=True, nbody_counts=nbody_counts)
+SCENE = Scene(EarthDeepTimeParams, build, compare_run, verdict, backward=True, nbody_counts=nbody_counts)

@@ -20,25 +20,49 @@ import numpy as np
 
 from ..errors import ScenarioError
 from ..models.assemblies.earth_moon import EXTERNAL, PLANETS, SWITCHES
+from ..params import Params, key, table
 from ..plots import moon_vs_de421
 from ..scene import Cost, Model, Outcome, Scene
-from ..schema import Key
 from ..verdict import Check, Verdict
 from . import common
 
-OFF_BY_DEFAULT = ()
-SCHEMA = {
-    **{f"model.{name}": Key(type=bool, default=name not in OFF_BY_DEFAULT, help=text)
-       for name, text in SWITCHES.items()},
-    "orbit.source": Key(type=str, default="de421",
-                        help="the Sun, planets and Earth-Moon barycentre: 'de421', 'de440' (or a .bsp), "
-                             "or 'rebound' (a REBOUND run from DE421's state)"),
-    "orbit.step": Key(unit="d", default=1.0, min=0.0625, max=4.0,
-                      help="sampling step of the Sun, planets and Earth-Moon barycentre"),
-    "compare.tides_off": Key(
+
+@table
+class ModelTable:
+    """The model's terms, each switched by a key (spinorbit.models.assemblies.earth_moon.SWITCHES)."""
+
+    relativity: bool = key(type=bool, default=True, help=SWITCHES["relativity"])
+    earth_tides: bool = key(type=bool, default=True, help=SWITCHES["earth_tides"])
+    moon_distortion: bool = key(type=bool, default=True, help=SWITCHES["moon_distortion"])
+    geodesic: bool = key(type=bool, default=True, help=SWITCHES["geodesic"])
+    planets: bool = key(type=bool, default=True, help=SWITCHES["planets"])
+    planets_on_moon_figure: bool = key(type=bool, default=True, help=SWITCHES["planets_on_moon_figure"])
+    sun_on_earth_j3_j4: bool = key(type=bool, default=True, help=SWITCHES["sun_on_earth_j3_j4"])
+
+
+@table
+class OrbitTable:
+    source: str = key(type=str, default="de421",
+                      help="the Sun, planets and Earth-Moon barycentre: 'de421', 'de440' (or a .bsp), "
+                           "or 'rebound' (a REBOUND run from DE421's state)")
+    step: float = key(unit="d", default=1.0, min=0.0625, max=4.0,
+                      help="sampling step of the Sun, planets and Earth-Moon barycentre")
+
+
+@table
+class CompareTable:
+    tides_off: bool = key(
         type=bool, default=False,
-        help="also run without the Earth's tides: the Moon's tidal secular acceleration"),
-}
+        help="also run without the Earth's tides: the Moon's tidal secular acceleration")
+
+
+@table
+class EarthMoonCoupledParams(Params):
+    model: ModelTable
+    orbit: OrbitTable
+    compare: CompareTable
+
+
 LLR = "Williams & Boggs 2016 (lunar laser ranging): -25.8\"/cy^2 and 38.3 mm/yr, within +-1"
 TARGETS = ("the same equations as DE421, started from its state: 1\" and 2 km is 5-10x what the "
            "integration and the orbit sampling leave (benchmarks/RESULTS.md), 0.1\" the lunar pole's "
@@ -69,7 +93,7 @@ def start_epoch(scenario):
     from ..bodies.de421_orientation import span
 
     first, last = span()
-    return float(np.clip(scenario.t_start, first + 1.0, last - 1.0))
+    return float(np.clip(scenario.params.span.start, first + 1.0, last - 1.0))
 
 
 def external_bodies(scenario):
@@ -77,11 +101,11 @@ def external_bodies(scenario):
     time s)."""
     from ..orbits.sources import barycentric
 
-    t0, (first, last) = start_epoch(scenario), scenario.bounds
-    names = EXTERNAL if scenario["model.planets"] else tuple(n for n in EXTERNAL if n not in PLANETS)
+    t0, (first, last) = start_epoch(scenario), scenario.params.span.bounds
+    names = EXTERNAL if scenario.params.model.planets else tuple(n for n in EXTERNAL if n not in PLANETS)
     started = time.perf_counter()
-    external = barycentric(scenario["orbit.source"], names, min(first, t0) - 1.0, max(last, t0) + 1.0,
-                           scenario["orbit.step"])
+    external = barycentric(scenario.params.orbit.source, names, min(first, t0) - 1.0, max(last, t0) + 1.0,
+                           scenario.params.orbit.step)
     return external, time.perf_counter() - started
 
 
@@ -146,4 +170,4 @@ def restart(p, start):
     return solar_system(external_bodies(p)[0], switches, float(start[0])).with_start(*start)
 
 
-SCENE = Scene(SCHEMA, build, compare_run, verdict, Cost(step_s=3e-4), restart=restart)
+SCENE = Scene(EarthMoonCoupledParams, build, compare_run, verdict, Cost(step_s=3e-4), restart=restart)

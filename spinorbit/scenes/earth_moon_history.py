@@ -26,8 +26,8 @@ tide resolves).
 """
 from ..errors import ScenarioError
 from ..models.tidal_history.tides import TIDES
+from ..params import Params, key, table
 from ..scene import Model, Outcome, Scene
-from ..schema import Key
 from ..starts.earth_moon_history import GYR_D
 from ..verdict import Check, Verdict
 
@@ -35,44 +35,63 @@ MODELS = tuple(TIDES)
 OCEANS = tuple(name for name, tide in TIDES.items() if tide.depth is not None)
 
 
-def _depth_key(tide):
+def _depth_key(name):
+    """The depth key of the tide ``name`` (its registry's bracket and fitted default)."""
+    tide = TIDES[name]
     fit, depth = tide.depth.fitted(), tide.depth
-    return Key(unit="km", default=fit["depth_km"], min=depth.low_km, max=depth.high_km,
+    return dict(unit="km", default=fit["depth_km"], min=depth.low_km, max=depth.high_km,
                help=f"the depth of {tide.name} (its drag is fitted to tides.recession_rate); "
                     f"{fit['depth_km']:.4f} km fits the Moon's age too ({fit['command']}"
                     + (f"; with {fit['fitted_with']}" if "fitted_with" in fit else "")
                     + f"); {depth.low_km:g} to {depth.high_km:g} km")
 
 
-SCHEMA = {
-    "tides.model": Key(type=str, default="ocean", choices=MODELS,
-                       help="the Earth's tidal response: " + "; ".join(f"{name}: {tide.summary}"
-                                                                      for name, tide in TIDES.items())
-                            + " (docs/TIDAL_HISTORY.md)"),
-    **{tide.depth.key: _depth_key(tide) for tide in TIDES.values() if tide.depth is not None},
-    "tides.continent_radius": Key(unit="deg", default=65.4, min=0.0, max=90.0,
+@table
+class TidesTable:
+    ocean_depth: float = key(**_depth_key("ocean"))
+    global_ocean_depth: float = key(**_depth_key("global_ocean"))
+    ocean_without_coriolis_depth: float = key(**_depth_key("ocean_without_coriolis"))
+    model: str = key(type=str, default="ocean", choices=MODELS,
+                     help="the Earth's tidal response: " + "; ".join(f"{name}: {tide.summary}"
+                                                                    for name, tide in TIDES.items())
+                          + " (docs/TIDAL_HISTORY.md)")
+    continent_radius: float = key(unit="deg", default=65.4, min=0.0, max=90.0,
                                   help="the continent's angular radius today (a spherical cap: 65.4 deg "
                                        "holds the land's 29.2% of the Earth's surface; 90 deg: Farhat et "
-                                       "al. 2022's hemispheric continent); 0 to 90 deg"),
-    "tides.continent_colatitude": Key(unit="deg", default=43.0, min=0.0, max=180.0,
+                                       "al. 2022's hemispheric continent); 0 to 90 deg")
+    continent_colatitude: float = key(unit="deg", default=43.0, min=0.0, max=180.0,
                                       help="the colatitude of the continent's centre (43 deg: the centre of "
                                            "the land hemisphere, ~47 N; 90 deg: on the equator, the ocean "
-                                           "bounded by two meridians as Webb 1982's); 0 to 180 deg"),
-    "tides.continent_until": Key(unit="Gyr", default=2.5, min=0.0, max=4.6,
+                                           "bounded by two meridians as Webb 1982's); 0 to 180 deg")
+    continent_until: float = key(unit="Gyr", default=2.5, min=0.0, max=4.6,
                                  help="the age until which the continent keeps today's size (the emergence "
                                       "of the continents ~2.5 Ga, Bindeman et al. 2018); before it its area "
-                                      "shrinks linearly with the age; 0 to 4.6 Gyr"),
-    "tides.global_ocean_from": Key(unit="Gyr", default=3.5, min=0.0, max=4.6,
+                                      "shrinks linearly with the age; 0 to 4.6 Gyr")
+    global_ocean_from: float = key(unit="Gyr", default=3.5, min=0.0, max=4.6,
                                    help="the age from which the ocean is global (no continent); after "
-                                        "tides.continent_until; 0 to 4.6 Gyr"),
-    "tides.recession_rate": Key(unit="cm/yr", default=3.830, min=3.0, max=4.6,
+                                        "tides.continent_until; 0 to 4.6 Gyr")
+    recession_rate: float = key(unit="cm/yr", default=3.830, min=3.0, max=4.6,
                                 help="today's lunar recession the tide's parameter is fitted to (LLR: 3.830 "
-                                     "+- 0.008 cm/yr); 3.0 to 4.6"),
-    "moon.stop_distance": Key(unit="", default=2.89, min=2.5, max=10.0,
-                              help="where the history stops, Earth radii (the fluid Roche limit 2.44 "
-                                   "(rho_E/rho_M)^(1/3) = 2.89); 2.5 to 10"),
-    "compare.models": Key(type=bool, default=True, help="also run the other tidal models, side by side"),
-}
+                                     "+- 0.008 cm/yr); 3.0 to 4.6")
+
+
+@table
+class MoonTable:
+    stop_distance: float = key(unit="", default=2.89, min=2.5, max=10.0,
+                               help="where the history stops, Earth radii (the fluid Roche limit 2.44 "
+                                    "(rho_E/rho_M)^(1/3) = 2.89); 2.5 to 10")
+
+
+@table
+class CompareTable:
+    models: bool = key(type=bool, default=True, help="also run the other tidal models, side by side")
+
+
+@table
+class EarthMoonHistoryParams(Params):
+    tides: TidesTable
+    moon: MoonTable
+    compare: CompareTable
 
 
 LLR = "Williams & Boggs 2016 (LLR): 3.830 +- 0.008 cm/yr; the parameter (the ocean's drag) is fitted to it"
@@ -97,14 +116,14 @@ def verdict(p, comparison):
     """Today's recession (the fitted one: tides.recession_rate), the angular momentum, today's periods; for
     the oceans, the Moon's age; for the default ocean, Xiamaling's distance and precession constant within 2
     sigma (the day Meyers & Malinverno derived from them is reported, not judged: docs/TIDAL_HISTORY.md)."""
-    fitted = p["tides.recession_rate"]
+    fitted = p.tides.recession_rate
     checks = (
         Check("recession today", "recession_rate_today_cm_per_yr", 1e-6, " cm/yr", LLR, expected=fitted),
         Check("angular momentum", "angular_momentum_relative_error_max", 1e-9, "", EXACT),
         Check("obliquity period today", "obliquity_period_today_kyr", 0.05, " kyr", PERIODS, expected=41.0),
         Check("precession period today", "precession_period_today_kyr", 0.05, " kyr", PERIODS,
               expected=23.7))
-    judged = TIDES[p["tides.model"]].judged
+    judged = TIDES[p.tides.model].judged
     if "moon_age" not in judged:
         return Verdict("lunar laser ranging; La2004's periods", checks, NOT_JUDGED)
     checks += (Check("Moon's age (the history's stop)", "moon_age_gyr", 0.025, " Gyr", AGE, expected=4.425,
@@ -119,17 +138,17 @@ def verdict(p, comparison):
 
 
 def check_continent(p):
-    if p["tides.global_ocean_from"] <= p["tides.continent_until"]:
-        raise ScenarioError("tides.global_ocean_from", p["tides.global_ocean_from"],
-                            f"an age after tides.continent_until = {p['tides.continent_until']} Gyr (the "
+    if p.tides.global_ocean_from <= p.tides.continent_until:
+        raise ScenarioError("tides.global_ocean_from", p.tides.global_ocean_from,
+                            f"an age after tides.continent_until = {p.tides.continent_until} Gyr (the "
                             "continent shrinks between the two)")
 
 
 def check_span(p):
-    if abs(p.t_start) > 1e-6:
+    if abs(p.span.start) > 1e-6:
         raise ScenarioError("span.start", p.span.start, "J2000, '2000-01-01T12:00:00' (the history starts "
                             "from today's Earth-Moon state)")
-    if p.t_end > p.t_start or p.t_end < -4.6 * GYR_D:
+    if p.span.end > p.span.start or p.span.end < -4.6 * GYR_D:
         raise ScenarioError("span.end", p.span.end, "a time before J2000, at most 4.6 Gyr back (e.g. '-4.5 "
                             "Gyr'): the history runs back to the Moon's formation")
     if p.integrator.method not in ("dop853", "rk45"):
@@ -153,8 +172,8 @@ def compare_run(p, run):
     from ..references.lunar_proxies import provenance
     from ..starts import earth_moon_history as model
 
-    chosen = p["tides.model"]
-    names = [chosen] + ([m for m in MODELS if m != chosen] if p["compare.models"] else [])
+    chosen = p.tides.model
+    names = [chosen] + ([m for m in MODELS if m != chosen] if p.compare.models else [])
     histories = {name: model.run(p, name, run.times, run.integrate, None if name == chosen else name)
                  for name in names}
     quantities = {name: compare.quantities(h) for name, h in histories.items()}
@@ -189,4 +208,4 @@ def sweep_figures(tables):
             "band_milankovitch_periods": milankovitch_periods(ages, label, spread, figures.proxies())}
 
 
-SCENE = Scene(SCHEMA, build, compare_run, verdict, backward=True, sweep_figures=sweep_figures)
+SCENE = Scene(EarthMoonHistoryParams, build, compare_run, verdict, backward=True, sweep_figures=sweep_figures)

@@ -11,41 +11,59 @@ from ..analysis.precession import RATE_MIN_SPAN_D
 from ..analysis.transfer.models import MODELS
 from ..bodies import earth
 from ..orbits.sources import orbit_source
+from ..params import Params, key, table
 from ..references import euler_p96
 from ..scene import Cost, Model, Outcome, Scene
-from ..schema import SAMPLE_STEP, Key
+from ..schema import SAMPLE_STEP
 from ..starts.earth import restarted
 from ..verdict import Check, Verdict
 
-SCHEMA = {
-    "earth.model": Key(type=str, default="gyroscopic", choices=("full", "gyroscopic")),
-    "earth.dynamical_ellipticity": Key(unit="", default=earth.H_D, positive=True, max=0.5, help="(C - A)/C"),
-    "earth.hd": Key(type=str, default="iau2006", choices=("iau2006", "observed_rate"),
-                    help="earth.dynamical_ellipticity, or the H_d giving IAU 2006's psi rate"),
-    "earth.b_minus_a_over_c": Key(unit="", default=0.0, min=0.0, max=0.5,
-                                  help="triaxiality (full model only)"),
-    "earth.forced_start": Key(type=bool, default=True, help="Oppolzer terms in the initial omega"),
-    "earth.start_pole": Key(type=str, default="iau", choices=("iau", "iau_mean_plus_rigid_nutation",
-                                                              "iau_mean_plus_ren2000"),
-                            help="the IAU pole, or its mean pole + rigid nutation (a first run's, REN-2000)"),
-    "earth.geodesic_precession": Key(type=bool, default=True),
-    "earth.j2_rate": Key(type=bool, default=True),
-    "earth.j4": Key(type=bool, default=False, help="torques on the Earth's J4 (EGM2008; gyroscopic model)"),
-    "earth.tides": Key(type=str, default="none", choices=("none", "de421", "williams1994"),
-                       help="the tides' secular rates (starts.earth_tides): DE421's model's, or Williams'"),
-    "earth.geodesic_nutation": Key(type=bool, default=False, help="the geodesic precession's annual term"),
-    "earth.nonrigid": Key(type=bool, default=False, help="the rigid nutation times earth.transfer_function"),
-    "earth.transfer_function": Key(type=str, default="mhb2000", choices=tuple(MODELS)),
-    "orbit.source": Key(type=str, default="de421",
-                        help="'de421', 'de440' (or a .bsp), 'rebound', or 'circular'"),
-    "orbit.planets": Key(type=bool, default=False,
-                         help="add the direct torques of the planets (Mercury to Saturn)"),
-    "orbit.sample_step": Key(**SAMPLE_STEP, default=0.25),
-    "comparison.gyroscopic_step": Key(unit="d", default=1.0, positive=True, count="integrator steps",
-                                      help="rk8 step of the gyroscopic run compared with the full model"),
-    "comparison.free_nutation_span": Key(unit="d", default=610.0, positive=True, max=1e6,
-                                         help="for the Euler period"),
-}
+
+@table
+class EarthTable:
+    model: str = key(type=str, default="gyroscopic", choices=("full", "gyroscopic"))
+    dynamical_ellipticity: float = key(unit="", default=earth.H_D, positive=True, max=0.5, help="(C - A)/C")
+    hd: str = key(type=str, default="iau2006", choices=("iau2006", "observed_rate"),
+                  help="earth.dynamical_ellipticity, or the H_d giving IAU 2006's psi rate")
+    b_minus_a_over_c: float = key(unit="", default=0.0, min=0.0, max=0.5,
+                                  help="triaxiality (full model only)")
+    forced_start: bool = key(type=bool, default=True, help="Oppolzer terms in the initial omega")
+    start_pole: str = key(type=str, default="iau", choices=("iau", "iau_mean_plus_rigid_nutation",
+                                                            "iau_mean_plus_ren2000"),
+                          help="the IAU pole, or its mean pole + rigid nutation (a first run's, REN-2000)")
+    geodesic_precession: bool = key(type=bool, default=True)
+    j2_rate: bool = key(type=bool, default=True)
+    j4: bool = key(type=bool, default=False, help="torques on the Earth's J4 (EGM2008; gyroscopic model)")
+    tides: str = key(type=str, default="none", choices=("none", "de421", "williams1994"),
+                     help="the tides' secular rates (starts.earth_tides): DE421's model's, or Williams'")
+    geodesic_nutation: bool = key(type=bool, default=False, help="the geodesic precession's annual term")
+    nonrigid: bool = key(type=bool, default=False, help="the rigid nutation times earth.transfer_function")
+    transfer_function: str = key(type=str, default="mhb2000", choices=tuple(MODELS))
+
+
+@table
+class OrbitTable:
+    source: str = key(type=str, default="de421",
+                      help="'de421', 'de440' (or a .bsp), 'rebound', or 'circular'")
+    planets: bool = key(type=bool, default=False,
+                        help="add the direct torques of the planets (Mercury to Saturn)")
+    sample_step: float = key(**SAMPLE_STEP, default=0.25)
+
+
+@table
+class ComparisonTable:
+    gyroscopic_step: float = key(unit="d", default=1.0, positive=True, count="integrator steps",
+                                 help="rk8 step of the gyroscopic run compared with the full model")
+    free_nutation_span: float = key(unit="d", default=610.0, positive=True, max=1e6,
+                                    help="for the Euler period")
+
+
+@table
+class EarthPrecessionNutationParams(Params):
+    earth: EarthTable
+    orbit: OrbitTable
+    comparison: ComparisonTable
+
 
 _RIGID_VS_IAU = ("IAU 2000A is a non-rigid Earth (MHB2000): its 18.6-yr nutation differs from a rigid one's "
                  "(REN-2000 -17.2805\") by 74 mas in dpsi, 23 in deps; targets X <= 40, Y <= 25 mas rms")
@@ -59,28 +77,28 @@ _OBLIQUITY = ("H_d fitted to the psi rate, the obliquity rate is judged: P03's o
 
 def verdict(p, comparison):
     """What this Earth scene is compared for (see the module docstring)."""
-    if orbit_source(p["orbit.source"]).circular:
+    if orbit_source(p.orbit.source).circular:
         return Verdict("Euler's P96 rate N cos n (§846)", (Check(
             "model − P96", "model_minus_p96_arcsec_cy", 0.05, "″/cy",
             "10^-5 of the rate: well below the smallest effect the model must resolve (planets' torques, "
             "0.030\"/cy) and above Euler's first-order remainder in N/delta (~10^-7)"),))
-    if not p["earth.geodesic_precession"]:
+    if not p.earth.geodesic_precession:
         return Verdict("IAU 2006/2000A (ERFA)", (Check(
             "ψ rate − IAU", "psi_rate_minus_iau_arcsec_cy", 0.05, "″/cy",
             "without geodesic precession the rate is off by its de Sitter value, +1.919883\"/cy "
             "(IERS Conventions 2010); " + _RATE, expected=earth.GEODESIC_PRECESSION_ARCSEC_CY,
             min_span_d=RATE_MIN_SPAN_D),), "X, Y drift by the omitted geodesic precession: not compared")
-    if p["earth.nonrigid"]:
+    if p.earth.nonrigid:
         checks = [Check(f"{axis} rms", f"{axis.lower()}_rms_mas", 1.0, " mas", _NONRIGID_VS_IAU)
                   for axis in "XY"]
     else:
         checks = [Check(f"{axis} rms", f"{axis.lower()}_rms_mas", limit, " mas", _RIGID_VS_IAU)
                   for axis, limit in (("X", 40.0), ("Y", 25.0))]
-    fitted = p["earth.hd"] != "iau2006"          # H_d from the psi rate: the obliquity rate is judged
+    fitted = p.earth.hd != "iau2006"          # H_d from the psi rate: the obliquity rate is judged
     rate = (("ε rate − P03", "obliquity_rate_minus_iau_arcsec_cy", 0.002, _OBLIQUITY) if fitted else
             ("ψ rate − IAU", "psi_rate_minus_iau_arcsec_cy", 0.05, _RATE))
     checks.append(Check(*rate[:3], "″/cy", rate[3], min_span_d=RATE_MIN_SPAN_D))
-    if p["earth.model"] == "full":
+    if p.earth.model == "full":
         checks.append(Check("full − gyroscopic", "full_minus_gyroscopic_max_mas", 1.0, " mas",
                             "the gyroscopic figure axis is exact to second order in 1/Omega: the rest is the "
                             "~10 mas Oppolzer offset times the fastest nutation over the spin (1/13.7)"))
@@ -146,5 +164,6 @@ def bench(p, model, times):
     return error
 
 
-SCENE = Scene(SCHEMA, build, compare_run, verdict, Cost(step_s=3e-5, sample_bytes=300), bench=bench,
+SCENE = Scene(EarthPrecessionNutationParams, build, compare_run, verdict, Cost(step_s=3e-5, sample_bytes=300),
+              bench=bench,
               restart=restarted)

@@ -12,17 +12,25 @@ from ..analysis.invariants import invariant_drift
 from ..constants import ARCSEC
 from ..errors import PhysicsError, ScenarioError
 from ..models.assemblies.idealised import free_body
+from ..params import Params, key, table
 from ..rotations import quat_angle, quat_from_euler313
 from ..scene import Model, Outcome, Scene
-from ..schema import ANGLE, SPIN, Key
+from ..schema import ANGLE, SPIN
 from ..verdict import Check, Verdict
 from . import common
 
-SCHEMA = {
-    "body.moments": Key(unit="", size=3, help="principal moments A <= B <= C, any unit"),
-    "body.omega0": Key(**SPIN, size=3, help="initial body angular velocity"),
-    "body.attitude0": Key(**ANGLE, size=3, default=np.zeros(3), help="initial JPL 3-1-3 angles"),
-}
+
+@table
+class BodyTable:
+    moments: np.ndarray = key(unit="", size=3, help="principal moments A <= B <= C, any unit")
+    omega0: np.ndarray = key(**SPIN, size=3, help="initial body angular velocity")
+    attitude0: np.ndarray = key(**ANGLE, size=3, default=np.zeros(3), help="initial JPL 3-1-3 angles")
+
+
+@table
+class FreeBodyParams(Params):
+    body: BodyTable
+
 
 VERDICT = Verdict("Euler's closed form", (
     Check("attitude", "attitude_max_error_vs_closed_form_rad", 1e-10, " rad",
@@ -43,12 +51,12 @@ def build(p, times):
     except PhysicsError as exc:
         raise ScenarioError("body", {"moments": p.body.moments.tolist(), "omega0": p.body.omega0.tolist()},
                             f"0 < A <= B <= C and a non-zero omega0 ({exc})") from None
-    return Model(free_body(p.body.moments, q0, p.body.omega0, p.t_start), exact=exact)
+    return Model(free_body(p.body.moments, q0, p.body.omega0, p.span.start), exact=exact)
 
 
 def compare_run(p, run):
     solution, exact = run.solution, run.model.exact
-    dt = solution.t - p.t_start
+    dt = solution.t - p.span.start
     omega_err = np.abs(solution.omega - exact.omega(dt)).max() / np.linalg.norm(p.body.omega0)
     attitude_err = quat_angle(solution.quaternion, exact.attitude(dt)) / ARCSEC
     comparison = {
@@ -70,10 +78,10 @@ def compare_run(p, run):
 
 def bench(p, model, times):
     """Max attitude error against the closed form, rad."""
-    q_exact = model.exact.attitude(times - p.t_start)
+    q_exact = model.exact.attitude(times - p.span.start)
     return lambda solution: float(quat_angle(solution.quaternion, q_exact).max())
 
 
-SCENE = Scene(SCHEMA, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA),
+SCENE = Scene(FreeBodyParams, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales,
               bench=bench,
               taylor=True)

@@ -3,25 +3,37 @@ averaged precession under the Sun set by the present rate, the Sun's tide, from 
 (spinorbit.starts.mars_deep_time), against La2004 Mars over 1, 5 and 20 Myr; a sweep's obliquity band."""
 import time
 
+from ..params import Params, key, table, values_of
 from ..scene import Model, Outcome, Scene
-from ..schema import Key
-from ..starts.earth_deep_time import MYR_D, ORBIT_SCHEMA, check_span, nbody_counts
+from ..starts.earth_deep_time import MYR_D, DeepTimeOrbitTable, check_span, nbody_counts
 
-SCHEMA = {
-    **ORBIT_SCHEMA,
-    "mars.precession_rate": Key(unit="arcsec/yr", default=-7.597, min=-7.7, max=-7.5,
-                                help="present precession rate in longitude (La2004: -7.597; Konopliv et al. "
-                                     "2016: -7.6083 +- 0.0021), sets the dynamical ellipticity"),
-    "tides.k2": Key(unit="", default=0.149, min=0.0, max=0.5, help="Mars's Love number k2 (the Sun's tide)"),
-    "tides.Q": Key(unit="", default=92.0, min=10.0, max=1000.0, help="Mars's tidal quality factor"),
-}
+
+@table
+class MarsTable:
+    precession_rate: float = key(unit="arcsec/yr", default=-7.597, min=-7.7, max=-7.5,
+                                 help="present precession rate in longitude (La2004: -7.597; Konopliv et al. "
+                                      "2016: -7.6083 +- 0.0021), sets the dynamical ellipticity")
+
+
+@table
+class TidesTable:
+    k2: float = key(unit="", default=0.149, min=0.0, max=0.5, help="Mars's Love number k2 (the Sun's tide)")
+    Q: float = key(unit="", default=92.0, min=10.0, max=1000.0, help="Mars's tidal quality factor")
+
+
+@table
+class MarsDeepTimeParams(Params):
+    orbit: DeepTimeOrbitTable
+    mars: MarsTable
+    tides: TidesTable
 
 
 def verdict(p, comparison):
     from ..comparisons.mars_deep_time import LA2004, TARGET
     from ..verdict import Check, Verdict
 
-    judged = all(p[key] == value for key, value in LA2004.items()) and abs(p.t_end) >= MYR_D - 1.0
+    values = values_of(p)
+    judged = all(values[key] == value for key, value in LA2004.items()) and abs(p.span.end) >= MYR_D - 1.0
     checks = (Check("obliquity vs La2004 Mars (1myr)", "la2004_obliquity_max_deg_1myr", 0.1, "°", TARGET,
                     min_span_d=MYR_D - 1.0),) if judged else ()
     return Verdict("La2004 Mars (Laskar et al. 2004, Icarus 170, 343)", checks,
@@ -55,5 +67,5 @@ def sweep_figures(tables):
     return {"band_obliquity": compare.band_figure(tables)}
 
 
-SCENE = Scene(SCHEMA, build, compare_run, verdict, backward=True, nbody_counts=nbody_counts,
+SCENE = Scene(MarsDeepTimeParams, build, compare_run, verdict, backward=True, nbody_counts=nbody_counts,
               sweep_figures=sweep_figures)

@@ -12,24 +12,41 @@ the verdict: comparisons/mars_orientation.py.
 from ..bodies import mars
 from ..comparisons.mars_orientation import verdict
 from ..models.assemblies.planet import MODELS
+from ..params import Params, key, table
 from ..scene import Cost, Model, Scene
-from ..schema import SAMPLE_STEP, Key
+from ..schema import SAMPLE_STEP
 from ..starts.mars import restarted
 
-SCHEMA = {
-    "mars.model": Key(type=str, default="gyroscopic", choices=MODELS,
-                      help="the spin angular momentum alone, or Euler's equations with the day (and C22)"),
-    "mars.c_mr2": Key(unit="", default=mars.C_MR2, min=0.2, max=0.4,
-                      help="polar moment C/(M R^2) at 3396 km (Baland et al. 2020; Konopliv et al. 2011: 0.3644)"),
-    "mars.start": Key(type=str, default="2000-01-01T12:00:00", help="ISO TDB epoch of the IAU 2015 start"),
-    "mars.satellites": Key(type=bool, default=True, help="Phobos and Deimos as rings on the equator"),
-    "mars.geodesic_precession": Key(type=bool, default=True),
-    "orbit.source": Key(type=str, default="de421",
-                        help="'de421', 'de440' (or a .bsp), or 'kepler' (the Sun alone)"),
-    "orbit.planets": Key(type=bool, default=True, help="the direct torques of the planets and the Moon"),
-    "orbit.sample_step": Key(**SAMPLE_STEP, default=1.0),
-    "comparison.budget": Key(type=bool, default=True, help="the rate's budget: five further runs"),
-}
+
+@table
+class MarsTable:
+    model: str = key(type=str, default="gyroscopic", choices=MODELS,
+                     help="the spin angular momentum alone, or Euler's equations with the day (and C22)")
+    c_mr2: float = key(unit="", default=mars.C_MR2, min=0.2, max=0.4,
+                       help="polar moment C/(M R^2) at 3396 km (Baland et al. 2020; Konopliv et al. 2011: 0.3644)")
+    start: str = key(type=str, default="2000-01-01T12:00:00", help="ISO TDB epoch of the IAU 2015 start")
+    satellites: bool = key(type=bool, default=True, help="Phobos and Deimos as rings on the equator")
+    geodesic_precession: bool = key(type=bool, default=True)
+
+
+@table
+class OrbitTable:
+    source: str = key(type=str, default="de421",
+                      help="'de421', 'de440' (or a .bsp), or 'kepler' (the Sun alone)")
+    planets: bool = key(type=bool, default=True, help="the direct torques of the planets and the Moon")
+    sample_step: float = key(**SAMPLE_STEP, default=1.0)
+
+
+@table
+class ComparisonTable:
+    budget: bool = key(type=bool, default=True, help="the rate's budget: five further runs")
+
+
+@table
+class MarsOrientationParams(Params):
+    mars: MarsTable
+    orbit: OrbitTable
+    comparison: ComparisonTable
 
 
 def build(p, times):
@@ -45,5 +62,5 @@ def compare_run(p, run):
     return vs.outcome(p, run)
 
 
-SCENE = Scene(SCHEMA, build, compare_run, verdict, Cost(step_s=3e-5, sample_bytes=300), backward=True,
+SCENE = Scene(MarsOrientationParams, build, compare_run, verdict, Cost(step_s=3e-5, sample_bytes=300), backward=True,
               restart=restarted)

@@ -17,8 +17,9 @@ import numpy as np
 
 from ..constants import ARCSEC
 from ..orbits.sources import orbit_source
+from ..params import Params, key, table
 from ..scene import Cost, Model, Outcome, Scene
-from ..schema import SAMPLE_STEP, Key
+from ..schema import SAMPLE_STEP
 from ..verdict import Check, Verdict
 
 # Targets (max over the run, arcsec) against DE421 per level: (pole, longitude, source).
@@ -49,22 +50,43 @@ def verdict(p, comparison):
     return Verdict("DE421", checks, "; ".join(notes))
 
 
-SCHEMA = {
-    "model.level": Key(type=int, default=3, min=1, max=4,
-                       help="1..4: spinorbit.models.assemblies.moon.LEVELS"),
-    "model.tides": Key(type=bool, default=True, help="tidal/rotational distortion at levels 3-4"),
-    "model.terms": Key(type=list, default=[], help="terms added to the level's, e.g. [\"sun_j2\"]"),
-    "model.start": Key(type=str, default="",
-                       help="ISO TDB epoch of DE421's state the Moon starts from (default: "
-                            "span.start; clamped into DE421's lunar series)"),
-    "orbit.source": Key(type=str, default="de421", help="'de421', a .bsp name, or 'rebound'"),
-    "orbit.step": Key(**SAMPLE_STEP, default=0.5,
-                      help="orbit sampling step (0.5 d: 5.5e-4 km off DE421, RESULTS.md)"),
-    "compare.source": Key(type=str, default="",
-                          help="also run driven by this source and report the difference"),
-    "report.error_vs_runtime": Key(type=bool, default=False,
-                                   help="rk8 steps and dop853 tolerances vs a converged run"),
-}
+@table
+class ModelTable:
+    level: int = key(type=int, default=3, min=1, max=4,
+                     help="1..4: spinorbit.models.assemblies.moon.LEVELS")
+    tides: bool = key(type=bool, default=True, help="tidal/rotational distortion at levels 3-4")
+    terms: list = key(type=list, default=[], help="terms added to the level's, e.g. [\"sun_j2\"]")
+    start: str = key(type=str, default="",
+                     help="ISO TDB epoch of DE421's state the Moon starts from (default: "
+                          "span.start; clamped into DE421's lunar series)")
+
+
+@table
+class OrbitTable:
+    source: str = key(type=str, default="de421", help="'de421', a .bsp name, or 'rebound'")
+    step: float = key(**SAMPLE_STEP, default=0.5,
+                      help="orbit sampling step (0.5 d: 5.5e-4 km off DE421, RESULTS.md)")
+
+
+@table
+class CompareTable:
+    source: str = key(type=str, default="",
+                      help="also run driven by this source and report the difference")
+
+
+@table
+class ReportTable:
+    error_vs_runtime: bool = key(type=bool, default=False,
+                                 help="rk8 steps and dop853 tolerances vs a converged run")
+
+
+@table
+class MoonLibrationParams(Params):
+    model: ModelTable
+    orbit: OrbitTable
+    compare: CompareTable
+    report: ReportTable
+
 
 ZOOM_D = 730.5                      # days
 
@@ -137,5 +159,5 @@ def restart(p, start):
     return started_at(p, start)
 
 
-SCENE = Scene(SCHEMA, build, compare_run, verdict, Cost(step_s=2e-4, sample_bytes=400), bench=bench,
+SCENE = Scene(MoonLibrationParams, build, compare_run, verdict, Cost(step_s=2e-4, sample_bytes=400), bench=bench,
               backward=True, restart=restart)

@@ -11,18 +11,36 @@ import numpy as np
 
 from ..constants import ARCSEC
 from ..models.assemblies.idealised import under_point_masses
+from ..params import Params, key, table
 from ..scene import Model, Outcome, Scene
-from ..schema import DISTANCE, GM, Key
+from ..schema import DISTANCE, GM
 from ..verdict import Check, Verdict
 from . import common
 
-SCHEMA = {
-    "body.moments": Key(unit="", size=3, help="principal moments A <= B <= C, any unit"),
-    "orbit.gm": Key(**GM, help="GM of the centre of forces"),
-    "orbit.radius": Key(**DISTANCE, help="distance s of F"),
-    "force.direction": Key(unit="", size=3, direction=True,
-                           help="direction of F in body principal axes"),
-}
+
+@table
+class BodyTable:
+    moments: np.ndarray = key(unit="", size=3, help="principal moments A <= B <= C, any unit")
+
+
+@table
+class OrbitTable:
+    gm: float = key(**GM, help="GM of the centre of forces")
+    radius: float = key(**DISTANCE, help="distance s of F")
+
+
+@table
+class ForceTable:
+    direction: np.ndarray = key(unit="", size=3, direction=True,
+                                help="direction of F in body principal axes")
+
+
+@table
+class P92StartFromRestParams(Params):
+    body: BodyTable
+    orbit: OrbitTable
+    force: ForceTable
+
 
 VERDICT = Verdict("Euler's first motion (§821-823)", (
     Check("axis", "axis_error_arcsec", 1e-3, "″",
@@ -37,11 +55,11 @@ def build(p, times):
     sin a sin i)."""
     from ..orbits.analytic import CircularOrbits
 
-    body = common.rigid_body(p)
+    body = common.rigid_body(p.body.moments)
     u = p.force.direction / np.linalg.norm(p.force.direction)
     orbit = CircularOrbits(("F",), [p.orbit.gm], [p.orbit.radius], [0.0], phase=[math.acos(u[0])],
                            inclination=[math.atan2(u[2], u[1])])
-    system = under_point_masses(body.moments, orbit, [1.0, 0, 0, 0], np.zeros(3), p.t_start, "body at rest")
+    system = under_point_masses(body.moments, orbit, [1.0, 0, 0, 0], np.zeros(3), p.span.start, "body at rest")
     return Model(system, direction=u)
 
 
@@ -67,5 +85,5 @@ def compare_run(p, run):
     return Outcome(comparison, figures={"omega": common.plot_omega(solution)})
 
 
-SCENE = Scene(SCHEMA, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA),
+SCENE = Scene(P92StartFromRestParams, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales,
               taylor=True)

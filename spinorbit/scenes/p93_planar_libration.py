@@ -8,21 +8,41 @@ Euler's energy constant C as a multiple of n (-1, 0, 1, > 1: §826's cases).
 """
 import math
 
+import numpy as np
+
 from ..analysis.planar_libration import planar_system
 from ..comparisons.planar_libration_euler import compare_run
+from ..params import Params, key, table
 from ..scene import Model, Scene
-from ..schema import DISTANCE, GM, RATE, Key
+from ..schema import DISTANCE, GM, RATE
 from ..verdict import Check, Verdict
 from . import common
 
-SCHEMA = {
-    "body.moments": Key(unit="", size=3, help="principal moments A < B <= C, any unit"),
-    "orbit.gm": Key(**GM, help="GM of the centre of forces"),
-    "orbit.radius": Key(**DISTANCE, help="distance s of F"),
-    "orbit.rate": Key(**RATE, help="angular speed delta of F"),
-    "libration.energy_over_n": Key(unit="", min=-1.0, max=1e6,
-                                   help="Euler's constant C in units of n: -1, 0, 1 or > 1"),
-}
+
+@table
+class BodyTable:
+    moments: np.ndarray = key(unit="", size=3, help="principal moments A < B <= C, any unit")
+
+
+@table
+class OrbitTable:
+    gm: float = key(**GM, help="GM of the centre of forces")
+    radius: float = key(**DISTANCE, help="distance s of F")
+    rate: float = key(**RATE, help="angular speed delta of F")
+
+
+@table
+class LibrationTable:
+    energy_over_n: float = key(unit="", min=-1.0, max=1e6,
+                               help="Euler's constant C in units of n: -1, 0, 1 or > 1")
+
+
+@table
+class P93PlanarLibrationParams(Params):
+    body: BodyTable
+    orbit: OrbitTable
+    libration: LibrationTable
+
 
 _ZETA = "dop853 at rtol 1e-12 over 200 d: ~1e-4\" (tests/test_idealised_scenes.py)"
 
@@ -39,14 +59,14 @@ def build(p, times):
     from ..orbits.analytic import CircularOrbits
     from ..theory import PlanarLibration, libration_n
 
-    body = common.rigid_body(p)
+    body = common.rigid_body(p.body.moments)
     gm, s, delta = p.orbit.gm, p.orbit.radius, p.orbit.rate
     n = libration_n(body.moments, gm, s)
     zeta_dot0 = math.sqrt(max(p.libration.energy_over_n * n + n, 0.0))
-    orbit = CircularOrbits(("F",), [gm], [s], [delta], phase=[-delta * p.t_start])
-    return Model(planar_system(body.moments, orbit, p.t_start, 0.0, zeta_dot0, delta), n=n,
+    orbit = CircularOrbits(("F",), [gm], [s], [delta], phase=[-delta * p.span.start])
+    return Model(planar_system(body.moments, orbit, p.span.start, 0.0, zeta_dot0, delta), n=n,
                  theory=PlanarLibration(n, 0.0, zeta_dot0))
 
 
-SCENE = Scene(SCHEMA, build, compare_run, verdict, time_scales=common.rigid_body_time_scales(SCHEMA),
+SCENE = Scene(P93PlanarLibrationParams, build, compare_run, verdict, time_scales=common.rigid_body_time_scales,
               taylor=True)

@@ -11,20 +11,33 @@ import numpy as np
 from ..analysis.planar_libration import planar_system, zeta_from_solution
 from ..constants import ARCSEC
 from ..errors import ScenarioError
+from ..params import Params, key, table
 from ..scene import Model, Outcome, Scene
-from ..schema import ANGLE, DISTANCE, GM, RATE, Key
+from ..schema import ANGLE, DISTANCE, GM, RATE
 from ..verdict import Check, Verdict
 from . import common
 
-SCHEMA = {
-    "body.moments": Key(unit="", size=3, help="principal moments A < B <= C, any unit"),
-    "orbit.gm": Key(**GM, help="GM of the centre of forces"),
-    "orbit.f": Key(**DISTANCE, help="mean distance f"),
-    "orbit.rate": Key(**RATE, help="mean angular speed delta of F"),
-    "orbit.alpha": Key(**ANGLE, help="amplitude of the inequality of XF"),
-    "orbit.beta": Key(unit="", min=-0.5, max=0.5, help="amplitude of the inequality of 1/s^3"),
-    "orbit.frequency": Key(**RATE, help="Euler's A, the frequency of the inequality"),
-}
+
+@table
+class BodyTable:
+    moments: np.ndarray = key(unit="", size=3, help="principal moments A < B <= C, any unit")
+
+
+@table
+class OrbitTable:
+    gm: float = key(**GM, help="GM of the centre of forces")
+    f: float = key(**DISTANCE, help="mean distance f")
+    rate: float = key(**RATE, help="mean angular speed delta of F")
+    alpha: float = key(**ANGLE, help="amplitude of the inequality of XF")
+    beta: float = key(unit="", min=-0.5, max=0.5, help="amplitude of the inequality of 1/s^3")
+    frequency: float = key(**RATE, help="Euler's A, the frequency of the inequality")
+
+
+@table
+class P94ForcedLibrationParams(Params):
+    body: BodyTable
+    orbit: OrbitTable
+
 
 VERDICT = Verdict("Euler's forced libration to second order (§835)", (
     Check("zeta relative", "zeta_error_second_order_rel", 3e-4, "",
@@ -37,21 +50,21 @@ def build(p, times):
     from ..orbits.analytic import UnevenCircle
     from ..theory import forced_libration_initial_rate, libration_n
 
-    body, o = common.rigid_body(p), p.orbit
+    body, o = common.rigid_body(p.body.moments), p.orbit
     n = libration_n(body.moments, o.gm, o.f)
     orbit = UnevenCircle(("F",), [o.gm], [o.f], [o.rate], [o.alpha], [o.beta], [o.frequency])
-    if p.t_start != 0.0:
+    if p.span.start != 0.0:
         raise ScenarioError("span.start", p.span.start,
                             "'2000-01-01T12:00:00' (J2000): Euler's inequality sin At is timed from t = 0")
     zeta_dot0 = forced_libration_initial_rate(n, o.frequency, o.alpha, o.beta)
     start_rate = zeta_dot0 - o.frequency * o.alpha
-    return Model(planar_system(body.moments, orbit, p.t_start, 0.0, start_rate, o.rate), n=n)
+    return Model(planar_system(body.moments, orbit, p.span.start, 0.0, start_rate, o.rate), n=n)
 
 
 def compare_run(p, run):
     from ..theory import forced_libration
 
-    o, n, dt = p.orbit, run.model.n, run.solution.t - p.t_start
+    o, n, dt = p.orbit, run.model.n, run.solution.t - p.span.start
     zeta_num = zeta_from_solution(run.solution, o.rate * dt + o.alpha * np.sin(o.frequency * dt))
     zeta_first = forced_libration(dt, n, o.frequency, o.alpha)
     zeta_second = forced_libration(dt, n, o.frequency, o.alpha, o.beta)
@@ -70,5 +83,5 @@ def compare_run(p, run):
     return Outcome(comparison, {"zeta": zeta_num * rad, "zeta_euler": zeta_second * rad}, figures)
 
 
-SCENE = Scene(SCHEMA, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA),
+SCENE = Scene(P94ForcedLibrationParams, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales,
               taylor=True)

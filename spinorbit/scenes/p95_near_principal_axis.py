@@ -15,21 +15,39 @@ import numpy as np
 
 from ..errors import ScenarioError
 from ..models.assemblies.idealised import under_point_masses
+from ..params import Params, key, table
 from ..scene import Model, Outcome, Scene
-from ..schema import ANGLE, DISTANCE, GM, SPIN, Key
+from ..schema import ANGLE, DISTANCE, GM, SPIN
 from ..verdict import Check, Verdict
 from . import common
 
-SCHEMA = {
-    "body.moments": Key(unit="", size=3, help="symmetric body [cc, cc, aa]"),
-    "body.spin": Key(**SPIN, help="angular speed gamma'"),
-    "body.pole_offset": Key(**ANGLE, help="alpha = AO, arc from the figure axis to the rotation pole"),
-    "body.pole_angle": Key(**ANGLE, default=0.0, help="rho = angle BAO"),
-    "orbit.gm": Key(**GM, help="GM of the centre of forces"),
-    "orbit.radius": Key(**DISTANCE, help="distance s of F"),
-    "force.direction": Key(unit="", size=3, direction=True,
-                           help="(cos AF, cos BF, cos CF) in Euler's axes A (= our z), B, C"),
-}
+
+@table
+class BodyTable:
+    moments: np.ndarray = key(unit="", size=3, help="symmetric body [cc, cc, aa]")
+    spin: float = key(**SPIN, help="angular speed gamma'")
+    pole_offset: float = key(**ANGLE, help="alpha = AO, arc from the figure axis to the rotation pole")
+    pole_angle: float = key(**ANGLE, default=0.0, help="rho = angle BAO")
+
+
+@table
+class OrbitTable:
+    gm: float = key(**GM, help="GM of the centre of forces")
+    radius: float = key(**DISTANCE, help="distance s of F")
+
+
+@table
+class ForceTable:
+    direction: np.ndarray = key(unit="", size=3, direction=True,
+                                help="(cos AF, cos BF, cos CF) in Euler's axes A (= our z), B, C")
+
+
+@table
+class P95NearPrincipalAxisParams(Params):
+    body: BodyTable
+    orbit: OrbitTable
+    force: ForceTable
+
 
 VERDICT = Verdict("Euler's pole rates (§843a)", (
     Check("pole shift relative", "pole_shift_rel_error", 2e-3, "",
@@ -42,7 +60,7 @@ def build(p, times):
     """The symmetric body spinning about a pole alpha from its figure axis, F fixed at ``force.direction``."""
     from ..orbits.analytic import CircularOrbits
 
-    body, b = common.rigid_body(p), p.body
+    body, b = common.rigid_body(p.body.moments), p.body
     cc, aa = body.moments[0], body.moments[2]
     if abs(body.moments[1] - cc) > 1e-12 * aa:
         raise ScenarioError("body.moments", body.moments.tolist(),
@@ -54,7 +72,7 @@ def build(p, times):
     alpha, rho = b.pole_offset, b.pole_angle
     omega0 = b.spin * np.array([math.sin(alpha) * math.cos(rho), math.sin(alpha) * math.sin(rho),
                                 math.cos(alpha)])
-    system = under_point_masses(body.moments, orbit, [1.0, 0, 0, 0], omega0, p.t_start, "near principal axis")
+    system = under_point_masses(body.moments, orbit, [1.0, 0, 0, 0], omega0, p.span.start, "near principal axis")
     return Model(system, u_euler=u_euler)
 
 
@@ -63,7 +81,7 @@ def compare_run(p, run):
 
     solution, (cc, _, aa) = run.solution, p.body.moments
     gamma, alpha, rho = p.body.spin, p.body.pole_offset, p.body.pole_angle
-    dt = solution.t - p.t_start
+    dt = solution.t - p.span.start
     pole = solution.omega / np.linalg.norm(solution.omega, axis=1, keepdims=True)
     shift = pole[:, :2] - pole[0, :2]                              # (xi, eta) displacement of O
     d_alpha, alpha_d_rho = pole_rates_symmetric(aa, cc, gamma, p.orbit.gm, p.orbit.radius, rho,
@@ -87,5 +105,5 @@ def compare_run(p, run):
     return Outcome(comparison, figures=figures)
 
 
-SCENE = Scene(SCHEMA, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA),
+SCENE = Scene(P95NearPrincipalAxisParams, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales,
               taylor=True)

@@ -20,19 +20,32 @@ from ..analysis.figure_axis import fit_angles
 from ..constants import ARCSEC
 from ..errors import ResonanceError, ScenarioError
 from ..models.assemblies.idealised import under_point_masses
+from ..params import Params, key, table
 from ..scene import Model, Outcome, Scene
-from ..schema import ANGLE, DISTANCE, GM, RATE, SPIN, Key
+from ..schema import ANGLE, DISTANCE, GM, RATE, SPIN
 from ..verdict import Check, Verdict
 from . import common
 
-SCHEMA = {
-    "body.moments": Key(unit="", size=3, help="principal moments cc = cc < aa (symmetric, oblate)"),
-    "body.spin": Key(**SPIN, help="spin rate eps about the figure axis"),
-    "body.obliquity": Key(**ANGLE, help="initial angle n between the figure axis A and the orbit pole Z"),
-    "orbit.gm": Key(**GM, help="GM of the centre of forces"),
-    "orbit.radius": Key(**DISTANCE, help="distance s of F"),
-    "orbit.rate": Key(**RATE, help="angular speed delta of F"),
-}
+
+@table
+class BodyTable:
+    moments: np.ndarray = key(unit="", size=3, help="principal moments cc = cc < aa (symmetric, oblate)")
+    spin: float = key(**SPIN, help="spin rate eps about the figure axis")
+    obliquity: float = key(**ANGLE, help="initial angle n between the figure axis A and the orbit pole Z")
+
+
+@table
+class OrbitTable:
+    gm: float = key(**GM, help="GM of the centre of forces")
+    radius: float = key(**DISTANCE, help="distance s of F")
+    rate: float = key(**RATE, help="angular speed delta of F")
+
+
+@table
+class P96PrecessionParams(Params):
+    body: BodyTable
+    orbit: OrbitTable
+
 
 _SECOND_ORDER = ("Euler's theory is first order in N/delta and drops eps aa/cc - eps; "
                  "2e-3 covers the remainder")
@@ -59,7 +72,7 @@ def build(p, times):
     from ..orbits.analytic import CircularOrbits
     from ..theory import SymmetricPrecession, p96_initial_state, precession_constant
 
-    body = common.rigid_body(p)
+    body = common.rigid_body(p.body.moments)
     cc, aa = body.moments[0], body.moments[2]
     if not (abs(body.moments[1] - cc) <= 1e-12 * aa and aa > cc):
         raise ScenarioError("body.moments", body.moments.tolist(),
@@ -74,8 +87,8 @@ def build(p, times):
     except ResonanceError as exc:
         x0, resonance = 0.0, exc
     q0, omega0 = p96_initial_state(n, eps, x0, 0.0)
-    orbit = CircularOrbits(("F",), [o.gm], [o.radius], [o.rate], phase=[-o.rate * p.t_start])
-    system = under_point_masses(body.moments, orbit, q0, omega0, p.t_start, "symmetric spinner")
+    orbit = CircularOrbits(("F",), [o.gm], [o.radius], [o.rate], phase=[-o.rate * p.span.start])
+    system = under_point_masses(body.moments, orbit, q0, omega0, p.span.start, "symmetric spinner")
     return Model(system, big_n=big_n, euler=euler, true=true, resonance=resonance)
 
 
@@ -83,7 +96,7 @@ def compare_run(params, run):
     m, delta, eps = run.model, params.orbit.rate, params.body.spin
     euler, true, resonance = m.euler, m.true, m.resonance
     comparison = {"N_rad_per_d": m.big_n, "eps_over_delta": eps / delta}
-    dt, p, lam, lam_fit, p_fit = fit_angles(run.solution, params.t_start, delta, true.eps_f,
+    dt, p, lam, lam_fit, p_fit = fit_angles(run.solution, params.span.start, delta, true.eps_f,
                                             resonant=resonance is not None)
     if resonance is None:
         comparison.update({
@@ -128,5 +141,5 @@ def _unsupported(comparison, span_d, delta):
     return {f"comparison.{key}": reason for key in fitted}
 
 
-SCENE = Scene(SCHEMA, build, compare_run, verdict, time_scales=common.rigid_body_time_scales(SCHEMA),
+SCENE = Scene(P96PrecessionParams, build, compare_run, verdict, time_scales=common.rigid_body_time_scales,
               taylor=True)

@@ -11,17 +11,38 @@ integrated 343 asteroids this does not; what they move in each planet is stated 
 Runs with the Taylor integrator (``integrator.method = "taylor"``) or any other.
 """
 from ..models.assemblies.solar_system import SWITCHES
+from ..params import Params, key, table
 from ..plots import moon_vs_de421, planets_vs_de421
 from ..scene import Model, Outcome, Scene
-from ..schema import Key
 from ..verdict import Check, Verdict
 from . import common
 
-SCHEMA = {
-    **{f"model.{name}": Key(type=bool, default=True, help=text) for name, text in SWITCHES.items()},
-    "start.epoch": Key(type=str, default="de421", choices=("de421", "span"),
-                       help="DE421's initial conditions at its epoch JDEPOC, or its states at span.start"),
-}
+
+@table
+class ModelTable:
+    """The model's terms, each switched by a key (spinorbit.models.assemblies.solar_system.SWITCHES)."""
+
+    relativity: bool = key(type=bool, default=True, help=SWITCHES["relativity"])
+    earth_tides: bool = key(type=bool, default=True, help=SWITCHES["earth_tides"])
+    moon_distortion: bool = key(type=bool, default=True, help=SWITCHES["moon_distortion"])
+    geodesic: bool = key(type=bool, default=True, help=SWITCHES["geodesic"])
+    planets_on_moon_figure: bool = key(type=bool, default=True, help=SWITCHES["planets_on_moon_figure"])
+    sun_on_earth_j3_j4: bool = key(type=bool, default=True, help=SWITCHES["sun_on_earth_j3_j4"])
+    sun_j2: bool = key(type=bool, default=True, help=SWITCHES["sun_j2"])
+
+
+@table
+class StartTable:
+    epoch: str = key(type=str, default="de421", choices=("de421", "span"),
+                     help="DE421's initial conditions at its epoch JDEPOC, or its states at span.start")
+
+
+@table
+class SolarSystemParams(Params):
+    model: ModelTable
+    start: StartTable
+
+
 TARGET = ("the issue's target (INPOP05 re-integrated DE405 to 0.17 mas and 0.034 m over 100 yr, Fienga et "
           "al. 2008); DE421's asteroids, absent here, move the Moon by 2.3 mas and 0.54 m "
           "(comparisons.solar_system_de421.ASTEROIDS_MOON)")
@@ -51,7 +72,7 @@ def start_epoch(p):
     from ..bodies.de421_header import header
     from ..constants import J2000_JD
 
-    return header()["JDEPOC"] - J2000_JD if p["start.epoch"] == "de421" else p.t_start
+    return header()["JDEPOC"] - J2000_JD if p.start.epoch == "de421" else p.span.start
 
 
 def nbody_counts(p):
@@ -60,12 +81,12 @@ def nbody_counts(p):
     if p.integrator.method != "taylor":
         return {}
     t0 = start_epoch(p)
-    days = max(p.t_start, p.t_end, t0) - min(p.t_start, p.t_end, t0)
+    days = max(p.span.start, p.span.end, t0) - min(p.span.start, p.span.end, t0)
     return {"Taylor days (solar system)": days * (2 if p.integrator.estimate_error else 1)}
 
 
 def switches(p):
-    return tuple(name for name in SWITCHES if p[f"model.{name}"])
+    return tuple(name for name in SWITCHES if getattr(p.model, name))
 
 
 def restart(p, start):
@@ -117,5 +138,5 @@ def compare_run(p, run):
 
 
 # every term a function of the state: heyoka's Taylor integrator takes it; from DE421's epoch both ways
-SCENE = Scene(SCHEMA, build, compare_run, verdict, bench=bench, backward=True, taylor=True, restart=restart,
+SCENE = Scene(SolarSystemParams, build, compare_run, verdict, bench=bench, backward=True, taylor=True, restart=restart,
               nbody_counts=nbody_counts)

@@ -16,10 +16,13 @@ the precession rate fitted over the span (§847) against the closed form, first 
 Passes when the reference's figure axis agrees with the best other run to
 ``stress.reference_agreement_max`` rad and every full-span rate is within ``stress.rate_rel_tol``.
 """
+import numpy as np
+
 from ..comparisons.fast_spin_p96 import compare_run
 from ..models.assemblies.idealised import under_point_masses
+from ..params import Params, key, table
 from ..scene import Model, Scene
-from ..schema import ANGLE, SPIN, Key
+from ..schema import ANGLE, SPIN
 from ..verdict import Check, Verdict
 from . import common
 
@@ -33,19 +36,31 @@ def verdict(p, comparison):
               "P96 is first order in N/delta = 1e-3 (stress.rate_rel_tol)")))
 
 
-SCHEMA = {
-    "body.moments": Key(unit="", size=3, help="A <= B < C, nearly symmetric about C"),
-    "body.spin": Key(**SPIN, help="spin rate eps about the figure axis"),
-    "body.obliquity": Key(**ANGLE, help="angle n of the figure axis from the orbit pole"),
-    "stress.spin_over_orbit": Key(unit="", default=1e5, help="eps/delta"),
-    "stress.precession_over_orbit": Key(unit="", default=1e-3, help="N/delta (sets GM/s^3)"),
-    "stress.runs": Key(type=list,
-                       help="[{method, <its options, e.g. step (d) or rtol, atol>, span_fraction}]"),
-    "stress.reference": Key(type=list, help="[{method, <its options>}]: the converged run"),
-    "stress.rate_rel_tol": Key(unit="", default=1e-3, help="pass: |rate/closed form - 1| for full-span runs"),
-    "stress.reference_agreement_max": Key(
-        unit="", default=1e-9, help="pass: figure-axis difference, reference vs best other run, rad"),
-}
+@table
+class BodyTable:
+    moments: np.ndarray = key(unit="", size=3, help="A <= B < C, nearly symmetric about C")
+    spin: float = key(**SPIN, help="spin rate eps about the figure axis")
+    obliquity: float = key(**ANGLE, help="angle n of the figure axis from the orbit pole")
+
+
+@table
+class StressTable:
+    spin_over_orbit: float = key(unit="", default=1e5, help="eps/delta")
+    precession_over_orbit: float = key(unit="", default=1e-3, help="N/delta (sets GM/s^3)")
+    runs: list = key(type=list,
+                     help="[{method, <its options, e.g. step (d) or rtol, atol>, span_fraction}]")
+    reference: list = key(type=list, help="[{method, <its options>}]: the converged run")
+    rate_rel_tol: float = key(unit="", default=1e-3, help="pass: |rate/closed form - 1| for full-span runs")
+    reference_agreement_max: float = key(
+        unit="", default=1e-9, help="pass: figure-axis difference, reference vs best other run, rad")
+
+
+@table
+class StressFastSpinParams(Params):
+    body: BodyTable
+    stress: StressTable
+
+
 RADIUS = 1.0          # F's distance (length unit arbitrary: only GM/s^3 enters)
 
 
@@ -55,20 +70,20 @@ def build(p, times):
     from ..orbits.analytic import CircularOrbits
     from ..theory import SymmetricPrecession, p96_initial_state, precession_constant
 
-    body = common.rigid_body(p)
+    body = common.rigid_body(p.body.moments)
     a_, b_, aa = body.moments
     cc = 0.5 * (a_ + b_)
-    eps, n = p["body.spin"], p["body.obliquity"]
-    delta = eps / p["stress.spin_over_orbit"]
-    big_n = p["stress.precession_over_orbit"] * delta
+    eps, n = p.body.spin, p.body.obliquity
+    delta = eps / p.stress.spin_over_orbit
+    big_n = p.stress.precession_over_orbit * delta
     gm = big_n / precession_constant(1.0, RADIUS, eps, aa, cc)          # N is proportional to GM
     theory = SymmetricPrecession(eps, delta, big_n, n, ratio=aa / cc)
     e, f, _ = theory.coefficients()
     q0, omega0 = p96_initial_state(n, eps, e + f, 0.0)
-    t0 = p.t_start
+    t0 = p.span.start
     orbit = CircularOrbits(("F",), [gm], [RADIUS], [delta], phase=[-delta * t0])
     system = under_point_masses(body.moments, orbit, q0, omega0, t0, "fast spinner, slow orbit")
     return Model(None, spinner=system, theory=theory, delta=delta)
 
 
-SCENE = Scene(SCHEMA, build, compare_run, verdict, time_scales=common.rigid_body_time_scales(SCHEMA))
+SCENE = Scene(StressFastSpinParams, build, compare_run, verdict, time_scales=common.rigid_body_time_scales)

@@ -14,8 +14,8 @@ from ..comparisons.free_body_stress import Q0, attitude_error, degenerate, flip,
 from ..errors import ScenarioError
 from ..integrators import METHODS
 from ..models.assemblies.idealised import free_body
+from ..params import Params, key, table
 from ..scene import Model, Outcome, Scene
-from ..schema import Key
 from ..theory import FreeRigidBody
 from ..verdict import Check, Verdict
 from . import common
@@ -25,18 +25,31 @@ VERDICT = Verdict("the case's closed form or invariant", (Check(
     "its criteria", "passed",
     source="the case's criteria (module docstring; benchmarks/RESULTS.md, stress scenes)"),))
 
-SCHEMA = {
-    "stress.case": Key(type=str, choices=CASES),
-    "body.moments": Key(unit="", size=3, default=np.array([0.3, 0.35, 0.4]),
-                        help="A <= B <= C (flip, long_run)"),
-    "body.omega0": Key(unit="rad/d", size=3, default=np.array([0.1, 15.0, 0.1]), help="initial body omega"),
-    "stress.flips": Key(type=int, default=1000, help="flip: number of flips measured"),
-    "stress.flattenings": Key(type=list, default=[1e-8, 1e-6, 1e-4, 1e-2, 0.3, 0.9],
-                              help="shapes: (C - A)/C"),
-    "stress.methods": Key(type=list, default=["rk8", "strang", "suzuki4", "dop853"],
-                          help="methods compared"),
-    "stress.steps": Key(type=int, default=10**7, help="long_run: steps per method"),
-}
+
+@table
+class StressTable:
+    case: str = key(type=str, choices=CASES)
+    flips: int = key(type=int, default=1000, help="flip: number of flips measured")
+    flattenings: list = key(type=list, default=[1e-8, 1e-6, 1e-4, 1e-2, 0.3, 0.9],
+                            help="shapes: (C - A)/C")
+    methods: list = key(type=list, default=["rk8", "strang", "suzuki4", "dop853"],
+                        help="methods compared")
+    steps: int = key(type=int, default=10**7, help="long_run: steps per method")
+
+
+@table
+class BodyTable:
+    moments: np.ndarray = key(unit="", size=3, default=np.array([0.3, 0.35, 0.4]),
+                              help="A <= B <= C (flip, long_run)")
+    omega0: np.ndarray = key(unit="rad/d", size=3, default=np.array([0.1, 15.0, 0.1]), help="initial body omega")
+
+
+@table
+class StressFreeBodyParams(Params):
+    stress: StressTable
+    body: BodyTable
+
+
 CHECKS = {
     "flip": "intermediate-axis flip period over many flips vs closed form; passes within 1e-3 relative",
     "degenerate": "A = B = C: torque exactly 0, uniform rotation; A = B(1 + 1e-12) vs closed form; "
@@ -56,7 +69,7 @@ def build(p, times):
 
 def bench(p, model, times):
     """Attitude error against the closed form (theory.FreeRigidBody), rad."""
-    error = attitude_error(FreeRigidBody(p.body.moments, p.body.omega0, Q0).attitude(times - p.t_start))
+    error = attitude_error(FreeRigidBody(p.body.moments, p.body.omega0, Q0).attitude(times - p.span.start))
     return lambda solution: error(solution)["attitude_error_max_rad"]
 
 
@@ -67,5 +80,5 @@ def compare_run(p, run):
                    sections={"details": details, "run": {"method": ",".join(p.stress.methods)}})
 
 
-SCENE = Scene(SCHEMA, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales(SCHEMA),
+SCENE = Scene(StressFreeBodyParams, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales,
               bench=bench)

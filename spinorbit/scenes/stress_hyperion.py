@@ -21,8 +21,9 @@ an ensemble of ``lyapunov.ensemble`` starts 1e-3 rad apart around the nominal on
 import numpy as np
 
 from ..comparisons.hyperion_lyapunov import compare_run
+from ..params import Params, key, table
 from ..scene import Model, Scene
-from ..schema import DISTANCE, GM, Key
+from ..schema import DISTANCE, GM
 from ..verdict import Check, Verdict
 from . import common
 
@@ -30,40 +31,60 @@ from . import common
 def verdict(p, comparison):
     """The exponents' agreement between integrators and run lengths, the regular orbit, and all criteria."""
     return Verdict("Benettin exponents, rk8 and dop853", (
-        Check("regular exponent", "lyapunov_regular_per_T", p["lyapunov.regular_max"], "/T",
+        Check("regular exponent", "lyapunov_regular_per_T", p.lyapunov.regular_max, "/T",
               "a regular orbit's exponent falls like ln t/t (lyapunov.regular_max)"),
         *(Check(f"ensemble means, {pair.replace('_vs_', ' vs ').replace('_', ' ')}",
-                f"lyapunov_nominal_{pair}_sigmas", p["lyapunov.max_sigma"], " sigma",
+                f"lyapunov_nominal_{pair}_sigmas", p.lyapunov.max_sigma, " sigma",
                 "two integrators and two run lengths must give one mean exponent, within the ensemble's own "
                 "standard errors (lyapunov.max_sigma)") for pair in ("rk8_T_vs_rk8_2T", "rk8_T_vs_dop853_T")),
         Check("all criteria", "passed", source="module docstring: (a)-(d)")))
 
 
-SCHEMA = {
-    "body.moments": Key(unit="", size=3, help="principal moments A < B < C (3-D runs); (B - A)/C for planar"),
-    "orbit.gm": Key(**GM, help="GM of Saturn"),
-    "orbit.a": Key(**DISTANCE, help="semi-major axis"),
-    "orbit.e": Key(unit="", min=0.0, max=0.99, help="eccentricity"),
-    "lyapunov.start": Key(unit="", size=2, help="nominal start at periapsis: theta - f (rad), theta'/n"),
-    "lyapunov.orbits": Key(type=int, default=1000, help="length of the shorter nominal run, orbital periods"),
-    "lyapunov.regular_orbits": Key(type=int, default=2000,
-                                   help="length of the regular check run, orbital periods"),
-    "lyapunov.orbits_3d": Key(type=int, default=300, help="length of the 3-D run, orbital periods"),
-    "lyapunov.steps_per_orbit": Key(type=int, default=128, help="rk8 steps per orbital period"),
-    "lyapunov.d0": Key(unit="", default=1e-8, help="separation after each renormalisation"),
-    "lyapunov.ensemble": Key(type=int, default=16,
-                             help="starts around the nominal one (1e-3 rad apart in theta)"),
-    "lyapunov.max_sigma": Key(unit="", default=4.0,
-                              help="pass: ensemble means agree within this many standard errors"),
-    "lyapunov.regular_gamma": Key(unit="", default=0.01, help="(B - A)/C of the regular check orbit"),
-    "lyapunov.regular_max": Key(unit="", default=0.01,
-                                help="pass: regular exponent after regular_orbits below this, 1/T"),
-    "lyapunov.chaotic_min": Key(unit="", default=0.2,
-                                help="chaotic above this, 1/T (map; nominal must exceed it)"),
-    "map.grid": Key(unit="", size=2, default=np.array([36.0, 36.0]), help="points in theta - f and theta'/n"),
-    "map.rate_range": Key(unit="", size=2, default=np.array([0.0, 3.0]), help="theta'/n range"),
-    "map.orbits": Key(type=int, default=200, help="length of each map run, orbital periods"),
-}
+@table
+class BodyTable:
+    moments: np.ndarray = key(unit="", size=3, help="principal moments A < B < C (3-D runs); (B - A)/C for planar")
+
+
+@table
+class OrbitTable:
+    gm: float = key(**GM, help="GM of Saturn")
+    a: float = key(**DISTANCE, help="semi-major axis")
+    e: float = key(unit="", min=0.0, max=0.99, help="eccentricity")
+
+
+@table
+class LyapunovTable:
+    start: np.ndarray = key(unit="", size=2, help="nominal start at periapsis: theta - f (rad), theta'/n")
+    orbits: int = key(type=int, default=1000, help="length of the shorter nominal run, orbital periods")
+    regular_orbits: int = key(type=int, default=2000,
+                              help="length of the regular check run, orbital periods")
+    orbits_3d: int = key(type=int, default=300, help="length of the 3-D run, orbital periods")
+    steps_per_orbit: int = key(type=int, default=128, help="rk8 steps per orbital period")
+    d0: float = key(unit="", default=1e-8, help="separation after each renormalisation")
+    ensemble: int = key(type=int, default=16,
+                        help="starts around the nominal one (1e-3 rad apart in theta)")
+    max_sigma: float = key(unit="", default=4.0,
+                           help="pass: ensemble means agree within this many standard errors")
+    regular_gamma: float = key(unit="", default=0.01, help="(B - A)/C of the regular check orbit")
+    regular_max: float = key(unit="", default=0.01,
+                             help="pass: regular exponent after regular_orbits below this, 1/T")
+    chaotic_min: float = key(unit="", default=0.2,
+                             help="chaotic above this, 1/T (map; nominal must exceed it)")
+
+
+@table
+class MapTable:
+    grid: np.ndarray = key(unit="", size=2, default=np.array([36.0, 36.0]), help="points in theta - f and theta'/n")
+    rate_range: np.ndarray = key(unit="", size=2, default=np.array([0.0, 3.0]), help="theta'/n range")
+    orbits: int = key(type=int, default=200, help="length of each map run, orbital periods")
+
+
+@table
+class StressHyperionParams(Params):
+    body: BodyTable
+    orbit: OrbitTable
+    lyapunov: LyapunovTable
+    map: MapTable
 
 
 def build(p, times):
@@ -71,4 +92,4 @@ def build(p, times):
     return Model(None)
 
 
-SCENE = Scene(SCHEMA, build, compare_run, verdict, time_scales=common.rigid_body_time_scales(SCHEMA))
+SCENE = Scene(StressHyperionParams, build, compare_run, verdict, time_scales=common.rigid_body_time_scales)

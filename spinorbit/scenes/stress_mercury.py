@@ -25,8 +25,9 @@ import numpy as np
 
 from ..analysis.planar_spin_orbit import kepler_orbit, libration_theory, rigid_body_system
 from ..comparisons.mercury_libration import compare_run
+from ..params import Params, key, table
 from ..scene import Model, Scene
-from ..schema import DISTANCE, GM, Key
+from ..schema import DISTANCE, GM
 from ..verdict import Check, Verdict
 from . import common
 
@@ -43,29 +44,45 @@ def verdict(p, comparison):
               "the e^6 remainder of (1 - 11e^2 + 959e^4/48) at e = 0.2056 (~1e-3)")),
         RADAR_NOT_INDEPENDENT)
 
-SCHEMA = {
-    "body.moments": Key(unit="", size=3, help="principal moments A < B < C; (B - A)/C sets the libration"),
-    "orbit.gm": Key(**GM, help="GM of the Sun"),
-    "orbit.a": Key(**DISTANCE, help="semi-major axis"),
-    "orbit.e": Key(unit="", min=0.0, max=0.99, help="eccentricity"),
-    "stress.linear_rel_tol": Key(unit="", default=1e-3, help="pass: |measured/linear theory - 1|"),
-    "stress.series_rel_tol": Key(unit="", default=1e-2, help="pass: |measured/Margot series - 1|"),
-}
+
+@table
+class BodyTable:
+    moments: np.ndarray = key(unit="", size=3, help="principal moments A < B < C; (B - A)/C sets the libration")
+
+
+@table
+class OrbitTable:
+    gm: float = key(**GM, help="GM of the Sun")
+    a: float = key(**DISTANCE, help="semi-major axis")
+    e: float = key(unit="", min=0.0, max=0.99, help="eccentricity")
+
+
+@table
+class StressTable:
+    linear_rel_tol: float = key(unit="", default=1e-3, help="pass: |measured/linear theory - 1|")
+    series_rel_tol: float = key(unit="", default=1e-2, help="pass: |measured/Margot series - 1|")
+
+
+@table
+class StressMercuryParams(Params):
+    body: BodyTable
+    orbit: OrbitTable
+    stress: StressTable
 
 
 def build(p, times):
     """The body in the 3:2 state on its linear forced solution (gamma(0) = 0 at periapsis)."""
-    body = common.rigid_body(p)
+    body = common.rigid_body(p.body.moments)
     a_, b_, c_ = body.moments
     gamma, o = (b_ - a_) / c_, p.orbit
     n = math.sqrt(o.gm / o.a**3)
     theory = libration_theory(gamma, o.e)
     k = np.arange(1, theory["g"].size + 1)
     gamma_dot0 = n * float(np.sum(k * theory["g"]))
-    system = rigid_body_system(body.moments, kepler_orbit(o.gm, o.a, o.e, p.t_start), p.t_start, 0.0,
+    system = rigid_body_system(body.moments, kepler_orbit(o.gm, o.a, o.e, p.span.start), p.span.start, 0.0,
                                1.5 * n + gamma_dot0)
     return Model(system, gamma=gamma, n=n, theory=theory)
 
 
-SCENE = Scene(SCHEMA, build, compare_run, verdict, time_scales=common.rigid_body_time_scales(SCHEMA))
+SCENE = Scene(StressMercuryParams, build, compare_run, verdict, time_scales=common.rigid_body_time_scales)
 

@@ -18,8 +18,9 @@ from ..analysis.ladder import settings, work_precision
 from ..analysis.planar_libration import crossing_times, planar_system, zeta_from_solution
 from ..errors import ScenarioError
 from ..integrators import METHODS
+from ..params import Params, key, table
 from ..scene import Model, Outcome, Scene
-from ..schema import DISTANCE, GM, RATE, Key
+from ..schema import DISTANCE, GM, RATE
 from ..verdict import Check, Verdict
 from . import common
 
@@ -32,15 +33,31 @@ def verdict(p, comparison):
               "error, amplified near the separatrix (up to 4e-6 measured, benchmarks/RESULTS.md)"),
         Check("side and time", "passed", source="each run on the closed form's side of the separatrix")))
 
-SCHEMA = {
-    "body.moments": Key(unit="", size=3, help="principal moments A < B <= C"),
-    "orbit.gm": Key(**GM),
-    "orbit.radius": Key(**DISTANCE),
-    "orbit.rate": Key(**RATE),
-    "stress.offsets": Key(type=list, default=[-1e-9, 1e-9], help="C/n - 1 for each run"),
-    "stress.methods": Key(type=list, default=["rk8", "suzuki4", "dop853"]),
-    "stress.time_rel_tol": Key(unit="", default=1e-4, help="pass threshold on the time to 90 deg"),
-}
+
+@table
+class BodyTable:
+    moments: np.ndarray = key(unit="", size=3, help="principal moments A < B <= C")
+
+
+@table
+class OrbitTable:
+    gm: float = key(**GM)
+    radius: float = key(**DISTANCE)
+    rate: float = key(**RATE)
+
+
+@table
+class StressTable:
+    offsets: list = key(type=list, default=[-1e-9, 1e-9], help="C/n - 1 for each run")
+    methods: list = key(type=list, default=["rk8", "suzuki4", "dop853"])
+    time_rel_tol: float = key(unit="", default=1e-4, help="pass threshold on the time to 90 deg")
+
+
+@table
+class StressSeparatrixParams(Params):
+    body: BodyTable
+    orbit: OrbitTable
+    stress: StressTable
 
 
 def _setup(p, offset):
@@ -50,9 +67,9 @@ def _setup(p, offset):
     gm, s, delta = p.orbit.gm, p.orbit.radius, p.orbit.rate
     n = libration_n(p.body.moments, gm, s)
     zeta_dot0 = math.sqrt(n * (2.0 + offset))
-    orbit = CircularOrbits(("F",), [gm], [s], [delta], phase=[-delta * p.t_start])
+    orbit = CircularOrbits(("F",), [gm], [s], [delta], phase=[-delta * p.span.start])
     theory = PlanarLibration(n, 0.0, zeta_dot0)
-    return planar_system(p.body.moments, orbit, p.t_start, 0.0, zeta_dot0, delta), theory
+    return planar_system(p.body.moments, orbit, p.span.start, 0.0, zeta_dot0, delta), theory
 
 
 def time_to_90(theory):
@@ -85,8 +102,8 @@ def build(p, times):
 def bench(p, model, times):
     """Attitude error against the closed form below the separatrix, rad."""
     theory, delta = model.runs[0][2], p.orbit.rate
-    zeta_exact = theory.zeta(times - p.t_start)
-    return lambda solution: float(np.abs(zeta_from_solution(solution, delta * (solution.t - p.t_start))
+    zeta_exact = theory.zeta(times - p.span.start)
+    return lambda solution: float(np.abs(zeta_from_solution(solution, delta * (solution.t - p.span.start))
                                          - zeta_exact).max())
 
 
@@ -96,7 +113,7 @@ def compare_run(p, run):
         expected = time_to_90(theory)
 
         def measured(solution):
-            case, took = measure(solution, p.t_start, delta)
+            case, took = measure(solution, p.span.start, delta)
             return {"case_closed_form": theory.case, "case_measured": case,
                     "time_to_90deg_closed_form_d": expected,
                     "time_to_90deg_measured_d": took, "time_rel_error": took / expected - 1}
@@ -113,5 +130,5 @@ def compare_run(p, run):
     return Outcome(comparison, sections={"details": rows, "run": {"method": ",".join(p.stress.methods)}})
 
 
-SCENE = Scene(SCHEMA, build, compare_run, verdict, time_scales=common.rigid_body_time_scales(SCHEMA),
+SCENE = Scene(StressSeparatrixParams, build, compare_run, verdict, time_scales=common.rigid_body_time_scales,
               bench=bench)

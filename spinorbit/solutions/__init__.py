@@ -50,7 +50,7 @@ def for_scenario(scenario, t_start=None, t_end=None):
 
     if scenario.kind not in models.KINDS:
         raise InputError("scene", scenario.kind, f"a scene kept as a solution: {sorted(models.KINDS)}")
-    lo, hi = scenario.bounds if t_start is None else (min(t_start, t_end), max(t_start, t_end))
+    lo, hi = scenario.params.span.bounds if t_start is None else (min(t_start, t_end), max(t_start, t_end))
     def extend(solution, a, b):
         from ..scenarios import scenario_errors
 
@@ -69,7 +69,7 @@ def for_export(scenario):
 
     kind, start = models.KINDS[scenario.kind], models.own_start(scenario)
     if start is None or abs(start - float(parse_tdb_days("anchor", kind.anchor))) < 1e-9:
-        return attitude(scenario, for_scenario(scenario)).window(*scenario.bounds)
+        return attitude(scenario, for_scenario(scenario)).window(*scenario.params.span.bounds)
     solution, why = for_run(scenario, models.system(scenario, None))
     if solution is None:
         raise InputError("scene", scenario.kind, f"a model whose run can be fitted: {why}")
@@ -112,7 +112,7 @@ def _piece(scenario, kind, start, lo, hi):
 
     stretch = models.stretch(scenario, lo, hi, start[0])
     system = models.system(stretch, start)
-    method, options = stretch["integrator.method"], stretch.integrator_options()
+    method, options = stretch.params.integrator.method, stretch.params.integrator.options()
     piece = integrate(system, grid, lo, hi, method, options, label=f"{scenario.kind} solution",
                       ephemeris=models.ephemeris(stretch, system, lo, hi))
     return made(scenario, system, grid, piece, (lo, hi), method, options)
@@ -123,9 +123,11 @@ def made(scenario, system, grid, piece, span, method, options):
     provenance."""
     run = {"span_tdb_d": [float(span[0]), float(span[1])], "start_tdb_d": float(system.t0),
            **{k: v for k, v in piece.run.items() if isinstance(v, (int, float, str, type(None)))}}
+    from ..params import values_of
+
     rec = store.record(scenario)
     provenance = {"scene": scenario.kind, "scenario": str(scenario.path), "model_start_tdb_d": float(system.t0),
-                  "keys": rec["keys"], "ephemeris": {"name": scenario.get("orbit.source"),
+                  "keys": rec["keys"], "ephemeris": {"name": values_of(scenario.params).get("orbit.source"),
                                                      **(rec["ephemeris_file"] or {})},
                   "integrator": {"method": method, **options}, "code_version": store.code_version(),
                   "grid": {"segment_d": grid.length_d, "degree": grid.degree},
@@ -148,18 +150,18 @@ def stored_grid_span(scenario):
     runner builds its System over it), so that the store keeps its kind's grid whatever the run's length; None
     for any other run (it tiles its own span: :func:`run_grid`, and is not stored)."""
     kind = models.KINDS.get(scenario.kind)
-    if kind is None or kind.anchor is None or scenario.t_end <= scenario.t_start or \
-            stored_model(scenario, scenario.t_start):
+    if kind is None or kind.anchor is None or scenario.params.span.end <= scenario.params.span.start or \
+            stored_model(scenario, scenario.params.span.start):
         return None
-    lo, hi = kind.grid.bounds(scenario.t_start, scenario.t_end)
-    return (lo, hi) if lo == scenario.t_start else None
+    lo, hi = kind.grid.bounds(scenario.params.span.start, scenario.params.span.end)
+    return (lo, hi) if lo == scenario.params.span.start else None
 
 
 def build_scenario(scenario):
     """The scenario a main run's System is built from: ``scenario`` over :func:`stored_grid_span` (started where it
     starts), or ``scenario`` itself."""
     span = stored_grid_span(scenario)
-    return scenario if span is None else models.stretch(scenario, *span, scenario.t_start)
+    return scenario if span is None else models.stretch(scenario, *span, scenario.params.span.start)
 
 
 def fitted_grid(scenario, kind, system, lo, hi, halvings=0):
@@ -206,13 +208,13 @@ def for_run(scenario, system):
     why = not_fitted(scenario, system)
     if why:
         return None, why
-    kind, (lo, hi) = models.KINDS[scenario.kind], scenario.bounds
-    method, options = scenario["integrator.method"], scenario.integrator_options()
+    kind, (lo, hi) = models.KINDS[scenario.kind], scenario.params.span.bounds
+    method, options = scenario.params.integrator.method, scenario.params.integrator.options()
     worst = np.inf
     for halvings in range(REFINEMENTS + 1):
         grid, (a, b) = fitted_grid(scenario, kind, system, lo, hi, halvings)
         piece = integrate(system, grid, a, b, method, options, label=scenario.name,
-                          estimate_error=scenario["integrator.estimate_error"],
+                          estimate_error=scenario.params.integrator.estimate_error,
                           ephemeris=models.ephemeris(scenario, system, a, b))
         beyond = fit_beyond_run(piece.fit_error, piece.run, rounding_km(piece))
         if not beyond:
@@ -288,7 +290,7 @@ def stored_model(scenario, t0):
     from ..schema import parse_tdb_days
 
     anchor = models.KINDS[scenario.kind].anchor
-    if not scenario["integrator.estimate_error"]:
+    if not scenario.params.integrator.estimate_error:
         return "its integration error is not estimated (integrator.estimate_error = false)"
     if anchor is not None and abs(t0 - float(parse_tdb_days("anchor", anchor))) > 1e-9:
         return f"it starts at {models.iso(t0)[0]} TDB, the stored one at {anchor}"

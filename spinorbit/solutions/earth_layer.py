@@ -87,7 +87,7 @@ def layer(rigid, scenario, nonrigid):
     fits = covered(scenario, rigid.span)
 
     def computed(_, lo, hi):
-        rates = tides.rates(scenario["earth.tides"], scenario["orbit.source"])
+        rates = tides.rates(scenario.params.earth.tides, scenario.params.orbit.source)
         return _computed(rigid, nr.settings(scenario) if nonrigid else None, rates, fits)
 
     return store.solve(_record(scenario, nonrigid), fits[0].lo, fits[-1].hi, computed)
@@ -105,7 +105,7 @@ def stored(scenario, nonrigid, t_start, t_end):
 
 def _record(scenario, nonrigid):
     return {**store.record(scenario), "scene": "earth_layer", "nonrigid": nonrigid, "fits": FITS,
-            "transfer_function": scenario["earth.transfer_function"] if nonrigid else None}
+            "transfer_function": scenario.params.earth.transfer_function if nonrigid else None}
 
 
 def _basis(times):

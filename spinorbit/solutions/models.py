@@ -60,12 +60,12 @@ def stretch(scenario, lo, hi, t0):
 def own_start(scenario):
     """Where ``scenario`` asks its model to start when a key says so (TDB days), or None (the kind's anchor, the
     stored solution's): the Moon's ``model.start``; the solar system's span.start with ``start.epoch = "span"``."""
-    if scenario.kind == "moon_libration" and scenario["model.start"]:
+    if scenario.kind == "moon_libration" and scenario.params.model.start:
         from ..starts.moon import start_epoch
 
         return start_epoch(scenario)
-    if scenario.kind == "solar_system" and scenario["start.epoch"] == "span":
-        return float(scenario.t_start)
+    if scenario.kind == "solar_system" and scenario.params.start.epoch == "span":
+        return float(scenario.params.span.start)
     if scenario.kind == "mars_orientation":
         from ..starts.mars import start_epoch
         return start_epoch(scenario)
@@ -96,7 +96,7 @@ def ephemeris(scenario, built, lo, hi):
 
     if not seen(built):
         return None
-    source = orbit_source(scenario["orbit.source"])
+    source = orbit_source(scenario.params.orbit.source)
     return source.open(lo, hi) if source.jpl_kernel else None
 
 

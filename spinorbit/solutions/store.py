@@ -62,15 +62,16 @@ def record(scenario):
     version (and the span, for a scene whose start depends on it: the Earth's is fitted over its span's
     outputs)."""
     from ..orbits.sources import ephemeris_identity
+    from ..params import values_of
     from .models import KINDS
 
     anchored = scenario.kind in KINDS and KINDS[scenario.kind].anchor is not None
     ignored = LAYER_KEYS if anchored else tuple(k for k in LAYER_KEYS if k not in ("span.", "model.start"))
-    keys = {k: v.tolist() if hasattr(v, "tolist") else v for k, v in sorted(scenario.values.items())
+    keys = {k: v.tolist() if hasattr(v, "tolist") else v for k, v in sorted(values_of(scenario.params).items())
             if not k.startswith(ignored)}
-    keys["integrator"] = scenario.integrator_options()
+    keys["integrator"] = scenario.params.integrator.options()
     return {"scene": scenario.kind, "keys": json.loads(json.dumps(keys, default=str)), "code": code_version(),
-            "ephemeris_file": ephemeris_identity(scenario.get("orbit.source"))}
+            "ephemeris_file": ephemeris_identity(values_of(scenario.params).get("orbit.source"))}
 
 
 

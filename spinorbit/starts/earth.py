@@ -18,33 +18,33 @@ def orbits(scenario):
     """(orbit source, tilt of the circles' plane or None): DE421 sampled once, or Euler's circles."""
     from ..orbits.sources import orbit_source
 
-    source = orbit_source(scenario["orbit.source"])
+    source = orbit_source(scenario.params.orbit.source)
     if source.circular:
         return euler_p96.circles()
     margin = 1.0        # the figure axes reported difference the torque at t +- 1/64 d
-    bodies = ("moon", "sun") + (PLANETS if scenario["orbit.planets"] else ())
-    first, last = scenario.bounds
+    bodies = ("moon", "sun") + (PLANETS if scenario.params.orbit.planets else ())
+    first, last = scenario.params.span.bounds
     return source.relative("earth", bodies, first - margin, last + margin,
-                           scenario["orbit.sample_step"]), None
+                           scenario.params.orbit.sample_step), None
 
 
 def check(scenario):
     """Settings that cannot go together, refused on the key that sets them."""
     from ..orbits.sources import orbit_source
 
-    circular = orbit_source(scenario["orbit.source"]).circular
-    if scenario["earth.hd"] != "iau2006" and circular:
-        raise ScenarioError("earth.hd", scenario["earth.hd"], '"iau2006" with orbit.source = "circular" (the '
+    circular = orbit_source(scenario.params.orbit.source).circular
+    if scenario.params.earth.hd != "iau2006" and circular:
+        raise ScenarioError("earth.hd", scenario.params.earth.hd, '"iau2006" with orbit.source = "circular" (the '
                             'observed rate is IAU 2006\'s, on the real Moon and Sun)')
-    if scenario["earth.hd"] != "iau2006" and scenario["earth.dynamical_ellipticity"] != earth.H_D:
-        raise ScenarioError("earth.dynamical_ellipticity", scenario["earth.dynamical_ellipticity"],
+    if scenario.params.earth.hd != "iau2006" and scenario.params.earth.dynamical_ellipticity != earth.H_D:
+        raise ScenarioError("earth.dynamical_ellipticity", scenario.params.earth.dynamical_ellipticity,
                             f'{earth.H_D} (IAU 2006\'s) with earth.hd = "observed_rate", which sets it')
-    if scenario["earth.nonrigid"] and circular:
+    if scenario.params.earth.nonrigid and circular:
         raise ScenarioError("earth.nonrigid", True,
                             'false with orbit.source = "circular" (the non-rigid '
                             'response is applied on the luni-solar arguments of DE421)')
     for key in ("earth.j4", "earth.geodesic_nutation"):
-        if scenario[key] and scenario["earth.model"] != "gyroscopic":
+        if scenario[key] and scenario.params.earth.model != "gyroscopic":
             raise ScenarioError(key, True,
                                 'false with earth.model = "full" (it acts in the gyroscopic model)')
 
@@ -55,12 +55,12 @@ def earth_system(scenario, source, model, t0):
     from ..models.assemblies.earth import rigid_earth
 
     orbit, tilt = source
-    pole = ecliptic_pole(tilt) if scenario["earth.geodesic_precession"] else None
+    pole = ecliptic_pole(tilt) if scenario.params.earth.geodesic_precession else None
     from .earth_ellipticity import dynamical_ellipticity
 
     return rigid_earth(orbit, model, dynamical_ellipticity(scenario)[0],
-                       scenario["earth.b_minus_a_over_c"], scenario["earth.j2_rate"], scenario["earth.j4"],
-                       pole, scenario["earth.geodesic_nutation"], t0)
+                       scenario.params.earth.b_minus_a_over_c, scenario.params.earth.j2_rate, scenario.params.earth.j4,
+                       pole, scenario.params.earth.geodesic_nutation, t0)
 
 
 def build(scenario, t):
@@ -69,14 +69,14 @@ def build(scenario, t):
     from ..references import erfa_pole
 
     check(scenario)
-    source, t0 = orbits(scenario), scenario.t_start
+    source, t0 = orbits(scenario), scenario.params.span.start
     pole = erfa_pole.cip_vector(t0)
-    if scenario["earth.start_pole"] == "iau_mean_plus_ren2000" and source[1] is None:
+    if scenario.params.earth.start_pole == "iau_mean_plus_ren2000" and source[1] is None:
         pole = ren2000_start(scenario, t0)
-    elif scenario["earth.start_pole"] != "iau" and source[1] is None:
+    elif scenario.params.earth.start_pole != "iau" and source[1] is None:
         pole = rigid_start(scenario, source, t0, pole, t)
-    system = started(earth_system(scenario, source, scenario["earth.model"], t0), t0, pole,
-                     scenario["earth.forced_start"])
+    system = started(earth_system(scenario, source, scenario.params.earth.model, t0), t0, pole,
+                     scenario.params.earth.forced_start)
     return system, source[0], (pole, ecliptic_pole(source[1]), source[1])
 
 
@@ -88,7 +88,7 @@ def ren2000_start(scenario, t0):
     from ..references import erfa_pole
     from .earth_ellipticity import dynamical_ellipticity
 
-    geodesic = scenario["earth.geodesic_nutation"] and scenario["earth.geodesic_precession"]
+    geodesic = scenario.params.earth.geodesic_nutation and scenario.params.earth.geodesic_precession
     t = np.array([t0])
     return erfa_pole.from_mean_pole(t, *ren2000_scaled(t, dynamical_ellipticity(scenario)[0], geodesic))[0]
 
@@ -117,10 +117,10 @@ def restarted(p, start):
     """The rigid Earth of ``p`` started at a stored state ``start`` = (t0, y) (a continuous solution's
     extension, spinorbit.solutions)."""
     check(p)
-    return earth_system(p, orbits(p), p["earth.model"], float(start[0])).with_start(*start)
+    return earth_system(p, orbits(p), p.earth.model, float(start[0])).with_start(*start)
 
 
 def gyroscopic_twin(p, pole):
     """The gyroscopic Earth on the same orbits and start as the full model (what the full model is checked
     against)."""
-    return started(earth_system(p, orbits(p), "gyroscopic", p.t_start), p.t_start, pole)
+    return started(earth_system(p, orbits(p), "gyroscopic", p.span.start), p.span.start, pole)

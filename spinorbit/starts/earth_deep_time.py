@@ -7,25 +7,31 @@ import numpy as np
 
 from ..constants import ARCSEC, DAY_S, JULIAN_CENTURY_D, JULIAN_YEAR_D
 from ..errors import InputError, ScenarioError
-from ..schema import Key
+from ..params import key, table
 
 KYR_D = 1000 * JULIAN_YEAR_D
 MYR_D = 1000 * KYR_D
 ERFA_SPAN_D = 2 * KYR_D               # the orbit reaches at least this far: ERFA's comparison
-ORBIT_SCHEMA = {  # the orbital solution's keys (earth_deep_time, mars_deep_time)
-    "orbit.ephemeris": Key(type=str, default="de421", choices=("de421", "de440"),
-                           help="the JPL ephemeris whose J2000 state starts the solar system"),
-    "orbit.step": Key(unit="d", default=5.0, min=1.0, max=5.0,
+
+
+@table
+class DeepTimeOrbitTable:
+    """The orbital solution's keys (earth_deep_time, mars_deep_time)."""
+
+    ephemeris: str = key(type=str, default="de421", choices=("de421", "de440"),
+                         help="the JPL ephemeris whose J2000 state starts the solar system")
+    step: float = key(unit="d", default=5.0, min=1.0, max=5.0,
                       help="WHFast step, 1 to 5 d (5 d: the e vector within 7e-8 of 1 d's over 200 kyr; 8 d "
-                           "meets a step resonance, 7e-5)"),
-    "orbit.output": Key(unit="d", default=36525.0, min=365.0, max=182625.0,
-                        help="cadence of the orbital solution, a whole number of steps (at most 500 yr)"),
-    "orbit.moon": Key(type=str, default="ring", choices=("ring", "static_ring", "none"),
-                      help="the Moon as the barycentre's quadrupole: measured against the Moon as a body, "
-                           "the first-order ring, or none"),
-    "orbit.relativity": Key(type=bool, default=True, help="the Sun's GR on the orbits"),
-    "orbit.file": Key(type=str, default="", help="an orbital solution file (default: the cache's)"),
-}
+                           "meets a step resonance, 7e-5)")
+    output: float = key(unit="d", default=36525.0, min=365.0, max=182625.0,
+                        help="cadence of the orbital solution, a whole number of steps (at most 500 yr)")
+    moon: str = key(type=str, default="ring", choices=("ring", "static_ring", "none"),
+                    help="the Moon as the barycentre's quadrupole: measured against the Moon as a body, "
+                         "the first-order ring, or none")
+    relativity: bool = key(type=bool, default=True, help="the Sun's GR on the orbits")
+    file: str = key(type=str, default="", help="an orbital solution file (default: the cache's)")
+
+
 MAX_SPAN_D = 100 * MYR_D
 ORBIT_KEYS = {"step": "orbit.step", "output": "orbit.output", "moon": "orbit.moon",
               "orbit_file": "orbit.file"}
@@ -33,10 +39,10 @@ ORBIT_KEYS = {"step": "orbit.step", "output": "orbit.output", "moon": "orbit.moo
 
 def check_span(p):
     """ScenarioError unless the span starts at J2000, reaches at most 100 Myr, and rk8 steps at most 1 kyr."""
-    if abs(p.t_start) > 1e-6:
+    if abs(p.span.start) > 1e-6:
         raise ScenarioError("span.start", p.span.start, "J2000, '2000-01-01T12:00:00' (the solar "
                             "system starts from the ephemeris's state and the axis from its pole there)")
-    if abs(p.t_end) > MAX_SPAN_D:
+    if abs(p.span.end) > MAX_SPAN_D:
         raise ScenarioError("span.end", p.span.end, "at most 100 Myr either way of J2000 (the "
                             "tidal law and the averaged Moon are not vouched for beyond; La2004 stops at "
                             "-101 Myr)")
@@ -56,22 +62,22 @@ def settings(scenario):
     """The orbital solution's Settings from the scenario's orbit keys."""
     from ..orbits.solution import Settings
 
-    return Settings(ephemeris=scenario["orbit.ephemeris"], step_d=scenario["orbit.step"],
-                    output_d=scenario["orbit.output"], relativity=scenario["orbit.relativity"],
-                    moon=scenario["orbit.moon"])
+    return Settings(ephemeris=scenario.params.orbit.ephemeris, step_d=scenario.params.orbit.step,
+                    output_d=scenario.params.orbit.output, relativity=scenario.params.orbit.relativity,
+                    moon=scenario.params.orbit.moon)
 
 
 def orbit_end(scenario):
     """Where the orbital solution must reach: the span's end, at least ERFA_SPAN_D from J2000."""
-    return math.copysign(max(abs(scenario.t_end), ERFA_SPAN_D), scenario.t_end)
+    return math.copysign(max(abs(scenario.params.span.end), ERFA_SPAN_D), scenario.params.span.end)
 
 
 def steps_to_compute(scenario):
     """The WHFast steps of the orbital solution this run still has to compute (none when it is cached)."""
     from ..orbits import solution
 
-    return solution.steps_to_compute(settings(scenario), scenario.t_start, orbit_end(scenario),
-                                     path=scenario["orbit.file"] or None)
+    return solution.steps_to_compute(settings(scenario), scenario.params.span.start, orbit_end(scenario),
+                                     path=scenario.params.orbit.file or None)
 
 
 def orbital_solution(scenario, label):
@@ -80,8 +86,8 @@ def orbital_solution(scenario, label):
 
     end = orbit_end(scenario)
     try:
-        return solution.solve(settings(scenario), scenario.t_start, end, path=scenario["orbit.file"] or None,
-                              label=label)
+        return solution.solve(settings(scenario), scenario.params.span.start, end,
+                              path=scenario.params.orbit.file or None, label=label)
     except InputError as exc:
         raise ScenarioError(ORBIT_KEYS.get(exc.name, exc.name), exc.given, exc.accepted) from None
 
@@ -116,22 +122,22 @@ def spin_model(scenario, orbit):
     a_km, c_km_d = h["AU"], h["CLIGHT"] * DAY_S
     geodesic = deep_time.geodesic_rate(a_km, c_km_d) / (1 - e0**2)
     per_cy = ARCSEC / JULIAN_CENTURY_D
-    if scenario["model.precession"] == "iau2006_rate":
+    if scenario.params.model.precession == "iau2006_rate":
         alpha0 = deep_time.constant_from_rate(PSI_A_RATE_ARCSEC_CY * per_cy, obliquity0, geodesic)
     else:
         alpha0 = deep_time.constant_from_ellipticity(earth.H_D, earth.ERA_RATE_RAD_D, a_km, e0)
-    tilt = earth.TIDAL_OBLIQUITY_RATE_ARCSEC_CY * per_cy if scenario["model.tidal_tilt"] else 0.0
-    params = deep_time.parameters(grid, orbit.t_d[0], scenario["orbit.output"], alpha0, e0, a_km, c_km_d,
-                                  earth.ERA_RATE_RAD_D, ed=scenario["model.Ed"], td=scenario["model.Td"],
+    tilt = earth.TIDAL_OBLIQUITY_RATE_ARCSEC_CY * per_cy if scenario.params.model.tidal_tilt else 0.0
+    params = deep_time.parameters(grid, orbit.t_d[0], scenario.params.orbit.output, alpha0, e0, a_km, c_km_d,
+                                  earth.ERA_RATE_RAD_D, ed=scenario.params.model.Ed, td=scenario.params.model.Td,
                                   tilt_rad_d=tilt, obliquity0=obliquity0)
-    alpha = alpha0 * scenario["model.Ed"]
+    alpha = alpha0 * scenario.params.model.Ed
     description = {
         "precession_constant_arcsec_per_cy": alpha / per_cy,
-        "precession_constant_from": scenario["model.precession"],
+        "precession_constant_from": scenario.params.model.precession,
         "dynamical_ellipticity": deep_time.implied_ellipticity(alpha, earth.ERA_RATE_RAD_D, a_km, e0),
         "psi_rate_j2000_arcsec_per_cy": (alpha * math.cos(obliquity0) - geodesic) / per_cy,
         "geodesic_arcsec_per_cy": geodesic / per_cy, "obliquity_j2000_deg": math.degrees(obliquity0),
-        "tidal_obliquity_rate_arcsec_per_cy": tilt * scenario["model.Td"] / per_cy,
-        "moon_quadrupole_factor": MOON[scenario["orbit.moon"]], "Td": scenario["model.Td"],
-        "Ed": scenario["model.Ed"]}
+        "tidal_obliquity_rate_arcsec_per_cy": tilt * scenario.params.model.Td / per_cy,
+        "moon_quadrupole_factor": MOON[scenario.params.orbit.moon], "Td": scenario.params.model.Td,
+        "Ed": scenario.params.model.Ed}
     return SpinModel(deep_time.averaged_spin(params, spin_axis0), spin_axis0, normal0, description)

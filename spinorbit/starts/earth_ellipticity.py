@@ -40,16 +40,16 @@ P03_OBLIQUITY_RATE_ARCSEC_CY = -0.02575
 
 def settings(scenario):
     """The keys the observed-rate H_d depends on, as a hashable tuple (the cache's key)."""
-    return (scenario["orbit.source"], scenario["orbit.planets"], scenario["orbit.sample_step"],
-            scenario["earth.j2_rate"], scenario["earth.j4"], scenario["earth.geodesic_precession"],
-            scenario["earth.geodesic_nutation"], scenario["earth.tides"])
+    return (scenario.params.orbit.source, scenario.params.orbit.planets, scenario.params.orbit.sample_step,
+            scenario.params.earth.j2_rate, scenario.params.earth.j4, scenario.params.earth.geodesic_precession,
+            scenario.params.earth.geodesic_nutation, scenario.params.earth.tides)
 
 
 def dynamical_ellipticity(scenario):
     """(H_d, budget or None): the scenario's ``earth.dynamical_ellipticity`` (IAU 2006's by default) with
     ``earth.hd = "iau2006"``, else from_observed_rate(...) of its settings."""
-    if scenario["earth.hd"] == "iau2006":
-        return scenario["earth.dynamical_ellipticity"], None
+    if scenario.params.earth.hd == "iau2006":
+        return scenario.params.earth.dynamical_ellipticity, None
     budget = from_observed_rate(*settings(scenario))
     return budget["h_d"], budget
 

@@ -60,9 +60,9 @@ def tide(p, c, y0, model):
 
     chosen = TIDES[model]
     depth = None if chosen.depth is None else p[chosen.depth.key]
-    continent = Continent(p["tides.continent_radius"], p["tides.continent_colatitude"],
-                          p["tides.continent_until"], p["tides.global_ocean_from"])
-    setting = Setting(c, y0, p["tides.recession_rate"], depth, continent, keep_table)
+    continent = Continent(p.tides.continent_radius, p.tides.continent_colatitude,
+                          p.tides.continent_until, p.tides.global_ocean_from)
+    setting = Setting(c, y0, p.tides.recession_rate, depth, continent, keep_table)
     try:
         return chosen.response(setting)
     except NoDrag:
@@ -114,7 +114,7 @@ def run(p, model, t, integrate, part=None):
     for the main run (``part`` None), not for a tide beside it (the summary reports the main run's alone)."""
     from ..models.tidal_history import equations
 
-    c = constants(p["moon.stop_distance"])
+    c = constants(p.moon.stop_distance)
     y0 = today(c)
     system = equations.history(c, tide(p, c, y0, model), y0)
     integrate = partial(integrate, estimate_error=None if part is None else False)

@@ -32,22 +32,22 @@ def start_epoch(p):
     """mars.start in TDB days."""
     from ..schema import parse_tdb_days
 
-    return float(parse_tdb_days("mars.start", p["mars.start"]))
+    return float(parse_tdb_days("mars.start", p.mars.start))
 
 
 def orbits(p, t0):
     """The Sun (and with orbit.planets the planets) seen from Mars over the run and t0."""
     from ..orbits.sources import orbit_source
 
-    source = orbit_source(p["orbit.source"])
-    bodies = ("sun",) + (PLANETS if p["orbit.planets"] else ())
+    source = orbit_source(p.orbit.source)
+    bodies = ("sun",) + (PLANETS if p.orbit.planets else ())
     if source.analytic:
-        if p["orbit.planets"]:
-            raise ScenarioError("orbit.planets", True, f'false with orbit.source = "{p["orbit.source"]}" (a two-body '
+        if p.orbit.planets:
+            raise ScenarioError("orbit.planets", True, f'false with orbit.source = "{p.orbit.source}" (a two-body '
                                                       "orbit carries the Sun alone)")
         return source.relative("mars", bodies, t0, t0)
-    first, last = min(p.t_start, p.t_end, t0) - MARGIN_D, max(p.t_start, p.t_end, t0) + MARGIN_D
-    return source.relative("mars", bodies, first, last, p["orbit.sample_step"])
+    first, last = min(p.span.start, p.span.end, t0) - MARGIN_D, max(p.span.start, p.span.end, t0) + MARGIN_D
+    return source.relative("mars", bodies, first, last, p.orbit.sample_step)
 
 
 def geodesic():
@@ -63,26 +63,12 @@ def geodesic():
                          mars.MEAN_ECCENTRICITY, anomaly)
 
 
-def system(p, t0, switches=None):
-    """Mars of ``p`` not yet started; ``switches`` overrides {"orbit.source", "orbit.planets", "mars.satellites",
-    "mars.geodesic_precession"} (the budget's runs)."""
+def system(p, t0):
+    """Mars of ``p`` not yet started."""
     from ..models.assemblies.planet import rigid_planet
 
-    settings = {key: p[key] for key in ("orbit.source", "orbit.planets", "mars.satellites",
-                                        "mars.geodesic_precession")} | (switches or {})
-    view = _Settings(p, settings)
-    return rigid_planet(planet(p["mars.c_mr2"]), orbits(view, t0), p["mars.model"], settings["mars.satellites"],
-                        geodesic() if settings["mars.geodesic_precession"] else None, t0)
-
-
-class _Settings:
-    """``p`` with some keys replaced."""
-
-    def __init__(self, p, settings):
-        self.p, self.settings, self.t_start, self.t_end = p, settings, p.t_start, p.t_end
-
-    def __getitem__(self, key):
-        return self.settings[key] if key in self.settings else self.p[key]
+    return rigid_planet(planet(p.mars.c_mr2), orbits(p, t0), p.mars.model, p.mars.satellites,
+                        geodesic() if p.mars.geodesic_precession else None, t0)
 
 
 def iau_start(t0):
@@ -100,14 +86,14 @@ def iau_start(t0):
     return pole, x, (w_h - w) / h + math.sin(dec) * (ra_h - ra) / h
 
 
-def build(p, switches=None):
-    """Mars started at mars.start on the IAU 2015 pole and spin, on its forced motion (``switches``: as
-    :func:`system`'s); its prime meridian there in ``meta["prime_meridian_rad"]``."""
+def build(p):
+    """Mars started at mars.start on the IAU 2015 pole and spin, on its forced motion; its prime meridian there
+    in ``meta["prime_meridian_rad"]``."""
     from ..models.start import on_pole
     from ..references import mars_iau2015
 
     t0 = start_epoch(p)
-    built = system(p, t0, switches)
+    built = system(p, t0)
     pole, x_axis, spin_rate = iau_start(t0)
     built.y0 = built.layout.pack(on_pole(built, "mars", t0, pole, spin_rate, x_axis))
     built.meta["prime_meridian_rad"] = mars_iau2015.angles([t0])[2][0]     # what a gyroscopic state lacks

@@ -29,7 +29,7 @@ def model(p, times, scale=1.0):
     if scale != 1.0:
         orbit = mean_orbit(orbits, t0, t1, gm)
         orbits = turned(orbits, (scale - 1.0) * np.cross(orbit.normal, orbit.normal_rate), t0)
-    return cassini_system(orbits, interior(p), p.t_start, t1 if p.t_start == t0 else t0, gm,
+    return cassini_system(orbits, interior(p), p.span.start, t1 if p.span.start == t0 else t0, gm,
                           math.radians(mercury.LAPLACE_INCLINATION_DEG), p.start.obliquity_offset)
 
 

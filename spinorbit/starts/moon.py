@@ -16,8 +16,8 @@ def start_epoch(p):
     from ..schema import parse_tdb_days
 
     first, last = span()
-    given = p["model.start"]
-    wanted = parse_tdb_days("model.start", given) if given else p.t_start
+    given = p.model.start
+    wanted = parse_tdb_days("model.start", given) if given else p.span.start
     return float(np.clip(wanted, first + MARGIN_D, last - MARGIN_D))
 
 
@@ -29,17 +29,17 @@ def build_system(p, source):
     from ..orbits.sources import sample_orbits
     from ..references.moon_de421 import earth_pole
 
-    level, extra = LEVELS[p["model.level"]], p["model.terms"]
+    level, extra = LEVELS[p.model.level], p.model.terms
     if not isinstance(extra, list) or any(not isinstance(n, str) or n not in TERMS or n in level.terms
                                           for n in extra):
         raise ScenarioError("model.terms", extra, f"a list of terms not in the level's {list(level.terms)}, "
                                                   f"from {sorted(TERMS)}")
     t0 = start_epoch(p)
-    first, last = min(t0, *p.bounds) - MARGIN_D, max(t0, *p.bounds) + MARGIN_D
-    orbits = sample_orbits(source, "moon", level.bodies, first, last, p["orbit.step"])
+    first, last = min(t0, *p.span.bounds) - MARGIN_D, max(t0, *p.span.bounds) + MARGIN_D
+    orbits = sample_orbits(source, "moon", level.bodies, first, last, p.orbit.step)
     pole = earth_pole(first, last) if "earth_j2" in level.terms + tuple(extra) else None
     try:
-        system = moon(p["model.level"], orbits, tuple(extra), p["model.tides"], pole, t0,
+        system = moon(p.model.level, orbits, tuple(extra), p.model.tides, pole, t0,
                       moon_de421(t0, level.core))
     except InputError as exc:
         if exc.name != "terms":
@@ -70,10 +70,10 @@ def started_at(p, start):
     from ..orbits.sources import sample_orbits
     from ..references.moon_de421 import earth_pole
 
-    level, extra = LEVELS[p["model.level"]], tuple(p["model.terms"])
-    first, last = min(start[0], *p.bounds) - MARGIN_D, max(start[0], *p.bounds) + MARGIN_D
-    orbits = sample_orbits(p["orbit.source"], "moon", level.bodies, first, last, p["orbit.step"])
+    level, extra = LEVELS[p.model.level], tuple(p.model.terms)
+    first, last = min(start[0], *p.span.bounds) - MARGIN_D, max(start[0], *p.span.bounds) + MARGIN_D
+    orbits = sample_orbits(p.orbit.source, "moon", level.bodies, first, last, p.orbit.step)
     pole = earth_pole(first, last) if "earth_j2" in level.terms + extra else None
-    built = moon(p["model.level"], orbits, extra, p["model.tides"], pole, float(start[0]))
-    built.meta["source"] = p["orbit.source"]
+    built = moon(p.model.level, orbits, extra, p.model.tides, pole, float(start[0]))
+    built.meta["source"] = p.orbit.source
     return built.with_start(*start)
