@@ -2,44 +2,48 @@
 
 The integrator that can resume (the RK8 driver, spinorbit.integrators.rk8) offers a :class:`Checkpoint` its
 outputs between compiled chunks (which end on outputs and depend only on their number, so a resumed run gives
-the same states as one never interrupted): they are written atomically (npz: ``outputs``, ``fingerprint``,
-``sha256`` of both) every ``every_s`` seconds of wall time, at the end, and when the run stops on an
-exception; a save that fails (a full disk, a name too long) is said in one line and the run goes on.
-``resume=True`` continues from the file if it is one spinorbit wrote for this run (validated like an input:
-owner, layout, hash, shape, finite values) and refuses anything else, or one written by a different run
-(settings, spinorbit's source, equations, start, output times, step or parameters), in one line.
+the same states as one never interrupted): they are saved every ``every_s`` seconds of wall time, at the end, and
+when the run stops on an exception; a save that fails (a full disk, a name too long) is said in one line and the
+run goes on.
 
-Edge module: the command line makes the Checkpoint (``<out>.checkpoint.npz``, beside the run
-directory, removed when the run is committed; ``rundir.RunDirectory.checkpoint``).
+A checkpoint is a file of the verified room (spinorbit.verified.write): the ``outputs`` beside the run's record
+(:func:`run_fingerprint`: the code's version, solutions.code_version, and what decides the states) and a sha256
+over all of them, written aside and renamed, so that a save interrupted half-way, even killed, leaves the last
+checkpoint whole (the next save removes what a killed one left).  ``resume=True`` continues from the file if it
+is one spinorbit wrote for this run: a regular file of this user (not a link), intact (verified.read_file), of
+this code's version and this run's record, its outputs float64 of the run's width and finite.  Anything else is
+refused in one line naming the file and what is accepted (a ScenarioError on ``--resume``), and left as it is:
+the room's caches delete a damaged file and make it again, but a checkpoint is input the user named
+(``<out>.checkpoint.npz`` beside ``--out``), so the user decides (a run without ``--resume`` starts afresh).
+
+No lock of its own: only a run that holds its run directory's lock (rundir: ``.<out>.lock``, taken without
+waiting, a second run on the same ``--out`` refused in one line) writes ``<out>.checkpoint*.npz``; and two writers
+could only rename whole files over each other, each a checkpoint its record describes.
+
+Edge module: the command line makes the Checkpoint (``rundir.RunDirectory.checkpoint``) and removes its files
+when the run is committed.
 """
 import hashlib
 import json
 import os
-import stat
 import sys
-import tempfile
-import zipfile
 from pathlib import Path
 
 import numpy as np
 
+from . import verified
 from .errors import ScenarioError
 from .files import open_regular
 from .linker import fingerprint, python_function
+from .solutions.store import code_version
 
 WHAT_DIFFERS = {"settings": "scenario settings", "source": "spinorbit source code", "rhs": "equations",
                 "start": "initial time or state", "output_times": "output times", "step": "step",
                 "parameters": "model parameters"}
-
-
 class Checkpoint:
     """Where a run keeps its checkpoint (``path``, npz), whether it resumes from it, and the run's
-    ``settings`` (anything JSON can write; part of the fingerprint).
-
-    A checkpoint is validated as input is: a regular file of this user, an npz spinorbit wrote
-    (``outputs``, ``fingerprint``, and ``sha256`` of the two), the fingerprint of this run, outputs of
-    float64 in the run's shape and finite.  Anything else is refused in one line, never resumed.
-    """
+    ``settings`` (anything JSON can write; part of the fingerprint).  A checkpoint is validated as input is
+    (the module's docstring) and anything else refused in one line, never resumed nor deleted."""
 
     def __init__(self, path, resume=False, settings=None, every_s=30.0):
         self.path, self.resume, self.settings, self.every_s = Path(path), resume, settings, every_s
@@ -60,7 +64,10 @@ class Checkpoint:
         if not self.resume or not os.path.lexists(self.path):
             return None
         stored, outputs = self._read()
-        differ = [text for name, text in WHAT_DIFFERS.items() if stored.get(name) != fingerprint[name]]
+        if stored["code"] != fingerprint["code"]:
+            self._refuse(f"a checkpoint of this code, spinorbit {fingerprint['code']} (it was written by spinorbit "
+                         f"{stored['code'][:40]})")
+        differ = [text for name, text in WHAT_DIFFERS.items() if stored[name] != fingerprint[name]]
         if differ:
             self._refuse(f"a checkpoint of this run (it was written by a run that differs in: "
                          f"{', '.join(differ)})")
@@ -71,20 +78,10 @@ class Checkpoint:
         return outputs
 
     def save(self, fingerprint, outputs):
-        """Write the outputs so far atomically (aside, synced, then renamed over the checkpoint)."""
-        outputs = np.ascontiguousarray(outputs, dtype=np.float64)
-        text = json.dumps(fingerprint, sort_keys=True)
-        handle, tmp = tempfile.mkstemp(prefix=f".{self.path.name}.tmp-", dir=self.path.parent)   # a new file
-        try:
-            with os.fdopen(handle, "wb") as f:
-                np.savez(f, outputs=outputs, fingerprint=text, sha256=_content_hash(text, outputs))
-                f.flush()
-                os.fsync(f.fileno())
-            os.replace(tmp, self.path)
-            self.written.add(self.path)
-        finally:
-            if os.path.lexists(tmp):
-                os.unlink(tmp)
+        """Write the outputs so far with ``fingerprint`` as their record (spinorbit.verified.write: aside, synced,
+        renamed over the checkpoint)."""
+        verified.write(self.path, {"outputs": np.ascontiguousarray(outputs, dtype=np.float64)}, fingerprint)
+        self.written.add(self.path)
 
     def fingerprint(self, rhs, params, t0, y0, t_out, step):
         """What decides a run's states (run_fingerprint), with this checkpoint's settings."""
@@ -107,53 +104,42 @@ class Checkpoint:
                 path.unlink()
 
     def _read(self):
-        """(fingerprint dict, outputs) of a checkpoint spinorbit wrote, or a one-line refusal."""
-        info = os.lstat(self.path)
-        if not stat.S_ISREG(info.st_mode):
-            self._refuse("a regular file (this is not one)")
-        if info.st_uid != os.geteuid():
-            self._refuse(f"a checkpoint of your own (it belongs to uid {info.st_uid})")
-        keys = ["fingerprint", "outputs", "sha256"]
+        """(record, outputs) of a checkpoint spinorbit wrote, or a one-line refusal."""
         try:
-            with open_regular(self.path) as f, np.load(f, allow_pickle=False) as data:
-                files = sorted(data.files)
-                content = [data[key] for key in keys] if files == keys else None
-        except (OSError, ValueError, EOFError, zipfile.BadZipFile) as exc:
-            reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-            self._refuse(f"a readable checkpoint ({reason})")
-        if content is None:
-            self._refuse(f"a checkpoint spinorbit wrote (it holds {files})")
-        text, outputs, digest = str(content[0]), content[1], str(content[2])
+            f = open_regular(self.path, follow_links=False)
+        except OSError as exc:
+            what = "a symbolic link" if self.path.is_symlink() else exc.strerror
+            self._refuse(f"a regular file you can read ({what})")
+        with f:
+            owner = os.fstat(f.fileno()).st_uid
+            if owner != os.geteuid():
+                self._refuse(f"a checkpoint of your own (it belongs to uid {owner})")
+            try:
+                entry = verified.read_file(f)
+            except (verified.Damaged, OSError) as exc:
+                self._refuse(f"an intact checkpoint spinorbit wrote ({exc})")
+        outputs, record = entry.arrays.get("outputs"), entry.record
+        if set(entry.arrays) != {"outputs"}:
+            self._refuse(f"a checkpoint holding the outputs alone (it holds {sorted(entry.arrays)})")
         if outputs.dtype != np.float64 or outputs.ndim != 2 or not outputs.shape[0]:
             self._refuse(f"outputs of float64 states, one row per output (it holds {outputs.dtype} "
                          f"{outputs.shape})")
-        if digest != _content_hash(text, outputs):
-            self._refuse("a checkpoint as spinorbit wrote it (its content does not match its sha256: edited "
-                         "or damaged)")
         if not np.isfinite(outputs).all():
             self._refuse("finite states (it holds NaN or inf)")
-        try:
-            stored = json.loads(text)
-        except ValueError:
-            stored = None
-        if not (isinstance(stored, dict) and all(isinstance(stored.get(name), str) for name in WHAT_DIFFERS)):
-            self._refuse("a checkpoint whose fingerprint names every part of the run")
-        return stored, outputs
+        if not all(isinstance(record.get(name), str) for name in ("code", *WHAT_DIFFERS)):
+            self._refuse("a checkpoint whose record names the code's version and every part of the run")
+        return record, outputs
 
     def _refuse(self, accepted):
         raise ScenarioError("--resume", str(self.path), f"{accepted}; run without --resume to start afresh")
 
 
-def _content_hash(fingerprint_text, outputs):
-    """sha256 of a checkpoint's content: its fingerprint and its outputs (shape and bytes)."""
-    return _sha(fingerprint_text.encode(), str(outputs.shape).encode(),
-                np.ascontiguousarray(outputs).tobytes())
-
-
 def run_fingerprint(rhs, params, t0, y0, t_out, step, checkpoint):
-    """{part: sha256 hex} of what decides a run's states (WHAT_DIFFERS names the parts)."""
+    """{part: sha256 hex} of what decides a run's states (WHAT_DIFFERS names the parts), the code's version
+    (``code``) and the outputs' shape."""
     settings = None if checkpoint is None else checkpoint.settings
-    return {"settings": _sha(json.dumps(settings, sort_keys=True, default=str).encode()),
+    return {"code": code_version(),
+            "settings": _sha(json.dumps(settings, sort_keys=True, default=str).encode()),
             "source": fingerprint(rhs),
             "rhs": _sha(f"{python_function(rhs).__module__}.{python_function(rhs).__qualname__}".encode()),
             "start": _sha(np.float64(t0).tobytes(), y0.tobytes()),

@@ -48,7 +48,7 @@ from .files import open_regular
 
 MANIFEST = ".spinorbit-manifest.json"
 MAX_MANIFEST_BYTES = 64 << 20
-BESIDE_CHARS = 64              # the longest sibling's additions (.<name>.checkpoint-<part>.npz.tmp-...)
+BESIDE_CHARS = 72              # the longest sibling's additions (.<name>.checkpoint-<part>.npz.tmp-<pid>-<8>)
 KINDS = {stat.S_IFREG: "file", stat.S_IFDIR: "folder", stat.S_IFLNK: "symbolic link", stat.S_IFIFO: "FIFO",
          stat.S_IFSOCK: "socket", stat.S_IFCHR: "device", stat.S_IFBLK: "device"}
 
@@ -279,7 +279,7 @@ class RunDirectory:
         """Finish or undo what a killed run left (we hold the lock, so its writer is gone)."""
         parent, name = self.out.parent, self.out.name
         pattern = re.compile(rf"\.{re.escape(name)}\.(new|old)-\d+(-[0-9a-f]{{8}})?")
-        tmp = re.compile(rf"\.{re.escape(self.checkpoint.stem)}(-\w+)?\.npz\.tmp-\w+")
+        tmp = re.compile(rf"\.{re.escape(self.checkpoint.stem)}(-\w+)?\.npz\.tmp-\d+-\w+")   # verified.write's
         left = {"new": [], "old": []}
         with os.scandir(parent) as entries:
             for entry in entries:

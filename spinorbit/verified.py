@@ -16,10 +16,13 @@ Every cache of numbers spinorbit keeps on disk goes through these few calls, so 
   ``path`` killed before their rename left (``remove_leftovers``).
 - ``read(path, record=None)``: :class:`Entry` (arrays, record, meta), or None when there is no file.
   :class:`Damaged` (its one-line reason) when the file itself is bad: not a regular file, not an npz this room
-  wrote (read with ``allow_pickle=False``: nothing in it runs), an array missing or added, its content not its
-  sha256, or another ``record`` than the one asked for (the differing keys named).  The caller deletes it
+  wrote (read with ``allow_pickle=False``: nothing in it runs; a zip member compressed, encrypted or of a
+  later zip version is refused too), an array missing or added, its content not its sha256, a record that is not
+  a JSON object, or another ``record`` than the one asked for (the differing keys named).  The caller deletes it
   (:func:`discard`) and makes it again.  An OSError that says nothing about the file (EIO, EMFILE, EACCES) is
   raised as it is: the caller answers without the cache, and never deletes the file for it.
+  ``read_file(f, record=None)`` checks a file its caller opened (a file the user named, whose owner the caller
+  checks first: spinorbit.checkpoint) by the same rules.
 - ``peek(path, names)``: some arrays read without the hash checked (a listing; a span compared), None if
   unreadable.
 - ``lock(path, wait_s=None, repair=True)``: the exclusive lock of ``path`` (``<name>.lock`` beside it, a regular
@@ -121,29 +124,48 @@ def write(path, arrays, record, meta=None):
     remove_leftovers(path)
 
 
-# what a reader raises for a file that is not an npz (zipfile, zlib) or not one of ours (numpy: ValueError)
-_BAD_FORMAT = (ValueError, KeyError, EOFError, zipfile.BadZipFile, zlib.error, NotRegular, IsADirectoryError)
+# what a reader raises for a file that is not an npz (zipfile, zlib; a member compressed in a way it lacks, or of a
+# later zip version: NotImplementedError; flagged encrypted: RuntimeError) or not one of ours (numpy: ValueError)
+_BAD_FORMAT = (ValueError, KeyError, EOFError, zipfile.BadZipFile, zlib.error, NotImplementedError, RuntimeError,
+               NotRegular, IsADirectoryError)
 
 
 def read(path, record=None):
     """The :class:`Entry` at ``path``, None when there is none; Damaged (one line) when the file is bad or was made
     with another ``record`` (when one is given); any other OSError raised as it is."""
     try:
-        with open_regular(path) as f, np.load(f, allow_pickle=False) as data:
-            held = {name: data[name] for name in data.files}
+        f = open_regular(path)
     except FileNotFoundError:
         return None
     except _BAD_FORMAT as exc:
-        raise Damaged(f"not a file this cache wrote ({type(exc).__name__}: {_first_line(exc)})") from None
+        raise _not_ours(exc) from None
+    with f:
+        return read_file(f, record)
+
+
+def _not_ours(exc):
+    return Damaged(f"not a file spinorbit wrote ({type(exc).__name__}: {_first_line(exc)})")
+
+
+def read_file(f, record=None):
+    """The :class:`Entry` an open binary file holds, checked as :func:`read` checks a path's (for a file its caller
+    opened itself: one the user named, its owner checked)."""
+    try:
+        with np.load(f, allow_pickle=False) as data:
+            held = {name: data[name] for name in data.files}
+    except _BAD_FORMAT as exc:
+        raise _not_ours(exc) from None
     stored_hash = held.pop("sha256", None)
     if stored_hash is None or not set(RESERVED[:2]) <= set(held) or held.get("room_format") != FORMAT:
-        raise Damaged(f"not a file this cache wrote (it holds {sorted(held)})")
+        raise Damaged(f"not a file spinorbit wrote (it holds {sorted(held)})")
     if arrays_hash(held) != str(stored_hash):
         raise Damaged("its arrays do not match their hash (sha256: damaged or edited)")
     try:
         stored, meta = json.loads(str(held.pop("record"))), json.loads(str(held.pop("meta")))
     except ValueError as exc:
         raise Damaged(f"its record is not JSON ({exc})") from None
+    if not (isinstance(stored, dict) and isinstance(meta, dict)):
+        raise Damaged("its record or meta is not a JSON object")
     held.pop("room_format")
     if record is not None:
         expected = json.loads(json.dumps(record, sort_keys=True))

@@ -3,13 +3,19 @@ of one that was not, bit for bit; a checkpoint of another run is refused."""
 import dataclasses
 import errno
 import json
+import os
+import signal
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from spinorbit import checkpoint as checkpoints
+from spinorbit import verified
 from spinorbit.bodies import earth
-from spinorbit.checkpoint import Checkpoint, _content_hash, run_fingerprint
+from spinorbit.checkpoint import Checkpoint, run_fingerprint
 from spinorbit.cli import main
 from spinorbit.errors import ScenarioError
 from spinorbit.integrators import rk8, simulate
@@ -90,8 +96,7 @@ def test_interrupted_run_resumes_bit_identical(system, reference, tmp_path, monk
         interrupt_after(patch, k)
         with pytest.raises(RuntimeError, match="injected"):
             run(system, Checkpoint(tmp_path / "run.npz", every_s=every_s))
-    with np.load(tmp_path / "run.npz") as saved:
-        assert saved["outputs"].shape == (k, system.y0.size)
+    assert verified.read(tmp_path / "run.npz").arrays["outputs"].shape == (k, system.y0.size)
     made = interrupt_after(monkeypatch, None)
     states = run(system, Checkpoint(tmp_path / "run.npz", resume=True))
     assert sum(made) == T_OUT.size - k                   # only the outputs the checkpoint lacked
@@ -114,7 +119,7 @@ def test_checkpoint_of_another_run_is_refused(system, tmp_path, change, named):
 
 def test_unreadable_checkpoint_is_refused(system, tmp_path):
     (tmp_path / "run.npz").write_bytes(b"not a checkpoint")
-    with pytest.raises(ScenarioError, match="--resume: .*a readable checkpoint"):
+    with pytest.raises(ScenarioError, match="--resume: .*an intact checkpoint spinorbit wrote"):
         run(system, Checkpoint(tmp_path / "run.npz", True), T_OUT[:3])
 
 
@@ -153,10 +158,10 @@ def test_resume_with_no_checkpoint_says_so(tmp_path, capsys):
 # --- issue 27: a checkpoint is validated like input, and a failing save never loses a finished run ---
 
 def saved_checkpoint(system, path):
-    """A real checkpoint of the first 3 outputs: (fingerprint, outputs) as stored."""
+    """A real checkpoint of the first 3 outputs: (record, outputs) as stored."""
     run(system, Checkpoint(path, every_s=0.0), T_OUT[:3])
-    with np.load(path) as data:
-        return str(data["fingerprint"]), data["outputs"], str(data["sha256"])
+    entry = verified.read(path)
+    return entry.record, entry.arrays["outputs"]
 
 
 def rewrite(path, **arrays):
@@ -164,32 +169,42 @@ def rewrite(path, **arrays):
         np.savez(f, **arrays)
 
 
-def damage(kind, path, fingerprint, outputs, digest):
+def rewrite_hashed(path, outputs, record_text):
+    """The room's layout with a hash that matches, around a record of any text."""
+    held = {"outputs": outputs, "record": np.array(record_text), "meta": np.array("{}"),
+            "room_format": np.array(verified.FORMAT)}
+    rewrite(path, sha256=np.array(verified.arrays_hash(held)), **held)
+
+
+def damage(kind, path, record, outputs):
     if kind == "zero bytes":
         path.write_bytes(b"")
     elif kind == "truncated":
         path.write_bytes(path.read_bytes()[:200])
     elif kind == "integers":
-        ints = outputs.astype(np.int64)
-        rewrite(path, outputs=ints, fingerprint=fingerprint, sha256=_content_hash(fingerprint, ints))
+        verified.write(path, {"outputs": outputs.astype(np.int64)}, record)
     elif kind == "wrong shape":
-        wide = np.hstack([outputs, outputs])
-        rewrite(path, outputs=wide, fingerprint=fingerprint, sha256=_content_hash(fingerprint, wide))
+        verified.write(path, {"outputs": np.hstack([outputs, outputs])}, record)
     elif kind == "edited states":
         edited = outputs.copy()
         edited[1, 8] += 1.0                      # the Moon's position, 1 km: a valid npz, hash unchanged
-        rewrite(path, outputs=edited, fingerprint=fingerprint, sha256=digest)
+        with np.load(path) as data:
+            held = {name: data[name] for name in data.files}
+        rewrite(path, **{**held, "outputs": edited})
     elif kind == "NaN rows":
         nan = outputs.copy()
         nan[1:] = np.nan
-        rewrite(path, outputs=nan, fingerprint=fingerprint, sha256=_content_hash(fingerprint, nan))
-    elif kind == "malformed fingerprint":
-        rewrite(path, outputs=outputs, fingerprint="[1, 2", sha256=_content_hash("[1, 2", outputs))
-    elif kind == "fingerprint missing a part":
-        partial = json.dumps({k: v for k, v in json.loads(fingerprint).items() if k != "rhs"})
-        rewrite(path, outputs=outputs, fingerprint=partial, sha256=_content_hash(partial, outputs))
+        verified.write(path, {"outputs": nan}, record)
+    elif kind == "malformed record":
+        rewrite_hashed(path, outputs, "[1, 2")
+    elif kind == "record not an object":
+        rewrite_hashed(path, outputs, "[1, 2]")
+    elif kind == "record missing a part":
+        verified.write(path, {"outputs": outputs}, {k: v for k, v in record.items() if k != "rhs"})
+    elif kind == "another array":
+        verified.write(path, {"outputs": outputs, "extra": outputs}, record)
     elif kind == "written without a hash":
-        rewrite(path, outputs=outputs, fingerprint=fingerprint)
+        rewrite(path, outputs=outputs, record=json.dumps(record))
     elif kind == "a link":
         target = path.with_name("elsewhere.npz")
         path.rename(target)
@@ -197,11 +212,12 @@ def damage(kind, path, fingerprint, outputs, digest):
 
 
 @pytest.mark.parametrize("kind, says", [
-    ("zero bytes", "a readable checkpoint"), ("truncated", "a readable checkpoint"),
+    ("zero bytes", "an intact checkpoint"), ("truncated", "an intact checkpoint"),
     ("integers", "float64"), ("wrong shape", "of 20 states (it holds (3, 40))"),
-    ("edited states", "does not match its sha256"),
-    ("NaN rows", "finite states"), ("malformed fingerprint", "fingerprint"),
-    ("fingerprint missing a part", "fingerprint"), ("written without a hash", "a checkpoint spinorbit wrote"),
+    ("edited states", "do not match their hash"),
+    ("NaN rows", "finite states"), ("malformed record", "record is not JSON"),
+    ("record not an object", "not a JSON object"), ("record missing a part", "every part of the run"),
+    ("another array", "the outputs alone"), ("written without a hash", "not a file spinorbit wrote"),
     ("a link", "a regular file"),
 ])
 def test_a_bad_checkpoint_is_refused_in_one_line_and_never_resumed(system, tmp_path, kind, says):
@@ -212,6 +228,82 @@ def test_a_bad_checkpoint_is_refused_in_one_line_and_never_resumed(system, tmp_p
     message = str(info.value)
     assert message.startswith(f"--resume: got '{path}'") and says in message and "\n" not in message, message
     assert message.endswith("run without --resume to start afresh")
+    assert os.path.lexists(path)                 # refused, not remade: the user named it
+
+
+def test_every_byte_damaged_is_refused_in_one_line_or_resumes_the_outputs_written(system, tmp_path):
+    """Each byte of a real checkpoint flipped in turn (zip and npy headers, record, hash, states): a resume refuses
+    it in one line naming the file, or (a byte nothing reads, e.g. a zip timestamp) takes the very outputs written.
+    Reference: the outputs written, byte for byte."""
+    path = tmp_path / "run.npz"
+    record, outputs = saved_checkpoint(system, path)
+    good, refused = path.read_bytes(), 0
+    for i in range(len(good)):
+        path.write_bytes(good[:i] + bytes([good[i] ^ 0xFF]) + good[i + 1:])
+        try:
+            resumed = Checkpoint(path, resume=True).load(record)
+        except ScenarioError as exc:
+            message, refused = str(exc), refused + 1
+            assert message.startswith(f"--resume: got '{path}'") and "\n" not in message, (i, message)
+        else:
+            assert resumed.tobytes() == outputs.tobytes(), i
+    assert refused > 0.8 * len(good)
+
+
+def test_a_checkpoint_of_other_code_is_refused_in_one_line(system, tmp_path, monkeypatch):
+    """Written by another spinorbit (another release, or edited sources): its states came from other code, so it
+    is not resumed.  Reference: this code's version (solutions.code_version)."""
+    from spinorbit.solutions.store import code_version
+
+    path = tmp_path / "run.npz"
+    with monkeypatch.context() as patch:
+        patch.setattr(checkpoints, "code_version", lambda: "0.0.9+0123456789abcdef")
+        run(system, Checkpoint(path, every_s=0.0), T_OUT[:3])
+    with pytest.raises(ScenarioError) as info:
+        run(system, Checkpoint(path, resume=True), T_OUT[:3])
+    message = str(info.value)
+    assert message.startswith(f"--resume: got '{path}'") and "\n" not in message
+    assert message.endswith(f"expected a checkpoint of this code, spinorbit {code_version()} (it was written by "
+                            "spinorbit 0.0.9+0123456789abcdef); run without --resume to start afresh")
+
+
+KILLED_SAVE = """
+import json, os, signal, sys
+import numpy as np
+from spinorbit.checkpoint import Checkpoint
+
+def killed(f, **arrays):
+    f.write(b"PK\\x03\\x04" + bytes(64))
+    f.flush()
+    os.kill(os.getpid(), signal.SIGKILL)
+
+np.savez = killed
+Checkpoint(sys.argv[1]).save(json.loads(sys.argv[2]), np.zeros((6, 20)))
+"""
+
+
+def test_a_save_interrupted_half_way_leaves_the_last_checkpoint(system, tmp_path, monkeypatch):
+    """A save stopped inside its write (Ctrl-C; the process killed) leaves the last checkpoint whole, and it
+    resumes; the next save removes what the killed one left.  Reference: the outputs of the last save."""
+    path = tmp_path / "run.npz"
+    record, outputs = saved_checkpoint(system, path)
+
+    def half(f, **arrays):
+        f.write(b"PK\x03\x04" + bytes(64))
+        raise KeyboardInterrupt
+    with monkeypatch.context() as patch:
+        patch.setattr(np, "savez", half)
+        with pytest.raises(KeyboardInterrupt):
+            Checkpoint(path).save(record, np.vstack([outputs, outputs]))
+    assert sorted(os.listdir(tmp_path)) == ["run.npz"]
+    killed = subprocess.run([sys.executable, "-c", KILLED_SAVE, str(path), json.dumps(record)], timeout=120,
+                            env={**os.environ, "PYTHONPATH": str(Path(__file__).parents[1])})
+    assert killed.returncode == -signal.SIGKILL
+    (left,) = set(os.listdir(tmp_path)) - {"run.npz"}
+    assert left.startswith(".run.npz.tmp-")              # the killed save's half
+    assert Checkpoint(path, resume=True).load(record).tobytes() == outputs.tobytes()
+    Checkpoint(path).save(record, np.vstack([outputs, outputs]))
+    assert sorted(os.listdir(tmp_path)) == ["run.npz"]
 
 
 @needs_root
@@ -262,10 +354,10 @@ def test_an_edited_checkpoint_through_the_command_line(tmp_path, capsys, monkeyp
         interrupt_after(patch, 6, KeyboardInterrupt)
         assert main(["--quiet", "run", str(SCENE), *SHORT, "--out", str(out)]) == 130
     path = tmp_path / "run.checkpoint.npz"
-    with np.load(path) as data:
-        fingerprint, outputs = str(data["fingerprint"]), data["outputs"].copy()
+    entry = verified.read(path)
+    outputs = entry.arrays["outputs"].copy()
     outputs[-1] = np.nan
-    rewrite(path, outputs=outputs, fingerprint=fingerprint, sha256=_content_hash(fingerprint, outputs))
+    verified.write(path, {"outputs": outputs}, entry.record)
     capsys.readouterr()
     assert main(["--quiet", "run", str(SCENE), *SHORT, "--out", str(out), "--resume"]) == 2
     err = capsys.readouterr().err.strip().splitlines()

@@ -62,6 +62,29 @@ def test_a_damaged_file_is_refused_in_one_line(written, damage):
     assert "\n" not in str(info.value)
 
 
+@pytest.mark.parametrize("field, offset, value", [("version needed", 6, 0xFF), ("flags: encrypted", 8, 0x01),
+                                                  ("compression method", 10, 0xFF)])
+def test_a_zip_member_the_room_never_writes_is_refused_in_one_line(written, field, offset, value):
+    """A field of the first member's central-directory entry (PKWARE APPNOTE 4.3.12) set to what numpy's savez
+    never writes: zipfile raises NotImplementedError or RuntimeError, refused as Damaged like any other."""
+    path, _ = written
+    data = bytearray(path.read_bytes())
+    data[data.index(b"PK\x01\x02") + offset] = value
+    path.write_bytes(bytes(data))
+    with pytest.raises(verified.Damaged, match="not a file spinorbit wrote") as info:
+        verified.read(path, RECORD)
+    assert "\n" not in str(info.value), field
+
+
+def test_a_record_that_is_not_an_object_is_refused(written):
+    path, arrays = written
+    held = {**arrays, "record": np.array("[1, 2]"), "meta": np.array("{}"), "room_format": np.array(verified.FORMAT)}
+    with open(path, "wb") as f:
+        np.savez(f, sha256=np.array(verified.arrays_hash(held)), **held)
+    with pytest.raises(verified.Damaged, match="not a JSON object"):
+        verified.read(path, RECORD)
+
+
 def test_another_record_is_refused_naming_what_differs(written):
     path, _ = written
     with pytest.raises(verified.Damaged, match="another code"):
