@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from spinorbit import plots
+from spinorbit.plots import common, deep_time, moon, solar_system
 from spinorbit.reports import verdict_markdown
 
 
@@ -28,7 +28,7 @@ def test_monthly_means_leave_out_the_month_the_span_cuts():
     days = np.arange(0.0, 3 * month + 1.0, 0.5)                 # three whole months and one day of a fourth
     years = 2000.0 + days / 365.25
     y = np.where(days >= 3 * month, -176.0, 1.0)                 # the cut month's lone samples: far off
-    middles, means = plots.monthly_means(years, y)
+    middles, means = moon.monthly_means(years, y)
     assert len(middles) == 3 and np.allclose(means, 1.0)          # the three whole months, each mean exact
     assert middles[-1] < 2000.0 + 3 * month / 365.25
 
@@ -42,7 +42,7 @@ def test_the_lunar_residuals_label_the_pole_an_unsigned_angle_and_the_longitude_
                     "pole_error": np.abs(np.sin(t / 100)) * 1e-3 * u.arcsec,
                     "longitude_error": np.sin(t / 50) * 1e-4 * u.arcsec})
     zoom = t > 700
-    figures = plots.moon_libration(t, table, [], [], zoom, {"tau": np.zeros(zoom.sum()), "rho": np.zeros(zoom.sum())})
+    figures = moon.moon_libration(t, table, [], [], zoom, {"tau": np.zeros(zoom.sum()), "rho": np.zeros(zoom.sum())})
     pole_axis, longitude_axis = drawn(figures["residuals_vs_de421"]).axes
     assert pole_axis.get_ylabel() == "pole: |model, DE421| [arcsec]"
     assert np.all(pole_axis.lines[0].get_ydata() >= 0)           # the angle between two poles: never negative
@@ -52,7 +52,7 @@ def test_the_lunar_residuals_label_the_pole_an_unsigned_angle_and_the_longitude_
 
 def test_panel_legends_sit_above_their_panel_off_the_curves():
     x = np.linspace(0.0, 1.0, 50)
-    fig = drawn(plots.plot_panels(x, [([x, x ** 2], ["model", "IAU 2000A"], "Δψ [arcsec]")] * 3, "year"))
+    fig = drawn(common.plot_panels(x, [([x, x ** 2], ["model", "IAU 2000A"], "Δψ [arcsec]")] * 3, "year"))
     for ax in fig.axes:
         assert ax.get_legend().get_window_extent().y0 >= ax.get_window_extent().y1 - 1.0
 
@@ -60,7 +60,7 @@ def test_panel_legends_sit_above_their_panel_off_the_curves():
 def test_the_moon_against_de421_gives_each_quantity_its_own_panel_and_sign():
     year = np.linspace(1950.0, 2050.0, 101)
     direction, pole, longitude = np.full(101, 0.08), np.full(101, 0.002), np.linspace(-0.07, 0.07, 101)
-    axes = drawn(plots.moon_vs_de421(year, direction, pole, longitude, "arcsec")).axes
+    axes = drawn(solar_system.moon_vs_de421(year, direction, pole, longitude, "arcsec")).axes
     assert [ax.get_ylabel() for ax in axes] == ["Moon direction [arcsec]", "lunar pole [arcsec]",
                                                 "libration longitude [arcsec]"]
     assert [ax.lines[0].get_ydata()[50] for ax in axes] == [0.08, 0.002, 0.0]
@@ -69,7 +69,7 @@ def test_the_moon_against_de421_gives_each_quantity_its_own_panel_and_sign():
 
 def test_the_planets_against_de421_are_on_a_log_axis():
     year = np.linspace(1950.0, 2050.0, 11)
-    ax = drawn(plots.planets_vs_de421(year, {"mercury": np.full(11, 0.7), "mars": np.full(11, 69.0)})).axes[0]
+    ax = drawn(solar_system.planets_vs_de421(year, {"mercury": np.full(11, 0.7), "mars": np.full(11, 69.0)})).axes[0]
     assert ax.get_yscale() == "log" and ax.get_ylim()[0] == 1e-3 and ax.get_ylim()[1] > 69.0
     assert [line.get_ydata()[0] for line in ax.lines] == [0.7, 69.0]
     highest = ax.transData.transform((year[0], 69.0))[1]
@@ -80,7 +80,7 @@ def test_deep_time_draws_model_minus_la2004_beneath_each_overlay():
     t = -np.arange(0.0, 1001.0)
     model = {"obliquity_deg": 23.4 + 0.5 * np.sin(t / 41), "climatic_precession": 0.02 * np.sin(t / 23)}
     la2004 = {"obliquity_deg": model["obliquity_deg"] + 1e-3, "climatic_precession": model["climatic_precession"]}
-    axes = drawn(plots.deep_time(t, model, la2004, "La2004")).axes
+    axes = drawn(deep_time.deep_time(t, model, la2004, "La2004")).axes
     assert axes[1].get_ylabel() == "obliquity: model − La2004 [deg]"
     assert np.allclose(axes[1].lines[0].get_ydata(), -1e-3)      # the difference drawn is model minus La2004
     assert axes[3].get_ylabel() == "e sin(ϖ̄): model − La2004"
@@ -90,7 +90,7 @@ def test_the_spectra_name_the_periods_above_the_plots_all_inside_the_axis():
     t = -np.arange(0.0, 1001.0)
     series = {"obliquity_deg": np.sin(2 * np.pi * t / 41), "climatic_precession": np.sin(2 * np.pi * t / 23),
               "eccentricity": np.sin(2 * np.pi * t / 405)}
-    fig = drawn(plots.deep_time_spectra(t, series, series, "La2004"))
+    fig = drawn(deep_time.deep_time_spectra(t, series, series, "La2004"))
     top = fig.axes[0].child_axes[0]
     labels = {tick.get_text(): tick.get_position()[0] for tick in top.get_xticklabels()}
     assert set(labels) == {"41", "23", "19", "100", "405"}

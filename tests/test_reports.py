@@ -12,7 +12,7 @@ import pytest
 from astropy.table import QTable
 from astropy.time import Time
 
-from spinorbit import plots
+from spinorbit.plots import common
 from spinorbit.reports import painter, write_ecsv
 
 AWKWARD = [0.0, -0.0, 1e-300, 1e-5, 0.1, 1 / 3, 123456789.123, 1e16, -2.5e-7, np.nan, np.inf, -np.inf]
@@ -49,14 +49,14 @@ def test_ecsv_other_columns_are_astropys(tmp_path):
 
 
 def test_thinned_keeps_every_pixel_column_extremes():
-    """Each of plots.COLUMNS intervals of x keeps its lowest and highest point (the line covers the same
+    """Each of common.COLUMNS intervals of x keeps its lowest and highest point (the line covers the same
     pixels), and the ends; a long oscillating series shrinks to at most 2 points per interval."""
     x = np.linspace(1900.0, 2050.0, 27393)
     y = np.sin(x * 2 * np.pi * 13.4) * 200 + np.random.default_rng(1).normal(size=x.size)
-    xt, yt = plots.thinned(x, y)
-    assert xt.size <= 2 * plots.COLUMNS + 2 and (xt[0], xt[-1]) == (x[0], x[-1])
+    xt, yt = common.thinned(x, y)
+    assert xt.size <= 2 * common.COLUMNS + 2 and (xt[0], xt[-1]) == (x[0], x[-1])
     assert np.all(np.diff(xt) > 0)
-    edges = np.linspace(x[0], x[-1], plots.COLUMNS + 1)
+    edges = np.linspace(x[0], x[-1], common.COLUMNS + 1)
     for lo, hi in zip(edges[:-1:97], edges[1::97]):      # every 97th interval
         inside, kept = (x >= lo) & (x < hi), (xt >= lo) & (xt < hi)
         assert yt[kept].min() == y[inside].min() and yt[kept].max() == y[inside].max()
@@ -64,9 +64,9 @@ def test_thinned_keeps_every_pixel_column_extremes():
 
 def test_painter_draws_what_it_is_sent(tmp_path):
     """The child forked before the run draws the (pickled) figures into the run directory, at their
-    own size (plots.plot_panels: 1 + 2.2 in a panel, 110 dpi) and with their own title."""
+    own size (common.plot_panels: 1 + 2.2 in a panel, 110 dpi) and with their own title."""
     x = np.arange(10.0)
-    figures = {"panels": plots.titled(plots.plot_panels(x, [([x], ["a"], "y")] * 3, "x"), "three panels")}
+    figures = {"panels": common.titled(common.plot_panels(x, [([x], ["a"], "y")] * 3, "x"), "three panels")}
     with painter() as paint:
         if paint is None:
             pytest.skip("no fork on this platform")

@@ -25,7 +25,8 @@ def lyapunov_map(p, planar, period):
 
 
 def compare_run(p, run):
-    from .. import plots
+    from ..plots.common import plot_series
+    from ..plots.lyapunov import plot_lyapunov_map
 
     moments = p.body.moments
     gamma = (moments[1] - moments[0]) / moments[2]
@@ -83,8 +84,8 @@ def compare_run(p, run):
     details = {"map": {"theta_minus_f_rad": theta, "rate_over_n": rate, "exponent_per_T": exponent},
                "method": "Benettin et al. (1980): two trajectories, renormalised to d0 every orbital period"}
     shown = min(regular.size, long_run.shape[0])
-    figures = {"lyapunov_map": plots.plot_lyapunov_map(theta, rate, exponent, chaotic_min),
-               "lyapunov_running": plots.plot_series(
+    figures = {"lyapunov_map": plot_lyapunov_map(theta, rate, exponent, chaotic_min),
+               "lyapunov_running": plot_series(
                    np.arange(1, shown + 1), [regular[:shown], long_run[:shown, 0]], "orbital periods",
                    "running exponent [1/T]", ["regular (small (B-A)/C)", "Hyperion nominal"], logy=True)}
     sections = {"details": details, "run": {"method": "rk8,dop853"}}

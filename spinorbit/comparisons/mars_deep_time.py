@@ -91,7 +91,7 @@ DIFFERENCES = ("eccentricity_max", "obliquity_max_deg", "climatic_precession_vec
 
 def figure(q, la2004):
     """Mars's obliquity and climatic precession beside La2004 Mars's, where La2004 Mars reaches."""
-    from ..plots import deep_time
+    from ..plots.deep_time import deep_time
 
     size = len(la2004["t_kyr"])
     ours = {"obliquity_deg": np.degrees(q["obliquity"][:size]), "climatic_precession": q["climatic_precession"][:size]}
@@ -111,7 +111,7 @@ def band(tables):
 
 def band_figure(tables):
     """The members' obliquity band beside La2004 Mars (where it reaches)."""
-    from ..plots import obliquity_band
+    from ..plots.deep_time import obliquity_band
     from ..references import laskar
 
     t_kyr, low, high, first = band(tables)

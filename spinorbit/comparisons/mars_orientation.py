@@ -288,7 +288,7 @@ def answer_table(t, poles, w):
 
 def figures(t, poles, columns, separation):
     """The pole beside IAU 2015's, and the nutation beside the rigid series."""
-    from ..plots import plot_panels
+    from ..plots.common import plot_panels
 
     years = 2000.0 + t / JULIAN_YEAR_D
     iau = mars_iau2015.pole(t)

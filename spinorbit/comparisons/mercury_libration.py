@@ -8,7 +8,7 @@ import numpy as np
 from ..analysis.planar_spin_orbit import theta_from_quaternions
 from ..analysis.spans import refusals, resolvable
 from ..constants import ARCSEC
-from ..plots import plot_series
+from ..plots.common import plot_series
 from ..scene import Outcome
 
 MARGOT_2007_ARCSEC = (35.8, 2.0)

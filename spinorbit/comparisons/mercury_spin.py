@@ -33,7 +33,7 @@ from ..analysis import cassini
 from ..analysis import resonant_spin as rs
 from ..bodies import mercury
 from ..constants import ARCSEC
-from ..plots import plot_series
+from ..plots.common import plot_series
 from ..scene import Outcome
 from ..verdict import Check, Verdict
 
@@ -111,8 +111,6 @@ def outcome(t, q, context, rows):
     """The scene's Outcome: metrics, the table's columns, the figures, the precession table."""
     import astropy.units as u
 
-    from .. import plots
-
     m = measured(t, q, context)
     comparison = metrics(m, context)
     if rows:
@@ -134,7 +132,7 @@ def outcome(t, q, context, rows):
     }
     if rows:
         scales = np.array([r["scale"] for r in rows])
-        figures["obliquity_vs_precession"] = plots.plot_series(
+        figures["obliquity_vs_precession"] = plot_series(
             scales, [[r["obliquity_arcmin"] for r in rows], [r["obliquity_peale_arcmin"] for r in rows]],
             "node precession (x the orbit's own)", "obliquity [arcmin]", ["settled, integrated", "Peale's equation"])
     columns = {"spin_obliquity": obliquity * u.arcmin, "libration": m["gamma"] / ARCSEC * u.arcsec}

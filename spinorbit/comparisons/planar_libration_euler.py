@@ -7,7 +7,7 @@ import numpy as np
 
 from ..analysis.planar_libration import crossing_times, zeta_from_solution
 from ..constants import ARCSEC
-from ..plots import plot_series
+from ..plots.common import plot_series
 from ..scene import Outcome
 
 

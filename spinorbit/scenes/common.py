@@ -1,4 +1,4 @@
-"""Pieces scene modules share: a rigid body from its moments, its time-scales, plots (spinorbit.plots)."""
+"""Pieces scene modules share: a rigid body from its moments, its time-scales, plots (spinorbit.plots.common)."""
 import math
 from dataclasses import fields
 
@@ -6,7 +6,7 @@ import numpy as np
 
 from ..bodies import RigidBody
 from ..errors import PhysicsError, ScenarioError
-from ..plots import plot_series  # scenes call common.plot_series
+from ..plots.common import plot_series  # scenes call common.plot_series
 from ..scene import TimeScale
 
 

@@ -88,8 +88,8 @@ def build(p, times):
 def compare_run(p, run):
     from ..comparisons import earth_deep_time as compare
     from ..comparisons import earth_deep_time_table as table
-    from ..plots import deep_time as deep_time_plot
-    from ..plots import deep_time_spectra
+    from ..plots.deep_time import deep_time as deep_time_plot
+    from ..plots.deep_time import deep_time_spectra
 
     t, spin, orbit = run.times, run.model.spin, run.model.orbit
     q = table.quantities(t, run.solution.y, spin)

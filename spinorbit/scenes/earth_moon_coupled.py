@@ -21,7 +21,7 @@ import numpy as np
 from ..errors import ScenarioError
 from ..models.assemblies.earth_moon import EXTERNAL, PLANETS, SWITCHES
 from ..params import Params, key, table
-from ..plots import moon_vs_de421
+from ..plots.solar_system import moon_vs_de421
 from ..scene import Cost, Model, Outcome, Scene
 from ..verdict import Check, Verdict
 from . import common

@@ -168,7 +168,7 @@ def compare_run(p, run):
     from ..comparisons import earth_moon_history as compare
     from ..comparisons import earth_moon_history_figures as figures
     from ..comparisons import earth_moon_history_table as table
-    from ..plots import earth_moon_history, milankovitch_periods
+    from ..plots.history import earth_moon_history, milankovitch_periods
     from ..references.lunar_proxies import provenance
     from ..starts import earth_moon_history as model
 
@@ -199,7 +199,7 @@ def sweep_figures(tables):
     """A sweep's members as a band (spinorbit sweep: e.g. tides.recession_rate over LLR's +-1 sigma) on the
     distance and length of day with the proxies, and on the precession constant and periods."""
     from ..comparisons import earth_moon_history_figures as figures
-    from ..plots import earth_moon_history, milankovitch_periods
+    from ..plots.history import earth_moon_history, milankovitch_periods
 
     spread, (ages, first) = figures.band(tables)
     label = {"first member": first["member"]}

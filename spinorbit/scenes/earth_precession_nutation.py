@@ -115,9 +115,9 @@ def build(p, times):
 
 
 def compare_run(p, run):
-    from .. import plots
     from ..comparisons import earth_iau as vs
     from ..comparisons import earth_nonrigid as nr
+    from ..plots.earth import earth_precession_nutation, full_minus_gyroscopic
     from ..references import erfa_pole
     from ..starts import earth_ellipticity as hd
     from ..starts import earth_tides as tides
@@ -138,12 +138,12 @@ def compare_run(p, run):
                                               m.plane_tilt is not None, geodesic)
     comparison.update(p96)
     not_measured.update(p96_not_measured)
-    table, figures = vs.table(t, z, dx, dy, nutation), plots.earth_precession_nutation(
+    table, figures = vs.table(t, z, dx, dy, nutation), earth_precession_nutation(
         t, dx, dy, nutation, iau, "non-rigid model" if nonrigid else "rigid model")
     if p.earth.model == "full":
         comparison.update(vs.full_model_checks(p, run, m.twin, z))
         twin = comparison.pop("_full_minus_gyro_mas")
-        figures["full_minus_gyroscopic"] = plots.full_minus_gyroscopic(t, twin)
+        figures["full_minus_gyroscopic"] = full_minus_gyroscopic(t, twin)
     model = vs.model_summary(moments, m.orbits, geodesic, p.earth.j2_rate, p.earth.j4)
     sections = {"reference": iau.provenance, "model": model, "dynamical_ellipticity": hd.summary(p),
                 **(nr.summaries(t, z_rigid, z, iau, dx, dy, **nonrigid) if nonrigid else {})}

@@ -100,10 +100,11 @@ def build(p, times):
 
 
 def compare_run(p, run):
-    from .. import plots
     from ..analysis.librations import icrf_to_body
     from ..comparisons import moon_de421 as vs
     from ..models.assemblies.moon import LEVELS
+    from ..plots.error_vs_cost import plot_error_vs_cost
+    from ..plots.moon import driven_by, moon_libration
     from ..references import eckhardt
     from ..references.moon_de421 import FREE_LIBRATION_LONGITUDE_PERIOD_D
     from ..starts.moon import difference_driven_by
@@ -129,15 +130,15 @@ def compare_run(p, run):
     zoom = covered & (np.abs(t - t[covered][-1]) <= ZOOM_D) if covered.any() else None   # two years vs DE421
     de421_zoom = None if zoom is None else eckhardt.physical_librations(
         t[zoom], de421["icrf_to_body"][zoom[covered]], earth[zoom])
-    figures = plots.moon_libration(t, table, rows, [r["term"] for r in terms["main"]], zoom, de421_zoom)
+    figures = moon_libration(t, table, rows, [r["term"] for r in terms["main"]], zoom, de421_zoom)
     if p.compare.source:
         other = p.compare.source
         pole, lon = difference_driven_by(p, run, other, mats)
         comparison.update(vs.driven_by_metrics(other, pole, lon))
-        figures[f"difference_vs_{other}_driven"] = plots.driven_by(t, pole, lon, p.orbit.source, other)
+        figures[f"difference_vs_{other}_driven"] = driven_by(t, pole, lon, p.orbit.source, other)
     if p.report.error_vs_runtime and de421 is not None:
         sections["error_vs_runtime"] = vs.error_vs_runtime(system, run.times[covered], de421["icrf_to_body"])
-        figures["error_vs_runtime"] = plots.plot_error_vs_cost(sections["error_vs_runtime"], [
+        figures["error_vs_runtime"] = plot_error_vs_cost(sections["error_vs_runtime"], [
             ("error_vs_converged_arcsec", "vs converged", 1.0), ("error_vs_de421_arcsec", "vs DE421", 0.4)])
     refused_terms = {f"longitude_terms.{k}": why for k, why in refused.items()}
     return Outcome(comparison, figures=figures, sections=sections, table=table,

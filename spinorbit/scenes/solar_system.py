@@ -12,7 +12,7 @@ Runs with the Taylor integrator (``integrator.method = "taylor"``) or any other.
 """
 from ..models.assemblies.solar_system import SWITCHES
 from ..params import Params, key, table
-from ..plots import moon_vs_de421, planets_vs_de421
+from ..plots.solar_system import moon_vs_de421, planets_vs_de421
 from ..scene import Model, Outcome, Scene
 from ..verdict import Check, Verdict
 from . import common
