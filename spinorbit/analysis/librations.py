@@ -12,6 +12,9 @@ from ..constants import ARCSEC
 from ..rotations import euler313_from_matrix, matrices_from_quats, vector_angle
 
 INCLINATION_RAD = np.radians(1.54242)       # mean inclination of the lunar equator to the ecliptic (Meeus ch. 53)
+# The metrics residual_metrics computes (the summary's comparison keys, read by verdicts and the API)
+POLE_ERROR_MAX_ARCSEC, POLE_ERROR_RMS_ARCSEC = "pole_error_max_arcsec", "pole_error_rms_arcsec"
+LONGITUDE_ERROR_MAX_ARCSEC, LONGITUDE_ERROR_RMS_ARCSEC = "longitude_error_max_arcsec", "longitude_error_rms_arcsec"
 
 
 def _wrap(a):
@@ -72,9 +75,10 @@ def pole_and_longitude_difference(m_a, m_b):
 def residual_metrics(mats, reference_mats):
     """Max and rms pole and longitude differences of two series of ICRF-to-body matrices, arcsec."""
     out = {}
-    for name, x in zip(("pole", "longitude"), pole_and_longitude_difference(mats, reference_mats)):
-        out[f"{name}_error_max_arcsec"] = float(np.abs(x).max() / ARCSEC)
-        out[f"{name}_error_rms_arcsec"] = float(np.sqrt(np.mean(x**2)) / ARCSEC)
+    names = ((POLE_ERROR_MAX_ARCSEC, POLE_ERROR_RMS_ARCSEC), (LONGITUDE_ERROR_MAX_ARCSEC, LONGITUDE_ERROR_RMS_ARCSEC))
+    for (largest, rms), x in zip(names, pole_and_longitude_difference(mats, reference_mats)):
+        out[largest] = float(np.abs(x).max() / ARCSEC)
+        out[rms] = float(np.sqrt(np.mean(x**2)) / ARCSEC)
     return out
 
 

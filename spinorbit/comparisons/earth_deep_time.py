@@ -10,6 +10,8 @@ from ..starts.earth_deep_time import ERFA_SPAN_D, KYR_D
 WINDOWS_MYR = (1, 10)                 # the spans the issue sets targets over
 CHAOS_MYR = 50.0                      # La2004: "age calibrations of paleoclimatic data over 40 to 50 Myr"
 ERFA_STEP_D = 10 * JULIAN_YEAR_D
+# The metrics erfa_metrics computes (the summary's comparison keys, read by the verdict)
+ERFA_OBLIQUITY_MAX_ARCSEC, ERFA_EQUATOR_MAX_ARCSEC = "erfa_obliquity_max_arcsec", "erfa_equator_max_arcsec"
 
 
 def erfa_metrics(scenario, model):
@@ -26,8 +28,8 @@ def erfa_metrics(scenario, model):
     obliquity = np.arccos(np.clip(np.sum(states[:, :3] * normal, axis=1), -1, 1))
     equator = np.arccos(np.clip(np.sum(states[:, :3] * reference["equator_pole"], axis=1), -1, 1))
     obliquity_error = np.abs(obliquity - reference["obliquity_rad"]).max()
-    return ({"erfa_obliquity_max_arcsec": float(obliquity_error / ARCSEC),
-             "erfa_equator_max_arcsec": float(equator.max() / ARCSEC),
+    return ({ERFA_OBLIQUITY_MAX_ARCSEC: float(obliquity_error / ARCSEC),
+             ERFA_EQUATOR_MAX_ARCSEC: float(equator.max() / ARCSEC),
              "erfa_compared_kyr": float(reach / KYR_D)}, reference.provenance)
 
 

@@ -6,10 +6,24 @@ Edge module (astropy units); the scene declares, this compares.
 """
 import numpy as np
 
+from ..analysis.librations import (
+    LONGITUDE_ERROR_MAX_ARCSEC,
+    LONGITUDE_ERROR_RMS_ARCSEC,
+    POLE_ERROR_MAX_ARCSEC,
+    POLE_ERROR_RMS_ARCSEC,
+)
 from ..constants import ARCSEC, JULIAN_CENTURY_D
 from ..rotations import vector_angle
 
 MAS = ARCSEC / 1000.0
+# The metrics ``metrics`` computes (the summary's comparison keys, read by the verdict and the API)
+MOON_DIRECTION_ERROR_MAX_ARCSEC, MOON_DIRECTION_ERROR_RMS_ARCSEC = ("moon_direction_error_max_arcsec",
+                                                                    "moon_direction_error_rms_arcsec")
+MOON_RANGE_ERROR_MAX_KM, MOON_RANGE_ERROR_RMS_KM = "moon_range_error_max_km", "moon_range_error_rms_km"
+EARTH_AXIS_VS_CIP_MAX_MAS, EARTH_AXIS_VS_CIP_RMS_MAS = "earth_axis_vs_cip_max_mas", "earth_axis_vs_cip_rms_mas"
+AGAINST_DE421 = (MOON_DIRECTION_ERROR_MAX_ARCSEC, MOON_DIRECTION_ERROR_RMS_ARCSEC, MOON_RANGE_ERROR_MAX_KM,
+                 MOON_RANGE_ERROR_RMS_KM, POLE_ERROR_MAX_ARCSEC, POLE_ERROR_RMS_ARCSEC, LONGITUDE_ERROR_MAX_ARCSEC,
+                 LONGITUDE_ERROR_RMS_ARCSEC)
 
 
 def covered(t):
@@ -51,21 +65,21 @@ def metrics(t, direction, distance, lunar, earth_axis):
 
         why = ("DE421's lunar series covers 1899-12-04 to 2200-02-01 TDB; "
                f"the span is {tdb_dates((t[0], t[-1]))}")
-        names = [f"{m}_error_{s}_{u}" for m, u in (("moon_direction", "arcsec"), ("moon_range", "km"),
-                                                   ("pole", "arcsec"), ("longitude", "arcsec"))
-                 for s in ("max", "rms")]
-        return ({"earth_axis_vs_cip_max_mas": float(earth_axis.max() / MAS),
-                 "earth_axis_vs_cip_rms_mas": float(np.sqrt(np.mean(earth_axis ** 2)) / MAS)},
-                {f"comparison.{name}": why for name in names})
+        return _axis_metrics(earth_axis), {f"comparison.{name}": why for name in AGAINST_DE421}
     direction, distance = direction[inside], distance[inside]
-    out = {"moon_direction_error_max_arcsec": float(direction.max() / ARCSEC),
-           "moon_direction_error_rms_arcsec": float(np.sqrt(np.mean(direction ** 2)) / ARCSEC),
-           "moon_range_error_max_km": float(np.abs(distance).max()),
-           "moon_range_error_rms_km": float(np.sqrt(np.mean(distance ** 2)))}
+    out = {MOON_DIRECTION_ERROR_MAX_ARCSEC: float(direction.max() / ARCSEC),
+           MOON_DIRECTION_ERROR_RMS_ARCSEC: float(np.sqrt(np.mean(direction ** 2)) / ARCSEC),
+           MOON_RANGE_ERROR_MAX_KM: float(np.abs(distance).max()),
+           MOON_RANGE_ERROR_RMS_KM: float(np.sqrt(np.mean(distance ** 2)))}
     out.update(lunar)
-    out["earth_axis_vs_cip_max_mas"] = float(earth_axis.max() / MAS)
-    out["earth_axis_vs_cip_rms_mas"] = float(np.sqrt(np.mean(earth_axis ** 2)) / MAS)
+    out.update(_axis_metrics(earth_axis))
     return out, {}
+
+
+def _axis_metrics(earth_axis):
+    """The Earth's axis against the CIP (rad, (n,)): its max and rms, mas."""
+    return {EARTH_AXIS_VS_CIP_MAX_MAS: float(earth_axis.max() / MAS),
+            EARTH_AXIS_VS_CIP_RMS_MAS: float(np.sqrt(np.mean(earth_axis ** 2)) / MAS)}
 
 
 def tidal_acceleration(t, r_on, r_off, v_off):

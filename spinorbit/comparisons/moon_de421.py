@@ -5,6 +5,12 @@ Edge module (astropy units); the Moon scene declares, this compares.
 """
 import numpy as np
 
+from ..analysis.librations import (
+    LONGITUDE_ERROR_MAX_ARCSEC,
+    LONGITUDE_ERROR_RMS_ARCSEC,
+    POLE_ERROR_MAX_ARCSEC,
+    POLE_ERROR_RMS_ARCSEC,
+)
 from ..constants import ARCSEC
 
 LADDER = ([("rk8", {"step": h}) for h in (4.0, 2.0, 1.0, 0.5)]          # report.error_vs_runtime
@@ -44,8 +50,7 @@ def de421_where_covered(t):
     return (Orientation()(t[covered]) if covered.any() else None), covered
 
 
-METRICS = ("pole_error_max_arcsec", "pole_error_rms_arcsec", "longitude_error_max_arcsec",
-           "longitude_error_rms_arcsec")
+METRICS = (POLE_ERROR_MAX_ARCSEC, POLE_ERROR_RMS_ARCSEC, LONGITUDE_ERROR_MAX_ARCSEC, LONGITUDE_ERROR_RMS_ARCSEC)
 
 
 def table(solution, mats, de421, covered, lib):

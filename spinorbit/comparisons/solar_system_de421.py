@@ -5,11 +5,22 @@ Edge module (astropy units); the scene declares, this compares.
 """
 import numpy as np
 
+from ..analysis.librations import LONGITUDE_ERROR_MAX_ARCSEC, POLE_ERROR_MAX_ARCSEC
 from ..constants import MAS
 from ..models.assemblies.solar_system import PLANETS
 from .earth_moon_de421 import lunar_errors, orbit_errors
 
 HELIOCENTRIC = (*PLANETS[:2], "earth", *PLANETS[2:])
+# The metrics ``metrics`` computes (the summary's comparison keys, read by the verdict)
+MOON_DIRECTION_ERROR_MAX_MAS, MOON_DIRECTION_ERROR_RMS_MAS = ("moon_direction_error_max_mas",
+                                                              "moon_direction_error_rms_mas")
+MOON_RANGE_ERROR_MAX_M, MOON_RANGE_ERROR_RMS_M = "moon_range_error_max_m", "moon_range_error_rms_m"
+POLE_ERROR_MAX_MAS, LONGITUDE_ERROR_MAX_MAS = "pole_error_max_mas", "longitude_error_max_mas"
+
+
+def heliocentric_error_max_km(body):
+    """The metric of ``body``'s largest heliocentric position error, km."""
+    return f"{body}_heliocentric_error_max_km"
 
 # What DE421's asteroids move in each planet, km over 1950-2050, measured (benchmarks/asteroid_share.py):
 # Ceres, Pallas and Vesta added with DE421's masses (MA0001, MA0002, MA0004) from DE430's states at JDEPOC
@@ -40,14 +51,14 @@ def planet_errors(t, positions):
 
 def metrics(direction, distance, lunar, planets):
     """The summary's comparison: the Moon in mas and m, the lunar angles in mas, each planet's max in km."""
-    out = {"moon_direction_error_max_mas": float(direction.max() / MAS),
-           "moon_direction_error_rms_mas": float(np.sqrt(np.mean(direction ** 2)) / MAS),
-           "moon_range_error_max_m": float(np.abs(distance).max() * 1e3),
-           "moon_range_error_rms_m": float(np.sqrt(np.mean(distance ** 2)) * 1e3),
-           "pole_error_max_mas": float(lunar["pole_error_max_arcsec"] * 1e3),
-           "longitude_error_max_mas": float(lunar["longitude_error_max_arcsec"] * 1e3)}
+    out = {MOON_DIRECTION_ERROR_MAX_MAS: float(direction.max() / MAS),
+           MOON_DIRECTION_ERROR_RMS_MAS: float(np.sqrt(np.mean(direction ** 2)) / MAS),
+           MOON_RANGE_ERROR_MAX_M: float(np.abs(distance).max() * 1e3),
+           MOON_RANGE_ERROR_RMS_M: float(np.sqrt(np.mean(distance ** 2)) * 1e3),
+           POLE_ERROR_MAX_MAS: float(lunar[POLE_ERROR_MAX_ARCSEC] * 1e3),
+           LONGITUDE_ERROR_MAX_MAS: float(lunar[LONGITUDE_ERROR_MAX_ARCSEC] * 1e3)}
     for name, error in planets.items():
-        out[f"{name}_heliocentric_error_max_km"] = float(error.max())
+        out[heliocentric_error_max_km(name)] = float(error.max())
     return out
 
 

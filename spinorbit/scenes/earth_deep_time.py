@@ -53,8 +53,10 @@ VCW = ("Vondrák, Capitaine & Wallace 2011: their model is good to a few arcsec 
 def verdict(p, comparison):
     """ERFA over the first 2 kyr; La2004 over 1 and 10 Myr when the span covers them, for the nominal physics
     only (a variant is compared with La2004, not judged)."""
-    checks = [Check("obliquity vs ERFA", "erfa_obliquity_max_arcsec", 1.0, "″", VCW),
-              Check("mean equator vs ERFA", "erfa_equator_max_arcsec", 5.0, "″", VCW)]
+    from ..comparisons.earth_deep_time import ERFA_EQUATOR_MAX_ARCSEC, ERFA_OBLIQUITY_MAX_ARCSEC
+
+    checks = [Check("obliquity vs ERFA", ERFA_OBLIQUITY_MAX_ARCSEC, 1.0, "″", VCW),
+              Check("mean equator vs ERFA", ERFA_EQUATOR_MAX_ARCSEC, 5.0, "″", VCW)]
     values = values_of(p)
     nominal = all(values[key] == value for key, value in NOMINAL.items())
     if nominal:

@@ -72,10 +72,12 @@ MIN_TIDAL_SPAN_D = 100 * 365.25 - 1.0
 
 def verdict(p, comparison):
     """The Moon against DE421 (direction, range, pole, longitude); the tidal acceleration against LLR."""
-    checks = [Check("Moon direction", "moon_direction_error_max_arcsec", 1.0, "″", TARGETS),
-              Check("Moon range", "moon_range_error_max_km", 2.0, " km", TARGETS),
-              Check("lunar pole", "pole_error_max_arcsec", 0.1, "″", TARGETS),
-              Check("libration longitude", "longitude_error_max_arcsec", 1.0, "″", TARGETS)]
+    from ..comparisons import earth_moon_de421 as vs
+
+    checks = [Check("Moon direction", vs.MOON_DIRECTION_ERROR_MAX_ARCSEC, 1.0, "″", TARGETS),
+              Check("Moon range", vs.MOON_RANGE_ERROR_MAX_KM, 2.0, " km", TARGETS),
+              Check("lunar pole", vs.POLE_ERROR_MAX_ARCSEC, 0.1, "″", TARGETS),
+              Check("libration longitude", vs.LONGITUDE_ERROR_MAX_ARCSEC, 1.0, "″", TARGETS)]
     if p.compare.tides_off:
         checks += [Check("n_dot", "tidal_n_dot_arcsec_per_cy2", 1.0, "″/cy²", LLR, expected=-25.8,
                          min_span_d=MIN_TIDAL_SPAN_D),

@@ -15,6 +15,7 @@ difference beside it.
 """
 import numpy as np
 
+from ..analysis.librations import LONGITUDE_ERROR_MAX_ARCSEC, POLE_ERROR_MAX_ARCSEC
 from ..constants import ARCSEC
 from ..orbits.sources import orbit_source
 from ..params import Params, key, table
@@ -45,8 +46,8 @@ def verdict(p, comparison):
         from ..comparisons.moon_de421 import SOURCE_NOTES
         notes.append(SOURCE_NOTES.get(source, f"orbits from {source}: the libration follows that orbit's "
                                               "departure from DE421's"))
-    checks = (Check("pole", "pole_error_max_arcsec", pole, "″", why),
-              Check("longitude", "longitude_error_max_arcsec", lon, "″", why))
+    checks = (Check("pole", POLE_ERROR_MAX_ARCSEC, pole, "″", why),
+              Check("longitude", LONGITUDE_ERROR_MAX_ARCSEC, lon, "″", why))
     return Verdict("DE421", checks, "; ".join(notes))
 
 

@@ -50,16 +50,16 @@ TARGET = ("the issue's target (INPOP05 re-integrated DE405 to 0.17 mas and 0.034
 
 def verdict(p, comparison):
     """The Moon against DE421 (direction, range, pole, longitude); each planet against what asteroids move."""
-    from ..comparisons.solar_system_de421 import ASTEROIDS_KM
+    from ..comparisons import solar_system_de421 as vs
 
-    checks = [Check("Moon direction", "moon_direction_error_max_mas", 1.0, " mas", TARGET),
-              Check("Moon range", "moon_range_error_max_m", 0.1, " m", TARGET),
-              Check("lunar pole", "pole_error_max_mas", 1.0, " mas", TARGET),
-              Check("libration longitude", "longitude_error_max_mas", 1.0, " mas", TARGET)]
+    checks = [Check("Moon direction", vs.MOON_DIRECTION_ERROR_MAX_MAS, 1.0, " mas", TARGET),
+              Check("Moon range", vs.MOON_RANGE_ERROR_MAX_M, 0.1, " m", TARGET),
+              Check("lunar pole", vs.POLE_ERROR_MAX_MAS, 1.0, " mas", TARGET),
+              Check("libration longitude", vs.LONGITUDE_ERROR_MAX_MAS, 1.0, " mas", TARGET)]
     largest = ("2x what DE421's largest asteroids move it, scaled by mass "
                "(comparisons.solar_system_de421.ASTEROIDS_KM)")
-    checks += [Check(name, f"{name}_heliocentric_error_max_km", 2 * km, " km", largest)
-               for name, km in ASTEROIDS_KM.items()]
+    checks += [Check(name, vs.heliocentric_error_max_km(name), 2 * km, " km", largest)
+               for name, km in vs.ASTEROIDS_KM.items()]
     return Verdict("DE421", tuple(checks))
 
 
