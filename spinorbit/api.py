@@ -28,6 +28,10 @@ import functools
 
 import numpy as np
 
+from .analysis.librations import LONGITUDE_ERROR_MAX_ARCSEC, POLE_ERROR_MAX_ARCSEC
+from .comparisons.earth_iau import X_RMS_MAS
+from .comparisons.earth_moon_de421 import MOON_DIRECTION_ERROR_MAX_ARCSEC, MOON_RANGE_ERROR_MAX_KM
+from .comparisons.mars_orientation import POLE_MINUS_IAU2015_MAX_ARCSEC
 from .errors import InputError, tdb_dates
 
 MAX_DATES = 100_000
@@ -78,15 +82,14 @@ EXPECTED_BOUND = {"pole_error": "pole_arcsec", "longitude_error": "longitude_arc
                   "moon_direction_error": "moon_direction_arcsec", "moon_range_error": "moon_range_km"}
 # answer -> (the validated built-in scene, {the answer's name: the metric its verdict judges})
 TOLERANCES = {
-    "moon": ("moon_libration", {"pole_arcsec": "pole_error_max_arcsec",
-                                "longitude_arcsec": "longitude_error_max_arcsec"}),
-    "earth": ("earth_precession_nutation_nonrigid", {"cip_rms_mas": "x_rms_mas"}),
-    "earth_rigid": ("earth_precession_nutation", {"cip_rms_mas": "x_rms_mas"}),
-    "mars": ("mars_orientation", {"pole_arcsec": "pole_minus_iau2015_max_arcsec"}),
-    "earth_moon": ("earth_moon_coupled", {"moon_direction_arcsec": "moon_direction_error_max_arcsec",
-                                          "moon_range_km": "moon_range_error_max_km",
-                                          "pole_arcsec": "pole_error_max_arcsec",
-                                          "longitude_arcsec": "longitude_error_max_arcsec"}),
+    "moon": ("moon_libration", {"pole_arcsec": POLE_ERROR_MAX_ARCSEC, "longitude_arcsec": LONGITUDE_ERROR_MAX_ARCSEC}),
+    "earth": ("earth_precession_nutation_nonrigid", {"cip_rms_mas": X_RMS_MAS}),
+    "earth_rigid": ("earth_precession_nutation", {"cip_rms_mas": X_RMS_MAS}),
+    "mars": ("mars_orientation", {"pole_arcsec": POLE_MINUS_IAU2015_MAX_ARCSEC}),
+    "earth_moon": ("earth_moon_coupled", {"moon_direction_arcsec": MOON_DIRECTION_ERROR_MAX_ARCSEC,
+                                          "moon_range_km": MOON_RANGE_ERROR_MAX_KM,
+                                          "pole_arcsec": POLE_ERROR_MAX_ARCSEC,
+                                          "longitude_arcsec": LONGITUDE_ERROR_MAX_ARCSEC}),
 }
 
 
