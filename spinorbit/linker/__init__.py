@@ -43,6 +43,7 @@ from pathlib import Path
 
 PACKAGE_DIR = Path(__file__).resolve().parents[1]
 NAMES = "names unique per process"   # spinorbit.compiled_names: caches written before it are not read
+FILES = "verified numba files"      # linker.cache's files in the verified room: caches written before are not read
 
 
 class Free:
@@ -147,7 +148,7 @@ def fingerprint(function, root=PACKAGE_DIR):
     import numba
 
     sources = reached(function, root)
-    digest = hashlib.sha256(f"numba {numba.__version__}, {NAMES}".encode())
+    digest = hashlib.sha256(f"numba {numba.__version__}, {NAMES}, {FILES}".encode())
     for module in sorted(sources):
         digest.update(f"\0{module}\0".encode())
         digest.update(sources[module])

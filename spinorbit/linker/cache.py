@@ -16,14 +16,17 @@ generated modules find it), never imported through ``sys.path``.  A file that di
 damaged, edited) is rewritten, and said in one line; one that cannot be written (a full disk) is run from the
 verified bytes in memory, said in one line.
 
-numba's cache files are pickles, so they are trusted only as far as they are checked: a generated
-kernel's index and data files live in the private ``kernels/numba/`` whatever NUMBA_CACHE_DIR says,
-each written with a sha256 of its content that is checked before it is unpickled; a damaged one is
-deleted, the kernel compiled again, and said in one line.  Functions of the package itself,
+numba's cache files are pickles, so they are trusted only as far as they are checked: a generated kernel's
+index and data files live in the private ``kernels/numba/`` whatever NUMBA_CACHE_DIR says, each a file of the
+verified room (spinorbit.verified: the pickle's bytes hashed, numba's version as its record, written aside and
+renamed) that is checked before it is unpickled; a damaged one is deleted, the kernel compiled again, and said
+in one line.  The generated modules stay plain ``.py`` files, checked by their name (the sha256 of their text),
+because numba and tracebacks read a function's source from its file.  Functions of the package itself,
 ``@njit(cache=True)``, are cached by numba beside them (the same trust as the package's own files and their
 ``.pyc``) or in NUMBA_CACHE_DIR, which must meet the same rule: ``import spinorbit`` hides a NUMBA_CACHE_DIR
 that breaks it from numba, and the first kernel asked for refuses it in one line (spinorbit.private).
 """
+import errno
 import hashlib
 import importlib
 import importlib.abc
@@ -34,13 +37,14 @@ import stat
 import sys
 from pathlib import Path
 
+import numpy as np
 from numba import njit
 from numba.core.caching import CompileResultCacheImpl, FunctionCache, IndexDataCacheFile, _CacheLocator
 
-from ..files import NotRegular, open_regular, write_atomically
+from .. import verified
+from ..files import write_atomically
 from ..private import ENVIRONMENT, kernels_dir, private_folder, root, say  # noqa: F401  (cache.root, ...)
 
-MAGIC = b"spinorbit numba cache 1\n"
 LOADED = {}                          # generated module name -> sha256 of its text, for this process
 
 
@@ -170,8 +174,8 @@ class _Impl(CompileResultCacheImpl):
 
 
 class _CheckedFile(IndexDataCacheFile):
-    """numba's index and data files, each written as MAGIC, numba's version, the sha256 of the payload
-    and the payload; unpickled only when the hash matches."""
+    """numba's index and data files, each a verified file (the pickle's bytes, numba's version as the record);
+    unpickled only when intact."""
 
     def _load_index(self):
         try:
@@ -196,28 +200,18 @@ class _CheckedFile(IndexDataCacheFile):
         self._write_checked(self._data_path(name), self._dump(data))
 
     def _read_checked(self, path):
+        """The pickle's bytes at ``path``; None when another numba version wrote them; FileNotFoundError when there
+        is no file, Damaged when it is not intact."""
         try:
-            f = open_regular(path)
-        except NotRegular:
-            raise Damaged(f"{os.path.basename(path)} is not a regular file") from None
-        with f:
-            content = f.read()
-        head, _, rest = content.partition(b"\n")
-        version, _, rest = rest.partition(b"\n")
-        digest, _, payload = rest.partition(b"\n")
-        if head + b"\n" != MAGIC:
-            raise Damaged(f"{os.path.basename(path)} is not a file spinorbit wrote")
-        if version.decode(errors="replace") != self._version:
-            return None
-        if hashlib.sha256(payload).hexdigest().encode() != digest:
-            raise Damaged(f"{os.path.basename(path)} does not match its sha256")
-        return payload
+            entry = verified.read(path)
+        except verified.Damaged as exc:
+            raise Damaged(f"{os.path.basename(path)}: {exc}") from None
+        if entry is None:
+            raise FileNotFoundError(errno.ENOENT, os.strerror(errno.ENOENT), path)
+        return entry.arrays["pickle"].tobytes() if entry.record == {"numba": self._version} else None
 
     def _write_checked(self, path, payload):
-        with self._open_for_write(path) as f:
-            digest = hashlib.sha256(payload).hexdigest().encode()
-            f.write(MAGIC + self._version.encode() + b"\n" + digest + b"\n")
-            f.write(payload)
+        verified.write(path, {"pickle": np.frombuffer(payload, np.uint8)}, {"numba": self._version})
 
     def remove(self):
         """Delete this function's index and data files."""
