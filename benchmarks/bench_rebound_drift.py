@@ -3,7 +3,7 @@ and distance after 1, 10, 50 and 100 years (max over the span), the drift that l
 
     python benchmarks/bench_rebound_drift.py
 
-The suite checks 1 and 10 years (tests/test_nbody.py); the longer spans are measured here (minutes).
+The suite checks 1 and 10 years (tests/orbits/test_nbody.py); the longer spans are measured here (minutes).
 """
 from spinorbit.constants import ARCSEC
 from spinorbit.orbits.nbody import moon_drift

@@ -11,7 +11,7 @@ T. Herring's code: the IAU 2000A nutation).  The files are not shipped; what is 
     python -m spinorbit.references.sgdass_heo DIRECTORY
 
 Conventions, from the files' headers and ``nut_const.i``, checked against ERFA's nut00a
-(tests/test_nutation_data.py): a constituent k has phase PHAS at J2000 (rad), rate FREQ in the
+(tests/analysis/test_transfer.py): a constituent k has phase PHAS at J2000 (rad), rate FREQ in the
 terrestrial frame, which turns at OM_NM + OM_PRC against space (rad/s), acceleration ACCL (rad/s^2), and
 amplitudes PMC, PMS (prad; rates in 1e-24 rad/s).  In the plane (dpsi sin eps0, deps),
 eps0 = EPSILON_0_NUT, the nutation is

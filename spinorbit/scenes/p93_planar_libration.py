@@ -44,7 +44,7 @@ class P93PlanarLibrationParams(Params):
     libration: LibrationTable
 
 
-_ZETA = "dop853 at rtol 1e-12 over 200 d: ~1e-4\" (tests/test_idealised_scenes.py)"
+_ZETA = "dop853 at rtol 1e-12 over 200 d: ~1e-4\" (tests/test_scenes.py)"
 
 
 def verdict(p, comparison):

@@ -9,7 +9,7 @@ Folgueira 1999, A&AS 135, 111): MHB2000's transfer function (Mathews, Herring & 
 ``mhb2000_transf_heo.i``: what MHB2000 adds outside the transfer function.  Rows printed by
 ``python -m spinorbit.references.sgdass_heo DIRECTORY`` (spinorbit.references.sgdass_heo gives the files'
 conventions); the sign of Im T is checked by the series against ERFA's nut00a and IAU 2000A's printed
-18.6-yr out-of-phase terms (tests/test_nutation_data.py).
+18.6-yr out-of-phase terms (tests/analysis/test_transfer.py).
 
 Row: (l, l', F, D, Om) multipliers, direction (+1: exp(+i arg), -1: exp(-i arg), in the plane
 (dpsi sin eps, deps), prograde positive), the celestial frequency nu (cpsd, ERFA's arguments at J2000;

@@ -19,7 +19,7 @@ Neumann modes (as ``cap_ocean``), U the forcing's projections, gives one linear 
 coefficients X at each (w, Omega).  The elevation z = i H M_Phi^T X / (w R), and zeta_2 = <Y_2^m, zeta> gives
 the Love number (1 + k'_2) (3 rho_o / 5 rho_bar) g zeta_2 / U, as ``ocean``.  The Coriolis force does no work
 (C is antisymmetric), so w Im k >= 0; without rotation this is ``cap_ocean``'s pole sum, and without a cap the
-global ocean of ``ocean`` (tests/test_rotating_cap.py).
+global ocean of ``ocean`` (tests/models/tidal_history/test_rotating_cap.py).
 
 At run time the response is read from a table over the spin (log-spaced) and the frequency relative to the
 spin, nu = w / Omega, near each order's band (``table``, read by ``love_number_imag``), for the run's depth

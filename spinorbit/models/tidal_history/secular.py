@@ -17,7 +17,7 @@ orbit's plane), lags by K(sigma) and contributes, in units of F = (3/8) G m'^2 R
 summed over m = -2..2, k = -2, 0, 2 and q = k - 1, k, k + 1 (each real term twice, as (m, k, q) and its
 conjugate (-m, -k, -q)).  The power each term dissipates, sigma W K(sigma), is never negative.  For the
 equatorial circular orbit the axial torque is (3/2) G m'^2 R^5 / a^6 K(2 Omega - 2 n), the classical one; to
-O(e^2) the sums give Hut's (1981, A&A 99, 126) constant-time-lag f-functions (tests/test_tidal_history.py).
+O(e^2) the sums give Hut's (1981, A&A 99, 126) constant-time-lag f-functions (tests/models/test_tidal_history.py).
 """
 import numpy as np
 from numba import njit

@@ -268,7 +268,7 @@ def test_the_scene_writes_the_moon_and_judges_it():
     four DE421 checks judged; asking for the tidal acceleration on a short span is not judged."""
     from spinorbit.runner import run_scenario
 
-    path = Path(__file__).parents[1] / "scenarios" / "earth_moon_coupled.toml"
+    path = Path(__file__).parents[3] / "scenarios" / "earth_moon_coupled.toml"
     result = run_scenario(path, ['span.end="1950-03-02T00:00:00"', "compare.tides_off=true",
                                  "output.plots=false"])
     for column in ("moon_geocentric_x", "phi", "theta", "psi", "earth_axis_z", "pole_error"):

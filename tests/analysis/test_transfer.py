@@ -16,7 +16,7 @@ from spinorbit.analysis.transfer.models import MHB2000
 from spinorbit.references import fcn_lambert, ren2000, sgdass_heo
 from tests.units import mas
 
-BESIDE = Path(__file__).parents[1].parent / "shared/data/nutation"
+BESIDE = Path(__file__).parents[2].parent / "shared/data/nutation"
 DATA = Path(os.environ.get("SPINORBIT_NUTATION_DATA", BESIDE))
 needs_files = pytest.mark.skipif(not (DATA / sgdass_heo.FILES["mhb2000"]).exists(),
                                  reason=f"no sgdass heo files in {DATA} (set SPINORBIT_NUTATION_DATA)")

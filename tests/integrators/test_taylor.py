@@ -17,7 +17,7 @@ from spinorbit.rotations import quat_angle, quat_from_euler313
 from spinorbit.runner import run_scenario
 from spinorbit.scenarios import load_scenario, taylor_kinds
 
-SCENARIOS = Path(__file__).resolve().parent.parent / "scenarios"
+SCENARIOS = Path(__file__).resolve().parents[2] / "scenarios"
 EPS = np.finfo(float).eps
 
 

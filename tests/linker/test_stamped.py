@@ -15,7 +15,7 @@ import spinorbit
 from spinorbit import linker
 from spinorbit.linker.stamped import ReachCache
 
-ROOT = Path(__file__).parents[1]
+ROOT = Path(__file__).parents[2]
 CALLEE = """from numba import njit
 
 SCALE = {scale}

@@ -14,8 +14,7 @@ from spinorbit.models.start import solar_system_de421
 from spinorbit.models.system import System
 from spinorbit.references.erfa_pole import cip_vector
 from spinorbit.rotations import cross3, matrix_from_quat
-
-from .units import mas
+from tests.units import mas
 
 EPS = np.finfo(float).eps
 T0 = header()["JDEPOC"] - J2000_JD

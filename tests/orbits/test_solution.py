@@ -3,7 +3,7 @@ branch continues from too), only a regular file is opened (a FIFO never blocks),
 a killed save's leftovers are cleaned, and the folder of solutions is private.
 
 References: a fresh solution of the same settings (an extension from an intact file is bit for bit the same,
-tests/test_deep_time.py), and the rule of the kernel cache (spinorbit.linker.cache) for the folder."""
+tests/models/test_deep_time.py), and the rule of the kernel cache (spinorbit.linker.cache) for the folder."""
 import os
 import subprocess
 import sys

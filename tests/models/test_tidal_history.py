@@ -145,7 +145,7 @@ def test_averaged_recession_matches_de421s_tide_on_de421s_moon():
     perturbed ones' means (the evection alone moves <e^2> by ~2%, e^2 terms ~7% of da/dt)."""
     from spinorbit.models.interactions import tides
     from spinorbit.orbits.kernel import open_ephemeris
-    from tests.test_earth_tides import P
+    from tests.models.interactions.test_tides import P
 
     t = np.arange(0.0, 18.6 * JULIAN_YEAR_D, 0.05)
     r, v = open_ephemeris("de421", t[0], t[-1]).relative_states("moon", "earth", t)
@@ -186,7 +186,7 @@ def test_averaged_recession_matches_the_coupled_integration_with_the_same_tide()
     assert de421_band_recession_mm_per_yr() == pytest.approx(direct, rel=0.02)
 
 
-# --- the global ocean (the ocean with its continent: tests/test_cap_ocean.py) ---
+# --- the global ocean (the ocean with its continent: tests/models/tidal_history/test_cap_ocean.py) ---
 
 
 def ocean_constants(degrees=None):

@@ -240,7 +240,7 @@ def test_the_stress_scene_reports_the_drifts_and_judges_only_a_decade():
 
     from spinorbit.runner import run_scenario
 
-    path = Path(__file__).parents[1] / "scenarios" / "stress" / "coupled_conservation.toml"
+    path = Path(__file__).parents[2] / "scenarios" / "stress" / "coupled_conservation.toml"
     summary = run_scenario(path, ['span.end="20 d"', "output.plots=false"]).summary
     for name in ("L_norm_rel_drift", "L_vector_rel_drift", "energy_rel_drift"):
         assert summary["comparison"][name] < 4 * EPS * math.sqrt(400)

@@ -7,7 +7,7 @@ the Sun's J2): Folkner et al.'s torque against the Hessian of the J2 potential a
 point masses with the same quadrupole, its force and the attractor's torque against the complex-step
 derivatives of the interaction energy; and, for every interaction that acts between bodies, rot N +
 sum r x F (+ the attractor's own torque) = 0 and the force as minus the energy's gradient.  (The EIH
-correction conserves the 1PN momentum, not the Newtonian one: tests/test_relativity.py; the geodesic
+correction conserves the 1PN momentum, not the Newtonian one: tests/models/interactions/test_relativity.py; the geodesic
 precession turns a frame and acts on no body.)"""
 import math
 
