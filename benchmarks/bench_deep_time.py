@@ -343,7 +343,7 @@ def mars_asteroids(myr=1.0, with_asteroids=True):
     sim.dt = -5.0
     rows = []
     for t in -np.arange(0.0, myr * 1000 * KYR_D + 1.0, 36525.0):
-        if t < 0:                                    # as the solution's _Run: a safe first step, then fast
+        if t < 0:                                    # as the solution's _ReboundBranch: a safe first step, then fast
             sim.integrator.safe_mode = 1
             sim.steps(1)
             sim.integrator.safe_mode = 0

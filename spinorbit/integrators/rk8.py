@@ -228,7 +228,7 @@ class RK8(Integrator):
         return solution
 
 
-class _Run:
+class _CompiledRun:
     """One run of a compiled loop, advanced chunk by chunk (:meth:`drive`), with what it has done so far."""
 
     def __init__(self, loop, method, system, t_out, h):
@@ -276,7 +276,7 @@ class _Run:
         return checkpoint.fingerprint(s.rhs, s.params, s.t0, s.y0, self.t_out, abs(self.h))
 
 
-class _Landing(_Run):
+class _Landing(_CompiledRun):
     """The loop that lands on every output (uniform sub-steps between outputs), resumed at outputs."""
 
     def compile(self):
@@ -302,7 +302,7 @@ class _Landing(_Run):
         self.next_chunk = next(i for i, part in enumerate(self.chunks) if part.start == k)
 
 
-class _Dense(_Run):
+class _Dense(_CompiledRun):
     """The uniform-step loop with dense output, resumed every two-hundredth of the run (not checkpointed)."""
 
     def compile(self):

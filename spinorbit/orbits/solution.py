@@ -107,7 +107,7 @@ def integration_digest():
     """Hash of the code that computes the numbers (the run, the ring, the start) as Python parses it, its
     docstrings, comments and layout aside: a changed integration never reuses an old file."""
     digest = hashlib.sha256()
-    for part in (_Run, lunar_ring_j2, _ephemeris_states):
+    for part in (_ReboundBranch, lunar_ring_j2, _ephemeris_states):
         tree = ast.parse(textwrap.dedent(inspect.getsource(part)))
         for node in ast.walk(tree):
             body = getattr(node, "body", None)
@@ -334,7 +334,7 @@ def _extend(solution, settings, record, lo, hi, path, label):
         with progress(label, 0.0, total, unit="kyr") as advance_to:
             done = 0.0
             for name in [n for n in rows if todo(n)]:
-                run = _Run(settings, ends.get(name), sign[name])
+                run = _ReboundBranch(settings, ends.get(name), sign[name])
                 if not rows[name]:
                     rows[name].append(run.output())
                 first = rows[name][-1][0]
@@ -368,7 +368,7 @@ def _describe(settings):
                       f"{settings.output_d:g} d, ICRF axes"}
 
 
-class _Run:
+class _ReboundBranch:
     """One branch: a REBOUND simulation from J2000 (the ephemeris) or from a stored state, stepping by
     ``direction`` x step to the next output."""
 

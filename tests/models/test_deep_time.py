@@ -256,7 +256,7 @@ def test_obliquity_at_j2000_is_iau_2006s_within_the_osculating_ecliptic(tmp_path
 
 def test_orbit_interrupted_half_way_is_kept_and_continued_bit_for_bit(tmp_path, monkeypatch):
     settings = solution.Settings(output_d=3650.0)
-    advance, calls = solution._Run.advance, []
+    advance, calls = solution._ReboundBranch.advance, []
 
     def interrupted(run):
         calls.append(1)
@@ -264,12 +264,12 @@ def test_orbit_interrupted_half_way_is_kept_and_continued_bit_for_bit(tmp_path, 
             raise KeyboardInterrupt
         return advance(run)
 
-    monkeypatch.setattr(solution._Run, "advance", interrupted)
+    monkeypatch.setattr(solution._ReboundBranch, "advance", interrupted)
     with pytest.raises(KeyboardInterrupt):
         solution.solve(settings, -1000 * YEAR_D, 0.0, path=tmp_path / "a.npz")
     kept = solution.OrbitalSolution.load(tmp_path / "a.npz", settings.record())
     assert kept.span == (-59 * 3650.0, 0.0)
-    monkeypatch.setattr(solution._Run, "advance", advance)
+    monkeypatch.setattr(solution._ReboundBranch, "advance", advance)
     continued = solution.solve(settings, -1000 * YEAR_D, 0.0, path=tmp_path / "a.npz")
     fresh = solution.solve(settings, -1000 * YEAR_D, 0.0, path=tmp_path / "b.npz")
     assert np.array_equal(continued.eccentricity_vector, fresh.eccentricity_vector)
