@@ -139,10 +139,6 @@ def clear():
     return removed
 
 
-class Damaged(Exception):
-    """A numba cache file whose content does not match its hash (or is not one spinorbit wrote)."""
-
-
 class _Locator(_CacheLocator):
     """numba's files for a generated module: in the private ``kernels/numba``, stamped with the
     module's verified hash (not re-read from its path)."""
@@ -193,7 +189,7 @@ class _CheckedFile(IndexDataCacheFile):
     def _load_data(self, name):
         payload = self._read_checked(self._data_path(name))
         if payload is None:
-            raise Damaged(f"{name} was written by another numba version")
+            raise verified.Damaged(f"{name} was written by another numba version")
         return pickle.loads(payload)
 
     def _save_data(self, name, data):
@@ -201,11 +197,11 @@ class _CheckedFile(IndexDataCacheFile):
 
     def _read_checked(self, path):
         """The pickle's bytes at ``path``; None when another numba version wrote them; FileNotFoundError when there
-        is no file, Damaged when it is not intact."""
+        is no file, verified.Damaged (the file named) when it is not intact."""
         try:
             entry = verified.read(path)
         except verified.Damaged as exc:
-            raise Damaged(f"{os.path.basename(path)}: {exc}") from None
+            raise verified.Damaged(f"{os.path.basename(path)}: {exc}") from None
         if entry is None:
             raise FileNotFoundError(errno.ENOENT, os.strerror(errno.ENOENT), path)
         return entry.arrays["pickle"].tobytes() if entry.record == {"numba": self._version} else None
@@ -221,7 +217,7 @@ class _CheckedFile(IndexDataCacheFile):
                 os.unlink(entry.path)
 
 
-UNREADABLE = (Damaged, pickle.UnpicklingError, EOFError, ValueError, TypeError, AttributeError, ImportError,
+UNREADABLE = (verified.Damaged, pickle.UnpicklingError, EOFError, ValueError, TypeError, AttributeError, ImportError,
               IndexError, KeyError)
 
 
