@@ -225,6 +225,17 @@ def test_user_names_are_never_patterns(tmp_path):
     assert {k: after[k] for k in before} == before
 
 
+def test_a_killed_checkpoint_save_leaves_nothing_after_the_next_run(tmp_path):
+    """What a save killed before its rename left beside run (verified.write's names, the main checkpoint's and a
+    part's) goes when the next run into run takes the lock; run1's stays."""
+    left = [".run.checkpoint.npz.tmp-999999-k1ll3d_x", ".run.checkpoint-tides_off.npz.tmp-999999-abcdefgh"]
+    others = [".run1.checkpoint.npz.tmp-999999-abcdefgh", "run.checkpoint.npz"]
+    for name in left + others:
+        (tmp_path / name).write_bytes(b"half a save")
+    good_run(tmp_path / "run")
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(["run", ".run.lock", *others])
+
+
 def test_a_link_planted_as_the_lock_is_refused_and_its_target_kept(tmp_path, shared):
     """In a shared (sticky) folder another user plants .run.lock -> a file of the victim's."""
     precious = tmp_path / "precious.txt"
