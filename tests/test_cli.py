@@ -3,9 +3,13 @@
 `list` never opens a FIFO; wrong Python types to run_scenario; sweep and bench refusing an --out at a
 file or holding files they did not write, an unreachable scheduler, a grid too big to build; a scipy
 integration failing before its first output."""
+import json
 import os
+import re
+import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -18,6 +22,7 @@ from spinorbit.errors import IntegrationError, ScenarioError
 from spinorbit.integrators import simulate
 from spinorbit.layout import Layout
 from spinorbit.models.ode import Ode
+from spinorbit.scenarios import load_scenario, taylor_kinds
 
 ROOT = Path(__file__).parents[1]
 FREE_BODY = ROOT / "scenarios" / "free_body.toml"
@@ -149,3 +154,345 @@ def test_mercury_on_a_span_too_short_for_its_88_day_term_is_not_compared():
     assert summary["comparison"]["libration_88d_measured_arcsec"] is None
     reason = summary["not_measured"]["comparison.libration_88d_measured_arcsec"]
     assert "needs a span of 44 d, the run has 20 d" in reason
+
+
+# Signals stop a run as the user means them to: Ctrl-C after REBOUND has run (it installs its own SIGINT
+# handler) still interrupts, and SIGTERM keeps a sweep's or a bench's finished members as Ctrl-C does.
+# Each case is a fresh process, signalled once it has reached the stage named.
+
+
+ENV = {**os.environ, "PYTHONPATH": str(ROOT)}
+
+
+def answer_ctrl_c():
+    """In the child: SIGINT at its default, as in a terminal (a suite run in the background ignores it, and
+    Python then never installs its handler)."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
+def wait_for(condition, process, timeout=240.0):
+    start = time.monotonic()
+    while not condition():
+        assert process.poll() is None, process.communicate()
+        assert time.monotonic() - start < timeout, "the process never reached the stage"
+        time.sleep(0.05)
+
+
+AFTER_REBOUND = """
+import sys, time
+from spinorbit.orbits import nbody, solution
+{call}
+try:
+    print("ready", flush=True)
+    time.sleep(60)
+except KeyboardInterrupt:
+    sys.exit(130)
+sys.exit(0)
+"""
+
+
+def interrupted_after(call):
+    """Exit code of a process sent SIGINT once ``call`` (a REBOUND run) has returned: 130 when Python's
+    handler raised KeyboardInterrupt, a timeout when the signal went to REBOUND's."""
+    process = subprocess.Popen([sys.executable, "-c", AFTER_REBOUND.format(call=call)], stdout=subprocess.PIPE,
+                               text=True, env=ENV, preexec_fn=answer_ctrl_c)
+    assert process.stdout.readline().strip() == "ready"
+    process.send_signal(signal.SIGINT)
+    try:
+        return process.wait(timeout=20)
+    finally:
+        process.kill()
+
+
+def test_ctrl_c_interrupts_after_an_nbody_orbit():
+    assert interrupted_after("nbody.ReboundOrbits('earth', ('moon',), 0.0, 2.0, step=1.0, epoch=-20.0)") == 130
+
+
+def test_ctrl_c_interrupts_after_an_orbital_solution(tmp_path):
+    call = f"solution.solve(solution.Settings(output_d=3650.0), -3650.0, 0.0, path={str(tmp_path / 'a.npz')!r})"
+    assert interrupted_after(call) == 130
+
+
+def staged_member(out):
+    """A finished member in the sweep's or bench's hidden staging directory beside ``out``."""
+    return any((p / "000" / "summary.json").exists() or list(p.glob("*.csv"))
+               for p in out.parent.glob(f".{out.name}.new-*"))
+
+
+def test_sigterm_keeps_a_sweeps_finished_members(tmp_path):
+    out = tmp_path / "sweep"
+    process = subprocess.Popen([sys.executable, "-m", "spinorbit.cli", "--quiet", "sweep",
+                                "scenarios/free_body.toml", "--vary",
+                                "integrator.rtol=1e-8,1e-9,1e-10,1e-11,1e-12,1e-13",
+                                "--set", "span.end=100 d", "--set", "output.plots=false", "--scheduler",
+                                "synchronous", "--out", str(out)], cwd=ROOT, env=ENV, stderr=subprocess.PIPE,
+                               text=True)
+    wait_for(lambda: staged_member(out), process)
+    process.send_signal(signal.SIGTERM)
+    _, err = process.communicate(timeout=60)
+    assert process.returncode == 130, err
+    kept = out if (out / "000").exists() else Path(f"{out}.failed")
+    assert (kept / "000" / "summary.json").exists(), err
+    assert not list(tmp_path.glob(".sweep.new-*"))
+
+
+def test_sigterm_stops_a_bench_as_ctrl_c_does(tmp_path):
+    out = tmp_path / "bench"
+    process = subprocess.Popen([sys.executable, "-m", "spinorbit.cli", "--quiet", "bench",
+                                "scenarios/free_body.toml", "--methods", "rk4,dop853", "--budget", "5",
+                                "--out", str(out)], cwd=ROOT, env=ENV, stderr=subprocess.PIPE, text=True)
+    wait_for(lambda: (tmp_path / ".bench.lock").exists(), process)      # the command has started
+    process.send_signal(signal.SIGTERM)
+    _, err = process.communicate(timeout=60)
+    assert process.returncode == 130, err
+    assert not list(tmp_path.glob(".bench.new-*"))
+
+
+def test_an_interrupted_bench_keeps_the_methods_that_finished(tmp_path, monkeypatch):
+    from spinorbit import bench
+
+    run_method, calls = bench.run_method, []
+
+    def second_interrupted(name, *args, **kwargs):
+        calls.append(name)
+        if len(calls) == 2:
+            raise KeyboardInterrupt
+        return run_method(name, *args, **kwargs)
+
+    monkeypatch.setattr(bench, "run_method", second_interrupted)
+    try:
+        bench.bench_scenario(ROOT / "scenarios/free_body.toml", ["rk4", "dop853"], tmp_path / "bench", 0.5,
+                             ["span.end=50 d"])
+    except KeyboardInterrupt:
+        pass
+    else:
+        raise AssertionError("the bench was not interrupted")
+    kept = tmp_path / "bench"
+    table = (kept / "work_precision.csv").read_text().splitlines()
+    assert table[0].startswith("method") and len(table) > 1
+    assert {line.split(",")[0] for line in table[1:]} == {"rk4"}
+
+
+REPEATED_STOP = """
+import os, signal, sys, threading, time
+from spinorbit import cli
+
+def stops():
+    time.sleep({delay})
+    for _ in range(100):                    # a stop, again and again while the command exits
+        os.kill(os.getpid(), signal.{name})
+        time.sleep(0.002)
+
+def slow_run(args):
+    threading.Thread(target=stops, daemon=True).start()
+    time.sleep({run_s})
+    return 0
+
+cli._run = slow_run
+cli.gc.freeze = lambda: time.sleep(0.3)      # the command's way out, long enough for the stops to reach it
+sys.argv = ["spinorbit", "run", "free_body"]
+sys.exit(cli.console())
+"""
+
+
+def test_a_stop_delivered_again_while_the_command_exits_still_ends_as_130():
+    for name in ("SIGINT", "SIGTERM"):
+        done = subprocess.run([sys.executable, "-c", REPEATED_STOP.format(name=name, delay=0.5, run_s=30)],
+                              capture_output=True, text=True, env=ENV, timeout=60, preexec_fn=answer_ctrl_c)
+        assert done.returncode == 130 and done.stderr == "interrupted\n", (name, done.returncode, done.stderr)
+
+
+def test_a_stop_after_the_work_is_done_leaves_the_commands_exit_code():
+    """The run finished and was written: a Ctrl-C or SIGTERM while the process exits changes nothing."""
+    for name in ("SIGINT", "SIGTERM"):
+        done = subprocess.run([sys.executable, "-c", REPEATED_STOP.format(name=name, delay=0.15, run_s=0.0)],
+                              capture_output=True, text=True, env=ENV, timeout=60, preexec_fn=answer_ctrl_c)
+        assert done.returncode == 0 and done.stderr == "", (name, done.returncode, done.stderr)
+
+
+SWALLOWED_STOP = """
+import ctypes, os, signal, sys, time
+from spinorbit import cli
+
+def inside_a_callback():                      # as llvmlite's object-cache callback while numba compiles
+    os.kill(os.getpid(), signal.{name})
+    for _ in range(100000):
+        pass                                  # the handler's KeyboardInterrupt is raised here, and dropped
+
+callback = ctypes.CFUNCTYPE(None)(inside_a_callback)
+
+def run(args):
+    callback()
+    time.sleep(20)
+    return 0
+
+cli._run = run
+sys.argv = ["spinorbit", "run", "free_body"]
+sys.exit(cli.console())
+"""
+
+
+def test_a_stop_dropped_inside_a_ctypes_callback_is_heard_again():
+    for name in ("SIGINT", "SIGTERM"):
+        done = subprocess.run([sys.executable, "-c", SWALLOWED_STOP.format(name=name)], capture_output=True,
+                              text=True, env=ENV, timeout=60, preexec_fn=answer_ctrl_c)
+        assert done.returncode == 130 and done.stderr.splitlines()[-1] == "interrupted", (name, done.stderr)
+
+
+STOP_DURING_CLEANUP = """
+import os, signal, sys, time
+from pathlib import Path
+from spinorbit import cli
+
+def run(args):
+    try:
+        os.kill(os.getpid(), signal.SIGTERM)
+        time.sleep(20)
+    except BaseException:
+        for _ in range(30):                      # a 1.5-s save of what the run has, as a checkpoint is saved
+            time.sleep(0.05)
+        Path(os.environ["SAVED"]).write_text("saved")
+        raise
+    return 0
+
+cli._run = run
+sys.argv = ["spinorbit", "run", "free_body"]
+sys.exit(cli.console())
+"""
+
+
+def test_the_stops_sent_again_never_interrupt_the_saving_of_a_stopped_run(tmp_path):
+    saved = tmp_path / "saved"
+    done = subprocess.run([sys.executable, "-c", STOP_DURING_CLEANUP], capture_output=True, text=True,
+                          env={**ENV, "SAVED": str(saved)}, timeout=60, preexec_fn=answer_ctrl_c)
+    assert done.returncode == 130 and done.stderr == "interrupted\n", done.stderr
+    assert saved.read_text() == "saved"
+
+
+# What a user types at the command line works or is answered in words that say what is accepted: a method
+# switched with --set over a file written for another, dates and durations, a value with a space left unquoted,
+# and `list` / `show` printing every word at any terminal width.
+
+
+TAYLOR_SCENES = ("free_body", "p92_arc_ab", "p93_bounded", "p94_moonlike", "p95_symmetric", "p96_earthlike",
+                 "solar_system", "stress/coupled_conservation")
+
+
+def test_every_kind_taylor_takes_has_a_scene_here():
+    kinds = {load_scenario(name)["scene.kind"] for name in TAYLOR_SCENES}
+    assert kinds == set(taylor_kinds())
+
+
+@pytest.mark.parametrize("scene", TAYLOR_SCENES)
+def test_taylor_from_the_command_line_takes_the_files_tolerance_and_drops_what_it_cannot_use(scene):
+    in_file = load_scenario(scene).data["integrator"]
+    scenario = load_scenario(scene, ["integrator.method=taylor"])
+    options = scenario.params.integrator.options()
+    assert scenario.params.integrator.method == "taylor" and set(options) <= {"tolerance", "compact_mode", "opt_level"}
+    if "rtol" in in_file:                                       # a relative tolerance stays one
+        assert options["tolerance"] == in_file["rtol"]
+    for name in set(in_file) - {"method", "estimate_error", "tolerance"}:
+        assert any(note.startswith(f"integrator.{name} = ") for note in scenario.notes)
+
+
+def test_a_method_switch_never_touches_an_option_typed_with_it():
+    with pytest.raises(ScenarioError, match="integrator.rtol"):
+        load_scenario("free_body", ["integrator.method=taylor", "integrator.rtol=1e-10"])
+
+
+def test_a_tolerance_out_of_the_new_options_range_is_dropped_and_said():
+    scenario = load_scenario("solar_system", ["integrator.method=dop853"])    # Taylor's 1e-15 < rtol's 100 eps
+    assert "rtol" not in scenario.params.integrator.options()
+    assert scenario.notes == ["integrator.tolerance = 1e-15 from the scene file dropped: method 'dop853' does "
+                              "not take it (its default applies)"]
+
+
+def test_free_body_on_taylor_from_the_command_line_runs_and_meets_eulers_closed_form(tmp_path, capsys):
+    assert main(["--quiet", "run", "free_body", "--set", "integrator.method=taylor", "--set", "span.end=2 d",
+                 "--out", str(tmp_path / "run")]) == 0
+    err = capsys.readouterr().err
+    assert "integrator.rtol = 1e-13 from the scene file taken as integrator.tolerance for method 'taylor'" in err
+    summary = json.loads((tmp_path / "run" / "summary.json").read_text())
+    # Euler's closed form of the torque-free body (§808): the scene's own tolerance, 1e-10 rad
+    assert summary["comparison"]["attitude_max_error_vs_closed_form_rad"] <= 1e-10
+
+
+@pytest.mark.parametrize("end", ["2000-13-45", "2030-01-01T00:00:00 UTC", "yesterday", "3 fortnights ago"])
+def test_a_bad_end_date_is_told_that_iso_dates_and_durations_are_accepted(end):
+    with pytest.raises(ScenarioError) as err:
+        load_scenario("free_body", [f"span.end={end}"])
+    text = str(err.value)
+    assert err.value.key == "span.end" and "an ISO date in TDB without a time zone" in text
+    assert "a finite duration from span.start" in text and "'2 days'" in text
+
+
+@pytest.mark.parametrize("end, days", [("2 days", 2.0), ("2 d", 2.0), ("3 weeks", 21.0), ("1 years", 365.25)])
+def test_durations_in_plural_words_are_read(end, days):
+    scenario = load_scenario("free_body", [f"span.end={end}"])
+    assert scenario.params.span.end - scenario.params.span.start == pytest.approx(days, rel=1e-15)
+
+
+def test_a_bad_start_date_says_iso_dates_in_tdb():
+    with pytest.raises(ScenarioError, match="an ISO date in TDB without a time zone, e.g. '2000-01-01'"):
+        load_scenario("free_body", ["span.start=yesterday"])
+
+
+def test_a_value_with_a_space_left_unquoted_gets_a_hint_to_quote_it(capsys):
+    with pytest.raises(SystemExit) as stop:
+        main(["run", "free_body", "--set", "span.step=2", "km"])
+    assert stop.value.code == 2
+    assert 'unrecognized arguments: km (a value with spaces needs quotes: --set "span.step=2 km")' in \
+        capsys.readouterr().err
+
+
+def words(text):
+    return " ".join(text.split())
+
+
+def test_list_prints_every_title_whole_at_any_width(monkeypatch, capsys):
+    import tomllib
+
+    from spinorbit import catalogue
+
+    titles = [tomllib.loads(path.read_text())["scene"]["title"] for path in catalogue.folder().rglob("*.toml")]
+    for columns in ("60", "200"):
+        monkeypatch.setenv("COLUMNS", columns)
+        assert main(["list"]) == 0
+        out = capsys.readouterr().out
+        assert all(words(title) in words(out) for title in titles)
+
+
+def test_show_ends_the_scenes_sentence_and_prints_every_meaning_whole(monkeypatch, capsys):
+    from spinorbit.key_table import key_table
+
+    heading, rows = key_table("earth_deep_time")
+    assert heading.endswith("gives it.")                          # the docstring's first paragraph, whole
+    for columns in ("80", "200"):
+        monkeypatch.setenv("COLUMNS", columns)
+        assert main(["show", "earth_deep_time"]) == 0
+        out = words(capsys.readouterr().out)
+        assert words(heading) in out
+        assert all(words(row[-1]) in out and row[0] in out for row in rows)
+        title = "\"Earth's obliquity and precession, 1 Myr back, vs La2004\""         # the file's, wrapped in its cell
+        assert all(word in out.split() for word in title.split())
+
+
+# A failing integration writes its partial output through the command line.
+
+
+def test_failed_run_writes_partial_output(tmp_path, capsys):
+    """rk8 stopped by max_steps: exit 3, summary.json with status 'failed', the outputs computed so far kept."""
+    text = FREE_BODY.read_text()
+    text = re.sub(r'method = "dop853"\nrtol = .*\natol = .*\n', 'method = "rk8"\nstep = "0.1 d"\nmax_steps = 100\n',
+                  text)
+    scenario = tmp_path / "stopped.toml"
+    scenario.write_text(text)
+    out = tmp_path / "run"
+    assert main(["run", str(scenario), "--out", str(out)]) == 3
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["status"] == "failed" and "max_steps" in summary["error"]
+    assert summary["run"]["failed_at_tdb_d"] == pytest.approx(100 * 0.1)      # max_steps steps of 0.1 d
+    assert summary["run"]["outputs_written"] == 21                   # t = 0, 0.5, ..., 10 d
+    rows = [line for line in (out / "timeseries.ecsv").read_text().splitlines() if not line.startswith("#")]
+    assert len(rows) == 1 + 21
+    assert "partial output written" in capsys.readouterr().err

