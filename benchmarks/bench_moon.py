@@ -43,7 +43,7 @@ def build(years):
 
     scenario = load_scenario(SCENARIO, [f'span.end="{years} yr"', f'span.step="{CADENCE_D} d"',
                                         f"model.level={LEVEL[0]}"])
-    system, _ = build_system(scenario, "de421")
+    system, _ = build_system(scenario.params, scenario.params.orbit.source)
     return scenario, system
 
 

@@ -23,6 +23,7 @@ from spinorbit.analysis.transfer.models import IERS1996, MHB2000, MHB2000_MODES
 from spinorbit.bodies import earth
 from spinorbit.comparisons.earth_nonrigid import TABLE_TERMS, ren2000_scaled
 from spinorbit.constants import JULIAN_CENTURY_D, MAS
+from spinorbit.orbits.sources import DE421
 from spinorbit.references import arguments, erfa_pole, vlbi_pole
 from spinorbit.runner import run_scenario
 from spinorbit.starts import earth_tides as tides
@@ -180,7 +181,7 @@ def print_budget(summary):
         cells = [f"{d[row]:+.6f}" if row in d else "" for d in (psi, P03_LONGITUDE, eps, P03_OBLIQUITY)]
         print(f"| {row} | " + " | ".join(cells) + " |")
     love = earth.de421_tides()
-    one = lambda band, delay: tides.model_rates("de421", tuple(
+    one = lambda band, delay: tides.model_rates(DE421(), tuple(
         (love[b][0] if b == band else 0.0, love[b][1] * delay) for b in (0, 1, 2)))
     bands = [[d - e for d, e in zip(one(band, 1.0), one(band, 0.0))] for band in (0, 1, 2)]
     print("The delays of DE421's tides by band (zonal, diurnal, semi-diurnal), mas/cy: psi " + ", ".join(

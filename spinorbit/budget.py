@@ -12,6 +12,7 @@ import os
 import numpy as np
 
 from .errors import ScenarioError
+from .orbits.sources import OrbitSource
 from .params import values_of
 from .schema import INTEGRATOR_OPTIONS, Key, has_key, lookup
 
@@ -54,12 +55,10 @@ def nbody_counts(scenario):
     """{N-body count: items} the run integrates before its own: the scene's (``Scene.nbody_counts``: the
     deep-time orbital solution's WHFast steps not yet in the cache) and the IAS15 days of orbit.source =
     'rebound' (out from DE421's nearest epoch, then over the span)."""
-    from .orbits.sources import orbit_source
-
     counts = dict(scenario.scene.nbody_counts(scenario.params)) if scenario.scene.nbody_counts else {}
     source = values_of(scenario.params).get("orbit.source")
     span = scenario.params.span
-    days = orbit_source(source).integration_days(span.start, span.end) if isinstance(source, str) and source else 0.0
+    days = source.integration_days(span.start, span.end) if isinstance(source, OrbitSource) else 0.0
     if days:
         counts["IAS15 days"] = days
     return counts

@@ -7,8 +7,8 @@ file, ``--set``, the API's values and a sweep's members are all parsed into it b
 reads it by attribute (``p.model.level``, ``p.span.end``) and makes a variant with ``dataclasses.replace`` (the
 API and the solution store: ``p.with_span(start, end)``).  What a value holds once loaded is the field's
 annotation: a quantity in its key's internal unit, a time in TDB days from J2000.0, an orbit source as its
-``OrbitSource`` object (``orbit_source_key``).  The keys a scene accepts are read off its class
-(:func:`keys_of`), never written twice.
+``OrbitSource`` object (:func:`source_key`): what a key's text names is made once, at load (``Key.parse``).  The
+keys a scene accepts are read off its class (:func:`keys_of`), never written twice.
 
 Edge module, below ``scenarios`` and ``scenes``.
 """
@@ -17,6 +17,7 @@ from dataclasses import dataclass, field, fields, replace
 import numpy as np
 
 from .integrators.options import OPTIONS
+from .orbits.sources import orbit_source
 from .schema import REQUIRED, Key
 
 _table = dataclass(frozen=True, kw_only=True, eq=False)
@@ -34,9 +35,27 @@ def key(**spec):
     metadata = {"key": declared}
     if declared.default is REQUIRED:
         return field(metadata=metadata)
+    if declared.parse is not None:
+        return field(default_factory=lambda: declared.parse(declared.default), metadata=metadata)
     if isinstance(declared.default, (list, dict, np.ndarray)):
         return field(default_factory=lambda: _copy(declared.default), metadata=metadata)
     return field(default=declared.default, metadata=metadata)
+
+
+def source_key(help, default="de421", choices=()):
+    """A field holding an orbit source: the file names it ('de421', 'rebound', a kernel; one of ``choices`` where
+    given), the field holds its ``OrbitSource`` (spinorbit.orbits.sources), made at load, where a kernel whose
+    file is not there is refused; with ``default=""`` the key is optional and "" holds None."""
+    return key(type=str, default=default, choices=choices, parse=_source if default else _optional_source,
+               help=help)
+
+
+def _source(name):
+    return orbit_source(name).checked()
+
+
+def _optional_source(name):
+    return _source(name) if name else None
 
 
 def _copy(value):

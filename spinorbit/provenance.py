@@ -31,16 +31,18 @@ def provenance(scenario):
 
 def ephemeris(scenario):
     """{"name", "span"} of the ephemeris the scene reads (its orbit source says), or None for analytic orbits."""
-    from .orbits.sources import orbit_source
+    from .orbits.sources import OrbitSource
     from .params import values_of
 
     values = values_of(scenario.params)
     source = values.get("orbit.source")
     start = values.get("orbit.ephemeris")                  # deep time: the state its N-body run starts from
-    if isinstance(start, str) and not isinstance(source, str):
-        return {"name": f"{start} (the solar system's state at J2000 its N-body run starts from)",
-                "span": orbit_source(start).provenance()["span"]}
-    return orbit_source(source).provenance() if isinstance(source, str) and source else None
+    if isinstance(source, OrbitSource):
+        return source.provenance()
+    if isinstance(start, OrbitSource):
+        return {"name": f"{start.name} (the solar system's state at J2000 its N-body run starts from)",
+                "span": start.provenance()["span"]}
+    return None
 
 
 @cache

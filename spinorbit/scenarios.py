@@ -132,8 +132,11 @@ class Scenario:
                 raise ScenarioError(key, given, spec.accepted())
 
     def _convert(self, key, spec):
-        if not has_key(self.data, key):
-            return spec.default
+        """The value of ``key`` once loaded: checked (type, unit, range), then what it names (``spec.parse``)."""
+        value = self._checked(key, spec) if has_key(self.data, key) else spec.default
+        return spec.parsed(key, value)
+
+    def _checked(self, key, spec):
         value = lookup(self.data, key, spec)
         if spec.choices:
             if not isinstance(value, str) or value not in spec.choices:

@@ -8,12 +8,13 @@ ISO strings in TDB, TDB days from J2000.0 inside.
 """
 import math
 import warnings
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
 from .constants import J2000_JD
-from .errors import ScenarioError
+from .errors import InputError, ScenarioError
 from .integrators.options import OPTIONS
 
 REQUIRED = object()
@@ -38,7 +39,9 @@ class Key:
     ``min``/``max``: plausible range of a number (in ``unit``), inclusive;
     ``positive``: must be > 0; ``count``: a step whose number over the span is
     limited (a key of ``LIMITS``); ``direction``: a vector the scene normalises
-    (non-zero, with a finite length).
+    (non-zero, with a finite length); ``parse``: what the checked value names, made
+    at load (a name -> its OrbitSource, ISO text -> TDB days), raising InputError or
+    ScenarioError (the key's refusal, in one line) when it names nothing.
     """
 
     unit: str | None = None
@@ -52,6 +55,7 @@ class Key:
     positive: bool = False
     count: str = ""
     direction: bool = False
+    parse: Callable | None = None
 
     def accepted(self):
         if self.choices:
@@ -77,6 +81,16 @@ class Key:
             high = f"{self.max:g}]" if math.isfinite(self.max) else "inf)"
             what += f" in {low}, {high}" + (f" {self.unit}" if self.unit else "")
         raise ScenarioError(key, given, what)
+
+    def parsed(self, key, value):
+        """``value`` (checked) as the object it names (``parse``), or as it is; a refusal is a ScenarioError on
+        ``key`` with what was given and what the parser accepts."""
+        if self.parse is None:
+            return value
+        try:
+            return self.parse(value)
+        except (InputError, ScenarioError) as exc:
+            raise ScenarioError(key, value, exc.accepted) from None
 
 
 # integrator.<option> keys: the chosen method's class says which it accepts; their meaning, unit and range are

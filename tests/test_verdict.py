@@ -67,7 +67,7 @@ def test_the_rebound_driven_moon_fails_and_names_the_accurate_rebound_path():
     assert evaluate(spec, figures, 18262.5)["result"] == "fail"
     coupled = SCENARIOS / "earth_moon_coupled_rebound.toml"
     assert "23\" and 41 km over 1969-2019" in spec.note and coupled.name in spec.note
-    assert load_scenario(coupled)["orbit.source"] == "rebound"
+    assert load_scenario(coupled).params.orbit.source.name == "rebound"
 
 
 def test_title_follows_the_span():

@@ -22,6 +22,7 @@ from ..analysis.precession import (
 )
 from ..bodies import mars
 from ..constants import ARCSEC, JULIAN_YEAR_D, MAS
+from ..orbits.sources import TwoBody
 from ..references import mars_iau2015, mars_nutation
 from ..starts import mars as start
 from ..verdict import Check, Verdict
@@ -33,7 +34,7 @@ NUTATION_MINUS_RIGID_SERIES_MAX_MAS = "nutation_minus_rigid_series_max_mas"
 POLE_MINUS_IAU2015_MAX_ARCSEC = "pole_minus_iau2015_max_arcsec"
 # The budget's runs, each adding one effect to the last: name -> (the run's parameters, the last run's) -> its own.
 def _solar(p, last):
-    return replace(last, orbit=replace(last.orbit, source="kepler", planets=False),
+    return replace(last, orbit=replace(last.orbit, source=TwoBody("kepler"), planets=False),
                    mars=replace(last.mars, satellites=False, geodesic_precession=False))
 
 
@@ -62,10 +63,8 @@ def verdict(p, comparison):
     checks = [Check("nutation − rigid series", NUTATION_MINUS_RIGID_SERIES_MAX_MAS, 1.0, " mas", _NUTATION,
                     min_span_d=NUTATION_MIN_SPAN_D),
               Check("pole − IAU 2015 (1980–2030)", POLE_MINUS_IAU2015_MAX_ARCSEC, 0.3, "″", _IAU)]
-    from ..orbits.sources import orbit_source
-
     complete = p.mars.satellites and p.mars.geodesic_precession and p.orbit.planets
-    if complete and not orbit_source(p.orbit.source).analytic:      # the orbit moved by the planets
+    if complete and not p.orbit.source.analytic:      # the orbit moved by the planets
         checks.insert(0, Check("ψ rate − Konopliv 2016", "rate_minus_konopliv2016_mas_per_yr", 5.0,
                                " mas/yr", _RATE, min_span_d=RATE_MIN_SPAN_D))
     return Verdict("Konopliv et al. 2016 (moment: Baland et al. 2020), rigid nutation, IAU 2015", tuple(checks))

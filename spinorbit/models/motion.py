@@ -79,7 +79,7 @@ class Motion(Protocol):
 
 @dataclass(frozen=True)
 class Centred:
-    """Body ``origin`` at the origin; ``externals`` (an OrbitSource: names, gm, kernel(t, data) -> (n, 3),
+    """Body ``origin`` at the origin; ``externals`` (spinorbit.orbits.Orbits: names, gm, kernel(t, data) -> (n, 3),
     data) the others relative to it, or None."""
 
     origin: str

@@ -1,6 +1,7 @@
 """Orbit sources: where the attracting masses are, relative to the spinning body.
 
-One protocol (:class:`OrbitSource`), several sources, each in its own module
+One protocol for the orbits a source gives (:class:`Orbits`), several sources
+(spinorbit.orbits.sources: each an ``OrbitSource``), each reader in its own module
 and importing only its own library:
 
 * ``analytic``  — uniform circle (Euler's hypothesis, ch. 16 P93/P96) and Kepler ellipse;
@@ -16,8 +17,8 @@ from typing import Protocol
 import numpy as np
 
 
-class OrbitSource(Protocol):
-    """What the torque models need from an orbit source.
+class Orbits(Protocol):
+    """What the torque models need from the orbits an orbit source gives.
 
     ``names``      — the attracting bodies, in order;
     ``gm``         — their GM, km^3/day^2, shape (n,);

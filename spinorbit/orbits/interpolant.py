@@ -125,7 +125,7 @@ def _positions_many(ts, data):
 
 
 class HermiteOrbits:
-    """Bodies sampled every ``step`` days from ``t_start``: an OrbitSource.
+    """Bodies sampled every ``step`` days from ``t_start``: spinorbit.orbits.Orbits.
 
     positions, velocities and (optional) accelerations: arrays (n_bodies, n_samples, 3),
     km, km/day, km/day^2, in the source's inertial axes, relative to the spinning body;

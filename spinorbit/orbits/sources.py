@@ -1,5 +1,6 @@
-"""The orbit sources, each a class that owns its opening, its span, its provenance and what it can supply; one
-entry point, :func:`orbit_source`, names them, and nothing outside spinorbit.orbits asks a source by its name.
+"""The orbit sources, each an :class:`OrbitSource` that owns its opening, its span, its provenance and what it can
+supply; one entry point, :func:`orbit_source`, names them.  A scenario's source is made once, when it is loaded
+(spinorbit.params.source_key), and code past loading asks that object, never a name.
 
 * :class:`JPLEphemeris` -- an SPK kernel (``'de440'``, a .bsp in ephemerides/, an installed naif-<name>);
 * :class:`DE421` -- DE421: its .bsp from skyfield-data, the ``de421`` package's arrays beyond 2053; the ephemeris
@@ -10,7 +11,8 @@ entry point, :func:`orbit_source`, names them, and nothing outside spinorbit.orb
 ``orbit_source("de421").relative("moon", ("earth", "sun"), t0, t1)`` samples the bodies relative to a centre on a
 uniform grid into a :class:`HermiteOrbits` and measures its interpolation error at every mid-point
 (``max_error_km``, ``max_relative_error`` per body); ``.barycentric(names, t0, t1)`` gives states relative to the
-solar system's barycentre.  ``sample_orbits(name, ...)`` and ``barycentric(name, ...)`` do the same from a name.
+solar system's barycentre.  ``sample_orbits(name, ...)`` and ``barycentric(name, ...)`` do the same from a name
+(the library's and the API's callers, who hold a user's string).
 """
 import numpy as np
 
@@ -36,8 +38,10 @@ def gm_of(bodies):
     return np.array([gm_km3_d2(b) for b in bodies])
 
 
-class OrbitSourceKind:
-    """What every source answers: ``name``; ``jpl_kernel`` (a JPL ephemeris, which ``open`` reads);
+class OrbitSource:
+    """What every source answers: ``name`` (its text form, how a scenario names it; two sources of one class and
+    name are equal); ``checked()`` (itself, InputError when it cannot be read at all); ``jpl_kernel`` (a JPL
+    ephemeris, which ``open`` reads);
     ``analytic`` (exact orbits, no ephemeris read); ``circular`` (every orbit a circle: Euler's hypothesis);
     ``lunar_angles`` (the ephemeris the Moon's DE421 orientation belongs to); ``span()`` (TDB days it covers,
     None: any epoch); ``covers(t0, t1)``; ``provenance()`` ({"name", "span"} of the ephemeris read, None for
@@ -47,6 +51,22 @@ class OrbitSourceKind:
 
     name = ""
     analytic = circular = lunar_angles = jpl_kernel = False
+
+    def __eq__(self, other):
+        return type(other) is type(self) and other.name == self.name
+
+    def __hash__(self):
+        return hash((type(self), self.name))
+
+    def __repr__(self):
+        return f"orbit_source({self.name!r})"
+
+    def __str__(self):
+        return self.name
+
+    def checked(self):
+        """This source, or InputError when it cannot be read at all (what it holds is checked when read)."""
+        return self
 
     def span(self):
         return None
@@ -76,7 +96,7 @@ class OrbitSourceKind:
         raise InputError("source", self.name, "'de421', another JPL ephemeris ('de440', a .bsp name), or 'rebound'")
 
 
-class JPLEphemeris(OrbitSourceKind):
+class JPLEphemeris(OrbitSource):
     """An SPK kernel read with jplephem (spinorbit.orbits.kernel): ``name`` as in :func:`kernel.kernel_path`."""
 
     jpl_kernel = True
@@ -86,6 +106,21 @@ class JPLEphemeris(OrbitSourceKind):
 
         self.name = name
         self.stem = Path(name).stem
+
+    def checked(self):
+        """This kernel, or InputError when its file is not there: a name neither in ephemerides/ nor an installed
+        naif-<name> package, a .bsp path to no file (what the file holds is refused when it is opened)."""
+        from .kernel import kernel_path
+
+        try:
+            path = kernel_path(self.name)
+        except InputError as exc:
+            raise InputError("source", self.name, f"'rebound', 'circular', 'kepler', or a JPL kernel: "
+                                                  f"{exc.accepted}") from None
+        if not path.is_file():
+            raise InputError("source", self.name, "a JPL SPK kernel (.bsp): 'de421', a .bsp in ephemerides/, or a "
+                                                  "path to one (no such file)")
+        return self
 
     def covers(self, t_start, t_end):
         """Whether it holds [t_start, t_end] (TDB days); InputError when it is not installed."""
@@ -192,7 +227,7 @@ class DE421(JPLEphemeris):
                 f"{tdb_dates(DE421Arrays().span)} from the de421 package")
 
 
-class Rebound(OrbitSourceKind):
+class Rebound(OrbitSource):
     """A REBOUND N-body run (spinorbit.orbits.nbody) started from DE421's states at the span's start, or at the
     nearest epoch DE421 covers and integrated out from there: any epoch."""
 
@@ -225,7 +260,7 @@ class Rebound(OrbitSourceKind):
         return orbits
 
 
-class TwoBody(OrbitSourceKind):
+class TwoBody(OrbitSource):
     """``kind`` 'circular' or 'kepler': the two-body orbits through DE421's states (:func:`two_body_orbits`)."""
 
     analytic = True
@@ -257,8 +292,8 @@ def ephemeris_identity(name):
 
 
 def sample_orbits(source, center, bodies, t_start, t_end, step=None, measure=True):
-    """``bodies`` relative to ``center`` over [t_start, t_end] TDB days from the source called ``source``, as an
-    OrbitSource (the class's ``relative``)."""
+    """``bodies`` relative to ``center`` over [t_start, t_end] TDB days from the source called ``source``, as
+    spinorbit.orbits.Orbits (the class's ``relative``)."""
     return orbit_source(source).relative(center, bodies, t_start, t_end, step, measure)
 
 

@@ -20,7 +20,8 @@ import numpy as np
 
 from ..errors import ScenarioError
 from ..models.assemblies.earth_moon import EXTERNAL, PLANETS, SWITCHES
-from ..params import Params, key, table
+from ..orbits.sources import OrbitSource
+from ..params import Params, key, source_key, table
 from ..plots.solar_system import moon_vs_de421
 from ..scene import Cost, Model, Outcome, Scene
 from ..verdict import Check, Verdict
@@ -42,9 +43,8 @@ class ModelTable:
 
 @table
 class OrbitTable:
-    source: str = key(type=str, default="de421",
-                      help="the Sun, planets and Earth-Moon barycentre: 'de421', 'de440' (or a .bsp), "
-                           "or 'rebound' (a REBOUND run from DE421's state)")
+    source: OrbitSource = source_key("the Sun, planets and Earth-Moon barycentre: 'de421', 'de440' (or a .bsp), "
+                                     "or 'rebound' (a REBOUND run from DE421's state)")
     step: float = key(unit="d", default=1.0, min=0.0625, max=4.0,
                       help="sampling step of the Sun, planets and Earth-Moon barycentre")
 
@@ -90,28 +90,25 @@ def verdict(p, comparison):
                    tuple(checks), earth_axis)
 
 
-def start_epoch(scenario):
+def start_epoch(p):
     """span.start, or the nearest epoch of DE421's lunar series (TDB days) when it lies outside."""
     from ..bodies.de421_orientation import span
 
     first, last = span()
-    return float(np.clip(scenario.params.span.start, first + 1.0, last - 1.0))
+    return float(np.clip(p.span.start, first + 1.0, last - 1.0))
 
 
-def external_bodies(scenario):
+def external_bodies(p):
     """(the Sun, planets and EMB sampled from orbit.source over the span and the start, the sampling's wall
     time s)."""
-    from ..orbits.sources import barycentric
-
-    t0, (first, last) = start_epoch(scenario), scenario.params.span.bounds
-    names = EXTERNAL if scenario.params.model.planets else tuple(n for n in EXTERNAL if n not in PLANETS)
+    t0, (first, last) = start_epoch(p), p.span.bounds
+    names = EXTERNAL if p.model.planets else tuple(n for n in EXTERNAL if n not in PLANETS)
     started = time.perf_counter()
-    external = barycentric(scenario.params.orbit.source, names, min(first, t0) - 1.0, max(last, t0) + 1.0,
-                           scenario.params.orbit.step)
+    external = p.orbit.source.barycentric(names, min(first, t0) - 1.0, max(last, t0) + 1.0, p.orbit.step)
     return external, time.perf_counter() - started
 
 
-def system(scenario, external, switches):
+def system(p, external, switches):
     """The Earth-Moon System on ``external`` with ``switches``, started from DE421 at span.start (or at the
     nearest epoch its lunar series covers, integrated out from there)."""
     from ..bodies import earth
@@ -119,7 +116,7 @@ def system(scenario, external, switches):
     from ..models.start import earth_moon_de421
     from ..references.erfa_pole import cip_vector
 
-    t0 = start_epoch(scenario)
+    t0 = start_epoch(p)
     built = solar_system(external, switches, t0)
     built.y0 = built.layout.pack(earth_moon_de421(built, t0, cip_vector(t0), earth.ERA_RATE_RAD_D))
     return built

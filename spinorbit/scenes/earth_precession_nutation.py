@@ -10,8 +10,8 @@ conditions (starts/earth.py); the CIP X, Y, the fitted precession and nutation, 
 from ..analysis.precession import RATE_MIN_SPAN_D
 from ..analysis.transfer.models import MODELS
 from ..bodies import earth
-from ..orbits.sources import orbit_source
-from ..params import Params, key, table
+from ..orbits.sources import OrbitSource
+from ..params import Params, key, source_key, table
 from ..references import euler_p96
 from ..scene import Cost, Model, Outcome, Scene
 from ..schema import SAMPLE_STEP
@@ -43,8 +43,7 @@ class EarthTable:
 
 @table
 class OrbitTable:
-    source: str = key(type=str, default="de421",
-                      help="'de421', 'de440' (or a .bsp), 'rebound', or 'circular'")
+    source: OrbitSource = source_key("'de421', 'de440' (or a .bsp), 'rebound', or 'circular'")
     planets: bool = key(type=bool, default=False,
                         help="add the direct torques of the planets (Mercury to Saturn)")
     sample_step: float = key(**SAMPLE_STEP, default=0.25)
@@ -77,7 +76,7 @@ _OBLIQUITY = ("H_d fitted to the psi rate, the obliquity rate is judged: P03's o
 
 def verdict(p, comparison):
     """What this Earth scene is compared for (see the module docstring)."""
-    if orbit_source(p.orbit.source).circular:
+    if p.orbit.source.circular:
         return Verdict("Euler's P96 rate N cos n (§846)", (Check(
             "model − P96", "model_minus_p96_arcsec_cy", 0.05, "″/cy",
             "10^-5 of the rate: well below the smallest effect the model must resolve (planets' torques, "

@@ -12,7 +12,8 @@ the verdict: comparisons/mars_orientation.py.
 from ..bodies import mars
 from ..comparisons.mars_orientation import verdict
 from ..models.assemblies.planet import MODELS
-from ..params import Params, key, table
+from ..orbits.sources import OrbitSource
+from ..params import Params, key, source_key, table
 from ..scene import Cost, Model, Scene
 from ..schema import SAMPLE_STEP
 from ..starts.mars import restarted
@@ -31,8 +32,7 @@ class MarsTable:
 
 @table
 class OrbitTable:
-    source: str = key(type=str, default="de421",
-                      help="'de421', 'de440' (or a .bsp), or 'kepler' (the Sun alone)")
+    source: OrbitSource = source_key("'de421', 'de440' (or a .bsp), or 'kepler' (the Sun alone)")
     planets: bool = key(type=bool, default=True, help="the direct torques of the planets and the Moon")
     sample_step: float = key(**SAMPLE_STEP, default=1.0)
 

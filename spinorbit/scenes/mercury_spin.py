@@ -7,14 +7,15 @@ spinorbit.comparisons.mercury_spin.
 """
 from ..bodies import mercury
 from ..comparisons.mercury_spin import verdict
-from ..params import Params, key, table
+from ..orbits.sources import OrbitSource
+from ..params import Params, key, source_key, table
 from ..scene import Cost, Model, Scene
 from ..schema import ANGLE, SAMPLE_STEP
 
 
 @table
 class OrbitTable:
-    source: str = key(type=str, default="de421", help="'de421', a .bsp name, or 'rebound'")
+    source: OrbitSource = source_key("'de421', a .bsp name, or 'rebound'")
     step: float = key(**SAMPLE_STEP, default=0.5, help="orbit sampling step (the Sun from Mercury)")
 
 

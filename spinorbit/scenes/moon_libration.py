@@ -17,8 +17,8 @@ import numpy as np
 
 from ..analysis.librations import LONGITUDE_ERROR_MAX_ARCSEC, POLE_ERROR_MAX_ARCSEC
 from ..constants import ARCSEC
-from ..orbits.sources import orbit_source
-from ..params import Params, key, table
+from ..orbits.sources import OrbitSource
+from ..params import Params, key, source_key, table
 from ..scene import Cost, Model, Outcome, Scene
 from ..schema import SAMPLE_STEP
 from ..verdict import Check, Verdict
@@ -42,10 +42,10 @@ def verdict(p, comparison):
     if level == 1:
         notes.append("Euler's degree-2 Moon is held to the level-2 target; the Moon's degree-3 field it "
                      "lacks is what level 2 adds")
-    if not orbit_source(source).lunar_angles:
+    if not source.lunar_angles:
         from ..comparisons.moon_de421 import SOURCE_NOTES
-        notes.append(SOURCE_NOTES.get(source, f"orbits from {source}: the libration follows that orbit's "
-                                              "departure from DE421's"))
+        notes.append(SOURCE_NOTES.get(source.name, f"orbits from {source.name}: the libration follows that "
+                                                   "orbit's departure from DE421's"))
     checks = (Check("pole", POLE_ERROR_MAX_ARCSEC, pole, "″", why),
               Check("longitude", LONGITUDE_ERROR_MAX_ARCSEC, lon, "″", why))
     return Verdict("DE421", checks, "; ".join(notes))
@@ -64,15 +64,14 @@ class ModelTable:
 
 @table
 class OrbitTable:
-    source: str = key(type=str, default="de421", help="'de421', a .bsp name, or 'rebound'")
+    source: OrbitSource = source_key("'de421', a .bsp name, or 'rebound'")
     step: float = key(**SAMPLE_STEP, default=0.5,
                       help="orbit sampling step (0.5 d: 5.5e-4 km off DE421, RESULTS.md)")
 
 
 @table
 class CompareTable:
-    source: str = key(type=str, default="",
-                      help="also run driven by this source and report the difference")
+    source: OrbitSource | None = source_key("also run driven by this source and report the difference", default="")
 
 
 @table
@@ -126,17 +125,17 @@ def compare_run(p, run):
                           "degree": 4 if "harmonics" in system.meta["terms"] else 2,
                           "core": LEVELS[level].core, "tides": bool(system.meta["tides"]),
                           "bodies": list(orbits.names), "terms": list(system.meta["terms"])},
-                "orbits": vs.orbit_summary(p.orbit.source, p.orbit.step, orbits), "longitude_terms": terms}
+                "orbits": vs.orbit_summary(p.orbit.source.name, p.orbit.step, orbits), "longitude_terms": terms}
     table, rows = vs.table(solution, mats, de421, covered, lib), terms["main"] + terms["other"]
     zoom = covered & (np.abs(t - t[covered][-1]) <= ZOOM_D) if covered.any() else None   # two years vs DE421
     de421_zoom = None if zoom is None else eckhardt.physical_librations(
         t[zoom], de421["icrf_to_body"][zoom[covered]], earth[zoom])
     figures = moon_libration(t, table, rows, [r["term"] for r in terms["main"]], zoom, de421_zoom)
-    if p.compare.source:
+    if p.compare.source is not None:
         other = p.compare.source
         pole, lon = difference_driven_by(p, run, other, mats)
-        comparison.update(vs.driven_by_metrics(other, pole, lon))
-        figures[f"difference_vs_{other}_driven"] = driven_by(t, pole, lon, p.orbit.source, other)
+        comparison.update(vs.driven_by_metrics(other.name, pole, lon))
+        figures[f"difference_vs_{other.name}_driven"] = driven_by(t, pole, lon, p.orbit.source.name, other.name)
     if p.report.error_vs_runtime and de421 is not None:
         sections["error_vs_runtime"] = vs.error_vs_runtime(system, run.times[covered], de421["icrf_to_body"])
         figures["error_vs_runtime"] = plot_error_vs_cost(sections["error_vs_runtime"], [

@@ -123,11 +123,9 @@ def made(scenario, system, grid, piece, span, method, options):
     provenance."""
     run = {"span_tdb_d": [float(span[0]), float(span[1])], "start_tdb_d": float(system.t0),
            **{k: v for k, v in piece.run.items() if isinstance(v, (int, float, str, type(None)))}}
-    from ..params import values_of
-
     rec = store.record(scenario)
     provenance = {"scene": scenario.kind, "scenario": str(scenario.path), "model_start_tdb_d": float(system.t0),
-                  "keys": rec["keys"], "ephemeris": {"name": values_of(scenario.params).get("orbit.source"),
+                  "keys": rec["keys"], "ephemeris": {"name": rec["keys"].get("orbit.source"),
                                                      **(rec["ephemeris_file"] or {})},
                   "integrator": {"method": method, **options}, "code_version": store.code_version(),
                   "grid": {"segment_d": grid.length_d, "degree": grid.degree},

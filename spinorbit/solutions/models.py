@@ -91,12 +91,11 @@ def ephemeris(scenario, built, lo, hi):
     """The JPL ephemeris reader of ``scenario``'s orbit source over [lo, hi] TDB days where ``built`` (its System)
     sees a body from another (fit.seen: that position is fitted from it, fit.components), or None (nothing seen,
     or a source that is not a JPL kernel)."""
-    from ..orbits.sources import orbit_source
     from .fit import seen
 
     if not seen(built):
         return None
-    source = orbit_source(scenario.params.orbit.source)
+    source = scenario.params.orbit.source
     return source.open(lo, hi) if source.jpl_kernel else None
 
 

@@ -32,6 +32,7 @@ import numpy as np
 
 from .. import private, verified
 from ..layout import Layout
+from ..orbits.sources import OrbitSource
 from .chebyshev import Segments
 from .code_version import package_version
 from .solution import Solution
@@ -61,17 +62,24 @@ def record(scenario):
     """What decides a solution's numbers: the scene kind, its model keys, the ephemeris file's identity, the code's
     version (and the span, for a scene whose start depends on it: the Earth's is fitted over its span's
     outputs)."""
-    from ..orbits.sources import ephemeris_identity
     from ..params import values_of
     from .models import KINDS
 
     anchored = scenario.kind in KINDS and KINDS[scenario.kind].anchor is not None
     ignored = LAYER_KEYS if anchored else tuple(k for k in LAYER_KEYS if k not in ("span.", "model.start"))
-    keys = {k: v.tolist() if hasattr(v, "tolist") else v for k, v in sorted(values_of(scenario.params).items())
-            if not k.startswith(ignored)}
+    values = values_of(scenario.params)
+    keys = {k: recorded(v) for k, v in sorted(values.items()) if not k.startswith(ignored)}
     keys["integrator"] = scenario.params.integrator.options()
+    source = values.get("orbit.source")
     return {"scene": scenario.kind, "keys": json.loads(json.dumps(keys, default=str)), "code": code_version(),
-            "ephemeris_file": ephemeris_identity(values_of(scenario.params).get("orbit.source"))}
+            "ephemeris_file": source.file_identity() if isinstance(source, OrbitSource) else None}
+
+
+def recorded(value):
+    """A key's value as the record holds it (JSON): an orbit source by its name, an array as a list."""
+    if isinstance(value, OrbitSource):
+        return value.name
+    return value.tolist() if hasattr(value, "tolist") else value
 
 
 

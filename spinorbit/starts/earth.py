@@ -16,9 +16,7 @@ RIGID_START_STEP_D = 2.0              # rk8 step of the first gyroscopic run (co
 
 def orbits(scenario):
     """(orbit source, tilt of the circles' plane or None): DE421 sampled once, or Euler's circles."""
-    from ..orbits.sources import orbit_source
-
-    source = orbit_source(scenario.params.orbit.source)
+    source = scenario.params.orbit.source
     if source.circular:
         return euler_p96.circles()
     margin = 1.0        # the figure axes reported difference the torque at t +- 1/64 d
@@ -30,9 +28,7 @@ def orbits(scenario):
 
 def check(scenario):
     """Settings that cannot go together, refused on the key that sets them."""
-    from ..orbits.sources import orbit_source
-
-    circular = orbit_source(scenario.params.orbit.source).circular
+    circular = scenario.params.orbit.source.circular
     if scenario.params.earth.hd != "iau2006" and circular:
         raise ScenarioError("earth.hd", scenario.params.earth.hd, '"iau2006" with orbit.source = "circular" (the '
                             'observed rate is IAU 2006\'s, on the real Moon and Sun)')

@@ -7,7 +7,8 @@ import numpy as np
 
 from ..constants import ARCSEC, DAY_S, JULIAN_CENTURY_D, JULIAN_YEAR_D
 from ..errors import InputError, ScenarioError
-from ..params import key, table
+from ..orbits.sources import OrbitSource
+from ..params import key, source_key, table
 
 KYR_D = 1000 * JULIAN_YEAR_D
 MYR_D = 1000 * KYR_D
@@ -18,8 +19,8 @@ ERFA_SPAN_D = 2 * KYR_D               # the orbit reaches at least this far: ERF
 class DeepTimeOrbitTable:
     """The orbital solution's keys (earth_deep_time, mars_deep_time)."""
 
-    ephemeris: str = key(type=str, default="de421", choices=("de421", "de440"),
-                         help="the JPL ephemeris whose J2000 state starts the solar system")
+    ephemeris: OrbitSource = source_key("the JPL ephemeris whose J2000 state starts the solar system",
+                                        choices=("de421", "de440"))
     step: float = key(unit="d", default=5.0, min=1.0, max=5.0,
                       help="WHFast step, 1 to 5 d (5 d: the e vector within 7e-8 of 1 d's over 200 kyr; 8 d "
                            "meets a step resonance, 7e-5)")
@@ -62,7 +63,7 @@ def settings(scenario):
     """The orbital solution's Settings from the scenario's orbit keys."""
     from ..orbits.solution import Settings
 
-    return Settings(ephemeris=scenario.params.orbit.ephemeris, step_d=scenario.params.orbit.step,
+    return Settings(ephemeris=scenario.params.orbit.ephemeris.name, step_d=scenario.params.orbit.step,
                     output_d=scenario.params.orbit.output, relativity=scenario.params.orbit.relativity,
                     moon=scenario.params.orbit.moon)
 

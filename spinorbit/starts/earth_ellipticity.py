@@ -66,12 +66,11 @@ def from_observed_rate(source, planets, sample_step, j2_rate, j4, geodesic, geod
     longitude and obliquity at H_0 (the rows, "/cy, by the run's torques; see the module docstring)."""
     from ..integrators import simulate
     from ..models.assemblies.earth import rigid_earth
-    from ..orbits.sources import sample_orbits
     from .earth_pole import PLANETS, ecliptic_pole, ren2000_scaled, started
 
     t = np.arange(-HALF_SPAN_D, HALF_SPAN_D + STEP_D / 2, STEP_D)
     bodies = ("moon", "sun") + (PLANETS if planets else ())
-    orbits = sample_orbits(source, "earth", bodies, t[0] - 1.0, t[-1] + 1.0, sample_step)
+    orbits = source.relative("earth", bodies, t[0] - 1.0, t[-1] + 1.0, sample_step)
     system = rigid_earth(orbits, "gyroscopic", earth.H_D, 0.0, j2_rate, j4,
                          ecliptic_pole(None) if geodesic else None, geodesic and geodesic_nutation, t[0])
     # started on the IAU mean pole plus REN-2000's rigid nutation (x H_0 / H_REN), as the rigid run goes

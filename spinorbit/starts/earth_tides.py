@@ -34,16 +34,17 @@ STEP_D = 0.3                 # the Moon moves 4 deg: the average is converged to
 
 
 def rates(choice, source):
-    """(dpsi/dt, deps/dt) of the axis, "/cy, from the tides: ``choice`` one of CHOICES; ``source`` the
-    ephemeris the DE421 model is averaged on (DE421 for an orbit source that is not a kernel)."""
+    """(dpsi/dt, deps/dt) of the axis, "/cy, from the tides: ``choice`` one of CHOICES; ``source`` the orbit
+    source (spinorbit.orbits.sources) whose ephemeris the DE421 model is averaged on (DE421 for a source that
+    is not a kernel)."""
     if choice == "none":
         return 0.0, 0.0
     if choice == "williams1994":
         return 0.0, earth.TIDAL_OBLIQUITY_RATE_ARCSEC_CY
-    from ..orbits.sources import orbit_source
+    from ..orbits.sources import DE421
 
     love = earth.de421_tides()
-    ephemeris = source if orbit_source(source).jpl_kernel else "de421"       # averaged on a kernel
+    ephemeris = source if source.jpl_kernel else DE421()       # averaged on a kernel
     with stage("the tides' rates (DE421's model averaged over 18.6 yr)"):
         delayed = model_rates(ephemeris, tuple(love[band] for band in (0, 1, 2)))
         elastic = model_rates(ephemeris, tuple((love[band][0], 0.0) for band in (0, 1, 2)))
@@ -54,12 +55,11 @@ def rates(choice, source):
 def model_rates(source, love, sun=True):
     """The delayed-tide model's rates, "/cy (see the module docstring), on the ephemeris ``source``: ``love``
     = ((k2, tau d) of the zonal, diurnal, semi-diurnal band); ``sun``: the Sun raises tides and pulls on them
-    (else the Moon alone)."""
+    (else the Moon alone); ``source`` a JPL kernel's OrbitSource (spinorbit.orbits.sources)."""
     from ..models.interactions import tides
-    from ..orbits.kernel import open_ephemeris
 
     t = np.arange(-NODE_CYCLE_D / 2, NODE_CYCLE_D / 2, STEP_D)
-    ephemeris = open_ephemeris(source, t[0], t[-1])
+    ephemeris = source.open(t[0], t[-1])
     (r_moon, v_moon), (r_sun, v_sun) = (ephemeris.relative_states(b, "earth", t) for b in ("moon", "sun"))
     gm_e, gm_m, gm_s = (gm_km3_d2(b) for b in ("earth", "moon", "sun"))
     p = np.array([gm_e, gm_m, gm_s if sun else 0.0, earth.EQUATORIAL_RADIUS_KM, *(k for k, _ in love),

@@ -37,13 +37,11 @@ def start_epoch(p):
 
 def orbits(p, t0):
     """The Sun (and with orbit.planets the planets) seen from Mars over the run and t0."""
-    from ..orbits.sources import orbit_source
-
-    source = orbit_source(p.orbit.source)
+    source = p.orbit.source
     bodies = ("sun",) + (PLANETS if p.orbit.planets else ())
     if source.analytic:
         if p.orbit.planets:
-            raise ScenarioError("orbit.planets", True, f'false with orbit.source = "{p.orbit.source}" (a two-body '
+            raise ScenarioError("orbit.planets", True, f'false with orbit.source = "{source.name}" (a two-body '
                                                       "orbit carries the Sun alone)")
         return source.relative("mars", bodies, t0, t0)
     first, last = min(p.span.start, p.span.end, t0) - MARGIN_D, max(p.span.start, p.span.end, t0) + MARGIN_D

@@ -21,10 +21,8 @@ def model(p, times, scale=1.0):
     from ..analysis.resonant_spin import cassini_system, mean_orbit
     from ..bodies.table import gm_km3_d2
     from ..orbits.interpolant import turned
-    from ..orbits.sources import orbit_source
-
     t0, t1 = float(min(times)), float(max(times))
-    orbits = orbit_source(p.orbit.source).relative("mercury", ("sun",), t0, t1, p.orbit.step)
+    orbits = p.orbit.source.relative("mercury", ("sun",), t0, t1, p.orbit.step)
     gm = gm_km3_d2("sun") + gm_km3_d2("mercury")
     if scale != 1.0:
         orbit = mean_orbit(orbits, t0, t1, gm)

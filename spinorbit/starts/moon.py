@@ -22,11 +22,10 @@ def start_epoch(p):
 
 
 def build_system(p, source):
-    """(System of the lunar model at the scenario's level, its terms + ``model.terms``, driven by ``source``;
-    the orbits); ``p`` the scene's parameters (or a Scenario)."""
+    """(System of the lunar model at the scenario's level, its terms + ``model.terms``, driven by ``source`` (an
+    OrbitSource); the orbits); ``p`` the scene's parameters."""
     from ..models.assemblies.moon import moon
     from ..models.start import moon_de421
-    from ..orbits.sources import sample_orbits
     from ..references.moon_de421 import earth_pole
 
     level, extra = LEVELS[p.model.level], p.model.terms
@@ -36,7 +35,7 @@ def build_system(p, source):
                                                   f"from {sorted(TERMS)}")
     t0 = start_epoch(p)
     first, last = min(t0, *p.span.bounds) - MARGIN_D, max(t0, *p.span.bounds) + MARGIN_D
-    orbits = sample_orbits(source, "moon", level.bodies, first, last, p.orbit.step)
+    orbits = source.relative("moon", level.bodies, first, last, p.orbit.step)
     pole = earth_pole(first, last) if "earth_j2" in level.terms + tuple(extra) else None
     try:
         system = moon(p.model.level, orbits, tuple(extra), p.model.tides, pole, t0,
@@ -45,21 +44,21 @@ def build_system(p, source):
         if exc.name != "terms":
             raise
         raise ScenarioError("model.terms", extra, exc.accepted) from None
-    system.meta["source"] = source
+    system.meta["source"] = source.name
     return system, orbits
 
 
 def difference_driven_by(p, run, other, mats):
-    """(pole, longitude) differences, rad, of this run from the same run driven by orbit source ``other``."""
+    """(pole, longitude) differences, rad, of this run from the same run driven by the OrbitSource ``other``."""
     from ..analysis.librations import icrf_to_body, pole_and_longitude_difference
 
     try:
         system, _ = build_system(p, other)
-    except ScenarioError as exc:                   # the error is about this source, not orbit.source
-        if exc.key != "orbit.source":
+    except InputError as exc:                      # the error is about this source, not orbit.source
+        if exc.name != "source":
             raise
-        raise ScenarioError("compare.source", other, exc.accepted) from None
-    solution, _ = run.integrate(system, run.times, f"driven_by_{other}")
+        raise ScenarioError("compare.source", other.name, exc.accepted) from None
+    solution, _ = run.integrate(system, run.times, f"driven_by_{other.name}")
     return pole_and_longitude_difference(mats, icrf_to_body(solution.quaternion))
 
 
@@ -67,13 +66,12 @@ def started_at(p, start):
     """The lunar model of ``p`` started at a stored state ``start`` = (t0, y): the same model on orbits
     sampled over the stretch, without the DE421 start (its core carried from DE421's epoch) it replaces."""
     from ..models.assemblies.moon import moon
-    from ..orbits.sources import sample_orbits
     from ..references.moon_de421 import earth_pole
 
     level, extra = LEVELS[p.model.level], tuple(p.model.terms)
     first, last = min(start[0], *p.span.bounds) - MARGIN_D, max(start[0], *p.span.bounds) + MARGIN_D
-    orbits = sample_orbits(p.orbit.source, "moon", level.bodies, first, last, p.orbit.step)
+    orbits = p.orbit.source.relative("moon", level.bodies, first, last, p.orbit.step)
     pole = earth_pole(first, last) if "earth_j2" in level.terms + extra else None
     built = moon(p.model.level, orbits, extra, p.model.tides, pole, float(start[0]))
-    built.meta["source"] = p.orbit.source
+    built.meta["source"] = p.orbit.source.name
     return built.with_start(*start)

@@ -8,6 +8,7 @@ import pytest
 
 from spinorbit.bodies import earth
 from spinorbit.bodies.table import gm_km3_d2
+from spinorbit.orbits.sources import DE421
 from spinorbit.references import erfa_pole
 from spinorbit.runner import run_scenario
 from spinorbit.starts import earth_tides as tides
@@ -22,7 +23,7 @@ PSI_1 = 5038.481507              # P03's psi_1, "/cy
 def budget():
     """The non-rigid scene's settings: DE421, planets, J2 rate, J4, geodesic precession and nutation, DE421's
     tides."""
-    return from_observed_rate("de421", True, 0.25, True, True, True, True, "de421")
+    return from_observed_rate(DE421(), True, 0.25, True, True, True, True, "de421")
 
 
 def test_h_d_from_the_rate_is_within_the_spread_of_rigid_theories(budget):
@@ -97,7 +98,7 @@ def test_tidal_obliquity_rate_of_a_constant_lag_is_mignards():
     (a = 384 400 km, I = 23.44 deg).  Bound 3 %: the orbit's eccentricity (1 + 15 e^2 / 2 in <a^6 / r^6>, 2.3
     %) and its 18-29 deg inclination to the equator.  Measured 1.491."""
     k2, tau = earth.de421_tides()[1]
-    _, eps_rate = tides.model_rates("de421", ((k2, tau),) * 3, sun=False)
+    _, eps_rate = tides.model_rates(DE421(), ((k2, tau),) * 3, sun=False)
     a_m, gm_m = 384400e3, gm_km3_d2("moon") * 1e9 / 86400**2          # m, m^3/s^2
     ratio, radius = gm_km3_d2("moon") / gm_km3_d2("earth"), earth.EQUATORIAL_RADIUS_KM * 1e3
     eps, n_over_w = math.radians(23.44), 1.0 / 27.321661 / 1.0027379
@@ -115,11 +116,11 @@ def test_de421_tides_tilt_the_axis_less_than_williams():
     models and above zero; the elastic part alone tilts nothing (a conservative torque: 1e-3 of the rate, the
     average's own noise) and the delays hardly move the longitude (P03: tides in t^2 only).  Measured +0.42 and
     +0.08 mas/cy (the elastic part -0.0002 and +1.97)."""
-    psi_rate, eps_rate = tides.rates("de421", "de421")
+    psi_rate, eps_rate = tides.rates("de421", DE421())
     assert 0.0 < eps_rate * arcsec < 0.0024 * arcsec
     assert abs(psi_rate) * arcsec < 0.2 * mas
     love = earth.de421_tides()
-    _, elastic_eps = tides.model_rates("de421", tuple((love[band][0], 0.0) for band in (0, 1, 2)))
+    _, elastic_eps = tides.model_rates(DE421(), tuple((love[band][0], 0.0) for band in (0, 1, 2)))
     assert abs(elastic_eps) < 1e-3 * eps_rate
 
 

@@ -1,0 +1,57 @@
+"""A loaded scenario's typed parameters hold what its keys name (spinorbit.params, ``Key.parse``): an orbit source
+as its OrbitSource, the name the file gives; a name that names nothing is refused at load, in one line."""
+import tomllib
+from pathlib import Path
+
+import pytest
+
+from spinorbit.cli import main
+from spinorbit.errors import ScenarioError
+from spinorbit.orbits.sources import OrbitSource
+from spinorbit.scenarios import load_scenario
+
+SCENARIOS = Path(__file__).parents[1] / "scenarios"
+
+
+@pytest.mark.parametrize("name", ["moon_libration", "moon_libration_rebound", "earth_moon_coupled_rebound",
+                                  "earth_precession_nutation_circular", "mars_orientation"])
+def test_a_loaded_orbit_source_is_the_source_the_file_names(name):
+    path = SCENARIOS / f"{name}.toml"
+    written = tomllib.loads(path.read_text())
+    p = load_scenario(path).params
+    assert isinstance(p.orbit.source, OrbitSource)
+    assert p.orbit.source.name == written["orbit"]["source"]
+    compared = written.get("compare", {}).get("source")
+    if compared is not None:
+        assert isinstance(p.compare.source, OrbitSource) and p.compare.source.name == compared
+
+
+def test_an_absent_source_is_the_keys_default():
+    """No [compare] source: None; no [orbit] source (mercury_spin.toml): DE421, the ephemeris with the Moon's
+    angles."""
+    assert "orbit" not in tomllib.loads((SCENARIOS / "mercury_spin.toml").read_text())
+    p = load_scenario(SCENARIOS / "moon_libration.toml", ['span.end="4 d"']).params
+    assert p.compare.source is None
+    default = load_scenario(SCENARIOS / "mercury_spin.toml").params.orbit.source
+    assert default.name == "de421" and default.lunar_angles
+
+
+@pytest.mark.parametrize("key, given, says", [
+    ("orbit.source", "de42", "or an installed naif-de42 package"),
+    ("orbit.source", "no_such_kernel.bsp", "(no such file)"),
+    ("orbit.source", "", "'rebound'"),
+    ("compare.source", "de42", "or an installed naif-de42 package"),
+])
+def test_a_source_that_names_nothing_is_refused_at_load_in_one_line(key, given, says):
+    with pytest.raises(ScenarioError) as info:
+        load_scenario(SCENARIOS / "moon_libration.toml", [f'{key}="{given}"'])
+    message = str(info.value)
+    assert message.startswith(f"{key}: got '{given}'; expected ") and says in message and "\n" not in message
+
+
+def test_the_command_line_refuses_an_unknown_source_before_it_runs(tmp_path, capsys):
+    code = main(["run", str(SCENARIOS / "moon_libration.toml"), "--out", str(tmp_path / "out"),
+                 "--set", 'orbit.source="de42"'])
+    err = capsys.readouterr().err
+    assert code == 2 and len(err.splitlines()) == 1 and err.startswith("error: orbit.source: got 'de42'"), err
+    assert not (tmp_path / "out").exists()
