@@ -1,8 +1,12 @@
 """A loaded scenario's typed parameters hold what its keys name (spinorbit.params, ``Key.parse``): an orbit source
-as its OrbitSource, the name the file gives; a name that names nothing is refused at load, in one line."""
+as its OrbitSource, the name the file gives; a name that names nothing is refused at load, in one line; the same
+record from --set text and from Python values, frozen; a value in the wrong unit refused naming its key."""
+import dataclasses
 import tomllib
 from pathlib import Path
 
+import astropy.units as u
+import numpy as np
 import pytest
 
 from spinorbit.cli import main
@@ -55,3 +59,23 @@ def test_the_command_line_refuses_an_unknown_source_before_it_runs(tmp_path, cap
     err = capsys.readouterr().err
     assert code == 2 and len(err.splitlines()) == 1 and err.startswith("error: orbit.source: got 'de42'"), err
     assert not (tmp_path / "out").exists()
+
+
+def test_the_typed_record_is_the_same_from_set_text_and_from_python_values():
+    by_text = load_scenario("free_body", ['span.step="6 h"', 'body.omega0=["0.1 rad/d", "2 rad/d", "0.1 rad/d"]'])
+    by_value = load_scenario("free_body", values={"span.step": 6 * u.h, "body.omega0": [0.1, 2, 0.1] * u.rad / u.d})
+    for p in (by_text.params, by_value.params):
+        assert p.span.step == 0.25                          # 6 h in days, exactly
+        assert isinstance(p.body.moments, np.ndarray) and p.body.moments.shape == (3,)
+        assert p.body.omega0 is p.body.omega0
+        assert p.integrator.method == "dop853" and p.span.end > p.span.start
+    assert np.array_equal(by_text.params.body.omega0, by_value.params.body.omega0)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        by_value.params.body.omega0 = np.zeros(3)
+
+
+def test_a_python_value_in_the_wrong_unit_is_refused_in_one_line_naming_the_key():
+    with pytest.raises(ScenarioError) as info:
+        load_scenario("free_body", values={"span.step": 3 * u.km})
+    message = str(info.value)
+    assert message.startswith("span.step:") and "3.0 km" in message and "'d'" in message and "\n" not in message

@@ -1,35 +1,13 @@
-"""The scene protocol (spinorbit.scene): typed parameters alike from a file, --set and Python values; one runner
-that builds a scene's model once; what a scene declares is read from its Scene, not restated above it."""
+"""The scene protocol (spinorbit.scene): one runner that builds a scene's model once; what a scene declares is read
+from its Scene, not restated above it (its typed parameters: tests/test_params.py)."""
 import dataclasses
 
-import astropy.units as u
-import numpy as np
 import pytest
 
 from spinorbit import api
 from spinorbit.errors import ScenarioError
 from spinorbit.scenarios import load_scenario
 from spinorbit.scenes import SCENES, scene_module, scene_of
-
-
-def test_the_typed_record_is_the_same_from_set_text_and_from_python_values():
-    by_text = load_scenario("free_body", ['span.step="6 h"', 'body.omega0=["0.1 rad/d", "2 rad/d", "0.1 rad/d"]'])
-    by_value = load_scenario("free_body", values={"span.step": 6 * u.h, "body.omega0": [0.1, 2, 0.1] * u.rad / u.d})
-    for p in (by_text.params, by_value.params):
-        assert p.span.step == 0.25                          # 6 h in days, exactly
-        assert isinstance(p.body.moments, np.ndarray) and p.body.moments.shape == (3,)
-        assert p.body.omega0 is p.body.omega0
-        assert p.integrator.method == "dop853" and p.span.end > p.span.start
-    assert np.array_equal(by_text.params.body.omega0, by_value.params.body.omega0)
-    with pytest.raises(dataclasses.FrozenInstanceError):
-        by_value.params.body.omega0 = np.zeros(3)
-
-
-def test_a_python_value_in_the_wrong_unit_is_refused_in_one_line_naming_the_key():
-    with pytest.raises(ScenarioError) as info:
-        load_scenario("free_body", values={"span.step": 3 * u.km})
-    message = str(info.value)
-    assert message.startswith("span.step:") and "3.0 km" in message and "'d'" in message and "\n" not in message
 
 
 def test_every_scene_declares_a_scene_the_one_runner_runs():
