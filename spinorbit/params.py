@@ -18,7 +18,7 @@ import numpy as np
 
 from .integrators.options import OPTIONS
 from .orbits.sources import orbit_source
-from .schema import REQUIRED, Key
+from .schema import REQUIRED, Key, parse_tdb_days
 
 _table = dataclass(frozen=True, kw_only=True, eq=False)
 
@@ -48,6 +48,20 @@ def source_key(help, default="de421", choices=()):
     file is not there is refused; with ``default=""`` the key is optional and "" holds None."""
     return key(type=str, default=default, choices=choices, parse=_source if default else _optional_source,
                help=help)
+
+
+def time_key(help, default=""):
+    """A field holding a time: the file gives ISO text in TDB (schema.ISO_TDB), the field holds TDB days from
+    J2000.0, made at load; with ``default=""`` the key is optional and "" holds None."""
+    return key(type=str, default=default, parse=_tdb_days if default else _optional_tdb_days, help=help)
+
+
+def _tdb_days(text):
+    return parse_tdb_days("time", text)
+
+
+def _optional_tdb_days(text):
+    return _tdb_days(text) if text else None
 
 
 def _source(name):

@@ -79,3 +79,14 @@ def test_a_python_value_in_the_wrong_unit_is_refused_in_one_line_naming_the_key(
         load_scenario("free_body", values={"span.step": 3 * u.km})
     message = str(info.value)
     assert message.startswith("span.step:") and "3.0 km" in message and "'d'" in message and "\n" not in message
+
+
+def test_the_moons_start_is_held_in_tdb_days():
+    """model.start = 2000-12-01T00:00 TDB is JD 2451879.5 TDB: 334.5 days after J2000.0 (JD 2451545.0); absent,
+    None (the span's start); a text that is no date is refused at load in one line."""
+    path = SCENARIOS / "moon_libration.toml"
+    assert load_scenario(path, ["model.start=2000-12-01T00:00:00"]).params.model.start == 334.5
+    assert load_scenario(path).params.model.start is None
+    with pytest.raises(ScenarioError) as info:
+        load_scenario(path, ['model.start="next tuesday"'])
+    assert str(info.value).startswith("model.start: got 'next tuesday'; expected an ISO date in TDB")

@@ -18,7 +18,7 @@ import numpy as np
 from ..analysis.librations import LONGITUDE_ERROR_MAX_ARCSEC, POLE_ERROR_MAX_ARCSEC
 from ..constants import ARCSEC
 from ..orbits.sources import OrbitSource
-from ..params import Params, key, source_key, table
+from ..params import Params, key, source_key, table, time_key
 from ..scene import Cost, Model, Outcome, Scene
 from ..schema import SAMPLE_STEP
 from ..verdict import Check, Verdict
@@ -57,9 +57,8 @@ class ModelTable:
                      help="1..4: spinorbit.models.assemblies.moon.LEVELS")
     tides: bool = key(type=bool, default=True, help="tidal/rotational distortion at levels 3-4")
     terms: list = key(type=list, default=[], help="terms added to the level's, e.g. [\"sun_j2\"]")
-    start: str = key(type=str, default="",
-                     help="ISO TDB epoch of DE421's state the Moon starts from (default: "
-                          "span.start; clamped into DE421's lunar series)")
+    start: float | None = time_key("ISO TDB epoch of DE421's state the Moon starts from (default: span.start; "
+                                   "clamped into DE421's lunar series)")
 
 
 @table

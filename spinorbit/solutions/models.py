@@ -60,10 +60,10 @@ def stretch(scenario, lo, hi, t0):
 def own_start(scenario):
     """Where ``scenario`` asks its model to start when a key says so (TDB days), or None (the kind's anchor, the
     stored solution's): the Moon's ``model.start``; the solar system's span.start with ``start.epoch = "span"``."""
-    if scenario.kind == "moon_libration" and scenario.params.model.start:
+    if scenario.kind == "moon_libration" and scenario.params.model.start is not None:
         from ..starts.moon import start_epoch
 
-        return start_epoch(scenario)
+        return start_epoch(scenario.params)
     if scenario.kind == "solar_system" and scenario.params.start.epoch == "span":
         return float(scenario.params.span.start)
     if scenario.kind == "mars_orientation":

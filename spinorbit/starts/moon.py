@@ -13,11 +13,9 @@ def start_epoch(p):
     """model.start (default span.start), or the nearest epoch of DE421's lunar series (TDB days) when it lies
     outside."""
     from ..bodies.de421_orientation import span
-    from ..schema import parse_tdb_days
 
     first, last = span()
-    given = p.model.start
-    wanted = parse_tdb_days("model.start", given) if given else p.span.start
+    wanted = p.span.start if p.model.start is None else p.model.start
     return float(np.clip(wanted, first + MARGIN_D, last - MARGIN_D))
 
 
