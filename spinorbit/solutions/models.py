@@ -68,7 +68,7 @@ def own_start(scenario):
         return float(scenario.params.span.start)
     if scenario.kind == "mars_orientation":
         from ..starts.mars import start_epoch
-        return start_epoch(scenario)
+        return start_epoch(scenario.params)
     return None
 
 
