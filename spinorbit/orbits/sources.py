@@ -114,10 +114,13 @@ class JPLEphemeris(OrbitSource):
 
         try:
             path = kernel_path(self.name)
+            found = path.is_file()
         except InputError as exc:
             raise InputError("source", self.name, f"'rebound', 'circular', 'kepler', or a JPL kernel: "
                                                   f"{exc.accepted}") from None
-        if not path.is_file():
+        except OSError as exc:                      # e.g. a name longer than the file system takes
+            raise InputError("source", self.name, f"a JPL kernel's name or path ({exc.strerror})") from None
+        if not found:
             raise InputError("source", self.name, "a JPL SPK kernel (.bsp): 'de421', a .bsp in ephemerides/, or a "
                                                   "path to one (no such file)")
         return self
