@@ -16,6 +16,7 @@ from hypothesis import strategies as st
 from spinorbit.budget import LIMITS
 from spinorbit.cli import main
 from spinorbit.errors import ScenarioError
+from spinorbit.params import values_of
 from spinorbit.scenarios import Scenario, load_scenario
 from spinorbit.schema import dotted_items
 
@@ -260,7 +261,7 @@ def assert_one_line(exc):
 
 def assert_sane(scenario):
     """What an accepted scenario promises: finite values, a real span, bounded output."""
-    for key, value in scenario.values.items():
+    for key, value in values_of(scenario.params).items():
         if isinstance(value, (float, np.ndarray)):
             assert np.all(np.isfinite(value)), key
     assert math.isfinite(scenario.params.span.start) and scenario.params.span.end > scenario.params.span.start
