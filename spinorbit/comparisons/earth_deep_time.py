@@ -14,13 +14,13 @@ ERFA_STEP_D = 10 * JULIAN_YEAR_D
 ERFA_OBLIQUITY_MAX_ARCSEC, ERFA_EQUATOR_MAX_ARCSEC = "erfa_obliquity_max_arcsec", "erfa_equator_max_arcsec"
 
 
-def erfa_metrics(scenario, model):
+def erfa_metrics(p, model):
     """Obliquity and mean equator against ERFA's long-term precession over the span's first 2 kyr (arcsec)."""
     from ..integrators import simulate
     from ..references.long_term_precession import LongTermPrecession
 
-    reach = min(ERFA_SPAN_D, abs(scenario.params.span.end))
-    t = math.copysign(1.0, scenario.params.span.end) * np.arange(ERFA_STEP_D, reach + 1.0, ERFA_STEP_D)
+    reach = min(ERFA_SPAN_D, abs(p.span.end))
+    t = math.copysign(1.0, p.span.end) * np.arange(ERFA_STEP_D, reach + 1.0, ERFA_STEP_D)
     solution, _ = simulate(model.system, t, "rk8", {"step": ERFA_STEP_D}, estimate_error=False)
     states = solution.y
     normal, _ = model.system.orbit(t)

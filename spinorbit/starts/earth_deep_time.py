@@ -59,36 +59,33 @@ def nbody_counts(p):
     return {"WHFast steps": steps_to_compute(p)}
 
 
-def settings(scenario):
+def settings(p):
     """The orbital solution's Settings from the scenario's orbit keys."""
     from ..orbits.solution import Settings
 
-    return Settings(ephemeris=scenario.params.orbit.ephemeris.name, step_d=scenario.params.orbit.step,
-                    output_d=scenario.params.orbit.output, relativity=scenario.params.orbit.relativity,
-                    moon=scenario.params.orbit.moon)
+    return Settings(ephemeris=p.orbit.ephemeris.name, step_d=p.orbit.step, output_d=p.orbit.output,
+                    relativity=p.orbit.relativity, moon=p.orbit.moon)
 
 
-def orbit_end(scenario):
+def orbit_end(p):
     """Where the orbital solution must reach: the span's end, at least ERFA_SPAN_D from J2000."""
-    return math.copysign(max(abs(scenario.params.span.end), ERFA_SPAN_D), scenario.params.span.end)
+    return math.copysign(max(abs(p.span.end), ERFA_SPAN_D), p.span.end)
 
 
-def steps_to_compute(scenario):
+def steps_to_compute(p):
     """The WHFast steps of the orbital solution this run still has to compute (none when it is cached)."""
     from ..orbits import solution
 
-    return solution.steps_to_compute(settings(scenario), scenario.params.span.start, orbit_end(scenario),
-                                     path=scenario.params.orbit.file or None)
+    return solution.steps_to_compute(settings(p), p.span.start, orbit_end(p), path=p.orbit.file or None)
 
 
-def orbital_solution(scenario, label):
+def orbital_solution(p, label):
     """The solution covering the span (and at least 2 kyr of it), from the cache or orbit.file."""
     from ..orbits import solution
 
-    end = orbit_end(scenario)
+    end = orbit_end(p)
     try:
-        return solution.solve(settings(scenario), scenario.params.span.start, end,
-                              path=scenario.params.orbit.file or None, label=label)
+        return solution.solve(settings(p), p.span.start, end, path=p.orbit.file or None, label=label)
     except InputError as exc:
         raise ScenarioError(ORBIT_KEYS.get(exc.name, exc.name), exc.given, exc.accepted) from None
 
@@ -104,7 +101,7 @@ class SpinModel:
     description: dict
 
 
-def spin_model(scenario, orbit):
+def spin_model(p, orbit):
     """The averaged spin equations' parameters on ``orbit``, the axis started on IAU 2006's mean pole."""
     import erfa
 
@@ -123,22 +120,22 @@ def spin_model(scenario, orbit):
     a_km, c_km_d = h["AU"], h["CLIGHT"] * DAY_S
     geodesic = deep_time.geodesic_rate(a_km, c_km_d) / (1 - e0**2)
     per_cy = ARCSEC / JULIAN_CENTURY_D
-    if scenario.params.model.precession == "iau2006_rate":
+    if p.model.precession == "iau2006_rate":
         alpha0 = deep_time.constant_from_rate(PSI_A_RATE_ARCSEC_CY * per_cy, obliquity0, geodesic)
     else:
         alpha0 = deep_time.constant_from_ellipticity(earth.H_D, earth.ERA_RATE_RAD_D, a_km, e0)
-    tilt = earth.TIDAL_OBLIQUITY_RATE_ARCSEC_CY * per_cy if scenario.params.model.tidal_tilt else 0.0
-    params = deep_time.parameters(grid, orbit.t_d[0], scenario.params.orbit.output, alpha0, e0, a_km, c_km_d,
-                                  earth.ERA_RATE_RAD_D, ed=scenario.params.model.Ed, td=scenario.params.model.Td,
+    tilt = earth.TIDAL_OBLIQUITY_RATE_ARCSEC_CY * per_cy if p.model.tidal_tilt else 0.0
+    params = deep_time.parameters(grid, orbit.t_d[0], p.orbit.output, alpha0, e0, a_km, c_km_d,
+                                  earth.ERA_RATE_RAD_D, ed=p.model.Ed, td=p.model.Td,
                                   tilt_rad_d=tilt, obliquity0=obliquity0)
-    alpha = alpha0 * scenario.params.model.Ed
+    alpha = alpha0 * p.model.Ed
     description = {
         "precession_constant_arcsec_per_cy": alpha / per_cy,
-        "precession_constant_from": scenario.params.model.precession,
+        "precession_constant_from": p.model.precession,
         "dynamical_ellipticity": deep_time.implied_ellipticity(alpha, earth.ERA_RATE_RAD_D, a_km, e0),
         "psi_rate_j2000_arcsec_per_cy": (alpha * math.cos(obliquity0) - geodesic) / per_cy,
         "geodesic_arcsec_per_cy": geodesic / per_cy, "obliquity_j2000_deg": math.degrees(obliquity0),
-        "tidal_obliquity_rate_arcsec_per_cy": tilt * scenario.params.model.Td / per_cy,
-        "moon_quadrupole_factor": MOON[scenario.params.orbit.moon], "Td": scenario.params.model.Td,
-        "Ed": scenario.params.model.Ed}
+        "tidal_obliquity_rate_arcsec_per_cy": tilt * p.model.Td / per_cy,
+        "moon_quadrupole_factor": MOON[p.orbit.moon], "Td": p.model.Td,
+        "Ed": p.model.Ed}
     return SpinModel(deep_time.averaged_spin(params, spin_axis0), spin_axis0, normal0, description)

@@ -34,7 +34,7 @@ def mean_pole_j2000():
     return np.array([math.cos(dec) * math.cos(ra), math.cos(dec) * math.sin(ra), math.sin(dec)])
 
 
-def spin_model(scenario, orbit):
+def spin_model(p, orbit):
     """The averaged spin equations' parameters on Mars's orbit in ``orbit`` (an OrbitalSolution)."""
     from ..bodies import mars
     from ..bodies.de421_header import header
@@ -51,21 +51,21 @@ def spin_model(scenario, orbit):
     a_km = mars.MEAN_SEMI_MAJOR_AXIS_KM
     geodesic = deep_time.geodesic_rate(a_km, c_km_d) / (1 - e0**2)
     per_yr = ARCSEC / JULIAN_YEAR_D
-    rate = scenario.params.mars.precession_rate * per_yr
+    rate = p.mars.precession_rate * per_yr
     alpha0 = deep_time.constant_from_rate(-rate, obliquity0, geodesic)
-    tide = deep_time.solar_tide(scenario.params.tides.k2, scenario.params.tides.Q, gm_km3_d2(BODY), mars.RADIUS_KM,
+    tide = deep_time.solar_tide(p.tides.k2, p.tides.Q, gm_km3_d2(BODY), mars.RADIUS_KM,
                                 mars.C_MR2, a_km, mars.ROTATION_RATE_RAD_D)
-    params = deep_time.planet_parameters(grid, orbit.t_d[0], scenario.params.orbit.output, alpha0, e0, a_km, c_km_d,
+    params = deep_time.planet_parameters(grid, orbit.t_d[0], p.orbit.output, alpha0, e0, a_km, c_km_d,
                                          mars.ROTATION_RATE_RAD_D, solar_tide_rad_d=tide)
     solar = 1.5 * gm_km3_d2("sun") / a_km**3 / mars.ROTATION_RATE_RAD_D
     myr = 1e6 * JULIAN_YEAR_D
     description = {
         "precession_constant_arcsec_per_yr": alpha0 / per_yr,
-        "precession_rate_j2000_arcsec_per_yr": scenario.params.mars.precession_rate,
+        "precession_rate_j2000_arcsec_per_yr": p.mars.precession_rate,
         "dynamical_ellipticity": alpha0 / (solar * (1 - e0**2) ** -1.5),
         "geodesic_arcsec_per_yr": geodesic / per_yr, "obliquity_j2000_deg": math.degrees(obliquity0),
         "pole_j2000": "IAU 2015 (Archinal et al. 2018), mean: without its rigid-nutation terms",
-        "k2": scenario.params.tides.k2, "Q": scenario.params.tides.Q,
+        "k2": p.tides.k2, "Q": p.tides.Q,
         "solar_tide_rotation_change_per_myr": -tide * myr,
         "solar_tide_obliquity_rate_arcsec_per_myr": tide * myr * math.sin(obliquity0)
         * (0.5 * math.cos(obliquity0)) / ARCSEC}

@@ -6,6 +6,7 @@ asteroids, the Moon as a body: measured 0.04" in the normal, 4e-8 in the eccentr
 for the scene, the targets of issue 24 at 2 kyr (ERFA) and La2004's own distance from La93 over 20 kyr.
 """
 import math
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -242,13 +243,10 @@ def test_obliquity_at_j2000_is_iau_2006s_within_the_osculating_ecliptic(tmp_path
     # The axis starts on IAU 2006's mean pole; the osculating ecliptic of DE421 sits 0.25" from the mean one.
     from spinorbit.starts import earth_deep_time as deep_time_model
 
-    class Scenario(dict):
-        pass
-
     orbit = solution.solve(solution.Settings(output_d=3650.0), -100 * YEAR_D, 0.0, path=tmp_path / "s.npz")
-    scenario = Scenario({"model.precession": "iau2006_rate", "model.tidal_tilt": True, "orbit.output": 3650.0,
-                         "model.Ed": 1.0, "model.Td": 1.0, "orbit.moon": "ring"})
-    model = deep_time_model.spin_model(scenario, orbit)
+    p = SimpleNamespace(model=SimpleNamespace(precession="iau2006_rate", tidal_tilt=True, Ed=1.0, Td=1.0),
+                        orbit=SimpleNamespace(output=3650.0, moon="ring"))
+    model = deep_time_model.spin_model(p, orbit)
     obliquity = model.description["obliquity_j2000_deg"] * deg
     assert obliquity == pytest.approx(84381.406 * arcsec, abs=0.5 * arcsec)
     assert model.description["psi_rate_j2000_arcsec_per_cy"] == pytest.approx(5038.481507, rel=1e-12)
