@@ -22,12 +22,12 @@ TABLE_TERMS = {"18.6 yr": (0, 0, 0, 0, 1), "9.3 yr": (0, 0, 0, 0, 2), "1 yr": (0
                "0.5 yr": (0, 0, 2, -2, 2), "27.55 d": (1, 0, 0, 0, 0), "13.66 d": (0, 0, 2, 0, 2)}
 
 
-def settings(scenario):
+def settings(p):
     """The non-rigid layer's settings from an Earth scene: transfer function, run's H_d, geodesic nutation."""
     from ..starts.earth_ellipticity import dynamical_ellipticity
 
-    return {"model": scenario.params.earth.transfer_function, "h_d": dynamical_ellipticity(scenario)[0],
-            "geodesic": scenario.params.earth.geodesic_nutation and scenario.params.earth.geodesic_precession}
+    return {"model": p.earth.transfer_function, "h_d": dynamical_ellipticity(p)[0],
+            "geodesic": p.earth.geodesic_nutation and p.earth.geodesic_precession}
 
 
 def nonrigid_pole(t, z, model, h_d, geodesic):

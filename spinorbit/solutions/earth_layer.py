@@ -88,7 +88,7 @@ def layer(rigid, scenario, nonrigid):
 
     def computed(_, lo, hi):
         rates = tides.rates(scenario.params.earth.tides, scenario.params.orbit.source)
-        return _computed(rigid, nr.settings(scenario) if nonrigid else None, rates, fits)
+        return _computed(rigid, nr.settings(scenario.params) if nonrigid else None, rates, fits)
 
     return store.solve(_record(scenario, nonrigid), fits[0].lo, fits[-1].hi, computed)
 

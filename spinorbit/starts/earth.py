@@ -14,69 +14,69 @@ from .earth_pole import PLANETS, ecliptic_pole, ren2000_scaled, started
 RIGID_START_STEP_D = 2.0              # rk8 step of the first gyroscopic run (converged: RESULTS.md)
 
 
-def orbits(scenario):
+def orbits(p):
     """(orbit source, tilt of the circles' plane or None): DE421 sampled once, or Euler's circles."""
-    source = scenario.params.orbit.source
+    source = p.orbit.source
     if source.circular:
         return euler_p96.circles()
     margin = 1.0        # the figure axes reported difference the torque at t +- 1/64 d
-    bodies = ("moon", "sun") + (PLANETS if scenario.params.orbit.planets else ())
-    first, last = scenario.params.span.bounds
+    bodies = ("moon", "sun") + (PLANETS if p.orbit.planets else ())
+    first, last = p.span.bounds
     return source.relative("earth", bodies, first - margin, last + margin,
-                           scenario.params.orbit.sample_step), None
+                           p.orbit.sample_step), None
 
 
-def check(scenario):
+def check(p):
     """Settings that cannot go together, refused on the key that sets them."""
-    circular = scenario.params.orbit.source.circular
-    if scenario.params.earth.hd != "iau2006" and circular:
-        raise ScenarioError("earth.hd", scenario.params.earth.hd, '"iau2006" with orbit.source = "circular" (the '
+    circular = p.orbit.source.circular
+    if p.earth.hd != "iau2006" and circular:
+        raise ScenarioError("earth.hd", p.earth.hd, '"iau2006" with orbit.source = "circular" (the '
                             'observed rate is IAU 2006\'s, on the real Moon and Sun)')
-    if scenario.params.earth.hd != "iau2006" and scenario.params.earth.dynamical_ellipticity != earth.H_D:
-        raise ScenarioError("earth.dynamical_ellipticity", scenario.params.earth.dynamical_ellipticity,
+    if p.earth.hd != "iau2006" and p.earth.dynamical_ellipticity != earth.H_D:
+        raise ScenarioError("earth.dynamical_ellipticity", p.earth.dynamical_ellipticity,
                             f'{earth.H_D} (IAU 2006\'s) with earth.hd = "observed_rate", which sets it')
-    if scenario.params.earth.nonrigid and circular:
+    if p.earth.nonrigid and circular:
         raise ScenarioError("earth.nonrigid", True,
                             'false with orbit.source = "circular" (the non-rigid '
                             'response is applied on the luni-solar arguments of DE421)')
-    for key in ("earth.j4", "earth.geodesic_nutation"):
-        if scenario[key] and scenario.params.earth.model != "gyroscopic":
-            raise ScenarioError(key, True,
+    for name in ("j4", "geodesic_nutation"):
+        if getattr(p.earth, name) and p.earth.model != "gyroscopic":
+            raise ScenarioError(f"earth.{name}", True,
                                 'false with earth.model = "full" (it acts in the gyroscopic model)')
 
 
-def earth_system(scenario, source, model, t0):
-    """The rigid Earth of the scenario on ``source`` (orbit source, tilt), rotator ``model``, not yet
+def earth_system(p, source, model, t0):
+    """The rigid Earth of the p on ``source`` (orbit source, tilt), rotator ``model``, not yet
     started."""
     from ..models.assemblies.earth import rigid_earth
 
     orbit, tilt = source
-    pole = ecliptic_pole(tilt) if scenario.params.earth.geodesic_precession else None
+    pole = ecliptic_pole(tilt) if p.earth.geodesic_precession else None
     from .earth_ellipticity import dynamical_ellipticity
 
-    return rigid_earth(orbit, model, dynamical_ellipticity(scenario)[0],
-                       scenario.params.earth.b_minus_a_over_c, scenario.params.earth.j2_rate, scenario.params.earth.j4,
-                       pole, scenario.params.earth.geodesic_nutation, t0)
+    return rigid_earth(orbit, model, dynamical_ellipticity(p)[0],
+                       p.earth.b_minus_a_over_c, p.earth.j2_rate, p.earth.j4,
+                       pole, p.earth.geodesic_nutation, t0)
 
 
-def build(scenario, t):
+def build(p, t):
     """(System started, orbits, (start pole, ecliptic pole, tilt or None)); ``t``: the output times, which the
     rigid start reads (a first gyroscopic pass)."""
     from ..references import erfa_pole
 
-    check(scenario)
-    source, t0 = orbits(scenario), scenario.params.span.start
+    check(p)
+    source, t0 = orbits(p), p.span.start
     pole = erfa_pole.cip_vector(t0)
-    if scenario.params.earth.start_pole == "iau_mean_plus_ren2000" and source[1] is None:
-        pole = ren2000_start(scenario, t0)
-    elif scenario.params.earth.start_pole != "iau" and source[1] is None:
-        pole = rigid_start(scenario, source, t0, pole, t)
-    system = started(earth_system(scenario, source, scenario.params.earth.model, t0), t0, pole,
-                     scenario.params.earth.forced_start)
+    if p.earth.start_pole == "iau_mean_plus_ren2000" and source[1] is None:
+        pole = ren2000_start(p, t0)
+    elif p.earth.start_pole != "iau" and source[1] is None:
+        pole = rigid_start(p, source, t0, pole, t)
+    system = started(earth_system(p, source, p.earth.model, t0), t0, pole,
+                     p.earth.forced_start)
     return system, source[0], (pole, ecliptic_pole(source[1]), source[1])
 
 
-def ren2000_start(scenario, t0):
+def ren2000_start(p, t0):
     """IAU mean pole at t0 plus REN-2000's rigid nutation there (all its long-period constituents, times
     H_d / H_REN, with the model's geodesic nutation): the rigid run follows REN-2000 to < 0.06 mas in its main
     terms, and the non-rigid layer then lands on IAU 2006/2000A's pole to that, where the fitted start
@@ -84,19 +84,19 @@ def ren2000_start(scenario, t0):
     from ..references import erfa_pole
     from .earth_ellipticity import dynamical_ellipticity
 
-    geodesic = scenario.params.earth.geodesic_nutation and scenario.params.earth.geodesic_precession
+    geodesic = p.earth.geodesic_nutation and p.earth.geodesic_precession
     t = np.array([t0])
-    return erfa_pole.from_mean_pole(t, *ren2000_scaled(t, dynamical_ellipticity(scenario)[0], geodesic))[0]
+    return erfa_pole.from_mean_pole(t, *ren2000_scaled(t, dynamical_ellipticity(p)[0], geodesic))[0]
 
 
-def rigid_start(scenario, source, t0, pole, t):
+def rigid_start(p, source, t0, pole, t):
     """IAU mean pole at t0 plus the rigid nutation there: the IAU pole + (rigid - IAU) fitted periodic
     terms."""
     from ..analysis.precession import fit_pole, periodic_part
     from ..integrators import simulate
     from ..references import arguments, erfa_pole
 
-    gyro = started(earth_system(scenario, source, "gyroscopic", t0), t0, pole)
+    gyro = started(earth_system(p, source, "gyroscopic", t0), t0, pole)
     run, _ = simulate(gyro, t, "rk8", {"step": RIGID_START_STEP_D}, estimate_error=False, label="rigid start")
     z, iau = gyro.figure_axes("earth", t, run.y), erfa_pole.IauPole()(t)
     terms = arguments.named(t, erfa_pole.NUTATION_ARGUMENTS)

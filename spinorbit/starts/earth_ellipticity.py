@@ -38,25 +38,25 @@ CHOICES = ("iau2006", "observed_rate")
 P03_OBLIQUITY_RATE_ARCSEC_CY = -0.02575
 
 
-def settings(scenario):
+def settings(p):
     """The keys the observed-rate H_d depends on, as a hashable tuple (the cache's key)."""
-    return (scenario.params.orbit.source, scenario.params.orbit.planets, scenario.params.orbit.sample_step,
-            scenario.params.earth.j2_rate, scenario.params.earth.j4, scenario.params.earth.geodesic_precession,
-            scenario.params.earth.geodesic_nutation, scenario.params.earth.tides)
+    return (p.orbit.source, p.orbit.planets, p.orbit.sample_step,
+            p.earth.j2_rate, p.earth.j4, p.earth.geodesic_precession,
+            p.earth.geodesic_nutation, p.earth.tides)
 
 
-def dynamical_ellipticity(scenario):
-    """(H_d, budget or None): the scenario's ``earth.dynamical_ellipticity`` (IAU 2006's by default) with
+def dynamical_ellipticity(p):
+    """(H_d, budget or None): the p's ``earth.dynamical_ellipticity`` (IAU 2006's by default) with
     ``earth.hd = "iau2006"``, else from_observed_rate(...) of its settings."""
-    if scenario.params.earth.hd == "iau2006":
-        return scenario.params.earth.dynamical_ellipticity, None
-    budget = from_observed_rate(*settings(scenario))
+    if p.earth.hd == "iau2006":
+        return p.earth.dynamical_ellipticity, None
+    budget = from_observed_rate(*settings(p))
     return budget["h_d"], budget
 
 
-def summary(scenario):
+def summary(p):
     """The summary's "dynamical_ellipticity": the H_d the run took and where from (with its budget)."""
-    h_d, budget = dynamical_ellipticity(scenario)
+    h_d, budget = dynamical_ellipticity(p)
     return budget or {"h_d": h_d, "from": "earth.dynamical_ellipticity (IAU 2006's, P03 Table 4, by default)"}
 
 
