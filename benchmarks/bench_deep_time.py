@@ -21,6 +21,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -149,12 +150,14 @@ def ladder(span_kyr=200.0):
     from spinorbit.comparisons import earth_deep_time_table as table
     from spinorbit.integrators import simulate
     from spinorbit.orbits import solution
+    from spinorbit.scenarios import load_scenario
     from spinorbit.starts import earth_deep_time as deep_time_model
 
+    nominal = load_scenario("earth_deep_time").params      # IAU 2006's rate, the tidal tilt, Td = Ed = 1, the ring
+
     def spin(orbit, t, step):
-        scenario = {"model.precession": "iau2006_rate", "model.tidal_tilt": True, "orbit.moon": "ring",
-                    "orbit.output": orbit.t_d[1] - orbit.t_d[0], "model.Ed": 1.0, "model.Td": 1.0}
-        model = deep_time_model.spin_model(scenario, orbit)
+        p = replace(nominal, orbit=replace(nominal.orbit, output=orbit.t_d[1] - orbit.t_d[0]))
+        model = deep_time_model.spin_model(p, orbit)
         solution_, point = simulate(model.system, t, "rk8", {"step": step}, estimate_error=False)
         return table.quantities(t, solution_.y, model), point["wall_s"]
 
@@ -302,6 +305,7 @@ def mars_asteroids(myr=1.0, with_asteroids=True):
     from spinorbit.orbits import solution
     from spinorbit.orbits.kernel import open_ephemeris
     from spinorbit.references import laskar
+    from spinorbit.scenarios import load_scenario
     from spinorbit.starts import mars_deep_time
 
     h = header()
@@ -357,9 +361,11 @@ def mars_asteroids(myr=1.0, with_asteroids=True):
     out = -np.arange(0.0, myr * 1000 * KYR_D + 1.0, KYR_D)
     reference = laskar.Insolation("La2004_Mars")(out)["obliquity_rad"]
     label = "with Ceres, Vesta, Pallas" if with_asteroids else "without asteroids"
+    nominal = load_scenario("mars_deep_time").params
     for rate in (-7.597, -7.5833):
-        scenario = {"mars.precession_rate": rate, "tides.k2": 0.149, "tides.Q": 92.0, "orbit.output": 36525.0}
-        model = mars_deep_time.spin_model(scenario, held)
+        params = replace(nominal, mars=replace(nominal.mars, precession_rate=rate),
+                         tides=replace(nominal.tides, k2=0.149, Q=92.0), orbit=replace(nominal.orbit, output=36525.0))
+        model = mars_deep_time.spin_model(params, held)
         y = simulate(model.system, out, "rk8", {"step": 36525.0}, estimate_error=False)[0].y
         normal = model.system.orbit(out)[0]
         obliquity = np.arccos(np.clip(np.sum(y[:, :3] * normal, axis=1), -1, 1))
