@@ -227,3 +227,20 @@ def test_no_orbit_source_is_compared_by_name_outside_the_orbits():
                                   or "ephemeris" in ast.get_source_segment(text, node)):
                     found.append(f"{path.relative_to(package)}:{node.lineno}")
     assert not found, found
+
+
+def test_a_source_is_made_from_a_name_only_where_a_name_comes_in():
+    """orbit_source(name) (and the entry points taking a name) is called where a string comes in: loading
+    (params.source_key), the API's arguments (api, and solutions.tables, which answers the API with them), a
+    stored solution's provenance (solutions.tracks); past loading, code holds the OrbitSource."""
+    import ast
+    from pathlib import Path
+
+    package = Path(__file__).parents[1] / "spinorbit"
+    found = sorted(f"{path.relative_to(package)}:{node.lineno}" for path in package.rglob("*.py")
+                   if "orbits" not in path.relative_to(package).parts
+                   and path.stem not in ("params", "api", "tables", "tracks")
+                   for node in ast.walk(ast.parse(path.read_text()))
+                   if isinstance(node, ast.Call) and isinstance(node.func, ast.Name)
+                   and node.func.id in ("orbit_source", "sample_orbits", "barycentric", "ephemeris_identity"))
+    assert not found, found
