@@ -192,7 +192,11 @@ def extension():
     from spinorbit import solutions
     from spinorbit.integrators import simulate
     from spinorbit.runner import run_scenario
-    from spinorbit.solutions import models, store
+    from spinorbit.schema import tdb_days_to_time
+    from spinorbit.solutions import store, stretches
+
+    def iso(t):
+        return tdb_days_to_time(t).isot
 
     store.PLACE["directory"] = Path(tempfile.mkdtemp(prefix="solutions-"))
     year = 365.25
@@ -201,17 +205,17 @@ def extension():
     extended = solutions.solve("moon_libration", [], 0.0, 100 * year)
     extend_s = time.perf_counter() - started
     scenario = solutions.scenario_of("moon_libration", [])
-    stretch = models.stretch(scenario, 50 * year, 100 * year, 50 * year)     # DE421's Moon at 2050, out to 2100
+    stretch = stretches.stretch(scenario, 50 * year, 100 * year, 50 * year)     # DE421's Moon at 2050, out to 2100
     t_out = stretch.output_times()
-    simulate(models.system(stretch, None), t_out[:10], "rk8", stretch.params.integrator.options(),
+    simulate(stretches.system(stretch, None), t_out[:10], "rk8", stretch.params.integrator.options(),
              estimate_error=False)                                              # compiled
     started = time.perf_counter()
-    system = models.system(stretch, None)                                      # the orbits sampled, the start
+    system = stretches.system(stretch, None)                                      # the orbits sampled, the start
     built_s = time.perf_counter() - started
     _, bare = simulate(system, t_out, "rk8", stretch.params.integrator.options(), estimate_error=True)
     integrate_s = time.perf_counter() - started - built_s
     started = time.perf_counter()
-    run_scenario("moon_libration", [f"span.start={models.iso(50 * year)[0]}", f"span.end={models.iso(100 * year)[0]}",
+    run_scenario("moon_libration", [f"span.start={iso(50 * year)}", f"span.end={iso(100 * year)}",
                                     "output.plots=false"])
     scene_s = time.perf_counter() - started
     run = extended.provenance["runs"][-1]
@@ -238,17 +242,16 @@ def fit_points():
     step point, among them) and 101 evenly spaced; the integrator run once to all of them."""
     from spinorbit import solutions
     from spinorbit.integrators import simulate
-    from spinorbit.solutions import fit, models
+    from spinorbit.solutions import fit, stretches
 
     scenario = solutions.scenario_of("moon_libration", [])
-    t0, y0 = models.first_start(scenario)
-    kind = models.KINDS["moon_libration"]
-    grid = kind.grid
+    t0, y0 = stretches.first_start(scenario)
+    grid = stretches.grid(stretches.stored(scenario))
     lo, hi = grid.bounds(t0, t0 + 730.0)
-    stretch = models.stretch(scenario, lo, hi, t0)
-    system = models.system(stretch, (t0, y0))
+    stretch = stretches.stretch(scenario, lo, hi, t0)
+    system = stretches.system(stretch, (t0, y0))
     method, options = stretch.params.integrator.method, stretch.params.integrator.options()
-    ephemeris = models.ephemeris(stretch, system, lo, hi)
+    ephemeris = stretches.ephemeris(stretch, system, lo, hi)
     piece = fit.integrate(system, grid, lo, hi, method, options, estimate_error=False, ephemeris=ephemeris)
     count = len(piece.segments.coefficients)
     mids = lo + (np.arange(count) + 0.5) * grid.length_d
@@ -426,24 +429,25 @@ def mm(read, truth):
     return np.linalg.norm(read - truth, axis=1).max() * 1e6
 
 
-GRIDS = ((4.0, 13), (2.0, 13), (8.0, 13), (4.0, 8))     # (segment d, degree): models.KINDS's first
+GRIDS = ((4.0, 13), (2.0, 13), (8.0, 13), (4.0, 8))     # (segment d, degree): the scene's own first
 
 
 def grid():
     """The solar system's grid: each body's fit error against the integrator between the nodes, over the scene's
     whole span on the kept grid, and over its first year from DE421's epoch on other grids side by side."""
     from spinorbit.scenarios import load_scenario
-    from spinorbit.solutions import models
+    from spinorbit.solutions import stretches
+    from spinorbit.solutions.chebyshev import Grid
 
     scenario = load_scenario("solar_system", [])
-    start = models.first_start(scenario)
-    kept = models.KINDS["solar_system"].grid
+    start = stretches.first_start(scenario)
+    kept = stretches.grid(stretches.stored(scenario))
     rows = {f"{kept.length_d:g} d, degree {kept.degree}, 1950-2050": fit_errors(scenario, start, kept,
                                                                                   *scenario.params.span.bounds)}
     year = (start[0], start[0] + 365.25)
     for length, degree in GRIDS:
         rows[f"{length:g} d, degree {degree}, 1969-1970"] = fit_errors(scenario, start,
-                                                                        models.Grid(0.0, length, degree), *year)
+                                                                        Grid(0.0, length, degree), *year)
     bodies = list(next(iter(rows.values())))
     print("\n## the solar system's fit: each body's series against the integrator between the nodes, mm\n")
     print(f"| grid | {' | '.join(bodies)} |\n|---|{'---|' * len(bodies)}")
@@ -456,12 +460,12 @@ def fit_errors(scenario, start, grid, lo, hi):
     run to the nodes and those points, the series fitted as solutions.fit.integrate fits it (at the node times as
     rounded), each body's largest difference (integrate states only the largest of all)."""
     from spinorbit.integrators import simulate
-    from spinorbit.solutions import models
+    from spinorbit.solutions import stretches
     from spinorbit.solutions.chebyshev import Segments, grid_indices, interpolating_at
     from spinorbit.solutions.fit import components, fitted_layout
 
-    stretch = models.stretch(scenario, lo, hi, start[0])
-    system = models.system(stretch, start)
+    stretch = stretches.stretch(scenario, lo, hi, start[0])
+    system = stretches.system(stretch, start)
     first, count = grid_indices(grid.origin_d, grid.length_d, lo, hi)
     empty = Segments(grid.origin_d, grid.length_d, first, np.zeros((count, 0, grid.degree + 1)))
     nodes, checks = empty.nodes(first, count)

@@ -315,7 +315,7 @@ def _cache(action):
 
 class _ExportHelp(argparse.Action):
     """``spinorbit export --help``: the help, with the scene kinds whose solutions SPICE kernels carry (read
-    from spinorbit.solutions only when asked: the other commands do not import it)."""
+    off every scene's ``stored`` only when asked: the other commands do not import the scenes)."""
 
     def __call__(self, parser, namespace, values, option_string=None):
         parser.epilog = (f"exportable scene kinds: {', '.join(_exportable())} (a built-in scene of one of these "
@@ -325,9 +325,9 @@ class _ExportHelp(argparse.Action):
 
 
 def _exportable():
-    from .solutions import models
+    from .scenes import stored_kinds
 
-    return sorted(name for name, kind in models.KINDS.items() if kind.kernels)
+    return sorted(kind for kind, stored in stored_kinds().items() if stored.kernels)
 
 
 def _export(args):
@@ -339,9 +339,8 @@ def _export(args):
     from .solutions import for_export
 
     scenario = load_scenario(args.scenario, args.overrides)
-    exported = _exportable()
-    if scenario.kind not in exported:        # refused before anything is integrated
-        raise InputError("scene", scenario.kind, f"a scene whose solution SPICE kernels carry: {exported}")
+    if scenario.scene.stored is None or not scenario.scene.stored.kernels:     # refused before anything is integrated
+        raise InputError("scene", scenario.kind, f"a scene whose solution SPICE kernels carry: {_exportable()}")
     _out_folder(args.out)
     solution = for_export(scenario)
     started = time.perf_counter()

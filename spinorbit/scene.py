@@ -92,6 +92,28 @@ class Outcome:
 
 
 @dataclass(frozen=True)
+class Stored:
+    """What a scene keeps as a continuous solution (spinorbit.solutions): Chebyshev segments of ``segment_d``
+    days and ``degree`` from J2000 (their error below the integration's: tests/test_solutions.py,
+    benchmarks/bench_solutions.py); ``anchor``: the TDB day its first run starts from (None: the scenario's own
+    span.start); ``kernels``: SPICE kernels carry it (an attitude or integrated positions: ``spinorbit export``);
+    ``attitude``: the gyroscopic body whose attitude layer (solutions.attitude_layer) it answers with, and
+    ``attitude_table(t, poles, prime_meridian) -> QTable``: that layer's table at TDB days ``t`` (what its
+    comparison says of it); ``own_start(p) -> TDB days | None``: where a key starts the model elsewhere than
+    the anchor (None: at the anchor); ``started(p, t0) -> p``: the parameters of a stretch started at t0 (a
+    model that reads its start from a key; None: ``p`` itself)."""
+
+    segment_d: float
+    degree: int
+    anchor: float | None
+    kernels: bool = True
+    attitude: str | None = None
+    attitude_table: Callable = None
+    own_start: Callable = None
+    started: Callable = None
+
+
+@dataclass(frozen=True)
 class Scene:
     """A scene's declarations.  ``params``: its parameter class (a spinorbit.params.Params with a table per
     scenario table, each field declared with its key), which the scenario is loaded into and every function
@@ -108,7 +130,8 @@ class Scene:
     start (what a continuous solution is extended with, spinorbit.solutions);
     ``sweep_figures(tables) -> {name: draw}``: figures over a sweep's members (e.g. a band over their curves);
     ``nbody_counts(p) -> {count: items}``: N-body work its run does (NBODY_COSTS' counts: an orbital solution
-    or a REBOUND run first, or its own run where its integrator chooses its steps), for the up-front estimate."""
+    or a REBOUND run first, or its own run where its integrator chooses its steps), for the up-front estimate;
+    ``stored``: what it keeps as a continuous solution (a Stored; None: it keeps none)."""
 
     params: type
     build: Callable = None
@@ -122,6 +145,7 @@ class Scene:
     restart: Callable = None
     sweep_figures: Callable = None
     nbody_counts: Callable = None
+    stored: Stored = None
 
     @property
     def schema(self):

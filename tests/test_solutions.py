@@ -10,7 +10,7 @@ import pytest
 from spinorbit import solutions
 from spinorbit.integrators import simulate
 from spinorbit.rotations import quat_angle
-from spinorbit.solutions import chebyshev, models, store
+from spinorbit.solutions import chebyshev, store, stretches
 from tests.units import arcsec
 
 uas = arcsec * 1e-6
@@ -43,9 +43,9 @@ def test_fit_matches_the_dense_output_between_nodes(place):
     integration's own error estimate is ~5 uas over a year: the fit adds a small part of it)."""
     solution = solutions.solve("moon_libration", [], -20.0, 60.0)
     t = np.sort(np.random.default_rng(3).uniform(*solution.span, 200))
-    t0, y0 = models.first_start(solutions.scenario_of("moon_libration", []))
+    t0, y0 = stretches.first_start(solutions.scenario_of("moon_libration", []))
     scenario = solutions.piece_scenario("moon_libration", [], *solution.span, t0)
-    system = models.system(scenario, (t0, y0))
+    system = stretches.system(scenario, (t0, y0))
     direct, _ = simulate(system, t, scenario.params.integrator.method, scenario.params.integrator.options(),
                          estimate_error=False)
     fitted = solution.part("moon.q", t)
@@ -61,9 +61,9 @@ def test_the_stated_fit_error_bounds_the_series_between_its_check_points():
     from spinorbit.solutions import fit
 
     scenario = solutions.scenario_of("moon_libration", [])
-    t0, y0 = models.first_start(scenario)
-    stretch = models.stretch(scenario, t0, t0 + 40.0, t0)
-    system = models.system(stretch, (t0, y0))
+    t0, y0 = stretches.first_start(scenario)
+    stretch = stretches.stretch(scenario, t0, t0 + 40.0, t0)
+    system = stretches.system(stretch, (t0, y0))
     method, options = stretch.params.integrator.method, stretch.params.integrator.options()
     grid = fit.Grid(t0, 4.0, 13)
     piece = fit.integrate(system, grid, t0, t0 + 40.0, method, options, estimate_error=False)

@@ -25,3 +25,8 @@ def scene_module(kind):
 def scene_of(kind):
     """The Scene a kind declares."""
     return scene_module(kind).SCENE
+
+
+def stored_kinds():
+    """{kind: Stored} of the kinds kept as a continuous solution (their Scene's ``stored``; every scene imported)."""
+    return {kind: scene_of(kind).stored for kind in SCENES if scene_of(kind).stored is not None}

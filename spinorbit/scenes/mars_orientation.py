@@ -10,13 +10,13 @@ pole and spin (starts/mars.py).  The rate, the nutation, the pole against IAU 20
 the verdict: comparisons/mars_orientation.py.
 """
 from ..bodies import mars
-from ..comparisons.mars_orientation import verdict
+from ..comparisons.mars_orientation import answer_table, verdict
 from ..models.assemblies.planet import MODELS
 from ..orbits.sources import OrbitSource
 from ..params import Params, key, source_key, table
-from ..scene import Cost, Model, Scene
+from ..scene import Cost, Model, Scene, Stored
 from ..schema import SAMPLE_STEP
-from ..starts.mars import restarted
+from ..starts.mars import restarted, start_epoch
 
 
 @table
@@ -62,5 +62,9 @@ def compare_run(p, run):
     return vs.outcome(p, run)
 
 
+# kept as a solution from J2000 on 8-d segments of degree 14, answered with Mars's attitude layer (its pole and
+# prime meridian); a run started elsewhere (mars.start) is its own
+STORED = Stored(segment_d=8.0, degree=14, anchor=0.0, attitude="mars", attitude_table=answer_table,
+                own_start=start_epoch)
 SCENE = Scene(MarsOrientationParams, build, compare_run, verdict, Cost(step_s=3e-5, sample_bytes=300), backward=True,
-              restart=restarted)
+              restart=restarted, stored=STORED)

@@ -13,13 +13,15 @@ DE421's, 3" in 10 yr, and the libration follows it): no tolerance is fitted to t
 what to expect and names the accurate REBOUND path; ``compare.source`` reports the DE421-driven
 difference beside it.
 """
+from dataclasses import replace
+
 import numpy as np
 
 from ..analysis.librations import LONGITUDE_ERROR_MAX_ARCSEC, POLE_ERROR_MAX_ARCSEC
 from ..constants import ARCSEC
 from ..orbits.sources import OrbitSource
 from ..params import Params, key, source_key, table, time_key
-from ..scene import Cost, Model, Outcome, Scene
+from ..scene import Cost, Model, Outcome, Scene, Stored
 from ..schema import SAMPLE_STEP
 from ..verdict import Check, Verdict
 
@@ -159,5 +161,20 @@ def restart(p, start):
     return started_at(p, start)
 
 
+def own_start(p):
+    """Where model.start starts the Moon (TDB days, starts/moon.py), or None when it is not given: the stored
+    solution's anchor."""
+    from ..starts.moon import start_epoch
+
+    return None if p.model.start is None else start_epoch(p)
+
+
+def started(p, t0):
+    """``p`` with the Moon started from DE421's state at TDB day t0 (model.start)."""
+    return replace(p, model=replace(p.model, start=float(t0)))
+
+
+# kept as a solution from J2000 on 4-d segments of degree 13
+STORED = Stored(segment_d=4.0, degree=13, anchor=0.0, own_start=own_start, started=started)
 SCENE = Scene(MoonLibrationParams, build, compare_run, verdict, Cost(step_s=2e-4, sample_bytes=400), bench=bench,
-              backward=True, restart=restart)
+              backward=True, restart=restart, stored=STORED)

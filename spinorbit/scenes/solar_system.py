@@ -13,7 +13,7 @@ Runs with the Taylor integrator (``integrator.method = "taylor"``) or any other.
 from ..models.assemblies.solar_system import SWITCHES
 from ..params import Params, key, table
 from ..plots.solar_system import moon_vs_de421, planets_vs_de421
-from ..scene import Model, Outcome, Scene
+from ..scene import Model, Outcome, Scene, Stored
 from ..verdict import Check, Verdict
 from . import common
 
@@ -138,5 +138,12 @@ def compare_run(p, run):
 
 
 # every term a function of the state: heyoka's Taylor integrator takes it; from DE421's epoch both ways
+def own_start(p):
+    """span.start with ``start.epoch = "span"``, or None: the stored solution's anchor, DE421's epoch."""
+    return p.span.start if p.start.epoch == "span" else None
+
+
+DE421_EPOCH_TDB_D = -11144.5            # DE421's JDEPOC, 2440400.5 TDB (1969-06-28): where its initial conditions hold
+STORED = Stored(segment_d=4.0, degree=13, anchor=DE421_EPOCH_TDB_D, own_start=own_start)
 SCENE = Scene(SolarSystemParams, build, compare_run, verdict, bench=bench, backward=True, taylor=True, restart=restart,
-              nbody_counts=nbody_counts)
+              nbody_counts=nbody_counts, stored=STORED)

@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from . import models, store
+from . import store, stretches
 from .chebyshev import Grid
 from .solution import Solution, joined
 
@@ -28,7 +28,8 @@ REFINEMENTS = 2                     # halvings of the segments tried before a ru
 
 
 def solve(scene, sets, t_start, t_end):
-    """The Solution of built-in scene ``scene`` (a kind of models.KINDS) with ``sets`` over [t_start, t_end]."""
+    """The Solution of built-in scene ``scene`` (a scene that declares ``stored``) with ``sets`` over
+    [t_start, t_end]."""
     return for_scenario(scenario_of(scene, sets), t_start, t_end)
 
 
@@ -40,16 +41,13 @@ def scenario_of(scene, sets):
 
 def piece_scenario(scene, sets, lo, hi, t0):
     """The scenario of a stretch [lo, hi] TDB days of ``scene`` with ``sets``, started at t0."""
-    return models.stretch(scenario_of(scene, sets), lo, hi, t0)
+    return stretches.stretch(scenario_of(scene, sets), lo, hi, t0)
 
 
 def for_scenario(scenario, t_start=None, t_end=None):
     """The Solution of ``scenario``'s model over [t_start, t_end] (default: its span); InputError for a
     scene kind that is not kept as a solution."""
-    from ..errors import InputError
-
-    if scenario.kind not in models.KINDS:
-        raise InputError("scene", scenario.kind, f"a scene kept as a solution: {sorted(models.KINDS)}")
+    stretches.stored(scenario)
     lo, hi = scenario.params.span.bounds if t_start is None else (min(t_start, t_end), max(t_start, t_end))
     def extend(solution, a, b):
         from ..scenarios import scenario_errors
@@ -63,23 +61,22 @@ def for_scenario(scenario, t_start=None, t_end=None):
 def for_export(scenario):
     """The Solution of exactly ``scenario``'s model over the whole segments covering its span: the store's
     (extended where it lacks the span) when its model is the stored one, else (a key starts it elsewhere:
-    models.own_start) the scenario's own run fitted (for_run: its segments tile the span)."""
+    Stored.own_start) the scenario's own run fitted (for_run: its segments tile the span)."""
     from ..errors import InputError
-    from ..schema import parse_tdb_days
 
-    kind, start = models.KINDS[scenario.kind], models.own_start(scenario)
-    if start is None or abs(start - float(parse_tdb_days("anchor", kind.anchor))) < 1e-9:
+    anchor, start = stretches.stored(scenario).anchor, stretches.own_start(scenario)
+    if start is None or abs(start - anchor) < 1e-9:
         return attitude(scenario, for_scenario(scenario)).window(*scenario.params.span.bounds)
-    solution, why = for_run(scenario, models.system(scenario, None))
+    solution, why = for_run(scenario, stretches.system(scenario, None))
     if solution is None:
         raise InputError("scene", scenario.kind, f"a model whose run can be fitted: {why}")
     return attitude(scenario, solution)
 
 
 def attitude(scenario, solution):
-    """``solution`` itself, or where the kind's body (``Kind.attitude``) is gyroscopic its attitude layer: the
+    """``solution`` itself, or where the scene's body (``Stored.attitude``) is gyroscopic its attitude layer: the
     figure axis and the prime meridian that SPICE kernels and the API carry (attitude_layer)."""
-    body = models.KINDS[scenario.kind].attitude
+    body = stretches.stored(scenario).attitude
     if body is None or f"{body}.spin" not in solution.layout:     # none, or its attitude integrated (a full model)
         return solution
     from .attitude_layer import layer
@@ -90,31 +87,31 @@ def attitude(scenario, solution):
 def _extended(scenario, solution, lo, hi):
     """``solution`` (or a new one from the scene's start) extended to cover [lo, hi]: each stretch from the
     state where the last run stopped."""
-    kind = models.KINDS[scenario.kind]
-    if solution is not None and grid_of(solution) != kind.grid:     # the store keeps its kind's grid only
+    grid = stretches.grid(stretches.stored(scenario))
+    if solution is not None and grid_of(solution) != grid:     # the store keeps its scene's grid only
         solution = None
     if solution is None:
-        t0, y0 = models.first_start(scenario)
+        t0, y0 = stretches.first_start(scenario)
         lo, hi = min(lo, t0), max(hi, t0)
-        return _piece(scenario, kind, (t0, y0), lo, hi)
+        return _piece(scenario, grid, (t0, y0), lo, hi)
     if lo < solution.span[0]:
-        solution = joined(solution, _piece(scenario, kind, solution.ends["start"], lo, solution.span[0]))
+        solution = joined(solution, _piece(scenario, grid, solution.ends["start"], lo, solution.span[0]))
     if hi > solution.span[1]:
-        solution = joined(solution, _piece(scenario, kind, solution.ends["end"], solution.span[1], hi))
+        solution = joined(solution, _piece(scenario, grid, solution.ends["end"], solution.span[1], hi))
     return solution
 
 
-def _piece(scenario, kind, start, lo, hi):
-    """A Solution over [lo, hi] (rounded out to the kind's grid) of the scene's System started at ``start``."""
-    grid = kind.grid
+def _piece(scenario, grid, start, lo, hi):
+    """A Solution over [lo, hi] (rounded out to the scene's ``grid``) of the scene's System started at
+    ``start``."""
     lo, hi = grid.bounds(lo, hi)
     from .fit import integrate
 
-    stretch = models.stretch(scenario, lo, hi, start[0])
-    system = models.system(stretch, start)
+    stretch = stretches.stretch(scenario, lo, hi, start[0])
+    system = stretches.system(stretch, start)
     method, options = stretch.params.integrator.method, stretch.params.integrator.options()
     piece = integrate(system, grid, lo, hi, method, options, label=f"{scenario.kind} solution",
-                      ephemeris=models.ephemeris(stretch, system, lo, hi))
+                      ephemeris=stretches.ephemeris(stretch, system, lo, hi))
     return made(scenario, system, grid, piece, (lo, hi), method, options)
 
 
@@ -144,14 +141,13 @@ def grid_of(solution):
 
 def stored_grid_span(scenario):
     """The span a main run is integrated over when it is the model the store keeps (``stored_model``), started at
-    its kind's anchor and run forward: its own span rounded out to the end of the kind's last segment (the
-    runner builds its System over it), so that the store keeps its kind's grid whatever the run's length; None
+    its scene's anchor and run forward: its own span rounded out to the end of the scene's last segment (the
+    runner builds its System over it), so that the store keeps its scene's grid whatever the run's length; None
     for any other run (it tiles its own span: :func:`run_grid`, and is not stored)."""
-    kind = models.KINDS.get(scenario.kind)
-    if kind is None or kind.anchor is None or scenario.params.span.end <= scenario.params.span.start or \
-            stored_model(scenario, scenario.params.span.start):
+    declared, span = scenario.scene.stored, scenario.params.span
+    if declared is None or declared.anchor is None or span.end <= span.start or stored_model(scenario, span.start):
         return None
-    lo, hi = kind.grid.bounds(scenario.params.span.start, scenario.params.span.end)
+    lo, hi = stretches.grid(declared).bounds(span.start, span.end)
     return (lo, hi) if lo == scenario.params.span.start else None
 
 
@@ -159,26 +155,26 @@ def build_scenario(scenario):
     """The scenario a main run's System is built from: ``scenario`` over :func:`stored_grid_span` (started where it
     starts), or ``scenario`` itself."""
     span = stored_grid_span(scenario)
-    return scenario if span is None else models.stretch(scenario, *span, scenario.params.span.start)
+    return scenario if span is None else stretches.stretch(scenario, *span, scenario.params.span.start)
 
 
-def fitted_grid(scenario, kind, system, lo, hi, halvings=0):
-    """(Grid, span) a main run over [lo, hi] is fitted on: the kind's own grid over :func:`stored_grid_span` when
-    there is one and the kind's segments follow the run's spin (``spin_segment_d``); else :func:`run_grid`,
-    tiling the span exactly."""
+def fitted_grid(scenario, grid, system, lo, hi, halvings=0):
+    """(Grid, span) a main run over [lo, hi] is fitted on: the scene's own ``grid`` over :func:`stored_grid_span`
+    when there is one and its segments follow the run's spin (``spin_segment_d``); else :func:`run_grid`, tiling
+    the span exactly."""
     span = stored_grid_span(scenario)
-    if not halvings and span is not None and spin_segment_d(system, kind.grid.degree) >= kind.grid.length_d:
-        return kind.grid, span
-    return run_grid(kind, system, lo, hi, halvings), (lo, hi)
+    if not halvings and span is not None and spin_segment_d(system, grid.degree) >= grid.length_d:
+        return grid, span
+    return run_grid(grid, system, lo, hi, halvings), (lo, hi)
 
 
-def run_grid(kind, system, lo, hi, halvings=0):
-    """The kind's grid made to tile the run's span [lo, hi] exactly, the first segment starting at lo (no orbit
-    is read beyond the span), of the kind's degree, its segments no longer than the kind's nor than
+def run_grid(grid, system, lo, hi, halvings=0):
+    """The scene's ``grid`` made to tile the run's span [lo, hi] exactly, the first segment starting at lo (no
+    orbit is read beyond the span), of its degree, its segments no longer than its own nor than
     :func:`spin_segment_d` (halved ``halvings`` times)."""
-    length = min(kind.grid.length_d, spin_segment_d(system, kind.grid.degree)) / 2 ** halvings
+    length = min(grid.length_d, spin_segment_d(system, grid.degree)) / 2 ** halvings
     count = max(1, int(np.ceil((hi - lo) / length - 1e-9)))
-    return Grid(lo, (hi - lo) / count, kind.grid.degree)
+    return Grid(lo, (hi - lo) / count, grid.degree)
 
 
 def spin_segment_d(system, degree):
@@ -206,14 +202,14 @@ def for_run(scenario, system):
     why = not_fitted(scenario, system)
     if why:
         return None, why
-    kind, (lo, hi) = models.KINDS[scenario.kind], scenario.params.span.bounds
+    stored_grid, (lo, hi) = stretches.grid(scenario.scene.stored), scenario.params.span.bounds
     method, options = scenario.params.integrator.method, scenario.params.integrator.options()
     worst = np.inf
     for halvings in range(REFINEMENTS + 1):
-        grid, (a, b) = fitted_grid(scenario, kind, system, lo, hi, halvings)
+        grid, (a, b) = fitted_grid(scenario, stored_grid, system, lo, hi, halvings)
         piece = integrate(system, grid, a, b, method, options, label=scenario.name,
                           estimate_error=scenario.params.integrator.estimate_error,
-                          ephemeris=models.ephemeris(scenario, system, a, b))
+                          ephemeris=stretches.ephemeris(scenario, system, a, b))
         beyond = fit_beyond_run(piece.fit_error, piece.run, rounding_km(piece))
         if not beyond:
             return made(scenario, system, grid, piece, (a, b), method, options), None
@@ -267,10 +263,12 @@ def not_fitted(scenario, system):
     """Why a run of ``system`` (its scene's main System) is not fitted, or "": a scene kind not kept as a
     solution, or an attitude turning in the shortest segment tried through more radians than half its series'
     degree (a day resolved on 8-d segments; the run is then integrated to its outputs)."""
-    if scenario.kind not in models.KINDS:
+    if scenario.scene.stored is None:
+        from ..scenes import stored_kinds
+
         return (f"scene kind {scenario.kind} is not kept as a solution (the kinds that are: "
-                f"{', '.join(sorted(models.KINDS))})")
-    grid = models.KINDS[scenario.kind].grid
+                f"{', '.join(sorted(stored_kinds()))})")
+    grid = stretches.grid(scenario.scene.stored)
     finest = grid.length_d / 2 ** REFINEMENTS
     for part in system.layout.slices:
         if part.name.endswith(".omega") and system.y0 is not None:
@@ -283,23 +281,24 @@ def not_fitted(scenario, system):
 
 def stored_model(scenario, t0):
     """Why a run of ``scenario`` started at t0 (TDB days) is not the model the store keeps for its record, or
-    "": the store's starts at the kind's anchor (the Earth's record holds its span, so its start), its error
+    "": the store's starts at the scene's anchor (the Earth's record holds its span, so its start), its error
     estimated."""
-    from ..schema import parse_tdb_days
+    from ..errors import tdb_dates
 
-    anchor = models.KINDS[scenario.kind].anchor
+    anchor = stretches.stored(scenario).anchor
     if not scenario.params.integrator.estimate_error:
         return "its integration error is not estimated (integrator.estimate_error = false)"
-    if anchor is not None and abs(t0 - float(parse_tdb_days("anchor", anchor))) > 1e-9:
-        return f"it starts at {models.iso(t0)[0]} TDB, the stored one at {anchor}"
+    if anchor is not None and abs(t0 - anchor) > 1e-9:
+        return (f"it starts at {tdb_dates((t0,), 'seconds')} TDB, the stored one at "
+                f"{tdb_dates((anchor,), 'seconds')} TDB")
     return ""
 
 
 def keep(scenario, solution):
-    """Put a run's Solution in the store where it is the stored model (``stored_model``) on its kind's grid,
+    """Put a run's Solution in the store where it is the stored model (``stored_model``) on its scene's grid,
     unless the store already holds a longer span of it.  (path, None), or (None, why not)."""
     why = stored_model(scenario, solution.provenance["runs"][0]["start_tdb_d"])
-    grid = models.KINDS[scenario.kind].grid
+    grid = stretches.grid(stretches.stored(scenario))
     if not why and grid_of(solution) != grid:
         s = solution.segments
         why = (f"its segments ({s.length_d:.4g} d from {s.origin_d:.6g}, degree {s.degree}) are not the stored "

@@ -1,7 +1,7 @@
 """A gyroscopic body's attitude from its stored spin: its figure axis and its prime meridian, as a Solution of
 their own on the spin solution's grid -- what the API answers and ``spinorbit export`` writes for it.
 
-The figure axis is the scene's (models.System.figure_axes: the spin angular momentum's direction with its
+The figure axis is the scene's (spinorbit.models' System.figure_axes: the spin angular momentum's direction with its
 Oppolzer terms), as the spin solution holds it (``<body>.pole``, solutions.fit).  The prime meridian W is
 measured along the body's equator from its node on the ICRF equator (the IAU's convention), its 3-1-3
 kinematics w_z = dW/dt + sin(delta) d alpha/dt integrated from the solution's anchor, where W is the scene's
@@ -34,13 +34,13 @@ def layer(spin, scenario, body):
 
 
 def _computed(spin, scenario, body):
-    from . import models
+    from .stretches import stretch, system
 
     segments = spin.segments
     count = len(segments.coefficients)
     nodes, checks = segments.nodes(segments.first, count)
     t0 = float(spin.provenance["runs"][0]["start_tdb_d"])
-    start = models.system(models.stretch(scenario, t0, t0 + 4.0, t0), None)
+    start = system(stretch(scenario, t0, t0 + 4.0, t0), None)
     spin_rate = float(np.linalg.norm(start.y0[start.layout[f"{body}.spin"]]) / start.bodies[body].figure.moments[2])
     at = {name: _axes(spin, body, times) for name, times in (("nodes", nodes), ("checks", checks))}
     integrand = at["nodes"][2] * _rates(at["nodes"][1], first_kind(segments.degree), segments.length_d)

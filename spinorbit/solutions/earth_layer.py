@@ -20,9 +20,8 @@ import numpy as np
 
 from ..errors import InputError
 from ..layout import Layout
-from . import store
+from . import store, stretches
 from .chebyshev import Segments, interpolating
-from .models import KINDS
 from .solution import Solution
 
 LAYOUT = Layout([("earth.pole", 3, "vector", ""), ("iau.cip", 2, "vector", "rad"),
@@ -50,7 +49,7 @@ def windows(scenario, t_first, t_last):
     """The fit windows answering for the dates in [t_first, t_last] (TDB days), in time order."""
     times = np.sort(scenario.output_times())
     origin, length = times[0], times[-1] - times[0]
-    grid = KINDS["earth_precession_nutation"].grid
+    grid = stretches.grid(stretches.stored(scenario))
 
     def edge(k):
         return grid.origin_d + round((origin + k * length - grid.origin_d) / grid.length_d) * grid.length_d

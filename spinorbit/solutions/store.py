@@ -63,9 +63,8 @@ def record(scenario):
     version (and the span, for a scene whose start depends on it: the Earth's is fitted over its span's
     outputs)."""
     from ..params import values_of
-    from .models import KINDS
 
-    anchored = scenario.kind in KINDS and KINDS[scenario.kind].anchor is not None
+    anchored = scenario.scene.stored is not None and scenario.scene.stored.anchor is not None
     ignored = LAYER_KEYS if anchored else tuple(k for k in LAYER_KEYS if k not in ("span.", "model.start"))
     values = values_of(scenario.params)
     keys = {k: recorded(v) for k, v in sorted(values.items()) if not k.startswith(ignored)}

@@ -1,5 +1,5 @@
 """A scene's output table at any dates, evaluated from its stored Solution with the scene's own comparison code
-(scenes.<kind>.compare): the columns a run would have given at those dates, without the run."""
+(comparisons/): the columns a run would have given at those dates, without the run."""
 import numpy as np
 
 FRAMES = {"PA": "the Moon's principal axes (the integrated figure, as DE421's MOON_PA_DE421)",
@@ -57,16 +57,14 @@ def earth_moon(solution, t):
 
 def attitude(layer, body, t):
     """A gyroscopic body's table at TDB days ``t`` from its attitude layer (attitude_layer): its pole and prime
-    meridian, and what its scene compares them with (comparisons.<its scene>.answer_table)."""
-    from importlib import import_module
-
+    meridian, and what its scene compares them with (its ``Stored.attitude_table``)."""
+    from ..scenes import scene_of
     from .spice import body_angles
 
     angles = body_angles(layer, body, t)
     ra, dec = angles[:, 0] - np.pi / 2, np.pi / 2 - angles[:, 1]
     poles = np.column_stack([np.cos(dec) * np.cos(ra), np.cos(dec) * np.sin(ra), np.sin(dec)])
-    comparison = import_module(f"spinorbit.comparisons.{layer.provenance['scene']}")
-    return comparison.answer_table(t, poles, angles[:, 2])
+    return scene_of(layer.provenance["scene"]).stored.attitude_table(t, poles, angles[:, 2])
 
 
 def earth_from_moon(source, t):

@@ -156,9 +156,9 @@ def carried(solution, t):
     """{NAIF code: (n, 3) km about the solar-system barycentre} of every body the solution carries: the free ones
     as integrated, the Earth and the Moon from their barycentre by the model's own mass ratio (its System's)."""
     from spinorbit.scenarios import load_scenario
-    from spinorbit.solutions import models
+    from spinorbit.solutions import stretches
 
-    share = models.system(load_scenario("solar_system", []), solution.ends["start"]).motion.share
+    share = stretches.system(load_scenario("solar_system", []), solution.ends["start"]).motion.share
     codes = {"sun": 10, "mercury": 1, "venus": 2, "mars": 4, "jupiter": 5, "saturn": 6, "uranus": 7,
              "neptune": 8, "pluto": 9, "earth_moon_barycenter": 3}
     out = {code: solution.part(f"{name}.r", t) for name, code in codes.items()}
@@ -185,11 +185,10 @@ def furnished(files):
 def test_the_solar_system_is_stored_from_de421s_epoch(solar_system):
     from spinorbit.bodies.de421_header import header
     from spinorbit.constants import J2000_JD
-    from spinorbit.schema import parse_tdb_days
-    from spinorbit.solutions.models import KINDS
+    from spinorbit.scenes import scene_of
 
     solution, _, _ = solar_system
-    assert float(parse_tdb_days("anchor", KINDS["solar_system"].anchor)) == header()["JDEPOC"] - J2000_JD
+    assert scene_of("solar_system").stored.anchor == header()["JDEPOC"] - J2000_JD
     assert [run["start_tdb_d"] for run in solution.provenance["runs"]] == [DE421_EPOCH]
 
 

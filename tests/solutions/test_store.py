@@ -4,7 +4,7 @@ run, a full disk that keeps the answer, `cache clear` that keeps what a live pro
 reverse dates matched at once, a read error that is not the file's, and a size bound.
 
 References: hashlib's sha256 of the ephemeris file, the scene's own span and step (the run's output times), the
-kind's grid (solutions.models.KINDS), the same call without the fault injected."""
+scene's grid (its Scene's ``stored``), the same call without the fault injected."""
 import errno
 import fcntl
 import hashlib
@@ -20,7 +20,7 @@ from spinorbit import solutions, verified
 from spinorbit.errors import InputError
 from spinorbit.orbits.kernel import kernel_path
 from spinorbit.runner import run_scenario
-from spinorbit.solutions import models, store
+from spinorbit.solutions import store, stretches
 from tests.units import arcsec
 
 uas = arcsec * 1e-6
@@ -78,11 +78,11 @@ def test_a_run_whose_last_output_rounds_past_its_segments_finishes(place, sets):
 
 
 def test_a_short_run_is_stored_on_its_kinds_grid_and_a_failed_run_never(place, monkeypatch):
-    """42.5: a one-hour Moon run from J2000 stores segments of the kind's 4 d, degree 13 (models.KINDS), not of
+    """42.5: a one-hour Moon run from J2000 stores segments of the scene's 4 d, degree 13 (Scene.stored), not of
     one hour; a run that fails after its integration stores nothing."""
     result = run_scenario("moon_libration", [J2000, "span.end=1 h", "span.step=10 min", "output.plots=false"])
     stored = store.read(store.path_of(store.record(result.scenario)), store.record(result.scenario))
-    kind = models.KINDS["moon_libration"].grid
+    kind = stretches.grid(result.scenario.scene.stored)
     assert stored.segments.length_d == kind.length_d and stored.segments.degree == kind.degree
     assert (stored.segments.origin_d - kind.origin_d) % kind.length_d == 0.0
     shutil.rmtree(place)
