@@ -88,7 +88,7 @@ def test_tilt_adds_the_rates_to_the_angles():
     assert np.abs((deps1 - deps0) - 0.0024 * arcsec * century).max() < 1e-6 * mas
     assert np.abs((dpsi1 - dpsi0) - 0.001 * arcsec * century).max() < 1e-6 * mas
     assert tides.tilted(t, z, 0.0, 0.0) is z
-    assert tides.rates("williams1994", "de421") == (0.0, 0.0024)
+    assert tides.rates("williams1994", DE421()) == (0.0, 0.0024)
 
 
 def test_tidal_obliquity_rate_of_a_constant_lag_is_mignards():
