@@ -14,7 +14,7 @@ TAYLOR_SCENES = ("free_body", "p92_arc_ab", "p93_bounded", "p94_moonlike", "p95_
 
 
 def test_every_kind_taylor_takes_has_a_scene_here():
-    kinds = {load_scenario(name)["scene.kind"] for name in TAYLOR_SCENES}
+    kinds = {load_scenario(name).kind for name in TAYLOR_SCENES}
     assert kinds == set(taylor_kinds())
 
 

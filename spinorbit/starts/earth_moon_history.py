@@ -59,7 +59,7 @@ def tide(p, c, y0, model):
     from ..models.tidal_history.tides import TIDES, Continent, NoDrag, Setting
 
     chosen = TIDES[model]
-    depth = None if chosen.depth is None else p[chosen.depth.key]
+    depth = None if chosen.depth is None else getattr(p.tides, chosen.depth.field)
     continent = Continent(p.tides.continent_radius, p.tides.continent_colatitude,
                           p.tides.continent_until, p.tides.global_ocean_from)
     setting = Setting(c, y0, p.tides.recession_rate, depth, continent, keep_table)

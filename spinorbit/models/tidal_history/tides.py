@@ -56,6 +56,11 @@ class Depth:
     low_km: float
     high_km: float
 
+    @property
+    def field(self):
+        """The key's field in the scene's [tides] table ("tides.ocean_depth" -> "ocean_depth")."""
+        return self.key.split(".", 1)[1]
+
     def fitted(self):
         """The stored fit: {depth_km, drag_per_day, moon_age_gyr, command, ...}."""
         return json.loads((FITS / self.fit_file).read_text())
