@@ -28,10 +28,6 @@ import functools
 
 import numpy as np
 
-from .analysis.librations import LONGITUDE_ERROR_MAX_ARCSEC, POLE_ERROR_MAX_ARCSEC
-from .comparisons.earth_iau import X_RMS_MAS
-from .comparisons.earth_moon_de421 import MOON_DIRECTION_ERROR_MAX_ARCSEC, MOON_RANGE_ERROR_MAX_KM
-from .comparisons.mars_orientation import POLE_MINUS_IAU2015_MAX_ARCSEC
 from .errors import InputError, tdb_dates
 
 MAX_DATES = 100_000
@@ -42,100 +38,68 @@ VALIDATED_EARTH = (-18262.5, 18262.5)     # 1950-2050, the validated non-rigid s
 MOON_START = 0.0                          # J2000: where the Moon's, Mars's and the Earth-Moon system's solutions start
 BEYOND_DE421 = ("not compared: DE421's lunar series (1899-12-04 to 2200-02-01) has no data at {dates}; the run is "
                 "integrated out from DE421's state at its nearest date on {source}'s orbits")
-# What the answers' meta says beyond the tolerances (those are the validated scenes' own verdicts: expected()):
-# which statistic a tolerance bounds, what the validated runs measured (benchmarks/RESULTS.md), and the largest
-# difference one date of the Earth's century showed.
-ACCURACY = {
-    "moon": {"statistic": "a bound at every date: the largest difference from DE421 over 1900-2050",
-             "basis": "the level-3 scene's tolerance against DE421 over 1900-2050 (measured 0.0036\" and 0.0005\")",
-             "beyond_de421": "started at 2200 and run back to 1900 the Moon stays within 0.0036\" / 0.0006\" of "
-                             "DE421 on DE421's orbits, and within 0.004\" / 0.21\" on DE440's (the longitude "
-                             "follows the ephemeris's lunar orbit: DE440's differs from DE421's): expect the "
-                             "ephemeris's own uncertainty there, not the integration's (benchmarks/RESULTS.md)"},
-    "earth": {"cip_max_mas": 1.3,
-              "statistic": "cip_rms_mas is the tolerance on the rms over 1950-2050 of X and of Y (measured 0.09 / "
-                           "0.19 mas: H_d from the observed precession rate; Y mostly the obliquity rate's line), "
-                           "not a bound at each date; cip_max_mas is what one date can differ by: the largest over "
-                           "1950-2050 (measured 0.27 / 0.52 mas in X / Y)",
-              "basis": "the non-rigid scene against IAU 2006/2000A over 1950-2050"},
-    "earth_rigid": {"cip_max_mas": 60.0,
-                    "statistic": "cip_rms_mas is the tolerance on the rms over 1950-2050 of X (Y: 25 mas; measured "
-                                 "24.8 / 22.1 mas), not a bound at each date; cip_max_mas is what one date can "
-                                 "differ by: the largest over 1950-2050 (measured 58.1 / 53.0 mas in X / Y)",
-                    "basis": "the rigid Earth against IAU 2006/2000A: what it differs by is the real Earth's "
-                             "non-rigid response"},
-    "mars": {"statistic": "a bound at every date of 1980-2030: the largest angle of the pole from IAU 2015's",
-             "basis": "the Mars scene against IAU 2015 (Archinal et al. 2018) over 1980-2030 (measured 0.072\"): "
-                      "IAU 2015's precession is a fitted circle, 3.0 mas/yr slower than the model's, whose rate "
-                      "is 0.75 mas/yr from Konopliv et al. 2016's (benchmarks/RESULTS.md)",
-             "beyond_de421": "no reference judges these dates"},
-    "earth_moon": {"statistic": "a bound at every date: the largest difference from DE421 over 1950-2050",
-                   "basis": "the coupled scene's tolerances against DE421 over 1950-2050 (measured 0.084\", 9.7 m, "
-                            "0.0023\", 0.073\")",
-                   "beyond_de421": "no reference judges these dates: what the validated century shows is the "
-                                   "integration's drift over 100 years from its start (the figures above), to "
-                                   "which the ephemeris's own uncertainty there adds"},
-}
-# a difference column -> the expected_accuracy key bounding it at one date (its unit the key's last word)
-EXPECTED_BOUND = {"pole_error": "pole_arcsec", "longitude_error": "longitude_arcsec",
-                  "cip_x_minus_erfa": "cip_max_mas", "cip_y_minus_erfa": "cip_max_mas",
-                  "moon_direction_error": "moon_direction_arcsec", "moon_range_error": "moon_range_km"}
-# answer -> (the validated built-in scene, {the answer's name: the metric its verdict judges})
-TOLERANCES = {
-    "moon": ("moon_libration", {"pole_arcsec": POLE_ERROR_MAX_ARCSEC, "longitude_arcsec": LONGITUDE_ERROR_MAX_ARCSEC}),
-    "earth": ("earth_precession_nutation_nonrigid", {"cip_rms_mas": X_RMS_MAS}),
-    "earth_rigid": ("earth_precession_nutation", {"cip_rms_mas": X_RMS_MAS}),
-    "mars": ("mars_orientation", {"pole_arcsec": POLE_MINUS_IAU2015_MAX_ARCSEC}),
-    "earth_moon": ("earth_moon_coupled", {"moon_direction_arcsec": MOON_DIRECTION_ERROR_MAX_ARCSEC,
-                                          "moon_range_km": MOON_RANGE_ERROR_MAX_KM,
-                                          "pole_arcsec": POLE_ERROR_MAX_ARCSEC,
-                                          "longitude_arcsec": LONGITUDE_ERROR_MAX_ARCSEC}),
-}
 
 
 @functools.cache
-def expected(answer):
-    """The expected accuracy of an answer ("moon", "earth", "earth_rigid", "earth_moon"): the tolerances its
-    validated scene's verdict judges it by, and what ACCURACY says of them."""
-    scene, names = TOLERANCES[answer]
-    scenario = _validated(scene)
+def answers():
+    """{name: scene.Answer} of every scene (its ``Scene.answers``, over spinorbit.scenes.SCENES): what the API
+    answers, from which validated scene, with what stated accuracy, for which body (imports every scene module,
+    once per process)."""
+    from .scenes import SCENES, scene_of
+
+    return {answer.name: answer for kind in SCENES for answer in scene_of(kind).answers}
+
+
+def bodies():
+    """The bodies spinorbit.orientation and ``spinorbit at`` answer for: those the scenes' answers name."""
+    return tuple(sorted(answer.body for answer in answers().values() if answer.body))
+
+
+def expected(name):
+    """The expected accuracy of an answer ("moon", "earth", "earth_rigid", "mars", "earth_moon": answers()): the
+    tolerances its validated scene's verdict judges it by, and what its Answer states of them."""
+    return _stated(answers()[name])
+
+
+@functools.cache
+def _stated(answer):
+    """What ``meta["expected_accuracy"]`` says of ``answer`` (a scene.Answer): its tolerances, read off its
+    validated scene's verdict, its further figures, the statistic and the basis."""
+    scenario = _validated(answer.scenario)
     checks = {c.metric: c.tolerance for c in scenario.scene.verdict_for(scenario.params, {}).checks}
-    return {**{name: checks[metric] for name, metric in names.items()}, **ACCURACY[answer]}
+    beyond = {} if answer.beyond_de421 is None else {"beyond_de421": answer.beyond_de421}
+    return {**{name: checks[metric] for name, metric in answer.tolerances.items()}, **answer.stated,
+            "statistic": answer.statistic, "basis": answer.basis, **beyond}
 
 
-MOON_COLUMNS = ("phi", "theta", "psi", "libration_longitude", "libration_latitude", "libration_node",
-                "sub_earth_longitude", "sub_earth_latitude", "pole_error", "longitude_error")
+def _declared(kind, name):
+    """The Answer ``name`` scene ``kind`` declares (one scene imported, not all: answers())."""
+    from .scenes import scene_of
+
+    return next(answer for answer in scene_of(kind).answers if answer.name == name)
+
+
 OBSERVER_COLUMNS = ("sub_observer_longitude", "sub_observer_latitude", "axis_position_angle")
-EARTH_COLUMNS = ("cip_x", "cip_y", "cip_x_minus_erfa", "cip_y_minus_erfa", "precession_longitude", "obliquity",
-                 "nutation_longitude", "nutation_obliquity", "cio_locator_s", "celestial_to_intermediate")
-EARTH_MOON_COLUMNS = ("moon_geocentric_x", "moon_geocentric_y", "moon_geocentric_z", "phi", "theta", "psi",
-                      "moon_direction_error", "moon_range_error", "pole_error", "longitude_error",
-                      "earth_axis_x", "earth_axis_y", "earth_axis_z")
-
-
-MARS_COLUMNS = ("pole_ra", "pole_dec", "prime_meridian", "pole_minus_iau2015")
-BODIES = ("mars", "moon", "earth")
 
 
 def orientation(body, times, *, ephemeris=None):
-    """A body's orientation at ``times`` from its stored solution: ``"mars"`` -- its pole (right ascension and
-    declination, ICRF) and prime meridian W (IAU conventions), with the pole's angle from IAU 2015's -- from the
-    rigid Mars scene started at J2000 on IAU 2015's pole (``mars_orientation``); ``"moon"`` and ``"earth"``:
-    :func:`moon_librations` and :func:`earth_pole` (their defaults)."""
-    _check_choice("body", body, BODIES)
-    if body == "moon":
-        return moon_librations(times, ephemeris=ephemeris)
-    if body == "earth":
-        return earth_pole(times, ephemeris=ephemeris)
+    """A body's orientation at ``times`` from its stored solution, as the scene that answers for it declares
+    (its ``scene.Answer``; :func:`bodies` lists them): ``"mars"`` -- its pole (right ascension and declination,
+    ICRF) and prime meridian W (IAU conventions), with the pole's angle from IAU 2015's -- from the rigid Mars
+    scene started at J2000 on IAU 2015's pole (``mars_orientation``: a body's attitude layer); ``"moon"`` and
+    ``"earth"``: :func:`moon_librations` and :func:`earth_pole` (their defaults)."""
+    _check_choice("body", body, bodies())
+    answer = next(a for a in answers().values() if a.body == body)
+    if answer.function is not None:
+        return globals()[answer.function](times, ephemeris=ephemeris)
     from .solutions import attitude, tables
 
     t, when = tdb_days(times, "times")
-    first, last = min(t.min(), MOON_START) - 2.0, max(t.max(), MOON_START) + 2.0
-    source, why = _ephemeris(ephemeris, t, (first, last))
-    values = {"orbit.source": source}
-    layer = attitude(_scenario("mars_orientation", values), _solution("mars_orientation", values, t, 1.0))
-    return _answer(tables.attitude(layer, body, t), t, when, MARS_COLUMNS, _summary(layer, "mars_orientation"),
-                   expected("mars"), {"source": source, "why": why})
+    source, why = _ephemeris_from_start(ephemeris, t)
+    scenario = _scenario(answer.scenario, source)
+    layer = attitude(scenario, _solution(scenario, t, 1.0))
+    return _answer(tables.attitude(layer, body, t), t, when, answer.columns, _summary(layer, answer.scenario),
+                   answer, {"source": source, "why": why})
 
 
 def moon_librations(times, *, level=3, ephemeris=None, optical=False, frame="PA", observer=None):
@@ -162,18 +126,18 @@ def moon_librations(times, *, level=3, ephemeris=None, optical=False, frame="PA"
     _check_choice("level", level, (1, 2, 3, 4))
     _check_choice("frame", frame, tuple(tables.FRAMES))
     _check_observer(observer, when)
-    first, last = min(t.min(), MOON_START) - 2.0, max(t.max(), MOON_START) + 2.0
-    source, why = _ephemeris(ephemeris, t, (first, last))
+    source, why = _ephemeris_from_start(ephemeris, t)
     if observer is not None:
         _check_observer_ephemeris(source)
-    solution = _solution("moon_libration", {"orbit.source": source, "model.level": level}, t, 1.0)
+    answer = _declared("moon_libration", "moon")
+    solution = _solution(_scenario(answer.scenario, source, level), t, 1.0)
     table = tables.moon(solution, t, source, frame)
-    columns = MOON_COLUMNS + (("optical_libration_longitude", "optical_libration_latitude") if optical else ())
+    columns = answer.columns + (("optical_libration_longitude", "optical_libration_latitude") if optical else ())
     if optical:
         table = _with_optical(table, source)
     if observer is not None:
         table, columns = _with_observer(table, solution, t, when, source, observer, frame), columns + OBSERVER_COLUMNS
-    out = _answer(table, t, when, columns, _summary(solution, "moon_libration"), expected("moon"),
+    out = _answer(table, t, when, columns, _summary(solution, answer.scenario), answer,
                   {"source": source, "why": why})
     out.meta["frame"] = {"name": frame, "definition": tables.FRAMES[frame]}
     if observer is not None:
@@ -190,16 +154,15 @@ def earth_pole(times, *, nonrigid=True, ephemeris=None):
 
     t, when = tdb_days(times, "times")
     _check_choice("nonrigid", nonrigid, (True, False))
-    scene = "earth_precession_nutation_nonrigid" if nonrigid else "earth_precession_nutation"
-    first, last = earth_layer.reach(_validated(scene), min(t.min(), VALIDATED_EARTH[0]),
+    answer = _declared("earth_precession_nutation", "earth" if nonrigid else "earth_rigid")
+    first, last = earth_layer.reach(_validated(answer.scenario), min(t.min(), VALIDATED_EARTH[0]),
                                     max(t.max(), VALIDATED_EARTH[1]))
     source, why = _ephemeris(ephemeris, t, (first - 1.0, last + 1.0))
-    values = {"orbit.source": source}
-    layer = earth_layer.stored(_scenario(scene, values), nonrigid, t.min(), t.max()) or earth_layer.layer(
-        _solution(scene, values, np.array([first, last]), 0.0), _scenario(scene, values), nonrigid)
-    table = earth_layer.table(layer, t)
-    return _answer(table, t, when, EARTH_COLUMNS, _summary(layer, scene),
-                   expected("earth" if nonrigid else "earth_rigid"), {"source": source, "why": why})
+    scenario = _scenario(answer.scenario, source)
+    layer = earth_layer.stored(scenario, nonrigid, t.min(), t.max()) or earth_layer.layer(
+        _solution(scenario, np.array([first, last]), 0.0), scenario, nonrigid)
+    return _answer(earth_layer.table(layer, t), t, when, answer.columns, _summary(layer, answer.scenario), answer,
+                   {"source": source, "why": why})
 
 
 def earth_moon(times, *, ephemeris=None):
@@ -208,11 +171,11 @@ def earth_moon(times, *, ephemeris=None):
     from .solutions import tables
 
     t, when = tdb_days(times, "times")
-    first, last = min(t.min(), MOON_START) - 2.0, max(t.max(), MOON_START) + 2.0
-    source, why = _ephemeris(ephemeris, t, (first, last))
-    solution = _solution("earth_moon_coupled", {"orbit.source": source}, t, 1.0)
-    return _answer(tables.earth_moon(solution, t), t, when, EARTH_MOON_COLUMNS,
-                   _summary(solution, "earth_moon_coupled"), expected("earth_moon"), {"source": source, "why": why})
+    source, why = _ephemeris_from_start(ephemeris, t)
+    answer = _declared("earth_moon_coupled", "earth_moon")
+    solution = _solution(_scenario(answer.scenario, source), t, 1.0)
+    return _answer(tables.earth_moon(solution, t), t, when, answer.columns, _summary(solution, answer.scenario),
+                   answer, {"source": source, "why": why})
 
 
 def tdb_days(times, name):
@@ -395,16 +358,26 @@ def _span_text(source):
     return orbit_source(source).cover_text()
 
 
-def _scenario(scene, values):
-    """The built-in scene ``scene`` with ``values`` (dotted key -> value) in place of its file's: the validated
-    scene itself (loaded once per process) when they are its own values."""
-    from .scenarios import load_scenario
+def _scenario(scene, source, level=None):
+    """The built-in scene ``scene`` driven by the orbit source named ``source`` (at model level ``level`` when
+    given): the validated scene itself (loaded once per process) when these are its own values, else a copy of it
+    holding its parameters with them (``dataclasses.replace``, ``Scenario.with_params``).  The arguments are the
+    API's, checked before (``_ephemeris``, ``_check_choice``)."""
+    from dataclasses import replace
 
-    validated, values = _validated(scene), dict(values or {})
-    if all(type(validated.values.get(key)) is type(value) and validated.values.get(key) == value
-           for key, value in values.items()):
+    from .orbits.sources import orbit_source
+
+    validated = _validated(scene)
+    p = validated.params
+    try:
+        source = orbit_source(source).checked()
+    except InputError as exc:                   # a kernel that cannot be read: the argument that named it
+        raise InputError("ephemeris", exc.given, exc.accepted) from None
+    same_level = level is None or (type(p.model.level) is type(level) and p.model.level == level)
+    if p.orbit.source == source and same_level:
         return validated
-    return load_scenario(scene, values=values)
+    model = {} if level is None else {"model": replace(p.model, level=level)}
+    return validated.with_params(replace(p, orbit=replace(p.orbit, source=source), **model))
 
 
 @functools.cache
@@ -415,13 +388,19 @@ def _validated(scene):
     return load_scenario(scene)
 
 
-def _solution(scene, values, t, margin):
-    """The stored solution of ``scene`` with ``values`` covering the dates ``t`` (TDB days) +- ``margin``."""
+def _ephemeris_from_start(ephemeris, t):
+    """(the orbit source, why) for a solution started at J2000 (MOON_START) run out to the dates ``t`` (TDB days),
+    with the two days beyond either end its runs read (_ephemeris)."""
+    return _ephemeris(ephemeris, t, (min(t.min(), MOON_START) - 2.0, max(t.max(), MOON_START) + 2.0))
+
+
+def _solution(scenario, t, margin):
+    """The stored solution of ``scenario`` (_scenario) covering the dates ``t`` (TDB days) +- ``margin``."""
     from .errors import EphemerisRangeError, ScenarioError
     from .solutions import for_scenario
 
     try:
-        return for_scenario(_scenario(scene, values), t.min() - margin, t.max() + margin)
+        return for_scenario(scenario, t.min() - margin, t.max() + margin)
     except ScenarioError as exc:                   # a scene key set from the arguments: say which argument
         argument = {"orbit.source": "ephemeris", "model.level": "level"}.get(exc.key, "times")
         raise InputError(argument, exc.given, exc.accepted) from None
@@ -441,10 +420,11 @@ def _summary(solution, scene):
             "scene": scene}
 
 
-def _answer(table, t, when, columns, summary, expected, ephemeris):
+def _answer(table, t, when, columns, summary, answer, ephemeris):
     """The rows of ``table`` at the dates (in their order), ``time`` as given, the columns named; meta: the
-    expected accuracy at these dates (what the validated scene measured; "not compared" where the reference has
-    no data), the differences at the dates, the ephemeris and why it was taken."""
+    expected accuracy at these dates (what ``answer``, a scene.Answer, states: what the validated scene
+    measured; "not compared" where the reference has no data), the differences at the dates, the ephemeris and
+    why it was taken."""
     import warnings
 
     from astropy.table import QTable
@@ -463,10 +443,10 @@ def _answer(table, t, when, columns, summary, expected, ephemeris):
     differences = [name for name in out.colnames if name.endswith("_error") or name.endswith("_minus_erfa")]
     largest = {name: np.nanmax(np.abs(out[name])) for name in differences if np.isfinite(out[name].value).any()}
     at_dates = {f"{name}_max_abs_{value.unit}": float(value.value) for name, value in largest.items()}
-    beyond_expected = _beyond_expected(largest, expected)
+    expected = dict(_stated(answer))
+    beyond_expected = _beyond_expected(largest, expected, answer.bounds)
     if beyond_expected:
         at_dates["beyond_expected_accuracy"] = beyond_expected
-    expected = dict(expected)
     unjudged = np.all([~np.isfinite(out[name].value) for name in differences], axis=0) if differences else []
     if np.any(unjudged):
         beyond = BEYOND_DE421.format(dates=_dates_said(t[unjudged]), source=ephemeris["source"].upper())
@@ -495,14 +475,15 @@ def _rows(days, t):
     return order[np.where(nearer_left, left, np.minimum(right, len(ordered) - 1))]
 
 
-def _beyond_expected(largest, expected):
+def _beyond_expected(largest, expected, bounds):
     """{column: "its largest difference > the expected bound at one date"} for the differences at these dates
-    (astropy Quantities) that exceed what one date of the validated scene differed by at most (EXPECTED_BOUND)."""
+    (astropy Quantities) that exceed what one date of the validated scene differed by at most (``bounds``:
+    {difference column: the expected accuracy's name bounding it})."""
     import astropy.units as u
 
     out = {}
     for name, value in largest.items():
-        key = EXPECTED_BOUND.get(name)
+        key = bounds.get(name)
         if key is None or key not in expected:
             continue
         bound = expected[key] * u.Unit(key.rsplit("_", 1)[1])

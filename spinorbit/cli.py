@@ -26,8 +26,6 @@ EXIT_VERDICT_FAIL = 4
 FORCE_HELP = ("write into an --out holding entries spinorbit did not write: they are kept, except files of "
               "the names the run writes, which it overwrites")
 MAX_LISTED_BYTES = 1 << 20          # `list` reads at most this much of a file (a scenario is a few kB)
-# spinorbit at BODY: the API function that answers for it
-ANSWERS = ("earth", "mars", "moon")    # the bodies spinorbit.orientation answers for (api.BODIES)
 _COMMAND = False                     # this process is the spinorbit command (console), not a caller of main
 
 
@@ -84,9 +82,10 @@ def main(argv=None):
                              "the keys)")
     export.add_argument("--out", required=True, help="directory the kernels are written into")
     at = sub.add_parser("at", help="a body's orientation at dates, from the stored solutions (as "
-                                   "spinorbit.orientation answers: moon_librations, earth_pole)")
-    at.add_argument("body", choices=ANSWERS, help="moon: the lunar angles and librations; earth: the CIP, "
-                                                  "precession and nutation; mars: the pole and prime meridian")
+                                   "spinorbit.orientation answers: moon_librations, earth_pole)",
+                        description="A body's orientation at dates, from the stored solutions.", add_help=False)
+    at.add_argument("-h", "--help", action=_AtHelp, nargs=0, help="show this help and the bodies, then exit")
+    at.add_argument("body", help="a body a scene answers for (--help lists them: e.g. moon, earth, mars)")
     at.add_argument("dates", nargs="+", metavar="DATE", help="ISO dates or times, e.g. 2027-03-01 "
                                                              "2027-03-01T12:00:00")
     at.add_argument("--scale", default="utc", choices=["utc", "tt", "tdb"], help="the dates' time scale "
@@ -324,6 +323,20 @@ class _ExportHelp(argparse.Action):
         parser.exit()
 
 
+class _AtHelp(argparse.Action):
+    """``spinorbit at --help``: the help, with the bodies the scenes answer for and what each gives (read off the
+    scenes, spinorbit.api.answers, only when asked: the other commands do not import them)."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        from . import api
+
+        said = "; ".join(f"{a.body}: {a.about}" for a in sorted(api.answers().values(), key=lambda a: a.body or "")
+                         if a.body)
+        parser.epilog = f"bodies: {said}"
+        parser.print_help()
+        parser.exit()
+
+
 def _exportable():
     from .scenes import stored_kinds
 
@@ -387,6 +400,8 @@ def _at(args):
     from . import api
     from .errors import InputError
 
+    if args.body not in api.bodies():
+        raise InputError("BODY", args.body, f"one of {list(api.bodies())} (the bodies the scenes answer for)")
     try:
         times = Time(args.dates, scale=args.scale)
     except ValueError:

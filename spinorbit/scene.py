@@ -91,6 +91,34 @@ class Outcome:
     table: object = None
 
 
+@dataclass(frozen=True, eq=False)
+class Answer:
+    """What spinorbit.api answers from a scene's stored solution and the accuracy it states there
+    (``meta["expected_accuracy"]``, ``api.expected(name)``).  ``name``: the answer ("moon", "earth_rigid");
+    ``scenario``: the validated built-in scenario it is answered from, whose verdict's tolerances it states;
+    ``tolerances``: {stated name: the verdict's metric it is} (the name's last word its unit); ``stated``:
+    further figures ({name: value}, e.g. the largest difference one date of the validated run showed);
+    ``statistic`` and ``basis``: what the tolerances bound and what the validated run measured;
+    ``beyond_de421``: what applies at dates where the reference has no data; ``bounds``: {difference column:
+    the stated name bounding it at one date}; ``columns``: the table's columns; ``body``: the body
+    ``spinorbit.orientation`` and ``spinorbit at`` answer for with it (None: none), ``about`` what they give
+    for it; ``function``: the spinorbit function answering for the body (None: the attitude layer's pole and
+    prime meridian, ``api.orientation``)."""
+
+    name: str
+    scenario: str
+    tolerances: dict
+    statistic: str
+    basis: str
+    columns: tuple
+    stated: dict = field(default_factory=dict)
+    beyond_de421: str | None = None
+    bounds: dict = field(default_factory=dict)
+    body: str | None = None
+    about: str = ""
+    function: str | None = None
+
+
 @dataclass(frozen=True)
 class Stored:
     """What a scene keeps as a continuous solution (spinorbit.solutions): Chebyshev segments of ``segment_d``
@@ -131,7 +159,9 @@ class Scene:
     ``sweep_figures(tables) -> {name: draw}``: figures over a sweep's members (e.g. a band over their curves);
     ``nbody_counts(p) -> {count: items}``: N-body work its run does (NBODY_COSTS' counts: an orbital solution
     or a REBOUND run first, or its own run where its integrator chooses its steps), for the up-front estimate;
-    ``stored``: what it keeps as a continuous solution (a Stored; None: it keeps none)."""
+    ``stored``: what it keeps as a continuous solution (a Stored; None: it keeps none);
+    ``answers``: what spinorbit.api answers from its stored solution (:class:`Answer`), the accuracy it states
+    and the body it answers for."""
 
     params: type
     build: Callable = None
@@ -146,6 +176,7 @@ class Scene:
     sweep_figures: Callable = None
     nbody_counts: Callable = None
     stored: Stored = None
+    answers: tuple[Answer, ...] = ()
 
     @property
     def schema(self):

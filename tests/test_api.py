@@ -11,7 +11,7 @@ from astropy.time import Time
 
 import spinorbit
 from spinorbit import api, scenarios
-from spinorbit.errors import InputError, ScenarioError, tdb_dates
+from spinorbit.errors import InputError, tdb_dates
 from spinorbit.orbits import kernel
 from spinorbit.solutions import store
 
@@ -472,7 +472,7 @@ def test_a_margin_the_scene_reads_beyond_the_ephemeris_is_an_input_error(monkeyp
     import spinorbit.solutions
 
     monkeypatch.setattr(spinorbit.solutions, "for_scenario", short)
-    name, text = refusal(lambda: api._solution("moon_libration", (), np.array([0.0]), 0.0))
+    name, text = refusal(lambda: api._solution(api._scenario("moon_libration", "de421"), np.array([0.0]), 0.0))
     assert name == "times" and "(1999-09-23 to 2000-01-11)" in text and "(2000-11-13 to 2000-01-11)" not in text
     assert "[span]" not in text and "orbit.source" not in text
 
@@ -491,7 +491,7 @@ def test_dates_where_de421_has_no_data_are_not_compared_and_quote_the_accuracy_t
     when = Time(2451545.0, days, format="jd", scale="tdb")
     why = "DE421 (1899-07-29 to 2053-10-09) does not cover the run: DE440 does"
     with pytest.warns(UserWarning, match="DE440 does"):             # the switch of ephemeris is said
-        out = api._answer(table, days, when, ("pole_error",), {}, api.expected("earth_moon"),
+        out = api._answer(table, days, when, ("pole_error",), {}, api.answers()["earth_moon"],
                           {"source": "de440", "why": why})
     expected = out.meta["expected_accuracy"]
     assert expected["at_these_dates"].startswith("not compared: DE421's lunar series")
@@ -507,7 +507,7 @@ def test_dates_de421_covers_quote_its_tolerance_as_a_bound_at_every_date_and_war
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         out = api._answer(table, days, Time(2451545.0, days, format="jd", scale="tdb"), ("pole_error",), {},
-                          api.expected("moon"), {"source": "de421", "why": "DE421 covers the run"})
+                          api.answers()["moon"], {"source": "de421", "why": "DE421 covers the run"})
     expected = out.meta["expected_accuracy"]
     assert "at_these_dates" not in expected and "beyond_de421" not in expected
     assert expected["statistic"].startswith("a bound at every date")
@@ -521,7 +521,7 @@ def test_a_difference_beyond_the_expected_accuracy_at_one_date_is_flagged():
     days = np.array([10000.0, 10001.0])
     table = scene_table(days, [0.002, -0.25])
     out = api._answer(table, days, Time(2451545.0, days, format="jd", scale="tdb"), ("pole_error",), {},
-                      api.expected("moon"), {"source": "de421", "why": "DE421 covers the run"})
+                      api.answers()["moon"], {"source": "de421", "why": "DE421 covers the run"})
     flagged = out.meta["difference_from_reference_at_these_dates"]["beyond_expected_accuracy"]
     assert flagged == {"pole_error": "0.25 arcsec > 0.1 arcsec (pole_arcsec)"}
     assert "beyond the expected accuracy: pole_error 0.25 arcsec" in out.meta["verdict"]
@@ -561,24 +561,28 @@ def test_utc_dates_past_the_leap_second_table_are_said_once_in_spinorbits_words(
     assert (t[0] - (astropy_tdb.jd1 - 2451545.0 + astropy_tdb.jd2)) * 86400 == pytest.approx(0.0, abs=1e-6)
 
 
-# The API loads a built-in scene once per process when a call's values are the scene's own, and loads its own
-# scenario for any other value (the validated scene stays what ``expected`` judges by).
+# The API loads a built-in scene once per process and reuses it when a call's values are the scene's own; any
+# other value gives a copy holding the scene's typed parameters with it (``dataclasses.replace``), the validated
+# scene staying what ``expected`` judges by.
 
 
 def test_the_validated_scene_is_reused_only_for_its_own_values(monkeypatch):
+    from spinorbit.orbits.sources import orbit_source
+
     loads = []
     load = scenarios.load_scenario
     monkeypatch.setattr(scenarios, "load_scenario", lambda *a, **k: loads.append((a, k)) or load(*a, **k))
     api._validated.cache_clear()
-    own = api._scenario("moon_libration", {"orbit.source": "de421", "model.level": 3})
-    assert api._scenario("moon_libration", {"orbit.source": "de421", "model.level": 3}) is own
-    assert own["model.level"] == 3 and own["orbit.source"] == "de421" and len(loads) == 1
-    other = api._scenario("moon_libration", {"orbit.source": "de421", "model.level": 2})
-    assert other["model.level"] == 2 and len(loads) == 2
-    with pytest.raises(ScenarioError, match="model.level"):      # True == 1 but is no level: loaded, and refused
-        api._scenario("moon_libration", {"model.level": True})
-    api.expected.cache_clear()
-    assert api.expected("moon")["pole_arcsec"] == 0.1 and len(loads) == 3      # level 3's target, no load more
+    own = api._scenario("moon_libration", "de421", 3)
+    assert api._scenario("moon_libration", "de421", 3) is own
+    assert own.params.model.level == 3 and own.params.orbit.source == orbit_source("de421") and len(loads) == 1
+    other = api._scenario("moon_libration", "de421", 2)
+    assert other.params.model.level == 2 and other.params.orbit.source == orbit_source("de421") and len(loads) == 1
+    assert own.params.model.level == 3 and other.params.span.end == own.params.span.end
+    rebound = api._scenario("moon_libration", "rebound")
+    assert rebound.params.orbit.source == orbit_source("rebound") and rebound.params.model.level == 3
+    api._stated.cache_clear()
+    assert api.expected("moon")["pole_arcsec"] == 0.1 and len(loads) == 1      # level 3's target, no load more
 
 
 # The API answering from stored solutions: the Earth-Moon system at dates near its J2000 start, against DE421

@@ -36,10 +36,16 @@ def test_the_runner_builds_a_scene_model_once(monkeypatch):
 
 
 def test_the_apis_tolerances_are_the_validated_scenes_verdicts():
-    for answer, (scene, names) in api.TOLERANCES.items():
-        scenario = load_scenario(scene)
-        checks = {c.metric: c.tolerance for c in scenario.scene.verdict_for(scenario.params, {}).checks}
-        assert {name: api.expected(answer)[name] for name in names} == {n: checks[m] for n, m in names.items()}
+    """Each answer a scene declares (scene.Answer) is answered from a validated scenario of that scene, and
+    states its verdict's tolerances; the bodies spinorbit.orientation answers for are the answers' bodies."""
+    for kind in SCENES:
+        for answer in scene_of(kind).answers:
+            scenario = load_scenario(answer.scenario)
+            assert scenario.kind == kind
+            checks = {c.metric: c.tolerance for c in scenario.scene.verdict_for(scenario.params, {}).checks}
+            assert {name: api.expected(answer.name)[name] for name in answer.tolerances} == \
+                {name: checks[metric] for name, metric in answer.tolerances.items()}
+    assert api.bodies() == ("earth", "mars", "moon")
     assert api.expected("moon")["pole_arcsec"] == 0.1        # level 3 against DE421 (moon_libration.TOLERANCES)
 
 
