@@ -162,10 +162,8 @@ def partial_result(scenario, exc):
 
 
 def base_summary(scenario):
-    from .schema import tdb_days_to_time
-
     p = scenario.params
-    start, end = tdb_days_to_time([p.span.start, p.span.end]).isot
+    start, end = _tdb_text(p.span.start), _tdb_text(p.span.end)
     return {
         "scene": scenario.name,
         "kind": scenario.kind,
@@ -173,6 +171,18 @@ def base_summary(scenario):
         "span": {"start_tdb": start, "end_tdb": end, "step_d": p.span.step, "years": span_label(scenario)},
         "integrator": {"method": p.integrator.method, **p.integrator.options()},
     }
+
+
+def _tdb_text(t):
+    """TDB days from J2000 as an ISO date (TDB), or, before the years ERFA dates (a deep-time span), as days."""
+    from erfa import ErfaError
+
+    from .schema import tdb_days_to_time
+
+    try:
+        return tdb_days_to_time(t).isot
+    except (ErfaError, ValueError):
+        return f"{t:.10g} d from J2000"
 
 
 JULIAN_YEAR_D = 365.25
