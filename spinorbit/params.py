@@ -18,7 +18,7 @@ import numpy as np
 
 from .integrators.options import OPTIONS
 from .orbits.sources import orbit_source
-from .schema import REQUIRED, Key, parse_tdb_days
+from .schema import REQUIRED, Key, checked_float, parse_tdb_days
 
 _table = dataclass(frozen=True, kw_only=True, eq=False)
 
@@ -85,6 +85,14 @@ def keys_of(params_type):
             if "key" in leaf.metadata:
                 keys[f"{table_field.name}.{leaf.name}"] = leaf.metadata["key"]
     return keys
+
+
+def converted(params_type, dotted, value):
+    """``value`` (an astropy Quantity, a text with its unit, or a number for a key without one) as the field of
+    key ``dotted`` of ``params_type`` holds it: in the key's unit, checked in its range (schema.checked_float with
+    the field's key: the conversion loading makes); ScenarioError naming the key otherwise.  For Python building
+    parameters with ``dataclasses.replace`` from values with units."""
+    return checked_float(dotted, value, keys_of(params_type)[dotted])
 
 
 def tables_of(params_type):

@@ -54,7 +54,7 @@ def today(c):
 def tide(p, c, y0, model):
     """The tidal response of ``model`` (tides.TIDES) calibrated to tides.recession_rate (cm/yr): the one
     parameter of the simple tides, an ocean's drag at its depth (its key; fitted with the Moon's age by
-    ``python -m spinorbit.fit_tides``), the continent from its keys; costly tables kept in the cache."""
+    ``python benchmarks/fit_tides.py``), the continent from its keys; costly tables kept in the cache."""
     from ..errors import ScenarioError
     from ..models.tidal_history.tides import TIDES, Continent, NoDrag, Setting
 
@@ -69,6 +69,25 @@ def tide(p, c, y0, model):
         raise ScenarioError(chosen.depth.key, depth, "a depth at which some drag gives the recession "
                             f"tides.recession_rate = {setting.recession_cm_per_yr} cm/yr with this continent "
                             f"(the stored fit's {chosen.depth.fitted()['depth_km']:.4g} km does with the default)")
+
+
+def fit_trial(p, model, depth_km, recession_cm_per_yr, span_gyr=-4.6):
+    """The parameters of one history of an ocean's depth fit (models.tidal_history.fit): ``p`` with tide
+    ``model`` at ``depth_km`` (its depth key, tides.TIDES), its drag fitted to ``recession_cm_per_yr``, run
+    ``span_gyr`` from its start, without the other tides beside it nor an error estimate; each value converted
+    by its key (params.converted)."""
+    import astropy.units as u
+
+    from ..models.tidal_history.tides import TIDES
+    from ..params import converted
+
+    kind, depth = type(p), TIDES[model].depth
+    tides = replace(p.tides, model=model,
+                    recession_rate=converted(kind, "tides.recession_rate", recession_cm_per_yr * u.cm / u.yr),
+                    **{depth.field: converted(kind, depth.key, depth_km * u.km)})
+    trial = replace(p, tides=tides, compare=replace(p.compare, models=False),
+                    integrator=replace(p.integrator, estimate_error=False))
+    return trial.with_span(p.span.start, p.span.start + (span_gyr * u.Gyr).to_value(u.d))
 
 
 def keep_table(name, settings, compute):

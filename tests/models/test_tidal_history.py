@@ -251,7 +251,7 @@ def test_ocean_response_is_converged_in_degree():
 
 @pytest.mark.parametrize("model", [name for name, tide in TIDES.items() if tide.depth is not None])
 def test_the_stored_ocean_fits_hold_their_two_constraints(model):
-    """The scene with each ocean at its stored depth (python -m spinorbit.fit_tides [--model NAME]): today's
+    """The scene with each ocean at its stored depth (python benchmarks/fit_tides.py [--model NAME]): today's
     recession 3.830 cm/yr and the Moon's age 4.425 +- 0.025 Gyr (Maurice et al. 2020), the angular momentum
     kept; the proxies are reported, never fitted.  A history ends at the Roche limit or where the
     eccentricity runs away (the O(e^2) tides' end)."""
@@ -359,13 +359,13 @@ def test_obliquity_rate_of_a_single_circular_orbit_is_mignards():
 
 
 def test_a_failed_fit_write_leaves_the_old_fit_whole(tmp_path, monkeypatch):
-    """python -m spinorbit.fit_tides --write on a full disk: the old fit stays as it was, nothing left aside
-    (issue 42's 0-byte ocean_fit.json)."""
+    """benchmarks/fit_tides.py --write (spinorbit.files.write_atomically) on a full disk: the old fit stays as it
+    was, nothing left aside (issue 42's 0-byte ocean_fit.json)."""
     import errno
     import json
     import os
 
-    from spinorbit import fit_tides
+    from spinorbit.files import write_atomically
 
     path = tmp_path / "ocean_fit.json"
     path.write_text(json.dumps({"depth_km": 4.0}))
@@ -375,7 +375,7 @@ def test_a_failed_fit_write_leaves_the_old_fit_whole(tmp_path, monkeypatch):
 
     monkeypatch.setattr(os, "fsync", full)
     with pytest.raises(OSError):
-        fit_tides.write_fit(path, {"depth_km": 5.0})
+        write_atomically(path, lambda f: f.write(json.dumps({"depth_km": 5.0}).encode()), prefix=".ocean_fit.json.")
     assert json.loads(path.read_text()) == {"depth_km": 4.0}
     assert [p.name for p in tmp_path.iterdir()] == ["ocean_fit.json"]
 
@@ -431,7 +431,7 @@ def test_the_depth_fit_bisects_to_the_moons_age():
     result = fit_depth("ocean", (4.0, 5.0), age_at, log=lambda line: None)
     assert abs(result.best.moon_age_gyr - 4.425) <= AGE_TOLERANCE_GYR
     assert result.best.depth_km == pytest.approx(4.425, abs=AGE_TOLERANCE_GYR)
-    assert result.record("python -m spinorbit.fit_tides --write")["depth_km"] == result.best.depth_km
+    assert result.record("python benchmarks/fit_tides.py --write")["depth_km"] == result.best.depth_km
     with pytest.raises(ValueError, match="does not straddle"):
         fit_depth("ocean", (4.5, 5.0), age_at, log=lambda line: None)
 
@@ -449,3 +449,20 @@ def test_the_resonances_are_the_recession_rates_peaks_with_their_widths():
     assert step["age_gyr"] == pytest.approx(2.0, abs=1e-3)
     assert step["recession_rate_cm_per_yr"] == pytest.approx(4.0, rel=1e-3)
     assert step["width_myr"] == pytest.approx(200.0 * math.sqrt(-math.log(math.sqrt(12.0) - 3.0)), abs=2.0)
+
+
+def test_a_fit_trials_parameters_are_the_scene_with_the_tide_alone_at_the_depth():
+    """starts.earth_moon_history.fit_trial (the depth fit's history, built typed) holds what the scene loaded with
+    the same settings as --set text holds: the tide and its depth, LLR's rate, 4.6 Gyr back, no other tide, no
+    error estimate."""
+    from spinorbit.params import values_of
+    from spinorbit.scenarios import load_scenario
+    from spinorbit.starts.earth_moon_history import fit_trial
+
+    scenario = load_scenario("earth_moon_history")
+    typed = values_of(fit_trial(scenario.params, "global_ocean", 4.75, 3.830))
+    text = values_of(load_scenario("earth_moon_history", [
+        'tides.model="global_ocean"', 'tides.global_ocean_depth="4.75 km"', "compare.models=false",
+        "integrator.estimate_error=false", 'span.end="-4.6 Gyr"', 'tides.recession_rate="3.83 cm/yr"']).params)
+    assert typed.keys() == text.keys()
+    assert {k: v for k, v in typed.items() if typed[k] != text[k]} == {}
