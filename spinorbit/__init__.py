@@ -7,10 +7,15 @@ The angles at your dates (spinorbit.api), astropy Time in, QTable out::
     t = Time(["2027-03-01", "2027-06-01"])
     spinorbit.moon_librations(t), spinorbit.earth_pole(t), spinorbit.earth_moon(t), spinorbit.orientation("mars", t)
 
-A scene, built in (``spinorbit list``) or a scenario file::
+A scene, built in (``spinorbit list``) or a scenario file, its typed parameters changed by
+``dataclasses.replace`` (times in TDB days from J2000.0, values in their keys' units)::
 
-    result = spinorbit.run_scenario("free_body", ["span.end=100 d"])
+    scenario = spinorbit.load_scenario("free_body")
+    p = scenario.params
+    result = spinorbit.run_scenario(scenario.with_params(p.with_span(end=p.span.start + 100.0)))
     result.table, result.summary
+
+or as the command line's text: ``spinorbit.run_scenario("free_body", ["span.end=100 d"])``.
 
 Internal units: TDB days from J2000.0, km, rad (see spinorbit.constants).
 """

@@ -195,8 +195,11 @@ class Params:
     output: OutputTable = field(default_factory=OutputTable)
     limits: LimitsTable = field(default_factory=LimitsTable)
 
-    def with_span(self, start, end):
-        """These parameters over [start, end] TDB days (``dataclasses.replace``)."""
+    def with_span(self, start=None, end=None):
+        """These parameters over [start, end] TDB days from J2000.0 (``dataclasses.replace``; either left out: its
+        own)."""
+        start = self.span.start if start is None else start
+        end = self.span.end if end is None else end
         return replace(self, span=replace(self.span, start=float(start), end=float(end)))
 
 
@@ -218,6 +221,27 @@ def check_integrator_fields():
     declared = {f.name for f in fields(IntegratorTable)} - {"method", "estimate_error"}
     return declared == set(OPTIONS)
 
+
+
+def check_values(params):
+    """Raise ScenarioError naming the key unless each number of ``params`` (each element of a vector, each
+    [integrator] option) is finite and inside its key's range and each choice one its key accepts: what loading
+    checks of a file's values, for parameters made by ``dataclasses.replace`` (Scenario.with_params)."""
+    from .errors import ScenarioError
+    from .schema import INTEGRATOR_OPTIONS
+
+    specs = {**keys_of(type(params)), **{f"integrator.{name}": spec for name, spec in INTEGRATOR_OPTIONS.items()}}
+    values = {**values_of(params), **{f"integrator.{name}": v for name, v in params.integrator.options().items()}}
+    for dotted, value in values.items():
+        spec = specs.get(dotted)
+        if spec is None or value is None or isinstance(value, bool):
+            continue
+        if spec.choices and value not in spec.choices:
+            raise ScenarioError(dotted, value, spec.accepted())
+        numbers = np.ravel(value) if isinstance(value, np.ndarray) else [value] if isinstance(value, (int, float)) \
+            else []
+        for number in numbers:
+            spec.check_range(dotted, float(number), value.tolist() if isinstance(value, np.ndarray) else value)
 
 
 def values_of(params):

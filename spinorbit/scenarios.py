@@ -96,9 +96,13 @@ class Scenario:
             get_method(self.params.integrator.method)(**self.params.integrator.options())
 
     def with_params(self, params):
-        """This scenario with ``params`` (a ``dataclasses.replace`` of its own), validated alike."""
+        """This scenario with ``params`` (a ``dataclasses.replace`` of its own), validated alike: each value in
+        its key's range (params.check_values), then the budget and the method's options."""
         import copy
 
+        from .params import check_values
+
+        check_values(params)
         other = copy.copy(self)
         other.params = params
         other.validate()
