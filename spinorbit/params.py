@@ -234,8 +234,8 @@ def check_values(params):
     values = {**values_of(params), **{f"integrator.{name}": v for name, v in params.integrator.options().items()}}
     for dotted, value in values.items():
         spec = specs.get(dotted)
-        if spec is None or value is None or isinstance(value, bool):
-            continue
+        if spec is None or spec.parse is not None or value is None or isinstance(value, bool):
+            continue                            # an object made from its text (an orbit source): made checked
         if spec.choices and value not in spec.choices:
             raise ScenarioError(dotted, value, spec.accepted())
         numbers = np.ravel(value) if isinstance(value, np.ndarray) else [value] if isinstance(value, (int, float)) \

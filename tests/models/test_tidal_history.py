@@ -108,13 +108,13 @@ def calibrated(c, y0, name):
     was fitted with: the scene's default, or Farhat et al.'s equatorial hemisphere for the ocean without the
     Coriolis force; until 2.5 Gyr, none from 3.5 Gyr; its Andrade solid Earth)."""
     from spinorbit.models.tidal_history.tides import TIDES, Continent, Setting
-    from spinorbit.scenes.earth_moon_history import SCHEMA
+    from spinorbit.scenes.earth_moon_history import TidesTable
     from spinorbit.starts.earth_moon_history import keep_table
 
     tide = TIDES[name]
     depth = None if tide.depth is None else tide.depth.fitted()["depth_km"]
     continent = Continent(90.0, 90.0, 2.5, 3.5) if name == "ocean_without_coriolis" else \
-        Continent(SCHEMA["tides.continent_radius"].default, SCHEMA["tides.continent_colatitude"].default, 2.5, 3.5)
+        Continent(TidesTable().continent_radius, TidesTable().continent_colatitude, 2.5, 3.5)
     return tide.response(Setting(c, y0, 3.830, depth, continent, keep_table))
 
 
