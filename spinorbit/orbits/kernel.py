@@ -34,13 +34,27 @@ def kernel_path(source):
     if source == "de421":
         # the package's folder from its spec: importlib.resources.files would first import zipfile and threading
         return Path(importlib.util.find_spec("skyfield_data").origin).parent / "data" / "de421.bsp"
-    try:
-        return Path(getattr(importlib.import_module(f"naif_{source}"), source))
-    except (ImportError, AttributeError):
+    installed = installed_kernel(source)
+    if installed is None:
         shipped = sorted(p.stem for p in EPHEMERIDES_DIR.glob("*.bsp"))
         raise InputError("source", source,
-                            f"'de421', a .bsp in ephemerides/ ({shipped or 'none there'}), "
-                            f"or an installed naif-{source} package") from None
+                         f"'de421', a .bsp in ephemerides/ ({shipped or 'none there'}), "
+                         f"or an installed naif-{source} package")
+    return installed
+
+
+def installed_kernel(source):
+    """The ``<source>.bsp`` an installed ``naif-<source>`` distribution holds, or None: found in its list of
+    installed files, nothing imported (a ``naif_<source>.py`` in the working directory is never run)."""
+    from importlib import metadata
+
+    try:
+        files = metadata.distribution(f"naif-{source}").files or ()
+    except (metadata.PackageNotFoundError, ValueError):
+        return None
+    wanted = f"naif_{source}/{source}.bsp"
+    found = [f for f in files if str(f) == wanted]
+    return Path(found[0].locate()) if found else None
 
 
 @functools.lru_cache(maxsize=32)

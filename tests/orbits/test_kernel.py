@@ -125,3 +125,19 @@ def test_spans_at_the_edges_of_de421_say_what_fits(tmp_path, capsys, start, end,
     err = capsys.readouterr().err.strip()
     assert code == 2 and len(err.splitlines()) == 1 and says in err, err
     assert "its .bsp to 2053-10-09, the de421 package's arrays from 1899-12-04" in err
+
+
+def test_a_naif_module_in_the_working_directory_is_never_run(tmp_path):
+    """An installed naif-<name> kernel is found from its distribution's file list, not by importing naif_<name>:
+    a module of that name planted in the working directory does not run, and the name is refused in one line."""
+    import subprocess
+    import sys
+
+    marker = tmp_path / "ran"
+    (tmp_path / "naif_planted.py").write_text(f"open({str(marker)!r}, 'w').close()\nplanted = 'x.bsp'\n")
+    code = ("from spinorbit.orbits.kernel import kernel_path\n"
+            "try:\n    kernel_path('planted')\nexcept Exception as exc:\n    print(exc)\n")
+    proc = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    assert not marker.exists()
+    assert proc.stdout.startswith("source: got 'planted'") and proc.stdout.count("\n") == 1
