@@ -11,6 +11,9 @@ from ..constants import ARCSEC, JULIAN_CENTURY_D, MAS
 from .harmonics import fit_harmonics
 
 RATE_MIN_SPAN_D = 50 * 365.25
+# The rates compare_with_iau compares (the summary's comparison keys, read by the Earth's verdict)
+PSI_RATE_MINUS_IAU_ARCSEC_CY, OBLIQUITY_RATE_MINUS_IAU_ARCSEC_CY = ("psi_rate_minus_iau_arcsec_cy",
+                                                                    "obliquity_rate_minus_iau_arcsec_cy")
 
 
 def rate_refusal(span_d):
@@ -40,8 +43,8 @@ def compare_with_iau(t_tdb_d, model, reference, arguments, published):
     """
     fits = fit_pole(t_tdb_d, *model, arguments)
     refs = fit_pole(t_tdb_d, *reference, arguments)
-    comparison = {"psi_rate_minus_iau_arcsec_cy": (fits[0].poly[1] - refs[0].poly[1]) / ARCSEC,
-                  "obliquity_rate_minus_iau_arcsec_cy": (fits[1].poly[1] - refs[1].poly[1]) / ARCSEC}
+    comparison = {PSI_RATE_MINUS_IAU_ARCSEC_CY: (fits[0].poly[1] - refs[0].poly[1]) / ARCSEC,
+                  OBLIQUITY_RATE_MINUS_IAU_ARCSEC_CY: (fits[1].poly[1] - refs[1].poly[1]) / ARCSEC}
     not_measured = {}
     if why := rate_refusal(float(np.ptp(t_tdb_d))):
         not_measured = {f"comparison.{key}": why for key in comparison}

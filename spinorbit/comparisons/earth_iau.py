@@ -6,7 +6,7 @@ Edge module (astropy, ERFA through references.erfa_pole); the Earth scene declar
 
 import numpy as np
 
-from ..analysis.precession import compare_with_iau, free_nutation_amplitude
+from ..analysis.precession import PSI_RATE_MINUS_IAU_ARCSEC_CY, compare_with_iau, free_nutation_amplitude
 from ..bodies import earth
 from ..constants import MAS
 from ..references import arguments, erfa_pole
@@ -40,14 +40,14 @@ def precession_nutation(t, z, iau):
     fitted, not_measured, mean = compare_with_iau(
         t, offsets, (iau["dpsi_rad"], iau["deps_rad"]), arguments.named(t, erfa_pole.NUTATION_ARGUMENTS),
         erfa_pole.IAU2000A_MAIN_ARCSEC)
-    rate = fitted.pop("psi_rate_minus_iau_arcsec_cy")            # None over a short span, with why
-    comparison = dict(psi_rate_minus_iau_arcsec_cy=rate,
-                      psi_A_rate_arcsec_cy=None if rate is None else erfa_pole.PSI_A_RATE_ARCSEC_CY + rate,
-                      psi_A_rate_iau2006_arcsec_cy=erfa_pole.PSI_A_RATE_ARCSEC_CY,
-                      **fitted)
+    rate = fitted.pop(PSI_RATE_MINUS_IAU_ARCSEC_CY)            # None over a short span, with why
+    comparison = {PSI_RATE_MINUS_IAU_ARCSEC_CY: rate,
+                  "psi_A_rate_arcsec_cy": None if rate is None else erfa_pole.PSI_A_RATE_ARCSEC_CY + rate,
+                  "psi_A_rate_iau2006_arcsec_cy": erfa_pole.PSI_A_RATE_ARCSEC_CY,
+                  **fitted}
     if rate is None:
         not_measured["comparison.psi_A_rate_arcsec_cy"] = (
-            not_measured["comparison.psi_rate_minus_iau_arcsec_cy"])
+            not_measured[f"comparison.{PSI_RATE_MINUS_IAU_ARCSEC_CY}"])
     nutation = {"psi_mean": iau["psi_bar_rad"] + mean[0], "eps_mean": iau["eps_a_rad"] + mean[1],
                 "dpsi": offsets[0] - mean[0], "deps": offsets[1] - mean[1]}
     return comparison, not_measured, nutation

@@ -21,6 +21,7 @@ MOON_DIRECTION_ERROR_MAX_ARCSEC, MOON_DIRECTION_ERROR_RMS_ARCSEC = ("moon_direct
                                                                     "moon_direction_error_rms_arcsec")
 MOON_RANGE_ERROR_MAX_KM, MOON_RANGE_ERROR_RMS_KM = "moon_range_error_max_km", "moon_range_error_rms_km"
 EARTH_AXIS_VS_CIP_MAX_MAS, EARTH_AXIS_VS_CIP_RMS_MAS = "earth_axis_vs_cip_max_mas", "earth_axis_vs_cip_rms_mas"
+TIDAL_N_DOT_ARCSEC_PER_CY2, TIDAL_RECESSION_MM_PER_YR = "tidal_n_dot_arcsec_per_cy2", "tidal_recession_mm_per_yr"
 AGAINST_DE421 = (MOON_DIRECTION_ERROR_MAX_ARCSEC, MOON_DIRECTION_ERROR_RMS_ARCSEC, MOON_RANGE_ERROR_MAX_KM,
                  MOON_RANGE_ERROR_RMS_KM, POLE_ERROR_MAX_ARCSEC, POLE_ERROR_RMS_ARCSEC, LONGITUDE_ERROR_MAX_ARCSEC,
                  LONGITUDE_ERROR_RMS_ARCSEC)
@@ -90,7 +91,7 @@ def tidal_acceleration(t, r_on, r_off, v_off):
     centuries from the start.  Recession: the distance difference taken at the same phase of the Moon (the
     run without tides dl/w later, w its angular rate: dr - dl r'/w), which removes the monthly terms the
     phase difference shifts (1 km by the end of a century, against the 4 m sought), fitted by d0 + a_dot T.
-    {n_dot "/cy^2, a_dot mm/yr, both fits' rms residuals, the span}."""
+    {tidal_n_dot "/cy^2, tidal_recession (a_dot) mm/yr, both fits' rms residuals, the span}."""
     distance_off = np.linalg.norm(r_off, axis=1)
     plane = np.cross(r_off, v_off)
     rate = np.linalg.norm(plane, axis=1) / distance_off ** 2
@@ -102,9 +103,9 @@ def tidal_acceleration(t, r_on, r_off, v_off):
     lon_fit = np.polynomial.polynomial.polyfit(big_t, longitude / ARCSEC, 2)
     r_fit = np.polynomial.polynomial.polyfit(big_t, distance, 1)
     residual = lambda fit, y: float(np.sqrt(np.mean((np.polynomial.polynomial.polyval(big_t, fit) - y) ** 2)))
-    return {"n_dot_arcsec_per_cy2": float(2.0 * lon_fit[2]), "recession_mm_per_yr": float(r_fit[1] * 1e4),
-            "longitude_fit_rms_arcsec": residual(lon_fit, longitude / ARCSEC),
-            "distance_fit_rms_km": residual(r_fit, distance), "span_yr": float(big_t[-1] * 100.0)}
+    return {TIDAL_N_DOT_ARCSEC_PER_CY2: float(2.0 * lon_fit[2]), TIDAL_RECESSION_MM_PER_YR: float(r_fit[1] * 1e4),
+            "tidal_longitude_fit_rms_arcsec": residual(lon_fit, longitude / ARCSEC),
+            "tidal_distance_fit_rms_km": residual(r_fit, distance), "tidal_span_yr": float(big_t[-1] * 100.0)}
 
 
 def lunar_errors(t, q):

@@ -12,6 +12,10 @@ from ..integrators import METHODS, get_method
 from ..rotations import quat_angle
 from ..scene import Outcome
 
+# The metrics the verdict judges (the summary's comparison keys)
+REFERENCE_AGREEMENT_AXIS_RAD, PRECESSION_RATE_REL_ERROR_MAX = ("reference_agreement_axis_rad",
+                                                               "precession_rate_rel_error_max")
+
 
 def options(run, key="stress.runs"):
     """(method, integrator options, span fraction) of one run table: the method's own option names."""
@@ -78,9 +82,9 @@ def compare_run(p, run):
         "precession_rate_closed_form_rad_per_d": closed_form,
         "precession_rate_reference_rel_error": reference_rate / closed_form - 1,
         "reference": label(ref_method, ref_opts),
-        "reference_agreement_axis_rad": agreement,
+        REFERENCE_AGREEMENT_AXIS_RAD: agreement,
         "reference_agreement_attitude_rad": min(r["error_vs_converged_rad"] for r in full_rows),
-        "precession_rate_rel_error_max": max(rate_errors),
+        PRECESSION_RATE_REL_ERROR_MAX: max(rate_errors),
         "winner_axis_error": winner(full_rows, "axis_error_vs_converged_rad", (1e-6, 1e-8, 1e-10)),
         "winner_attitude_error": winner(full_rows, "error_vs_converged_rad", (1e-4, 1e-6, 1e-7)),
         "passed": bool(agreement < p.stress.reference_agreement_max

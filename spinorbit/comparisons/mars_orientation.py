@@ -32,6 +32,7 @@ IAU_WINDOW_D = (-20 * JULIAN_YEAR_D, 30 * JULIAN_YEAR_D)      # 1980-2030, where
 # The metrics the verdict judges (the summary's comparison keys; the API's expected accuracy reads the pole's)
 NUTATION_MINUS_RIGID_SERIES_MAX_MAS = "nutation_minus_rigid_series_max_mas"
 POLE_MINUS_IAU2015_MAX_ARCSEC = "pole_minus_iau2015_max_arcsec"
+RATE_MINUS_KONOPLIV2016_MAS_PER_YR = "rate_minus_konopliv2016_mas_per_yr"
 # The budget's runs, each adding one effect to the last: name -> (the run's parameters, the last run's) -> its own.
 def _solar(p, last):
     return replace(last, orbit=replace(last.orbit, source=TwoBody("kepler"), planets=False),
@@ -65,7 +66,7 @@ def verdict(p, comparison):
               Check("pole − IAU 2015 (1980–2030)", POLE_MINUS_IAU2015_MAX_ARCSEC, 0.3, "″", _IAU)]
     complete = p.mars.satellites and p.mars.geodesic_precession and p.orbit.planets
     if complete and not p.orbit.source.analytic:      # the orbit moved by the planets
-        checks.insert(0, Check("ψ rate − Konopliv 2016", "rate_minus_konopliv2016_mas_per_yr", 5.0,
+        checks.insert(0, Check("ψ rate − Konopliv 2016", RATE_MINUS_KONOPLIV2016_MAS_PER_YR, 5.0,
                                " mas/yr", _RATE, min_span_d=RATE_MIN_SPAN_D))
     return Verdict("Konopliv et al. 2016 (moment: Baland et al. 2020), rigid nutation, IAU 2015", tuple(checks))
 
@@ -112,12 +113,12 @@ def precession_nutation(t, poles):
     fit_psi, fit_inc, psi, inc = fitted(t, poles)
     comparison, not_measured = {}, {}
     if why := rate_refusal(float(np.ptp(t))):
-        for key in ("precession_rate_mas_per_yr", "obliquity_rate_mas_per_yr", "rate_minus_konopliv2016_mas_per_yr"):
+        for key in ("precession_rate_mas_per_yr", "obliquity_rate_mas_per_yr", RATE_MINUS_KONOPLIV2016_MAS_PER_YR):
             comparison[key], not_measured[f"comparison.{key}"] = None, why
     else:
         rate = rate_mas_yr(fit_psi)
-        comparison.update(precession_rate_mas_per_yr=rate, obliquity_rate_mas_per_yr=rate_mas_yr(fit_inc),
-                          rate_minus_konopliv2016_mas_per_yr=rate - mars.PRECESSION_RATE_MAS_YR[0])
+        comparison.update({"precession_rate_mas_per_yr": rate, "obliquity_rate_mas_per_yr": rate_mas_yr(fit_inc),
+                           RATE_MINUS_KONOPLIV2016_MAS_PER_YR: rate - mars.PRECESSION_RATE_MAS_YR[0]})
     residuals = []
     for name, reference in mars_nutation.by_frequency().items():
         if fit_psi.sin[name] is None:

@@ -14,8 +14,11 @@ from ..scene import Outcome
 MARGOT_2007_ARCSEC = (35.8, 2.0)
 HARMONICS = 6          # fitted harmonics of M; the initial rate sums the linear forced solution to k = 24
 # comparison key -> the fitted term it comes from (k - 1 for the harmonic k, HARMONICS the free libration)
-FITTED_FROM = {"libration_88d_measured_arcsec": 0, "libration_88d_rel_error_vs_linear": 0,
-               "libration_88d_rel_error_vs_series": 0, "libration_88d_cos_term_arcsec": 0, "passed": 0,
+# The metrics the verdict judges (the summary's comparison keys)
+LIBRATION_88D_REL_ERROR_VS_LINEAR = "libration_88d_rel_error_vs_linear"
+LIBRATION_88D_REL_ERROR_VS_SERIES = "libration_88d_rel_error_vs_series"
+FITTED_FROM = {"libration_88d_measured_arcsec": 0, LIBRATION_88D_REL_ERROR_VS_LINEAR: 0,
+               LIBRATION_88D_REL_ERROR_VS_SERIES: 0, "libration_88d_cos_term_arcsec": 0, "passed": 0,
                "libration_44d_measured_arcsec": 1, "free_libration_fitted_arcsec": HARMONICS}
 
 
@@ -53,8 +56,8 @@ def compare_run(p, run):
         "libration_88d_measured_arcsec": None if measured is None else measured / ARCSEC,
         "libration_88d_linear_theory_arcsec": theory["amplitude_linear"] / ARCSEC,
         "libration_88d_margot_series_arcsec": theory["amplitude_series"] / ARCSEC,
-        "libration_88d_rel_error_vs_linear": rel_linear,
-        "libration_88d_rel_error_vs_series": rel_series,
+        LIBRATION_88D_REL_ERROR_VS_LINEAR: rel_linear,
+        LIBRATION_88D_REL_ERROR_VS_SERIES: rel_series,
         "libration_88d_cos_term_arcsec": pairs[1][1] / ARCSEC if 1 in pairs else None,
         "libration_44d_measured_arcsec": float(math.hypot(*pairs[2]) / ARCSEC) if 2 in pairs else None,
         "libration_44d_linear_theory_arcsec": float(abs(theory["g"][1]) / ARCSEC),

@@ -10,6 +10,8 @@ from ..constants import ARCSEC
 
 # Euler's circles: mean distance (km) and sidereal period (d) of the Moon and the Sun.
 CIRCLES = {"moon": (384400.0, 27.321661), "sun": (149597870.7, 365.256363)}
+# The metric compare computes (the summary's comparison key, read by the Earth's verdict)
+MODEL_MINUS_P96_ARCSEC_CY = "model_minus_p96_arcsec_cy"
 
 
 def circles():
@@ -57,4 +59,4 @@ def compare(t_tdb_d, poles, ecliptic_pole, moments, spin_rad_d, circles, geodesi
                  None if why else model}, {"comparison.fixed_ecliptic_precession_rate_arcsec_cy": why} if why else {})
     p96 -= geodesic_arcsec_cy
     return {"p96_precession_rate_arcsec_cy": p96, "model_precession_rate_arcsec_cy": model,
-            "model_minus_p96_arcsec_cy": model - p96}, {}
+            MODEL_MINUS_P96_ARCSEC_CY: model - p96}, {}

@@ -28,5 +28,6 @@ def scene_of(kind):
 
 
 def stored_kinds():
-    """{kind: Stored} of the kinds kept as a continuous solution (their Scene's ``stored``; every scene imported)."""
+    """{kind: Stored} of the kinds kept as a continuous solution (their Scene's ``stored``; imports every
+    scene)."""
     return {kind: scene_of(kind).stored for kind in SCENES if scene_of(kind).stored is not None}

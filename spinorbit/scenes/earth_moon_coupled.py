@@ -73,16 +73,14 @@ MIN_TIDAL_SPAN_D = 100 * 365.25 - 1.0
 
 def verdict(p, comparison):
     """The Moon against DE421 (direction, range, pole, longitude); the tidal acceleration against LLR."""
-    from ..comparisons import earth_moon_de421 as vs
-
-    checks = [Check("Moon direction", vs.MOON_DIRECTION_ERROR_MAX_ARCSEC, 1.0, "″", TARGETS),
-              Check("Moon range", vs.MOON_RANGE_ERROR_MAX_KM, 2.0, " km", TARGETS),
-              Check("lunar pole", vs.POLE_ERROR_MAX_ARCSEC, 0.1, "″", TARGETS),
-              Check("libration longitude", vs.LONGITUDE_ERROR_MAX_ARCSEC, 1.0, "″", TARGETS)]
+    checks = [Check("Moon direction", de421.MOON_DIRECTION_ERROR_MAX_ARCSEC, 1.0, "″", TARGETS),
+              Check("Moon range", de421.MOON_RANGE_ERROR_MAX_KM, 2.0, " km", TARGETS),
+              Check("lunar pole", de421.POLE_ERROR_MAX_ARCSEC, 0.1, "″", TARGETS),
+              Check("libration longitude", de421.LONGITUDE_ERROR_MAX_ARCSEC, 1.0, "″", TARGETS)]
     if p.compare.tides_off:
-        checks += [Check("n_dot", "tidal_n_dot_arcsec_per_cy2", 1.0, "″/cy²", LLR, expected=-25.8,
+        checks += [Check("n_dot", de421.TIDAL_N_DOT_ARCSEC_PER_CY2, 1.0, "″/cy²", LLR, expected=-25.8,
                          min_span_d=MIN_TIDAL_SPAN_D),
-                   Check("recession", "tidal_recession_mm_per_yr", 1.0, " mm/yr", LLR, expected=38.3,
+                   Check("recession", de421.TIDAL_RECESSION_MM_PER_YR, 1.0, " mm/yr", LLR, expected=38.3,
                          min_span_d=MIN_TIDAL_SPAN_D)]
     earth_axis = ("the Earth's axis against IAU 2006/2000A's CIP is reported, not judged: DE421 turned its "
                   "Earth by IAU 1976 precession, and this Earth is a rigid body (no non-rigid nutation), so "
@@ -147,9 +145,8 @@ def compare_run(p, run):
     if p.compare.tides_off:
         without = system(p, m.external, tuple(s for s in m.switches if s != "earth_tides"))
         other, sections["run_tides_off"] = run.integrate(without, t, "tides_off")
-        tidal = vs.tidal_acceleration(t, solution.part("moon.r"), other.part("moon.r"),
-                                      other.part("moon.v"))
-        comparison.update({f"tidal_{name}": value for name, value in tidal.items()})
+        comparison.update(vs.tidal_acceleration(t, solution.part("moon.r"), other.part("moon.r"),
+                                                other.part("moon.v")))
     errors = {"direction": direction, "range": distance, "pole": pole, "longitude": longitude,
               "earth_axis": axis_error}
     table = vs.table(t, solution.part("moon.r"), mats, errors, axis)

@@ -7,7 +7,11 @@ conditions (starts/earth.py); the CIP X, Y, the fitted precession and nutation, 
 (comparisons/earth_iau.py).  The rigid-minus-IAU nutation is the non-rigid response, not an error:
 ``earth.nonrigid`` applies it (comparisons/earth_nonrigid.py; REN-2000 and VLBI's observed pole beside).
 """
-from ..analysis.precession import RATE_MIN_SPAN_D
+from ..analysis.precession import (
+    OBLIQUITY_RATE_MINUS_IAU_ARCSEC_CY,
+    PSI_RATE_MINUS_IAU_ARCSEC_CY,
+    RATE_MIN_SPAN_D,
+)
 from ..analysis.transfer.models import MODELS
 from ..bodies import earth
 from ..comparisons.earth_iau import X_RMS_MAS
@@ -79,12 +83,12 @@ def verdict(p, comparison):
     """What this Earth scene is compared for (see the module docstring)."""
     if p.orbit.source.circular:
         return Verdict("Euler's P96 rate N cos n (§846)", (Check(
-            "model − P96", "model_minus_p96_arcsec_cy", 0.05, "″/cy",
+            "model − P96", euler_p96.MODEL_MINUS_P96_ARCSEC_CY, 0.05, "″/cy",
             "10^-5 of the rate: well below the smallest effect the model must resolve (planets' torques, "
             "0.030\"/cy) and above Euler's first-order remainder in N/delta (~10^-7)"),))
     if not p.earth.geodesic_precession:
         return Verdict("IAU 2006/2000A (ERFA)", (Check(
-            "ψ rate − IAU", "psi_rate_minus_iau_arcsec_cy", 0.05, "″/cy",
+            "ψ rate − IAU", PSI_RATE_MINUS_IAU_ARCSEC_CY, 0.05, "″/cy",
             "without geodesic precession the rate is off by its de Sitter value, +1.919883\"/cy "
             "(IERS Conventions 2010); " + _RATE, expected=earth.GEODESIC_PRECESSION_ARCSEC_CY,
             min_span_d=RATE_MIN_SPAN_D),), "X, Y drift by the omitted geodesic precession: not compared")
@@ -97,8 +101,8 @@ def verdict(p, comparison):
         checks = [Check(f"{axis} rms", metric, limit, " mas", _RIGID_VS_IAU)
                   for axis, metric, limit in (("X", X_RMS_MAS, 40.0), ("Y", Y_RMS_MAS, 25.0))]
     fitted = p.earth.hd != "iau2006"          # H_d from the psi rate: the obliquity rate is judged
-    rate = (("ε rate − P03", "obliquity_rate_minus_iau_arcsec_cy", 0.002, _OBLIQUITY) if fitted else
-            ("ψ rate − IAU", "psi_rate_minus_iau_arcsec_cy", 0.05, _RATE))
+    rate = (("ε rate − P03", OBLIQUITY_RATE_MINUS_IAU_ARCSEC_CY, 0.002, _OBLIQUITY) if fitted else
+            ("ψ rate − IAU", PSI_RATE_MINUS_IAU_ARCSEC_CY, 0.05, _RATE))
     checks.append(Check(*rate[:3], "″/cy", rate[3], min_span_d=RATE_MIN_SPAN_D))
     if p.earth.model == "full":
         checks.append(Check("full − gyroscopic", FULL_MINUS_GYROSCOPIC_MAX_MAS, 1.0, " mas",

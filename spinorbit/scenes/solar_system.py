@@ -143,7 +143,7 @@ def own_start(p):
     return p.span.start if p.start.epoch == "span" else None
 
 
-DE421_EPOCH_TDB_D = -11144.5            # DE421's JDEPOC, 2440400.5 TDB (1969-06-28): where its initial conditions hold
+DE421_EPOCH_TDB_D = -11144.5        # DE421's JDEPOC, 2440400.5 TDB (1969-06-28): its initial conditions' epoch
 STORED = Stored(segment_d=4.0, degree=13, anchor=DE421_EPOCH_TDB_D, own_start=own_start)
 SCENE = Scene(SolarSystemParams, build, compare_run, verdict, bench=bench, backward=True, taylor=True, restart=restart,
               nbody_counts=nbody_counts, stored=STORED)

@@ -18,7 +18,11 @@ Passes when the reference's figure axis agrees with the best other run to
 """
 import numpy as np
 
-from ..comparisons.fast_spin_p96 import compare_run
+from ..comparisons.fast_spin_p96 import (
+    PRECESSION_RATE_REL_ERROR_MAX,
+    REFERENCE_AGREEMENT_AXIS_RAD,
+    compare_run,
+)
 from ..models.assemblies.idealised import under_point_masses
 from ..params import Params, key, table
 from ..scene import Model, Scene
@@ -30,9 +34,9 @@ from . import common
 def verdict(p, comparison):
     """Converged runs agree, and every full-span run's precession rate matches P96's N cos n."""
     return Verdict("a converged suzuki4 run; P96's N cos n", (
-        Check("converged runs agree", "reference_agreement_axis_rad", p.stress.reference_agreement_max,
+        Check("converged runs agree", REFERENCE_AGREEMENT_AXIS_RAD, p.stress.reference_agreement_max,
               " rad", "stress.reference_agreement_max: the figure axis of two converged runs"),
-        Check("rate vs P96", "precession_rate_rel_error_max", p.stress.rate_rel_tol, "",
+        Check("rate vs P96", PRECESSION_RATE_REL_ERROR_MAX, p.stress.rate_rel_tol, "",
               "P96 is first order in N/delta = 1e-3 (stress.rate_rel_tol)")))
 
 

@@ -24,7 +24,11 @@ import math
 import numpy as np
 
 from ..analysis.planar_spin_orbit import kepler_orbit, libration_theory, rigid_body_system
-from ..comparisons.mercury_libration import compare_run
+from ..comparisons.mercury_libration import (
+    LIBRATION_88D_REL_ERROR_VS_LINEAR,
+    LIBRATION_88D_REL_ERROR_VS_SERIES,
+    compare_run,
+)
 from ..params import Params, key, table
 from ..scene import Model, Scene
 from ..schema import DISTANCE, GM
@@ -38,9 +42,9 @@ RADAR_NOT_INDEPENDENT = ("Margot et al. (2007)'s 35.8\" radar amplitude is not c
 def verdict(p, comparison):
     """The 88-d libration against linear theory and Margot et al. (2007)'s series."""
     return Verdict("linear forced libration; Margot et al. (2007)", (
-        Check("88-d vs linear", "libration_88d_rel_error_vs_linear", p.stress.linear_rel_tol, "",
+        Check("88-d vs linear", LIBRATION_88D_REL_ERROR_VS_LINEAR, p.stress.linear_rel_tol, "",
               "linear in the libration (35.8\" = 1.7e-4 rad): the nonlinear remainder is far below 1e-3"),
-        Check("88-d vs series", "libration_88d_rel_error_vs_series", p.stress.series_rel_tol, "",
+        Check("88-d vs series", LIBRATION_88D_REL_ERROR_VS_SERIES, p.stress.series_rel_tol, "",
               "the e^6 remainder of (1 - 11e^2 + 959e^4/48) at e = 0.2056 (~1e-3)")),
         RADAR_NOT_INDEPENDENT)
 
