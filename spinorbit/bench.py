@@ -147,7 +147,8 @@ def bench_scenario(path, methods=None, out=None, budget_s=10.0, overrides=(), fo
     (spinorbit.rundir: a previous table replaced whole, files spinorbit did not write refused unless
     ``force``); returns (rows, paths)."""
     from .rundir import RunDirectory
-    from .scenarios import load_scenario, scenario_errors
+    from .scenarios import load_scenario
+    from .scene import scenario_errors
 
     if not isinstance(budget_s, (int, float)) or not 0 < budget_s <= MAX_BUDGET_S:
         raise ScenarioError("--budget", budget_s, f"seconds in (0, {MAX_BUDGET_S:g}]")

@@ -17,8 +17,8 @@ import numpy as np
 
 from .errors import IntegrationError, ScenarioError
 from .run_result import RunResult, attitude_table
-from .scenarios import Scenario, load_scenario, scenario_errors
-from .scene import Run, integrate
+from .scenarios import Scenario, load_scenario
+from .scene import Run, integrate, scenario_errors
 from .solutions import build_scenario, for_run, keep
 
 

@@ -26,14 +26,14 @@ import datetime
 import math
 import os
 import tomllib
-from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
 
 from . import budget
-from .errors import EphemerisRangeError, InputError, ScenarioError
+from .errors import ScenarioError
 from .params import SpanTable, filled
+from .scene import scenario_errors
 from .schema import (
     INTEGRATOR_OPTIONS,
     MAX_TEXT,
@@ -226,35 +226,6 @@ class Scenario:
         """{"time_s", "memory_bytes"} of the run (spinorbit.budget.estimate)."""
         return budget.estimate(self)
 
-# The library names an argument it cannot use (errors.InputError); the scenario key that sets it:
-ARGUMENT_KEYS = {"method": "integrator.method", "step": "integrator.step",
-                 "free_flow": "integrator.free_flow",
-                 "source": "orbit.source", "bodies": "orbit.bodies", "radius": "orbit.radius", "a": "orbit.a",
-                 "e": "orbit.e", "f": "orbit.f", "beta": "orbit.beta", "t_out": "span"}
-
-
-@contextmanager
-def scenario_errors(scenario):
-    """Turn a library InputError raised inside into a ScenarioError on the scenario key that set the argument
-    (an ``[integrator]`` option by its own name, else ARGUMENT_KEYS)."""
-    try:
-        yield
-    except InputError as exc:
-        options = scenario.data.get("integrator", {})
-        key = f"integrator.{exc.name}" if exc.name in options else ARGUMENT_KEYS.get(exc.name, exc.name)
-        raise ScenarioError(key, exc.given, exc.accepted) from None
-    except EphemerisRangeError as exc:
-        (first, last) = scenario.params.span.bounds
-        asked_first, asked_last = exc.requested if isinstance(exc.requested, tuple) else (first, last)
-        before, after = max(first - asked_first, 0.0), max(asked_last - last, 0.0)
-        low, high = exc.span[0] + before, exc.span[1] - after
-        fits = (f"a span from {_iso(low)} to {_iso(high)} TDB fits" if high > low else "no span fits")
-        around = (f"the run samples the orbit {before:.3g} d before its span and {after:.3g} d after it, so "
-                  if before or after else "")
-        raise EphemerisRangeError(exc.source, exc.requested, exc.span,
-                                  note=f"{exc.note}; {around}{fits}") from None
-
-
 def check_depth(data, where, limit=MAX_DEPTH):
     """Raise ScenarioError if tables and arrays nest deeper than ``limit`` (checked without recursion)."""
     stack = [(data, 0, "")]
@@ -267,13 +238,6 @@ def check_depth(data, where, limit=MAX_DEPTH):
             stack.extend((v, depth + 1, f"{name}.{k}" if name else str(k)) for k, v in node.items())
         elif isinstance(node, list):
             stack.extend((v, depth + 1, name) for v in node)
-
-
-def _iso(t_tdb_d):
-    """TDB days from J2000 as an ISO date and time to the minute."""
-    from .schema import tdb_days_to_time
-
-    return tdb_days_to_time(t_tdb_d).isot[:16]
 
 
 def backward_kinds():

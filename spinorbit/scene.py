@@ -9,9 +9,12 @@ with nothing of its own to integrate (an ensemble compared method by method) bui
 
 Edge module, below ``scenes`` (scenes import it) and ``scenarios`` (which reads what a scene declares).
 """
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from types import SimpleNamespace
 from typing import Callable
+
+from .errors import EphemerisRangeError, InputError, ScenarioError
 
 
 @dataclass(frozen=True)
@@ -207,3 +210,39 @@ def integrate(scenario, system, times, part=None, method=None, options=None, est
     estimate = settings.estimate_error if estimate_error is None else estimate_error
     return simulate(system, times, settings.method, settings.options(), estimate,
                     checkpoint, label)
+
+
+# The library names an argument it cannot use (errors.InputError); the scenario key that sets it:
+ARGUMENT_KEYS = {"method": "integrator.method", "step": "integrator.step",
+                 "free_flow": "integrator.free_flow",
+                 "source": "orbit.source", "bodies": "orbit.bodies", "radius": "orbit.radius", "a": "orbit.a",
+                 "e": "orbit.e", "f": "orbit.f", "beta": "orbit.beta", "t_out": "span"}
+
+
+@contextmanager
+def scenario_errors(scenario):
+    """Turn a library InputError raised inside into a ScenarioError on the scenario key that set the argument
+    (an ``[integrator]`` option by its own name, else ARGUMENT_KEYS)."""
+    try:
+        yield
+    except InputError as exc:
+        options = scenario.data.get("integrator", {})
+        key = f"integrator.{exc.name}" if exc.name in options else ARGUMENT_KEYS.get(exc.name, exc.name)
+        raise ScenarioError(key, exc.given, exc.accepted) from None
+    except EphemerisRangeError as exc:
+        (first, last) = scenario.params.span.bounds
+        asked_first, asked_last = exc.requested if isinstance(exc.requested, tuple) else (first, last)
+        before, after = max(first - asked_first, 0.0), max(asked_last - last, 0.0)
+        low, high = exc.span[0] + before, exc.span[1] - after
+        fits = (f"a span from {_iso(low)} to {_iso(high)} TDB fits" if high > low else "no span fits")
+        around = (f"the run samples the orbit {before:.3g} d before its span and {after:.3g} d after it, so "
+                  if before or after else "")
+        raise EphemerisRangeError(exc.source, exc.requested, exc.span,
+                                  note=f"{exc.note}; {around}{fits}") from None
+
+
+def _iso(t_tdb_d):
+    """TDB days from J2000 as an ISO date and time to the minute."""
+    from .schema import tdb_days_to_time
+
+    return tdb_days_to_time(t_tdb_d).isot[:16]

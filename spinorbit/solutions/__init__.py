@@ -50,7 +50,7 @@ def for_scenario(scenario, t_start=None, t_end=None):
     stretches.stored(scenario)
     lo, hi = scenario.params.span.bounds if t_start is None else (min(t_start, t_end), max(t_start, t_end))
     def extend(solution, a, b):
-        from ..scenarios import scenario_errors
+        from ..scene import scenario_errors
 
         with scenario_errors(scenario):         # a library InputError on the scenario key that set it
             return _extended(scenario, solution, a, b)
