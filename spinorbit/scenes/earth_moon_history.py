@@ -7,7 +7,7 @@ the angular momentum kept (the solar tide's share tracked in the state).  The ti
 one of spinorbit.models.tidal_history.tides.TIDES: "ocean" (the default: after Farhat et al. 2022, an
 ocean of uniform depth with drag outside one continent on the rotating Earth, the continent's area
 shrinking with the age to a global ocean, plus the solid Earth; its drag fitted to today's recession at
-tides.ocean_depth, whose default was fitted to the Moon's age by ``python -m spinorbit.fit_tides``), the same
+tides.ocean_depth, whose default was fitted to the Moon's age by ``python benchmarks/fit_tides.py``), the same
 ocean without the Coriolis force, a global ocean (fitted the same way), a constant time lag (Mignard 1979)
 or a constant Q (Goldreich 1966), their one parameter fitted to today's recession rate (tides.recession_rate,
 lunar laser ranging 3.830 +- 0.008 cm/yr, Williams & Boggs 2016).

@@ -1,6 +1,6 @@
 """An ocean's depth fitted to the Moon's age, its drag fitted at each depth to today's recession (the
 ocean's calibration): the bisection, typed.  The history at a depth is the caller's, ``age_at(depth_km) ->
-Trial`` (``python -m spinorbit.fit_tides`` runs the scene), so this module integrates nothing itself; the
+Trial`` (``python benchmarks/fit_tides.py`` runs the scene), so this module integrates nothing itself; the
 geological proxies are never used.
 """
 from dataclasses import dataclass, field

@@ -1,7 +1,7 @@
 """The tidal models of the Earth-Moon history, one class each: its code in the rhs (``response.MODELS``), its
 description and source, its calibration to today's recession rate, and, for an ocean, its depth (the scene's
 key, the stored fit, the bracket the fit searches, the depths accepted).  The scene's keys, its verdict, the
-summary's description and ``python -m spinorbit.fit_tides`` all read ``TIDES``; adding a tide is one class.
+summary's description and ``python benchmarks/fit_tides.py`` all read ``TIDES``; adding a tide is one class.
 """
 import functools
 import json
