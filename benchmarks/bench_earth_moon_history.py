@@ -23,7 +23,9 @@ SCENE = ROOT / "scenarios" / "earth_moon_history.toml"
 
 
 def numbers():
-    from spinorbit import run_scenario
+    from dataclasses import replace
+
+    from spinorbit import load_scenario, run_scenario
     from spinorbit.models.tidal_history.tides import TIDES
     from spinorbit.references.lunar_proxies import PROXIES
 
@@ -31,8 +33,11 @@ def numbers():
           "| Moon's age (where it stops) Gyr | max abs(dL/L) over the history | obliquity rate today mas/cy "
           "| integration error (a, rel) |\n|---|---|---|---|---|---|---|---|---|")
     residuals = {}
+    scenario = load_scenario(str(SCENE))
+    p = scenario.params
     for model in TIDES:
-        summary = run_scenario(str(SCENE), [f'tides.model="{model}"', "compare.models=false"]).summary
+        alone = replace(p, tides=replace(p.tides, model=model), compare=replace(p.compare, models=False))
+        summary = run_scenario(scenario.with_params(alone)).summary
         c, m, run = summary["comparison"], summary["model"], summary["run"]
         c = {**c, "moon_age_gyr": c["moon_age_gyr"] if c["moon_age_gyr"] is not None else float("nan")}
         if "ocean_depth_km" in m:

@@ -38,11 +38,17 @@ SPLITTINGS = {"suzuki4": (2.0, 1.0, 0.5, 0.25, 0.125), "yoshida4": (2.0, 1.0, 0.
 
 
 def build(years):
+    from dataclasses import replace
+
+    import astropy.units as u
+
     from spinorbit.scenarios import load_scenario
     from spinorbit.starts.moon import build_system
 
-    scenario = load_scenario(SCENARIO, [f'span.end="{years} yr"', f'span.step="{CADENCE_D} d"',
-                                        f"model.level={LEVEL[0]}"])
+    scenario = load_scenario(SCENARIO)
+    p = scenario.params
+    span = replace(p.span, end=p.span.start + (years * u.yr).to_value(u.d), step=CADENCE_D)
+    scenario = scenario.with_params(replace(p, span=span, model=replace(p.model, level=LEVEL[0])))
     system, _ = build_system(scenario.params, scenario.params.orbit.source)
     return scenario, system
 
