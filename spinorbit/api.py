@@ -35,7 +35,6 @@ ISO_YEARS = ("1000-01-01", "9999-12-31")   # the dates a scene's span can name (
 API_TIME_LIMIT_S = 600.0                  # the longest N-body stage (ephemeris='rebound') an API call starts
 DE421_LUNAR = (-36550.5, 73047.5)         # where the scenes start: inside DE421's lunar series (1899-12-04 ..)
 VALIDATED_EARTH = (-18262.5, 18262.5)     # 1950-2050, the validated non-rigid scene
-MOON_START = 0.0                          # J2000: where the Moon's, Mars's and the Earth-Moon system's solutions start
 BEYOND_DE421 = ("not compared: DE421's lunar series (1899-12-04 to 2200-02-01) has no data at {dates}; the run is "
                 "integrated out from DE421's state at its nearest date on {source}'s orbits")
 
@@ -95,7 +94,7 @@ def orientation(body, times, *, ephemeris=None):
     from .solutions import attitude, tables
 
     t, when = tdb_days(times, "times")
-    source, why = _ephemeris_from_start(ephemeris, t)
+    source, why = _ephemeris_from_start(ephemeris, t, answer)
     scenario = _scenario(answer.scenario, source)
     layer = attitude(scenario, _solution(scenario, t, 1.0))
     return _answer(tables.attitude(layer, body, t), t, when, answer.columns, _summary(layer, answer.scenario),
@@ -126,10 +125,10 @@ def moon_librations(times, *, level=3, ephemeris=None, optical=False, frame="PA"
     _check_choice("level", level, (1, 2, 3, 4))
     _check_choice("frame", frame, tuple(tables.FRAMES))
     _check_observer(observer, when)
-    source, why = _ephemeris_from_start(ephemeris, t)
+    answer = _declared("moon_libration", "moon")
+    source, why = _ephemeris_from_start(ephemeris, t, answer)
     if observer is not None:
         _check_observer_ephemeris(source)
-    answer = _declared("moon_libration", "moon")
     solution = _solution(_scenario(answer.scenario, source, level), t, 1.0)
     table = tables.moon(solution, t, source, frame)
     columns = answer.columns + (("optical_libration_longitude", "optical_libration_latitude") if optical else ())
@@ -171,8 +170,8 @@ def earth_moon(times, *, ephemeris=None):
     from .solutions import tables
 
     t, when = tdb_days(times, "times")
-    source, why = _ephemeris_from_start(ephemeris, t)
     answer = _declared("earth_moon_coupled", "earth_moon")
+    source, why = _ephemeris_from_start(ephemeris, t, answer)
     solution = _solution(_scenario(answer.scenario, source), t, 1.0)
     return _answer(tables.earth_moon(solution, t), t, when, answer.columns, _summary(solution, answer.scenario),
                    answer, {"source": source, "why": why})
@@ -388,10 +387,12 @@ def _validated(scene):
     return load_scenario(scene)
 
 
-def _ephemeris_from_start(ephemeris, t):
-    """(the orbit source, why) for a solution started at J2000 (MOON_START) run out to the dates ``t`` (TDB days),
+def _ephemeris_from_start(ephemeris, t, answer):
+    """(the orbit source, why) for ``answer``'s solution, started at its scene's anchor (``Stored.anchor``: J2000
+    for the Moon, Mars and the Earth-Moon system) and run out to the dates ``t`` (TDB days),
     with the two days beyond either end its runs read (_ephemeris)."""
-    return _ephemeris(ephemeris, t, (min(t.min(), MOON_START) - 2.0, max(t.max(), MOON_START) + 2.0))
+    anchor = _validated(answer.scenario).scene.stored.anchor
+    return _ephemeris(ephemeris, t, (min(t.min(), anchor) - 2.0, max(t.max(), anchor) + 2.0))
 
 
 def _solution(scenario, t, margin):
