@@ -56,14 +56,16 @@ def python(code, tree, env=None, args=()):
 
 
 SCENE_PER_CALL = """
+from dataclasses import replace
+
 import numpy as np
 from spinorbit.runner import run_scenario
 from spinorbit.scenarios import load_scenario
-from spinorbit.schema import tdb_days_to_time
 
 def _run(scene, first, last, step, days):
-    start, end = tdb_days_to_time([first, last]).isot
-    scenario = load_scenario(scene, [f"span.start={start}", f"span.end={end}", f"span.step={step:.6g} d"])
+    scenario = load_scenario(scene)
+    p = scenario.params
+    scenario = scenario.with_params(replace(p, span=replace(p.span, start=first, end=last, step=step)))
     scenario.extra_times = np.unique(days)
     return run_scenario(scenario).table
 
@@ -189,14 +191,12 @@ def agreement():
 
 
 def extension():
+    from dataclasses import replace
+
     from spinorbit import solutions
     from spinorbit.integrators import simulate
     from spinorbit.runner import run_scenario
-    from spinorbit.schema import tdb_days_to_time
     from spinorbit.solutions import store, stretches
-
-    def iso(t):
-        return tdb_days_to_time(t).isot
 
     store.PLACE["directory"] = Path(tempfile.mkdtemp(prefix="solutions-"))
     year = 365.25
@@ -215,8 +215,9 @@ def extension():
     _, bare = simulate(system, t_out, "rk8", stretch.params.integrator.options(), estimate_error=True)
     integrate_s = time.perf_counter() - started - built_s
     started = time.perf_counter()
-    run_scenario("moon_libration", [f"span.start={iso(50 * year)}", f"span.end={iso(100 * year)}",
-                                    "output.plots=false"])
+    p = scenario.params
+    run_scenario(scenario.with_params(replace(p.with_span(50 * year, 100 * year),
+                                              output=replace(p.output, plots=False))))
     scene_s = time.perf_counter() - started
     run = extended.provenance["runs"][-1]
     print("\n## extending a stored Moon by 50 yr (2050-2100), s\n")
