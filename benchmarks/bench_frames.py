@@ -84,6 +84,7 @@ def me(count):
     from spinorbit.orbits.kernel import kernel_path
     from spinorbit.references.moon_de421 import _pck_paths, librations
     from spinorbit.rotations import matrix_from_euler313
+    from spinorbit.scenarios import load_scenario
 
     t = dates(JPL_PCK_1900_2050, count, 45)
     days = t.tdb.jd1 - 2451545.0 + t.tdb.jd2
@@ -92,7 +93,7 @@ def me(count):
     ours = unit(table["sub_earth_longitude"].to_value("rad"), table["sub_earth_latitude"].to_value("rad"))
     out = {"dates": count, "span": "1900-2050"}
     with tempfile.TemporaryDirectory() as folder:
-        solution = solutions.solve("moon_libration", [], days.min() - 1.0, days.max() + 1.0)
+        solution = solutions.for_scenario(load_scenario("moon_libration"), days.min() - 1.0, days.max() + 1.0)
         written = solution.export(folder)
         try:
             for path in [*_pck_paths(), str(kernel_path("de421")), *written["files"]]:

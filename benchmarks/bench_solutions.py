@@ -196,15 +196,16 @@ def extension():
     from spinorbit import solutions
     from spinorbit.integrators import simulate
     from spinorbit.runner import run_scenario
+    from spinorbit.scenarios import load_scenario
     from spinorbit.solutions import store, stretches
 
     store.PLACE["directory"] = Path(tempfile.mkdtemp(prefix="solutions-"))
     year = 365.25
-    solutions.solve("moon_libration", [], 0.0, 50 * year)
+    solutions.for_scenario(load_scenario("moon_libration"), 0.0, 50 * year)
     started = time.perf_counter()
-    extended = solutions.solve("moon_libration", [], 0.0, 100 * year)
+    extended = solutions.for_scenario(load_scenario("moon_libration"), 0.0, 100 * year)
     extend_s = time.perf_counter() - started
-    scenario = solutions.scenario_of("moon_libration", [])
+    scenario = load_scenario("moon_libration")
     stretch = stretches.stretch(scenario, 50 * year, 100 * year, 50 * year)     # DE421's Moon at 2050, out to 2100
     t_out = stretch.output_times()
     simulate(stretches.system(stretch, None), t_out[:10], "rk8", stretch.params.integrator.options(),
@@ -241,11 +242,11 @@ def fit_points():
     """The Moon's series (2000-2002, fitted as the store fits it) against the integrator at three sets of points
     per segment: the second kind, the extrema of T_(n+1) (the stated fit error; the segment's midpoint, an rk8
     step point, among them) and 101 evenly spaced; the integrator run once to all of them."""
-    from spinorbit import solutions
     from spinorbit.integrators import simulate
+    from spinorbit.scenarios import load_scenario
     from spinorbit.solutions import fit, stretches
 
-    scenario = solutions.scenario_of("moon_libration", [])
+    scenario = load_scenario("moon_libration")
     t0, y0 = stretches.first_start(scenario)
     grid = stretches.grid(stretches.stored(scenario))
     lo, hi = grid.bounds(t0, t0 + 730.0)

@@ -54,8 +54,9 @@ REFERENCE_UAS = 1.0
 WORKER = """
 import sys, json, numpy as np, warnings
 from spinorbit import solutions
+from spinorbit.scenarios import load_scenario
 lo, hi = float(sys.argv[1]), float(sys.argv[2])
-s = solutions.solve("moon_libration", [], lo, hi)
+s = solutions.for_scenario(load_scenario("moon_libration"), lo, hi)
 q = s.part("moon.q", np.linspace(-19.5, 59.5, 41)) if s.covers(-19.5, 59.5) else np.zeros((0, 4))
 print(json.dumps(q.tolist()))            # on stdout: a file-size limit meets spinorbit's writes, not this answer's
 """
@@ -63,10 +64,11 @@ API = """
 import sys, numpy as np
 from astropy.time import Time
 import spinorbit
-from spinorbit.solutions import for_scenario, scenario_of
+from spinorbit.scenarios import load_scenario
+from spinorbit.solutions import for_scenario
 t = Time(2451545.0 + np.linspace(-19.5, 59.5, 41), format="jd", scale="tdb")
 spinorbit.moon_librations(t)
-s = for_scenario(scenario_of("moon_libration", []), -19.5, 59.5)
+s = for_scenario(load_scenario("moon_libration"), -19.5, 59.5)
 np.save(sys.argv[1], s.part("moon.q", np.linspace(-19.5, 59.5, 41)))
 """
 
@@ -243,8 +245,9 @@ def case_damage(rng, cache, reference):
     answer(cache, -20.0, 60.0, "first")
     other = cache.parent / "other.npz"
     if not other.exists():
-        code = ("import sys, shutil; from spinorbit import solutions;"
-                "s = solutions.solve('moon_libration', ['model.level=2'], 0.0, 4.0); shutil.copy(s.path, sys.argv[1])")
+        code = ("import sys, shutil; from spinorbit import solutions; from spinorbit.scenarios import load_scenario;"
+                "s = solutions.for_scenario(load_scenario('moon_libration', ['model.level=2']), 0.0, 4.0);"
+                "shutil.copy(s.path, sys.argv[1])")
         run([sys.executable, "-c", code, str(other)], environment(cache))
     stored = store_files(cache)
     stored = [p for p in stored if "moon_libration" in p.name][:1]

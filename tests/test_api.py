@@ -13,6 +13,7 @@ import spinorbit
 from spinorbit import api, scenarios
 from spinorbit.errors import InputError, tdb_dates
 from spinorbit.orbits import kernel
+from spinorbit.scenarios import load_scenario
 from spinorbit.solutions import store
 
 from .units import arcsec, mas
@@ -249,7 +250,7 @@ def test_the_exported_moon_carries_the_mean_earth_frame_as_jpls(tmp_path, monkey
 
     monkeypatch.setitem(store.PLACE, "directory", tmp_path / "store")
     (tmp_path / "store").mkdir()
-    written = solutions.solve("moon_libration", [], -10.0, 30.0).export(tmp_path / "out")
+    written = solutions.for_scenario(load_scenario("moon_libration"), -10.0, 30.0).export(tmp_path / "out")
     when = Time(2451545.0, [-5.25, 3.5, 21.75], format="jd", scale="tdb")
     table = spinorbit.moon_librations(when, frame="ME")
     lon, lat = (table[f"sub_earth_{c}"].to_value("rad") for c in ("longitude", "latitude"))

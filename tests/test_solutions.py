@@ -10,6 +10,7 @@ import pytest
 from spinorbit import solutions
 from spinorbit.integrators import simulate
 from spinorbit.rotations import quat_angle
+from spinorbit.scenarios import load_scenario
 from spinorbit.solutions import chebyshev, store, stretches
 from tests.units import arcsec
 
@@ -41,10 +42,10 @@ def test_chebyshev_series_reproduce_a_polynomial_and_join():
 def test_fit_matches_the_dense_output_between_nodes(place):
     """The Moon's series at random dates against the integrator run to those dates: within 1 uas (the
     integration's own error estimate is ~5 uas over a year: the fit adds a small part of it)."""
-    solution = solutions.solve("moon_libration", [], -20.0, 60.0)
+    solution = solutions.for_scenario(load_scenario("moon_libration"), -20.0, 60.0)
     t = np.sort(np.random.default_rng(3).uniform(*solution.span, 200))
-    t0, y0 = stretches.first_start(solutions.scenario_of("moon_libration", []))
-    scenario = solutions.piece_scenario("moon_libration", [], *solution.span, t0)
+    t0, y0 = stretches.first_start(load_scenario("moon_libration"))
+    scenario = stretches.stretch(load_scenario("moon_libration"), *solution.span, t0)
     system = stretches.system(scenario, (t0, y0))
     direct, _ = simulate(system, t, scenario.params.integrator.method, scenario.params.integrator.options(),
                          estimate_error=False)
@@ -60,7 +61,7 @@ def test_the_stated_fit_error_bounds_the_series_between_its_check_points():
     dense outputs join -- among them; the factor 2 leaves room for f^(n+1)'s change across a segment)."""
     from spinorbit.solutions import fit
 
-    scenario = solutions.scenario_of("moon_libration", [])
+    scenario = load_scenario("moon_libration")
     t0, y0 = stretches.first_start(scenario)
     stretch = stretches.stretch(scenario, t0, t0 + 40.0, t0)
     system = stretches.system(stretch, (t0, y0))
@@ -86,7 +87,7 @@ def test_the_earth_seen_from_the_moon_is_de421s_within_a_millimetre(place):
     from spinorbit.orbits.kernel import kernel_path
     from spinorbit.references import eckhardt
 
-    solution = solutions.solve("moon_libration", [], -20.0, 60.0)
+    solution = solutions.for_scenario(load_scenario("moon_libration"), -20.0, 60.0)
     t = np.random.default_rng(5).uniform(*solution.span, 1000)
     with SPK.open(str(kernel_path("de421"))) as kernel:
         de421 = (kernel[3, 399].compute(2451545.0, t) - kernel[3, 301].compute(2451545.0, t)).T
@@ -101,11 +102,11 @@ def test_the_earth_seen_from_the_moon_is_de421s_within_a_millimetre(place):
 def test_extended_in_pieces_equals_one_computed_whole(place, tmp_path_factory):
     """[0, 40] d then extended backward and forward to [-40, 80] against [-40, 80] at once: within the
     integration's own error estimate."""
-    solutions.solve("moon_libration", [], 0.0, 40.0)
-    pieces = solutions.solve("moon_libration", [], -40.0, 80.0)
+    solutions.for_scenario(load_scenario("moon_libration"), 0.0, 40.0)
+    pieces = solutions.for_scenario(load_scenario("moon_libration"), -40.0, 80.0)
     assert len(pieces.provenance["runs"]) == 3
     store.PLACE["directory"] = tmp_path_factory.mktemp("whole")
-    whole = solutions.solve("moon_libration", [], -40.0, 80.0)
+    whole = solutions.for_scenario(load_scenario("moon_libration"), -40.0, 80.0)
     assert whole.span == pieces.span and len(whole.provenance["runs"]) == 1
     t = np.linspace(*whole.span, 301)
     tolerance = max(solutions.integration_error(whole)["integration_error_attitude_arcsec"], 1e-6) * arcsec
@@ -114,7 +115,7 @@ def test_extended_in_pieces_equals_one_computed_whole(place, tmp_path_factory):
 
 @pytest.mark.parametrize("damage", ["tamper", "truncate"])
 def test_a_damaged_store_file_is_refused_and_recomputed(place, capfd, damage):
-    first = solutions.solve("moon_libration", [], 0.0, 8.0)
+    first = solutions.for_scenario(load_scenario("moon_libration"), 0.0, 8.0)
     path = first.path
     if damage == "tamper":                        # a well-formed npz whose numbers were changed
         with np.load(path) as npz:
@@ -125,21 +126,21 @@ def test_a_damaged_store_file_is_refused_and_recomputed(place, capfd, damage):
     else:
         path.write_bytes(path.read_bytes()[: path.stat().st_size // 2])
     capfd.readouterr()
-    again = solutions.solve("moon_libration", [], 0.0, 8.0)
+    again = solutions.for_scenario(load_scenario("moon_libration"), 0.0, 8.0)
     said = [line for line in capfd.readouterr().err.splitlines() if "refused" in line]
     assert len(said) == 1 and str(path) in said[0]
     t = np.linspace(0.0, 8.0, 17)
     assert quat_angle(again.part("moon.q", t), first.part("moon.q", t)).max() < 1e-3 * uas
-    assert store.load(path, store.record(solutions.scenario_of("moon_libration", []))) is not None
+    assert store.load(path, store.record(load_scenario("moon_libration"))) is not None
 
 
 def test_two_processes_extending_one_solution_leave_one_good_file(place):
-    solutions.solve("moon_libration", [], 0.0, 8.0)
+    solutions.for_scenario(load_scenario("moon_libration"), 0.0, 8.0)
     script = textwrap.dedent(f"""
         from spinorbit import solutions
         from spinorbit.solutions import store
         store.PLACE["directory"] = __import__("pathlib").Path({str(place)!r})
-        s = solutions.solve("moon_libration", [], -16.0, 40.0)
+        s = solutions.for_scenario(load_scenario("moon_libration"), -16.0, 40.0)
         print(s.span, len(s.provenance["runs"]))
     """)
     runs = [subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
@@ -149,7 +150,7 @@ def test_two_processes_extending_one_solution_leave_one_good_file(place):
     assert {out for out, _ in outputs} == {"(-16.0, 40.0) 3\n"}           # one extended, the other read it
     files = list(place.glob("*.npz"))
     assert len(files) == 1 and not list(place.glob(".*tmp*"))
-    stored = store.load(files[0], store.record(solutions.scenario_of("moon_libration", [])))
+    stored = store.load(files[0], store.record(load_scenario("moon_libration")))
     assert stored.span == (-16.0, 40.0)
 
 

@@ -1,10 +1,10 @@
 """Integrations kept as continuous solutions: fitted (fit, chebyshev), stored and extended (store), evaluated
 (solution), exported as SPICE kernels (spice).
 
-``solve(scene, sets, t_start, t_end)`` is the one entry: the stored solution of a built-in scene's model
-(``sets``: its ``--set`` assignments) covering [t_start, t_end] TDB days, integrated only where the store
-lacks it.  ``for_run(scenario, system)`` is the runner's: a scene's main run integrated once into a Solution,
-kept in the store where it is the stored model (``keep``).
+``for_scenario(scenario, t_start, t_end)`` is the one entry: the stored solution of a loaded scenario's model
+covering [t_start, t_end] TDB days, integrated only where the store lacks it.
+``for_run(scenario, system)`` is the runner's: a scene's main run integrated once into a Solution, kept in
+the store where it is the stored model (``keep``).
 """
 import math
 
@@ -25,23 +25,6 @@ REFINEMENTS = 2                     # halvings of the segments tried before a ru
 # A run of a kind kept as a solution is always fitted: the Solution is what the run gives.  What it costs
 # (benchmarks/bench_run_fit.py, benchmarks/RESULTS.md): rk8 between its steps pays DOP853's continuous extension,
 # four more right-hand sides in each step (+33 % of the integration).
-
-
-def solve(scene, sets, t_start, t_end):
-    """The Solution of built-in scene ``scene`` (a scene that declares ``stored``) with ``sets`` over
-    [t_start, t_end]."""
-    return for_scenario(scenario_of(scene, sets), t_start, t_end)
-
-
-def scenario_of(scene, sets):
-    from ..scenarios import load_scenario
-
-    return load_scenario(scene, list(sets))
-
-
-def piece_scenario(scene, sets, lo, hi, t0):
-    """The scenario of a stretch [lo, hi] TDB days of ``scene`` with ``sets``, started at t0."""
-    return stretches.stretch(scenario_of(scene, sets), lo, hi, t0)
 
 
 def for_scenario(scenario, t_start=None, t_end=None):

@@ -178,7 +178,7 @@ def _save_or_warn(solution, rec, path):
 
 def solve(rec, t_start, t_end, extend):
     """The stored solution keyed by ``rec`` (``record``) covering [t_start, t_end] TDB days; where the store
-    lacks part of it, ``extend(solution or None, t_start, t_end)`` computes the stretches (solutions.solve);
+    lacks part of it, ``extend(solution or None, t_start, t_end)`` computes the stretches (solutions.for_scenario);
     one process at a time extends a file (a lock), the others wait and read what it wrote.  A store that cannot
     be read or written is said, and the answer is computed without it."""
     path = path_of(rec)

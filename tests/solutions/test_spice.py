@@ -12,6 +12,7 @@ import pytest
 from spinorbit import solutions
 from spinorbit.analysis.librations import icrf_to_body
 from spinorbit.constants import DAY_S
+from spinorbit.scenarios import load_scenario
 from spinorbit.solutions import store
 from tests.units import arcsec
 
@@ -35,7 +36,7 @@ def rotation_angle(a, b):
 
 @pytest.fixture
 def moon_kernels(place):
-    solution = solutions.solve("moon_libration", [], -20.0, 60.0)
+    solution = solutions.for_scenario(load_scenario("moon_libration"), -20.0, 60.0)
     written = solution.export(place / "out")
     yield solution, written
     spiceypy.kclear()
@@ -108,7 +109,7 @@ def test_the_closed_earth_moon_read_back_by_spiceypy_and_skyfield_matches_the_so
     from spinorbit.comparisons import earth_moon_de421
     from spinorbit.orbits.kernel import open_ephemeris
 
-    solution = solutions.solve("earth_moon_coupled", [], 0.0, 40.0)
+    solution = solutions.for_scenario(load_scenario("earth_moon_coupled"), 0.0, 40.0)
     written = solution.export(place / "out")
     bsp = next(f for f in written["files"] if f.endswith(".bsp"))
     first, last = (d * DAY_S for d in solution.span)
@@ -146,7 +147,7 @@ def solar_system(tmp_path_factory):
     with pytest.MonkeyPatch.context() as patch:
         patch.setitem(store.PLACE, "directory", place / "store")
         (place / "store").mkdir()
-        solution = solutions.solve("solar_system", [], DE421_EPOCH - 20.0, DE421_EPOCH + 40.0)
+        solution = solutions.for_scenario(load_scenario("solar_system"), DE421_EPOCH - 20.0, DE421_EPOCH + 40.0)
         written = solution.export(place / "out")
         yield solution, written, place
     spiceypy.kclear()
@@ -303,9 +304,9 @@ def test_the_solar_system_extended_equals_one_computed_whole(solar_system, tmp_p
     solution, _, place = solar_system
     with pytest.MonkeyPatch.context() as patch:
         patch.setitem(store.PLACE, "directory", place / "store")
-        extended = solutions.solve("solar_system", [], DE421_EPOCH - 20.0, DE421_EPOCH + 80.0)
+        extended = solutions.for_scenario(load_scenario("solar_system"), DE421_EPOCH - 20.0, DE421_EPOCH + 80.0)
         patch.setitem(store.PLACE, "directory", tmp_path)
-        whole = solutions.solve("solar_system", [], DE421_EPOCH - 20.0, DE421_EPOCH + 80.0)
+        whole = solutions.for_scenario(load_scenario("solar_system"), DE421_EPOCH - 20.0, DE421_EPOCH + 80.0)
     assert len(extended.provenance["runs"]) == 2 and len(whole.provenance["runs"]) == 1
     assert extended.span == whole.span
     t = np.linspace(solution.span[1], extended.span[1], 200)
@@ -484,7 +485,7 @@ def test_each_bodys_records_are_whole_segments_of_the_solution(solar_system, tmp
     shutil.copytree(place / "store", tmp_path / "store")
     with pytest.MonkeyPatch.context() as patch:
         patch.setitem(store.PLACE, "directory", tmp_path / "store")
-        solution = solutions.solve("solar_system", [], DE421_EPOCH - 20.0, DE421_EPOCH + 48.0)
+        solution = solutions.for_scenario(load_scenario("solar_system"), DE421_EPOCH - 20.0, DE421_EPOCH + 48.0)
     solution = solution.window(DE421_EPOCH - 20.0, DE421_EPOCH + 48.0)
     assert solution.span[1] - solution.span[0] == 72.0
     written = solution.export(tmp_path / "out")

@@ -20,6 +20,7 @@ from spinorbit import solutions, verified
 from spinorbit.errors import InputError
 from spinorbit.orbits.kernel import kernel_path
 from spinorbit.runner import run_scenario
+from spinorbit.scenarios import load_scenario
 from spinorbit.solutions import store, stretches
 from tests.units import arcsec
 
@@ -37,7 +38,7 @@ def place(tmp_path, monkeypatch):
 
 
 def moon(*sets):
-    return solutions.scenario_of("moon_libration", list(sets))
+    return load_scenario("moon_libration", list(sets))
 
 
 def test_a_different_file_under_the_same_name_gets_its_own_solution(tmp_path, monkeypatch, place):
@@ -125,11 +126,11 @@ def test_a_full_disk_keeps_the_answer_with_a_warning_and_leaves_no_file(place, m
 
     monkeypatch.setattr(np, "savez", full)
     with pytest.warns(UserWarning, match="not stored"):
-        answered = solutions.solve("moon_libration", [], 0.0, 4.0)
+        answered = solutions.for_scenario(load_scenario("moon_libration"), 0.0, 4.0)
     assert not list(place.iterdir()) or all(p.suffix in (".lock", ".json") for p in place.iterdir())
     monkeypatch.undo()
     store.PLACE["directory"] = place
-    stored = solutions.solve("moon_libration", [], 0.0, 4.0)
+    stored = solutions.for_scenario(load_scenario("moon_libration"), 0.0, 4.0)
     t = np.linspace(0.0, 4.0, 9)
     from spinorbit.rotations import quat_angle
 
@@ -138,7 +139,7 @@ def test_a_full_disk_keeps_the_answer_with_a_warning_and_leaves_no_file(place, m
 
 def test_cache_clear_keeps_a_solution_another_process_holds(place, capsys):
     """42.12: the stored solution and its lock stay while its lock is held; freed, they go."""
-    solution = solutions.solve("moon_libration", [], 0.0, 4.0)
+    solution = solutions.for_scenario(load_scenario("moon_libration"), 0.0, 4.0)
     handle = open(verified.lock_path(solution.path), "w")
     fcntl.flock(handle, fcntl.LOCK_EX)
     store.clear()
@@ -176,7 +177,7 @@ def test_reversed_dates_are_matched_to_rows_at_once():
 
 def test_a_read_error_that_is_not_the_files_keeps_the_file(place, monkeypatch):
     """42.14: EIO or EMFILE say nothing about the file: it stays, and the answer comes without the store."""
-    solution = solutions.solve("moon_libration", [], 0.0, 4.0)
+    solution = solutions.for_scenario(load_scenario("moon_libration"), 0.0, 4.0)
     store.VERIFIED.clear()
 
     def failing(*args, **kwargs):
@@ -185,7 +186,7 @@ def test_a_read_error_that_is_not_the_files_keeps_the_file(place, monkeypatch):
     monkeypatch.setattr(verified, "open_regular", failing)
     monkeypatch.setattr(store, "open_regular", failing, raising=False)
     with pytest.warns(UserWarning, match="Input/output error"):
-        again = solutions.solve("moon_libration", [], 0.0, 4.0)
+        again = solutions.for_scenario(load_scenario("moon_libration"), 0.0, 4.0)
     assert solution.path.exists()
     assert np.array_equal(again.segments.coefficients, solution.segments.coefficients)
 
@@ -197,6 +198,6 @@ def test_the_store_keeps_within_its_size_bound_oldest_first(place, monkeypatch):
         path.write_bytes(b"\0" * 400_000)
         os.utime(path, ns=(k * 10**9, k * 10**9))
     monkeypatch.setitem(store.LIMIT, "bytes", 500_000)
-    solution = solutions.solve("moon_libration", [], 0.0, 4.0)
+    solution = solutions.for_scenario(load_scenario("moon_libration"), 0.0, 4.0)
     assert solution.path.exists()
     assert [p.exists() for p in old] == [False, False, True]
