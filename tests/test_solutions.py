@@ -138,6 +138,7 @@ def test_two_processes_extending_one_solution_leave_one_good_file(place):
     solutions.for_scenario(load_scenario("moon_libration"), 0.0, 8.0)
     script = textwrap.dedent(f"""
         from spinorbit import solutions
+        from spinorbit.scenarios import load_scenario
         from spinorbit.solutions import store
         store.PLACE["directory"] = __import__("pathlib").Path({str(place)!r})
         s = solutions.for_scenario(load_scenario("moon_libration"), -16.0, 40.0)
