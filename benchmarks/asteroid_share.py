@@ -14,15 +14,15 @@ import time
 
 import numpy as np
 
+from spinorbit.base.constants import J2000_JD, MAS
+from spinorbit.base.rotations import vector_angle
 from spinorbit.bodies import earth
 from spinorbit.bodies.de421_header import header
-from spinorbit.constants import J2000_JD, MAS
 from spinorbit.integrators import simulate
 from spinorbit.models.assemblies.solar_system import solar_system
 from spinorbit.models.start import solar_system_de421
 from spinorbit.references.erfa_pole import cip_vector
-from spinorbit.rotations import vector_angle
-from spinorbit.schema import parse_tdb_days
+from spinorbit.scene.schema import parse_tdb_days
 
 # DE430's barycentric states at JD 2440400.5 TDB (au, au/d, ICRF) and DE421's header mass key
 STATES = {"ceres": ((1.4431843184611104, -2.203606556762316, -1.326131795443559,

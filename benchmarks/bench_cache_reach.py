@@ -7,8 +7,8 @@ warm, then after an edit.
 A copy of the package (this tree's, and with ``--baseline`` the package at a git ref, e.g. one whose linker
 fingerprinted every file) runs the scenario in fresh processes with its own empty kernel and numba caches:
 once to fill them (cold), ``--repeat`` times warm, then after adding a line to the docstring of a module no
-kernel reaches (``spinorbit/verdict.py``), then after the same edit in a module the kernels reach
-(``spinorbit/rotations.py``), each step on every tree in turn. Printed: the median wall time of each, how many
+kernel reaches (``spinorbit/scene/verdict.py``), then after the same edit in a module the kernels reach
+(``spinorbit/base/rotations.py``), each step on every tree in turn. Printed: the median wall time of each, how many
 generated modules were written (a recompiled kernel writes its module anew) and how many numba cache indexes
 of the package's own compiled functions were written (a function compiled afresh rewrites its index; one that
 calls an edited file and is not rewritten runs its old code).
@@ -24,7 +24,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-UNREACHED, REACHED = "spinorbit/verdict.py", "spinorbit/rotations.py"
+UNREACHED, REACHED = "spinorbit/scene/verdict.py", "spinorbit/base/rotations.py"
 SHORT = ["--set", "span.end=20 d", "--set", "output.plots=false", "--set", "integrator.estimate_error=false"]
 
 
@@ -56,7 +56,7 @@ def run(tree, scenario, work):
     env = {**os.environ, "PYTHONPATH": str(tree), "SPINORBIT_CACHE_DIR": str(cache),
            "NUMBA_CACHE_DIR": str(work / f"numba-{tree.name}"), "SPINORBIT_QUIET": "1"}
     start = time.perf_counter()               # run outside the tree: `-m` puts the working directory first
-    subprocess.run([sys.executable, "-m", "spinorbit.cli", "run", str(scenario), "--out", str(work / "out"),
+    subprocess.run([sys.executable, "-m", "spinorbit.edge.cli", "run", str(scenario), "--out", str(work / "out"),
                     "--force", *SHORT], cwd=work, env=env, check=True, capture_output=True)
     wall = time.perf_counter() - start
     indexes = {p: p.stat().st_mtime_ns for p in (work / f"numba-{tree.name}").rglob("*.nbi")}

@@ -57,7 +57,7 @@ class CompileTimes:
 
 
 def _name(dispatcher):
-    """module.function, with a generated kernel's module named by its template (spinorbit.linker)."""
+    """module.function, with a generated kernel's module named by its template (spinorbit.base.linker)."""
     module = dispatcher.py_func.__module__
     if module.startswith("spinorbit_"):
         module = "generated"

@@ -24,11 +24,11 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from spinorbit.scenarios import load_scenario  # noqa: E402 (after the checkout is put on sys.path)
+from spinorbit.edge.scenarios import load_scenario  # noqa: E402 (after the checkout is put on sys.path)
 
 CHILD = """
 import json, sys, time
-from spinorbit.cli import main
+from spinorbit.edge.cli import main
 start = time.perf_counter()
 code = main(sys.argv[1:])
 peak = next(int(line.split()[1]) * 1024 for line in open("/proc/self/status") if line.startswith("VmHWM"))
@@ -82,7 +82,7 @@ def timed(call):
 def nbody_costs():
     """Rows of the N-body stages: (count, per-item wall and CPU slopes, NBODY_COSTS, estimate vs measured)."""
     from spinorbit.orbits import nbody, solution
-    from spinorbit.scene import NBODY_COSTS
+    from spinorbit.scene.declaration import NBODY_COSTS
 
     settings = solution.Settings()
     with tempfile.TemporaryDirectory() as tmp:

@@ -33,7 +33,7 @@ def run(scenario, out, env, extra=()):
     """(wall s of the whole command, its summary)."""
     sets = [a for s in (*SPAN, *extra) for a in ("--set", s)]
     start = time.perf_counter()
-    subprocess.run([sys.executable, "-m", "spinorbit.cli", "run", scenario, "--out", str(out), *sets],
+    subprocess.run([sys.executable, "-m", "spinorbit.edge.cli", "run", scenario, "--out", str(out), *sets],
                    cwd=ROOT, env=env, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     wall = time.perf_counter() - start
     return wall, json.loads((out / "summary.json").read_text())

@@ -148,9 +148,9 @@ def ladder(span_kyr=200.0):
     """Error against run time: WHFast steps against a 1-d run over ``span_kyr``, and RK8 steps of the spin
     against a 10-yr run over 1 Myr (both on the nominal model)."""
     from spinorbit.comparisons import earth_deep_time_table as table
+    from spinorbit.edge.scenarios import load_scenario
     from spinorbit.integrators import simulate
     from spinorbit.orbits import solution
-    from spinorbit.scenarios import load_scenario
     from spinorbit.starts import earth_deep_time as deep_time_model
 
     nominal = load_scenario("earth_deep_time").params      # IAU 2006's rate, the tidal tilt, Td = Ed = 1, the ring
@@ -194,7 +194,7 @@ def cost():
     included), then again (the solution and the kernels read from the cache)."""
     with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out:
         env = {**os.environ, "SPINORBIT_CACHE_DIR": cache, "NUMBA_CACHE_DIR": str(Path(cache) / "numba")}
-        command = [sys.executable, "-m", "spinorbit.cli", "run", "scenarios/earth_deep_time.toml", "--out",
+        command = [sys.executable, "-m", "spinorbit.edge.cli", "run", "scenarios/earth_deep_time.toml", "--out",
                    str(Path(out) / "run")]
         print("| 1 Myr | whole command | N-body | spin |\n|---|---|---|---|")
         for label in ("first (empty cache)", "cached"):
@@ -297,15 +297,15 @@ def mars_asteroids(myr=1.0, with_asteroids=True):
     import reboundx
     from asteroid_share import STATES
 
+    from spinorbit.base.constants import DAY_S, J2000_JD
     from spinorbit.bodies import moon
     from spinorbit.bodies.de421_header import header
     from spinorbit.bodies.table import gm_km3_d2
-    from spinorbit.constants import DAY_S, J2000_JD
+    from spinorbit.edge.scenarios import load_scenario
     from spinorbit.integrators import simulate
     from spinorbit.orbits import solution
     from spinorbit.orbits.kernel import open_ephemeris
     from spinorbit.references import laskar
-    from spinorbit.scenarios import load_scenario
     from spinorbit.starts import mars_deep_time
 
     h = header()

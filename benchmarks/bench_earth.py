@@ -18,9 +18,9 @@ from pathlib import Path
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from spinorbit.bench import fastest_at
+from spinorbit.base.constants import MAS
 from spinorbit.bodies.earth import ERA_RATE_RAD_D
-from spinorbit.constants import MAS
+from spinorbit.edge.bench import fastest_at
 from spinorbit.integrators import simulate
 from spinorbit.models.assemblies.earth import rigid_earth
 from spinorbit.models.start import on_pole

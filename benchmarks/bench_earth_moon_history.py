@@ -82,7 +82,7 @@ def cost():
         print("| run | wall s (whole command) | the main history's integration s |\n|---|---|---|")
         for label in ("first (empty caches)", "warm"):
             started = time.perf_counter()
-            subprocess.run([sys.executable, "-m", "spinorbit.cli", "run", str(SCENE), "--out",
+            subprocess.run([sys.executable, "-m", "spinorbit.edge.cli", "run", str(SCENE), "--out",
                             str(Path(out) / "run"), "--force"], check=True, env=env, cwd=ROOT,
                            stdout=subprocess.DEVNULL)
             wall = time.perf_counter() - started

@@ -42,7 +42,7 @@ system.rhs(system.t0, system.y0, system.params)
 print(deep, time.perf_counter() - start)
 """
 KERNELS = ("deep_time.rhs", "tidal_history.equations.rhs")
-EDITS = (("rotations.py", "spinorbit/rotations.py"), ("tidal_history/response.py",
+EDITS = (("rotations.py", "spinorbit/base/rotations.py"), ("tidal_history/response.py",
                                                       "spinorbit/models/tidal_history/response.py"))
 
 

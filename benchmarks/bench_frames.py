@@ -81,10 +81,10 @@ def me(count):
 
     import spinorbit
     from spinorbit import solutions
+    from spinorbit.base.rotations import matrix_from_euler313
+    from spinorbit.edge.scenarios import load_scenario
     from spinorbit.orbits.kernel import kernel_path
     from spinorbit.references.moon_de421 import _pck_paths, librations
-    from spinorbit.rotations import matrix_from_euler313
-    from spinorbit.scenarios import load_scenario
 
     t = dates(JPL_PCK_1900_2050, count, 45)
     days = t.tdb.jd1 - 2451545.0 + t.tdb.jd2

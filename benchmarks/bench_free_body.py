@@ -2,7 +2,7 @@
 
 Run: ``python benchmarks/bench_free_body.py``.  I = (2/3, 1, 2) (HLW's (2, 1, 2/3)
 in spinorbit's A <= B <= C order), L0 = (sin 1.1, 0, cos 1.1); outputs every
-day; error = max attitude error (rad) against spinorbit.theory.FreeRigidBody
+day; error = max attitude error (rad) against spinorbit.analysis.theory.FreeRigidBody
 (Jacobi elliptic functions).  Wall times exclude compilation (numba, heyoka).
 """
 import math
@@ -17,10 +17,10 @@ sys.path.insert(0, str(Path(__file__).parent))
 import models  # noqa: E402
 
 from spinorbit.analysis.ladder import work_precision  # noqa: E402
-from spinorbit.bench import fastest_at  # noqa: E402
+from spinorbit.analysis.theory import FreeRigidBody  # noqa: E402
+from spinorbit.base.rotations import quat_angle  # noqa: E402
+from spinorbit.edge.bench import fastest_at  # noqa: E402
 from spinorbit.models.assemblies.idealised import free_body  # noqa: E402
-from spinorbit.rotations import quat_angle  # noqa: E402
-from spinorbit.theory import FreeRigidBody  # noqa: E402
 
 MOMENTS = np.array([2 / 3, 1.0, 2.0])
 OMEGA0 = np.array([math.sin(1.1), 0.0, math.cos(1.1)]) / MOMENTS

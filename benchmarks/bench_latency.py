@@ -44,7 +44,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=3)
     args = parser.parse_args()
-    cli = [sys.executable, "-m", "spinorbit.cli"]
+    cli = [sys.executable, "-m", "spinorbit.edge.cli"]
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         warm = environment(tmp / "warm")

@@ -42,7 +42,7 @@ def build(years):
 
     import astropy.units as u
 
-    from spinorbit.scenarios import load_scenario
+    from spinorbit.edge.scenarios import load_scenario
     from spinorbit.starts.moon import build_system
 
     scenario = load_scenario(SCENARIO)
@@ -61,7 +61,7 @@ def attitudes(solution):
 
 def error_arcsec(m_a, m_b):
     from spinorbit.analysis.librations import pole_and_longitude_difference
-    from spinorbit.constants import ARCSEC
+    from spinorbit.base.constants import ARCSEC
 
     pole, lon = pole_and_longitude_difference(m_a, m_b)
     return float(max(np.abs(pole).max(), np.abs(lon).max()) / ARCSEC)
@@ -113,7 +113,7 @@ def numpy_rows(years, converged_10):
                             str(out)],
                            check=True, env=env, cwd=ROOT)
             data = np.load(out)
-            from spinorbit.rotations import matrix_from_quat
+            from spinorbit.base.rotations import matrix_from_quat
 
             y = data["y"]
             m = np.array([matrix_from_quat(q / np.linalg.norm(q)).T for q in y[:, :4]])
@@ -136,7 +136,7 @@ def table(rows, title):
 
 def level_table(rows):
     """Fastest run of each method reaching each error level, and scipy + NumPy's time over it."""
-    from spinorbit.bench import fastest_at
+    from spinorbit.edge.bench import fastest_at
 
     names = list(dict.fromkeys(r["method"] for r in rows))
     lines = ["| error <= | " + " | ".join(names) + " |", "|---|" + "---|" * len(names)]

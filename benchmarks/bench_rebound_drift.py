@@ -5,7 +5,7 @@ and distance after 1, 10, 50 and 100 years (max over the span), the drift that l
 
 The suite checks 1 and 10 years (tests/orbits/test_nbody.py); the longer spans are measured here (minutes).
 """
-from spinorbit.constants import ARCSEC
+from spinorbit.base.constants import ARCSEC
 from spinorbit.orbits.nbody import moon_drift
 
 if __name__ == "__main__":

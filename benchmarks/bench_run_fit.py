@@ -12,7 +12,7 @@ import argparse
 import time
 
 from spinorbit import solutions
-from spinorbit.runner import run_scenario
+from spinorbit.edge.runner import run_scenario
 
 KINDS = {"moon_libration": None, "earth_precession_nutation": None, "earth_moon_coupled": None,
          "solar_system": "1971-01-01"}

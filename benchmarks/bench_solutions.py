@@ -59,8 +59,8 @@ SCENE_PER_CALL = """
 from dataclasses import replace
 
 import numpy as np
-from spinorbit.runner import run_scenario
-from spinorbit.scenarios import load_scenario
+from spinorbit.edge.runner import run_scenario
+from spinorbit.edge.scenarios import load_scenario
 
 def _run(scene, first, last, step, days):
     scenario = load_scenario(scene)
@@ -165,9 +165,9 @@ def crowded(busy):
 
 def agreement():
     import spinorbit
-    from spinorbit.constants import ARCSEC
-    from spinorbit.rotations import matrix_from_euler313
-    from spinorbit.runner import run_scenario
+    from spinorbit.base.constants import ARCSEC
+    from spinorbit.base.rotations import matrix_from_euler313
+    from spinorbit.edge.runner import run_scenario
 
     moon = run_scenario("moon_libration", ["span.start=2000-01-01T12:00:00", "span.end=2020-01-01T12:00:00",
                                            "model.start=2000-01-01T12:00:00", "output.plots=false"])
@@ -194,9 +194,9 @@ def extension():
     from dataclasses import replace
 
     from spinorbit import solutions
+    from spinorbit.edge.runner import run_scenario
+    from spinorbit.edge.scenarios import load_scenario
     from spinorbit.integrators import simulate
-    from spinorbit.runner import run_scenario
-    from spinorbit.scenarios import load_scenario
     from spinorbit.solutions import store, stretches
 
     store.PLACE["directory"] = Path(tempfile.mkdtemp(prefix="solutions-"))
@@ -242,8 +242,8 @@ def fit_points():
     """The Moon's series (2000-2002, fitted as the store fits it) against the integrator at three sets of points
     per segment: the second kind, the extrema of T_(n+1) (the stated fit error; the segment's midpoint, an rk8
     step point, among them) and 101 evenly spaced; the integrator run once to all of them."""
+    from spinorbit.edge.scenarios import load_scenario
     from spinorbit.integrators import simulate
-    from spinorbit.scenarios import load_scenario
     from spinorbit.solutions import fit, stretches
 
     scenario = load_scenario("moon_libration")
@@ -285,7 +285,7 @@ def export():
 def exported(scene, out):
     import spiceypy
 
-    from spinorbit.scenarios import load_scenario
+    from spinorbit.edge.scenarios import load_scenario
     from spinorbit.solutions import for_export
 
     started = time.perf_counter()
@@ -328,7 +328,7 @@ def orientation_rows(solution, written, t):
     from skyfield.planetarylib import PlanetaryConstants
 
     from spinorbit.analysis.librations import icrf_to_body, pole_and_longitude_difference
-    from spinorbit.constants import ARCSEC, DAY_S
+    from spinorbit.base.constants import ARCSEC, DAY_S
     from spinorbit.references.moon_de421 import Orientation
 
     pck, frame = (next(f for f in written["files"] if f.endswith(suffix)) for suffix in (".bpc", ".tf"))
@@ -390,8 +390,8 @@ def print_positions(solution, written, t, kernel, at):
     import spiceypy
     from jplephem.spk import SPK
 
+    from spinorbit.base.constants import ARCSEC, DAY_S
     from spinorbit.comparisons import earth_moon_de421, solar_system_de421
-    from spinorbit.constants import ARCSEC, DAY_S
     from spinorbit.orbits.kernel import open_ephemeris
 
     bsp = next(f for f in written["files"] if f.endswith(".bsp"))
@@ -437,7 +437,7 @@ GRIDS = ((4.0, 13), (2.0, 13), (8.0, 13), (4.0, 8))     # (segment d, degree): t
 def grid():
     """The solar system's grid: each body's fit error against the integrator between the nodes, over the scene's
     whole span on the kept grid, and over its first year from DE421's epoch on other grids side by side."""
-    from spinorbit.scenarios import load_scenario
+    from spinorbit.edge.scenarios import load_scenario
     from spinorbit.solutions import stretches
     from spinorbit.solutions.chebyshev import Grid
 

@@ -47,10 +47,10 @@ def free_body():
     from bench_free_body import MOMENTS, OMEGA0, Q0, T_OUT
     from models import heyoka_free_equations
 
+    from spinorbit.analysis.theory import FreeRigidBody
+    from spinorbit.base.rotations import quat_angle
     from spinorbit.integrators import get_method
     from spinorbit.models.assemblies.idealised import free_body as make
-    from spinorbit.rotations import quat_angle
-    from spinorbit.theory import FreeRigidBody
 
     exact = FreeRigidBody(MOMENTS, OMEGA0, Q0).attitude(T_OUT[1:])
     error = lambda q: float(quat_angle(q / np.linalg.norm(q, axis=1, keepdims=True), exact).max())
@@ -92,9 +92,9 @@ def free_body():
 
 def started(name):
     """(System, output times) of ten years of the closed Earth-Moon system or of DE421's solar system."""
+    from spinorbit.base.constants import J2000_JD
     from spinorbit.bodies import earth
     from spinorbit.bodies.de421_header import header
-    from spinorbit.constants import J2000_JD
     from spinorbit.references.erfa_pole import cip_vector
 
     if name == "closed Earth-Moon":
@@ -145,7 +145,7 @@ def spinorbit_run(scenario, cache, *overrides):
     env = {**os.environ, "SPINORBIT_CACHE_DIR": str(cache / "spinorbit"), "NUMBA_CACHE_DIR": str(cache / "numba"),
            "SPINORBIT_QUIET": "1"}
     out = cache / "runs" / f"{time.monotonic_ns()}"
-    command = [sys.executable, "-m", "spinorbit.cli", "run", str(scenario), "--out", str(out),
+    command = [sys.executable, "-m", "spinorbit.edge.cli", "run", str(scenario), "--out", str(out),
                *(a for o in overrides for a in ("--set", o))]
     start = time.perf_counter()
     subprocess.run(command, env=env, check=True, capture_output=True)

@@ -12,9 +12,9 @@ Wallace 2011, A&A 534, A22), which is what the outer centuries show.
 """
 import numpy as np
 
-from spinorbit.constants import JULIAN_CENTURY_D, MAS
+from spinorbit.base.constants import JULIAN_CENTURY_D, MAS
+from spinorbit.edge.runner import run_scenario
 from spinorbit.references import erfa_pole
-from spinorbit.runner import run_scenario
 
 SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"
 OVERRIDES = ["orbit.source=de440", "span.start=1550-01-01T00:00:00", "span.end=2650-01-01T00:00:00",

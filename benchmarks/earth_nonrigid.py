@@ -20,12 +20,12 @@ from spinorbit.analysis import nonrigid
 from spinorbit.analysis.precession import fit_pole, term_table
 from spinorbit.analysis.transfer import forms, mhb2000_table
 from spinorbit.analysis.transfer.models import IERS1996, MHB2000, MHB2000_MODES
+from spinorbit.base.constants import JULIAN_CENTURY_D, MAS
 from spinorbit.bodies import earth
 from spinorbit.comparisons.earth_nonrigid import TABLE_TERMS, ren2000_scaled
-from spinorbit.constants import JULIAN_CENTURY_D, MAS
+from spinorbit.edge.runner import run_scenario
 from spinorbit.orbits.sources import DE421
 from spinorbit.references import arguments, erfa_pole, vlbi_pole
-from spinorbit.runner import run_scenario
 from spinorbit.starts import earth_tides as tides
 
 SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"

@@ -13,14 +13,14 @@ The geological proxies are never used.
 
 The fit is a developer's command, beside the repository's benchmarks and never installed with the package: its
 result is a reviewed data file of this checkout (the scene's default depth), written aside and renamed over the
-old one (spinorbit.files.write_atomically), so a failed write (a full disk) leaves the old fit whole.
+old one (spinorbit.base.files.write_atomically), so a failed write (a full disk) leaves the old fit whole.
 """
 import argparse
 import json
 import math
 from pathlib import Path
 
-from spinorbit.files import write_atomically
+from spinorbit.base.files import write_atomically
 from spinorbit.models.tidal_history.fit import RECESSION_CM_PER_YR, Trial, fit_depth
 from spinorbit.models.tidal_history.tides import TIDES
 
@@ -36,7 +36,7 @@ def command(model):
 def history_at(scenario, depth_km, model="ocean"):
     """The Trial of the ocean's history at this depth: ``scenario`` (earth_moon_history) run back 4.6 Gyr with
     the ocean alone, its drag fitted to LLR's rate, no error estimate (starts.earth_moon_history.fit_trial)."""
-    from spinorbit.runner import run_scenario
+    from spinorbit.edge.runner import run_scenario
     from spinorbit.starts.earth_moon_history import fit_trial
 
     trial = scenario.with_params(fit_trial(scenario.params, model, depth_km, RECESSION_CM_PER_YR))
@@ -49,7 +49,7 @@ def fit(model="ocean", bracket=None, log=print, overrides=()):
     """The fit's record (models.tidal_history.fit.Fit.record): the depth bisected inside ``bracket`` (km;
     default the tide's own), whose ends' histories stop on either side of the Moon's age; ``overrides``: the
     scene's other keys ("key=value", the command line's --set)."""
-    from spinorbit.scenarios import load_scenario
+    from spinorbit.edge.scenarios import load_scenario
 
     scenario = load_scenario(SCENE, list(overrides))
     result = fit_depth(model, bracket or OCEANS[model].depth.bracket_km,

@@ -186,7 +186,7 @@ def case_run(rng, args, work):
     out_kind = rng.choice(OUTS) if rng.random() < 0.4 else "previous run"
     out = make_out(out_kind, work)
     flags = rng.sample(["--force", "--resume", "--strict"], rng.randint(0, 2))
-    command = [sys.executable, "-m", "spinorbit.cli", "run", str(path), "--out", str(out), *flags,
+    command = [sys.executable, "-m", "spinorbit.edge.cli", "run", str(path), "--out", str(out), *flags,
                "--set", "output.plots=false", "--set", "integrator.estimate_error=false"]
     for assignment in SHORT[scene] + sets:
         command += ["--set", assignment]
@@ -202,7 +202,7 @@ def case_sweep(rng, args, work):
     out = make_out(out_kind, work)
     vary = rng.sample(VARY, rng.randint(1, 2))
     scheduler = rng.choice(SCHEDULERS)
-    command = [sys.executable, "-m", "spinorbit.cli", "sweep", str(ROOT / "scenarios" / "free_body.toml"),
+    command = [sys.executable, "-m", "spinorbit.edge.cli", "sweep", str(ROOT / "scenarios" / "free_body.toml"),
                "--scheduler", scheduler, "--out", str(out), "--set", 'span.end="5 d"',
                "--set", "output.plots=false"]
     for item in vary:
@@ -223,7 +223,7 @@ def case_bench(rng, args, work):
     out = make_out(out_kind, work)
     scene = rng.choice(["free_body", "p93_bounded"])
     methods, budget = rng.choice(METHODS), rng.choice(BUDGETS)
-    command = [sys.executable, "-m", "spinorbit.cli", "bench", str(ROOT / "scenarios" / f"{scene}.toml"),
+    command = [sys.executable, "-m", "spinorbit.edge.cli", "bench", str(ROOT / "scenarios" / f"{scene}.toml"),
                "--budget", budget, "--out", str(out), "--set", 'span.end="5 d"']
     command += ["--methods", methods] if methods is not None else []
     sets, _ = scene_mutation(rng, scene, args.near) if rng.random() < 0.3 else ([], None)
@@ -267,7 +267,7 @@ def case_list(rng, args, work):
             path.mkdir()
         made.append(kind)
     target = rng.choice([folder, folder, work / "missing", folder / f"0_{made[0]}.toml"])
-    done = execute([sys.executable, "-m", "spinorbit.cli", "list", str(target)], args.timeout)
+    done = execute([sys.executable, "-m", "spinorbit.edge.cli", "list", str(target)], args.timeout)
     label = f"list {','.join(made)} target={target.name}"
     if done is None:
         return label, "hang", ""
@@ -278,7 +278,7 @@ API = """
 import math, json, sys
 from pathlib import Path
 import spinorbit
-from spinorbit.errors import SpinorbitError
+from spinorbit.base.errors import SpinorbitError
 try:
     result = spinorbit.run_scenario({scenario}, {overrides})
 except SpinorbitError as exc:
@@ -304,7 +304,7 @@ def case_api(rng, args, work):
     return label, *classify(done, work, False)
 
 
-CLI = [sys.executable, "-m", "spinorbit.cli", "--quiet"]
+CLI = [sys.executable, "-m", "spinorbit.edge.cli", "--quiet"]
 DEEP = ["earth_deep_time", "--set", 'span.end="-10 kyr"', "--set", 'span.step="1 kyr"', "--set",
         'integrator.step="100 yr"', "--set", "output.plots=false"]
 TARGETS = {

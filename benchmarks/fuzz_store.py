@@ -1,4 +1,4 @@
-"""A hostile trial of the solution store (spinorbit.solutions.store on spinorbit.verified): signals at random
+"""A hostile trial of the solution store (spinorbit.solutions.store on spinorbit.base.verified): signals at random
 moments of extensions and runs, damaged and foreign files of every kind the store writes or reads, a disk that
 refuses the write, and concurrent processes, each case in fresh processes on a store of its own.
 
@@ -54,7 +54,7 @@ REFERENCE_UAS = 1.0
 WORKER = """
 import sys, json, numpy as np, warnings
 from spinorbit import solutions
-from spinorbit.scenarios import load_scenario
+from spinorbit.edge.scenarios import load_scenario
 lo, hi = float(sys.argv[1]), float(sys.argv[2])
 s = solutions.for_scenario(load_scenario("moon_libration"), lo, hi)
 q = s.part("moon.q", np.linspace(-19.5, 59.5, 41)) if s.covers(-19.5, 59.5) else np.zeros((0, 4))
@@ -64,7 +64,7 @@ API = """
 import sys, numpy as np
 from astropy.time import Time
 import spinorbit
-from spinorbit.scenarios import load_scenario
+from spinorbit.edge.scenarios import load_scenario
 from spinorbit.solutions import for_scenario
 t = Time(2451545.0 + np.linspace(-19.5, 59.5, 41), format="jd", scale="tdb")
 spinorbit.moon_librations(t)
@@ -97,8 +97,8 @@ def run(args, env, timeout=120, limit=None, **kwargs):
 
 
 def angle_uas(a, b):
-    """The largest angle between two series of unit quaternions (spinorbit.rotations.quat_angle), in uas."""
-    from spinorbit.rotations import quat_angle
+    """The largest angle between two series of unit quaternions (spinorbit.base.rotations.quat_angle), in uas."""
+    from spinorbit.base.rotations import quat_angle
 
     return float(np.max(quat_angle(a, b)) * 180 / np.pi * 3600e6)
 
@@ -120,7 +120,7 @@ def leftovers(cache):
 
 
 def intact(cache):
-    """Whether every stored file reads back whole (spinorbit.verified.read)."""
+    """Whether every stored file reads back whole (spinorbit.base.verified.read)."""
     code = ("import sys; from pathlib import Path; from spinorbit import verified\n"
             "[verified.read(Path(p)) for p in sys.argv[1:]]")
     files = [str(p) for p in store_files(cache)]
@@ -245,7 +245,8 @@ def case_damage(rng, cache, reference):
     answer(cache, -20.0, 60.0, "first")
     other = cache.parent / "other.npz"
     if not other.exists():
-        code = ("import sys, shutil; from spinorbit import solutions; from spinorbit.scenarios import load_scenario;"
+        code = ("import sys, shutil; from spinorbit import solutions;"
+                "from spinorbit.edge.scenarios import load_scenario;"
                 "s = solutions.for_scenario(load_scenario('moon_libration', ['model.level=2']), 0.0, 4.0);"
                 "shutil.copy(s.path, sys.argv[1])")
         run([sys.executable, "-c", code, str(other)], environment(cache))

@@ -27,12 +27,12 @@ from scipy.integrate import cumulative_trapezoid
 
 from spinorbit.analysis import nonrigid
 from spinorbit.analysis.harmonics import fit_harmonics
+from spinorbit.base.constants import ARCSEC, JULIAN_CENTURY_D
 from spinorbit.bodies.earth import H_D
-from spinorbit.constants import ARCSEC, JULIAN_CENTURY_D
+from spinorbit.edge.runner import run_scenario
 from spinorbit.orbits.kernel import open_ephemeris
 from spinorbit.orbits.sources import gm_of
 from spinorbit.references import arguments, erfa_pole
-from spinorbit.runner import run_scenario
 from spinorbit.starts.earth_ellipticity import torque_rates
 
 SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"

@@ -30,11 +30,11 @@ from precession_budget import EPS0, integrated, laplace_tilt, lunar_orbit_pole, 
 from spinorbit.analysis import nonrigid
 from spinorbit.analysis.spans import resolvable
 from spinorbit.analysis.transfer.models import IERS1996
+from spinorbit.base.constants import ARCSEC, JULIAN_CENTURY_D, MAS
 from spinorbit.bodies.earth import H_D
 from spinorbit.comparisons import earth_nonrigid
-from spinorbit.constants import ARCSEC, JULIAN_CENTURY_D, MAS
+from spinorbit.edge.runner import run_scenario
 from spinorbit.references import arguments, erfa_pole
-from spinorbit.runner import run_scenario
 from spinorbit.starts.earth_ellipticity import torque_rates
 
 SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"

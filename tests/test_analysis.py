@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from spinorbit.analysis.harmonics import fit_harmonics
-from spinorbit.constants import JULIAN_CENTURY_D
+from spinorbit.base.constants import JULIAN_CENTURY_D
 from tests.units import arcsec, mas
 
 # name -> (period d, phase at J2000 rad, sin amplitude, cos amplitude), amplitudes in rad

@@ -1,4 +1,4 @@
-"""The Python API (spinorbit.api): the angles at a user's dates, held to the references the validated scenes are,
+"""The Python API (spinorbit.edge.api): the angles at a user's dates, held to the references the validated scenes are,
 and bad arguments answered in one line naming the argument."""
 import importlib.util
 import warnings
@@ -10,10 +10,10 @@ from astropy.table import QTable
 from astropy.time import Time
 
 import spinorbit
-from spinorbit import api, scenarios
-from spinorbit.errors import InputError, tdb_dates
+from spinorbit.base.errors import InputError, tdb_dates
+from spinorbit.edge import api, scenarios
+from spinorbit.edge.scenarios import load_scenario
 from spinorbit.orbits import kernel
-from spinorbit.scenarios import load_scenario
 from spinorbit.solutions import store
 
 from .units import arcsec, mas
@@ -75,7 +75,7 @@ def test_bad_options_are_named(call, argument):
 
 
 def test_too_many_dates_are_refused_before_any_work():
-    many = Time(np.full(spinorbit.api.MAX_DATES + 1, 2461000.5), format="jd", scale="tdb")
+    many = Time(np.full(spinorbit.edge.api.MAX_DATES + 1, 2461000.5), format="jd", scale="tdb")
     with pytest.raises(InputError, match="at most"):
         spinorbit.moon_librations(many)
 
@@ -179,7 +179,7 @@ def test_spinorbit_at_earth_writes_the_matrix_one_element_a_csv_column(capsys):
 
     import erfa
 
-    from spinorbit.cli import main
+    from spinorbit.edge.cli import main
 
     assert main(["--quiet", "at", "earth", "2024-07-30T06:00", "--scale", "tt"]) == 0
     row = next(csv.DictReader(io.StringIO(capsys.readouterr().out)))
@@ -378,7 +378,7 @@ def test_a_date_before_1000_on_rebound_is_refused_in_the_callers_dates(date):
 
 
 def test_a_far_date_on_rebound_is_refused_with_the_estimate():
-    from spinorbit.scene import NBODY_COSTS
+    from spinorbit.scene.declaration import NBODY_COSTS
 
     t = Time("5000-01-01", scale="tdb")
     days = (t.jd - 2451545.0) + 4.0             # the Moon's solution runs from J2000 - 2 d to the date + 2 d
@@ -465,7 +465,7 @@ def test_a_missing_de440_is_offered_with_its_install_command(monkeypatch):
 
 
 def test_a_margin_the_scene_reads_beyond_the_ephemeris_is_an_input_error(monkeypatch):
-    from spinorbit.errors import EphemerisRangeError
+    from spinorbit.base.errors import EphemerisRangeError
 
     def short(*args):
         raise EphemerisRangeError("de421", (-100.0, 10.0), (-50.0, 10.0))
@@ -536,7 +536,7 @@ def test_the_earths_expected_accuracy_gives_the_rms_tolerance_and_the_largest_at
 
 
 def test_the_command_lines_ephemeris_refusal_offers_de440_only_where_it_helps():
-    from spinorbit.errors import EphemerisRangeError
+    from spinorbit.base.errors import EphemerisRangeError
 
     beyond_de440 = str(EphemerisRangeError("de440", (0.0, 300_000.0), (-164_000.0, 237_000.0)))
     assert "'de440'" not in beyond_de440 and "'rebound'" in beyond_de440     # not the source that fell short

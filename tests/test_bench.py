@@ -4,11 +4,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from spinorbit.edge.scenarios import load_scenario
 from spinorbit.integrators import simulate
 from spinorbit.models import System
 from spinorbit.models.interactions import GeodesicRate
 from spinorbit.models.spin import euler_omega_dot
-from spinorbit.scenarios import load_scenario
 
 SCENARIOS = Path(__file__).parent.parent / "scenarios"
 
@@ -38,7 +38,7 @@ def test_earth_full_bench_splitting_matches_rk8_with_geodesic_precession(tmp_pat
 
     Without the frame rate the split run misses the geodesic precession, 1.92"/cy x 30 d = 7.6e-9 rad.
     """
-    from spinorbit.bench import bench_scenario
+    from spinorbit.edge.bench import bench_scenario
     from spinorbit.scenes.earth_precession_nutation import SCENE
 
     overrides = ['span.end="30 d"', 'earth.start_pole="iau"']

@@ -2,9 +2,9 @@
 import numpy as np
 import pytest
 
+from spinorbit.base.errors import PhysicsError
+from spinorbit.base.rotations import matrix_from_euler313
 from spinorbit.bodies import RigidBody
-from spinorbit.errors import PhysicsError
-from spinorbit.rotations import matrix_from_euler313
 
 
 def test_from_tensor_in_rotated_axes_recovers_moments_and_axes():

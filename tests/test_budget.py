@@ -9,10 +9,10 @@ from pathlib import Path
 
 import pytest
 
-from spinorbit.errors import ScenarioError
+from spinorbit.base.errors import ScenarioError
+from spinorbit.edge.scenarios import load_scenario
 from spinorbit.orbits import solution
-from spinorbit.scenarios import load_scenario
-from spinorbit.scene import NBODY_COSTS
+from spinorbit.scene.declaration import NBODY_COSTS
 
 ROOT = Path(__file__).parents[1]
 YEAR_D = 365.25
@@ -30,7 +30,7 @@ def test_a_deep_time_run_of_hours_is_refused_with_the_estimate(tmp_path):
 
 
 def test_the_command_line_refuses_100_myr_without_starting(tmp_path):
-    done = subprocess.run([sys.executable, "-m", "spinorbit.cli", "--quiet", "run", "earth_deep_time", "--set",
+    done = subprocess.run([sys.executable, "-m", "spinorbit.edge.cli", "--quiet", "run", "earth_deep_time", "--set",
                            'span.end="-100 Myr"', "--set", f"orbit.file={tmp_path / 'none.npz'}", "--out",
                            str(tmp_path / "out")], capture_output=True, text=True, cwd=ROOT, timeout=120)
     assert done.returncode == 2 and done.stderr.count("\n") == 1 and "WHFast steps" in done.stderr

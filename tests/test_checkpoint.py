@@ -12,12 +12,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from spinorbit import checkpoint as checkpoints
-from spinorbit import verified
+from spinorbit.base import verified
+from spinorbit.base.errors import ScenarioError
 from spinorbit.bodies import earth
-from spinorbit.checkpoint import Checkpoint, run_fingerprint
-from spinorbit.cli import main
-from spinorbit.errors import ScenarioError
+from spinorbit.edge import checkpoint as checkpoints
+from spinorbit.edge.checkpoint import Checkpoint, run_fingerprint
+from spinorbit.edge.cli import main
 from spinorbit.integrators import rk8, simulate
 from spinorbit.models.assemblies.earth_moon import FIGURES, closed
 from spinorbit.models.figure import Figure
@@ -271,7 +271,7 @@ def test_a_checkpoint_of_other_code_is_refused_in_one_line(system, tmp_path, mon
 KILLED_SAVE = """
 import json, os, signal, sys
 import numpy as np
-from spinorbit.checkpoint import Checkpoint
+from spinorbit.edge.checkpoint import Checkpoint
 
 def killed(f, **arrays):
     f.write(b"PK\\x03\\x04" + bytes(64))

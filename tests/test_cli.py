@@ -16,13 +16,14 @@ import numpy as np
 import pytest
 from numba import njit
 
-from spinorbit import run_scenario, sweep
-from spinorbit.cli import main
-from spinorbit.errors import IntegrationError, ScenarioError
+from spinorbit import run_scenario
+from spinorbit.base.errors import IntegrationError, ScenarioError
+from spinorbit.base.layout import Layout
+from spinorbit.edge import sweep
+from spinorbit.edge.cli import main
+from spinorbit.edge.scenarios import load_scenario
 from spinorbit.integrators import simulate
-from spinorbit.layout import Layout
 from spinorbit.models.ode import Ode
-from spinorbit.scenarios import load_scenario
 
 ROOT = Path(__file__).parents[1]
 FREE_BODY = ROOT / "scenarios" / "free_body.toml"
@@ -40,7 +41,7 @@ def test_list_never_opens_a_fifo_or_a_device(tmp_path):
     os.mkfifo(tmp_path / "pipe.toml")
     os.symlink("/dev/zero", tmp_path / "zero.toml")
     (tmp_path / "huge.toml").write_bytes(b"#" * (2 << 20))
-    done = subprocess.run([sys.executable, "-m", "spinorbit.cli", "list", str(tmp_path)], capture_output=True,
+    done = subprocess.run([sys.executable, "-m", "spinorbit.edge.cli", "list", str(tmp_path)], capture_output=True,
                           text=True, timeout=60, env={**os.environ, "PYTHONPATH": str(ROOT)}, check=False)
     lines = done.stdout.splitlines()
     assert done.returncode == 0 and not done.stderr and len(lines) == 4, done.stderr
@@ -220,7 +221,7 @@ def staged_member(out):
 
 def test_sigterm_keeps_a_sweeps_finished_members(tmp_path):
     out = tmp_path / "sweep"
-    process = subprocess.Popen([sys.executable, "-m", "spinorbit.cli", "--quiet", "sweep",
+    process = subprocess.Popen([sys.executable, "-m", "spinorbit.edge.cli", "--quiet", "sweep",
                                 "scenarios/free_body.toml", "--vary",
                                 "integrator.rtol=1e-8,1e-9,1e-10,1e-11,1e-12,1e-13",
                                 "--set", "span.end=100 d", "--set", "output.plots=false", "--scheduler",
@@ -237,7 +238,7 @@ def test_sigterm_keeps_a_sweeps_finished_members(tmp_path):
 
 def test_sigterm_stops_a_bench_as_ctrl_c_does(tmp_path):
     out = tmp_path / "bench"
-    process = subprocess.Popen([sys.executable, "-m", "spinorbit.cli", "--quiet", "bench",
+    process = subprocess.Popen([sys.executable, "-m", "spinorbit.edge.cli", "--quiet", "bench",
                                 "scenarios/free_body.toml", "--methods", "rk4,dop853", "--budget", "5",
                                 "--out", str(out)], cwd=ROOT, env=ENV, stderr=subprocess.PIPE, text=True)
     wait_for(lambda: (tmp_path / ".bench.lock").exists(), process)      # the command has started
@@ -274,7 +275,7 @@ def test_an_interrupted_bench_keeps_the_methods_that_finished(tmp_path, monkeypa
 
 REPEATED_STOP = """
 import os, signal, sys, threading, time
-from spinorbit import cli
+from spinorbit.edge import cli
 
 def stops():
     time.sleep({delay})
@@ -311,7 +312,7 @@ def test_a_stop_after_the_work_is_done_leaves_the_commands_exit_code():
 
 SWALLOWED_STOP = """
 import ctypes, os, signal, sys, time
-from spinorbit import cli
+from spinorbit.edge import cli
 
 def inside_a_callback():                      # as llvmlite's object-cache callback while numba compiles
     os.kill(os.getpid(), signal.{name})
@@ -341,7 +342,7 @@ def test_a_stop_dropped_inside_a_ctypes_callback_is_heard_again():
 STOP_DURING_CLEANUP = """
 import os, signal, sys, time
 from pathlib import Path
-from spinorbit import cli
+from spinorbit.edge import cli
 
 def run(args):
     try:

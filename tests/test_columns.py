@@ -1,9 +1,10 @@
-"""Every column a scene writes explains itself: an astropy description (spinorbit.columns) in its table and ECSV."""
+"""Every column a scene writes explains itself: an astropy description (spinorbit.scene.columns) in its table and
+ECSV."""
 import pytest
 
-from spinorbit import catalogue
-from spinorbit.columns import COLUMNS
-from spinorbit.runner import run_scenario
+from spinorbit.edge import catalogue
+from spinorbit.edge.runner import run_scenario
+from spinorbit.scene.columns import COLUMNS
 
 # One short run of every scene kind that writes a table (its own span shortened where the scene allows).
 SHORT = {"free_body": ["span.end=20 d"], "p92_general": [], "p93_bounded": [], "p94_moonlike": [],
@@ -18,7 +19,8 @@ SHORT = {"free_body": ["span.end=20 d"], "p92_general": [], "p93_bounded": [], "
 def test_every_column_of_a_scene_is_described(scene):
     table = run_scenario(catalogue.names()[scene], SHORT[scene]).table
     undescribed = [name for name in table.colnames if not table[name].info.description]
-    assert not undescribed, f"{scene}: columns without a description: {undescribed} (add them to spinorbit.columns)"
+    assert not undescribed, (f"{scene}: columns without a description: {undescribed} "
+                             "(add them to spinorbit.scene.columns)")
 
 
 def test_descriptions_say_something():

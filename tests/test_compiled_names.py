@@ -1,5 +1,5 @@
 """A cached kernel and its callee cached apart (the kernel cache and another NUMBA_CACHE_DIR) stay callable in
-every later process (spinorbit.compiled_names): numba numbers compiled functions from 1 in each process, so a
+every later process (spinorbit.base.compiled_names): numba numbers compiled functions from 1 in each process, so a
 process that loads the kernel and compiles the callee afresh under the number the kernel's copy already had
 saved code the next process ran on the wrong environment ('descr' is NULL, issue 42 item 3: the main job's
 core_omega).  Three fresh processes on a tiny package, as the main job's second run met it."""
@@ -93,9 +93,9 @@ class Blocked:
         if name.partition(".")[0] == "numba":
             raise ImportError(f"{name} imported on the read path")
 sys.meta_path.insert(0, Blocked())
-import spinorbit.api, spinorbit.solutions.tables, spinorbit.solutions.earth_layer, spinorbit.analysis.librations
+import spinorbit.edge.api, spinorbit.solutions.tables, spinorbit.solutions.earth_layer, spinorbit.analysis.librations
 import spinorbit.comparisons.moon_de421, spinorbit.references.eckhardt, spinorbit.references.moon_de421
-from spinorbit.scenarios import load_scenario
+from spinorbit.edge.scenarios import load_scenario
 from spinorbit.solutions import store
 for scene in ("moon_libration", "earth_precession_nutation_nonrigid"):
     store.path_of(store.record(load_scenario(scene)))

@@ -7,11 +7,11 @@ import pytest
 from numba import njit
 
 from spinorbit.analysis.invariants import kinetic_energy
-from spinorbit.errors import InputError, IntegrationError
+from spinorbit.base.errors import InputError, IntegrationError
+from spinorbit.base.rotations import quat_from_euler313
 from spinorbit.integrators import METHODS, get_method, simulate
 from spinorbit.models.assemblies.idealised import free_body, under_point_masses
 from spinorbit.orbits.analytic import CircularOrbits
-from spinorbit.rotations import quat_from_euler313
 
 STEPPED = [m for m in METHODS if get_method(m).kind in ("fixed", "structure-preserving")]
 ADAPTIVE = [m for m in METHODS if get_method(m).kind == "adaptive"]
@@ -128,7 +128,7 @@ def test_failure_raises_integration_error_with_partial_solution(method):
 
 def test_bench_writes_work_precision_table(tmp_path):
     """spinorbit bench on the HLW body (1000 d): files written; rk8 reaches 1e-9 rad vs the closed form."""
-    from spinorbit.bench import bench_scenario
+    from spinorbit.edge.bench import bench_scenario
 
     scene = __import__("pathlib").Path(__file__).parent.parent / "scenarios" / "free_body.toml"
     rows, paths = bench_scenario(scene, ["rk8", "strang"], tmp_path, budget_s=0.5)
@@ -139,8 +139,8 @@ def test_bench_writes_work_precision_table(tmp_path):
 
 def test_rk8_step_does_not_depend_on_output_cadence():
     """Outputs closer than the step come from DOP853's continuous extension, as accurate as the steps."""
-    from spinorbit.rotations import quat_angle
-    from spinorbit.theory import FreeRigidBody
+    from spinorbit.analysis.theory import FreeRigidBody
+    from spinorbit.base.rotations import quat_angle
 
     moments = np.array([2 / 3, 1.0, 2.0])
     omega0 = np.array([math.sin(1.1), 0.0, math.cos(1.1)]) / moments
@@ -166,8 +166,8 @@ def test_rk8_runs_one_compiled_loop_whatever_the_layout_of_the_output_times(torq
     """Output times given as a strided view (every other output, as the error estimate's coarse run takes them)
     run the loop compiled for contiguous ones: one specialisation, not one per array layout (each costs seconds)."""
     from spinorbit import rotations
+    from spinorbit.base.linker import link
     from spinorbit.integrators.rk8 import rk_fixed, rk_step
-    from spinorbit.linker import link
 
     system, t = torqued[0], np.linspace(0.0, 50.0, 1001)
     simulate(system, t, "rk8", {"step": 0.05}, estimate_error=False)[0]

@@ -1,6 +1,6 @@
-"""`spinorbit show` (spinorbit.key_table): the scene's sentence whole and every key's meaning whole at any terminal
+"""`spinorbit show` (spinorbit.edge.key_table): the scene's sentence whole and every key's meaning whole at any terminal
 width."""
-from spinorbit.cli import main
+from spinorbit.edge.cli import main
 
 
 def words(text):
@@ -8,7 +8,7 @@ def words(text):
 
 
 def test_show_ends_the_scenes_sentence_and_prints_every_meaning_whole(monkeypatch, capsys):
-    from spinorbit.key_table import key_table
+    from spinorbit.edge.key_table import key_table
 
     heading, rows = key_table("earth_deep_time")
     assert heading.endswith("gives it.")                          # the docstring's first paragraph, whole

@@ -1,13 +1,13 @@
-"""A method named on the command line over a scene file written for another (spinorbit.method_switch): the file's
+"""A method named on the command line over a scene file written for another (spinorbit.edge.method_switch): the file's
 options the new method takes are carried over, the others dropped and said, and an option typed with the switch is
 never touched."""
 import json
 
 import pytest
 
-from spinorbit.cli import main
-from spinorbit.errors import ScenarioError
-from spinorbit.scenarios import load_scenario, taylor_kinds
+from spinorbit.base.errors import ScenarioError
+from spinorbit.edge.cli import main
+from spinorbit.edge.scenarios import load_scenario, taylor_kinds
 
 TAYLOR_SCENES = ("free_body", "p92_arc_ab", "p93_bounded", "p94_moonlike", "p95_symmetric", "p96_earthlike",
                  "solar_system", "stress/coupled_conservation")

@@ -5,11 +5,11 @@ import math
 import numpy as np
 import pytest
 
+from spinorbit.base.rotations import matrix_from_quat, quat_rate
 from spinorbit.models import Body, Centred, Figure, Layout, Rigid, System
 from spinorbit.models.assemblies.idealised import free_body, under_point_masses
 from spinorbit.models.interactions import PointMass
 from spinorbit.orbits.analytic import CircularOrbits
-from spinorbit.rotations import matrix_from_quat, quat_rate
 
 MOMENTS = np.array([0.8, 1.0, 1.3])
 ORBIT = CircularOrbits(("m", "n"), gm=[0.5, 0.2], radius=[1.0, 2.5], rate=[1.0, 0.3], inclination=[0.3, -0.7])

@@ -4,7 +4,7 @@ from pathlib import Path
 
 import pytest
 
-from spinorbit.runner import run_scenario
+from spinorbit.edge.runner import run_scenario
 
 ROOT = Path(__file__).parents[1]
 NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))

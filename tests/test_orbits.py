@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 
-from spinorbit.errors import EphemerisRangeError, InputError
+from spinorbit.base.errors import EphemerisRangeError, InputError
 from spinorbit.orbits import kernel as kernel_module
 from spinorbit.orbits.analytic import CircularOrbits, KeplerOrbit
 from spinorbit.orbits.interpolant import HermiteOrbits, grid
@@ -109,7 +109,7 @@ def test_derived_accelerations_match_the_chebyshev_second_derivative():
     from jplephem.spk import SPK
     from numpy.polynomial import chebyshev
 
-    from spinorbit.constants import J2000_JD
+    from spinorbit.base.constants import J2000_JD
 
     orbits = sample_orbits("de421", "moon", ("earth",), 0.0, 365.25, measure=False)
     spk = SPK.open(str(kernel_module.kernel_path("de421")))

@@ -1,4 +1,4 @@
-"""A loaded scenario's typed parameters hold what its keys name (spinorbit.params, ``Key.parse``): an orbit source
+"""A loaded scenario's typed parameters hold what its keys name (spinorbit.scene.params, ``Key.parse``): an orbit source
 as its OrbitSource, the name the file gives; a name that names nothing is refused at load, in one line; the same
 record from --set text and from Python values, frozen; a value in the wrong unit refused naming its key."""
 import dataclasses
@@ -9,10 +9,10 @@ import astropy.units as u
 import numpy as np
 import pytest
 
-from spinorbit.cli import main
-from spinorbit.errors import ScenarioError
+from spinorbit.base.errors import ScenarioError
+from spinorbit.edge.cli import main
+from spinorbit.edge.scenarios import load_scenario
 from spinorbit.orbits.sources import OrbitSource
-from spinorbit.scenarios import load_scenario
 
 SCENARIOS = Path(__file__).parents[1] / "scenarios"
 
@@ -99,7 +99,7 @@ def test_a_scene_run_from_python_with_its_parameters_replaced_is_the_run_the_tex
     (dataclasses.replace, Scenario.with_params) run to the states --set text gives, which Euler's closed form
     passes; a replaced value is checked as a file's is (the method's options)."""
     from spinorbit import run_scenario
-    from spinorbit.params import converted
+    from spinorbit.scene.params import converted
 
     scenario = load_scenario("free_body")
     p = scenario.params

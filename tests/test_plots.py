@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
+from spinorbit.edge.reports import verdict_markdown
 from spinorbit.plots import common, deep_time, moon, solar_system
-from spinorbit.reports import verdict_markdown
 
 
 def drawn(draw):
@@ -110,9 +110,9 @@ def test_the_verdict_table_gives_each_figure_its_unit():
 
 def test_deep_time_titles_say_kyr_sources_and_the_ephemeris_it_starts_from():
     from spinorbit.comparisons import earth_deep_time as compare
-    from spinorbit.provenance import ephemeris
-    from spinorbit.runner import span_label
-    from spinorbit.scenarios import load_scenario
+    from spinorbit.edge.provenance import ephemeris
+    from spinorbit.edge.runner import span_label
+    from spinorbit.edge.scenarios import load_scenario
 
     scenario = load_scenario("earth_deep_time")
     assert span_label(scenario) == "0 to −1000 kyr from J2000"
@@ -125,8 +125,8 @@ def test_deep_time_titles_say_kyr_sources_and_the_ephemeris_it_starts_from():
 
 
 def test_the_solar_system_table_carries_the_moons_angles():
+    from spinorbit.base.rotations import matrix_from_euler313
     from spinorbit.comparisons import solar_system_de421 as compare
-    from spinorbit.rotations import matrix_from_euler313
 
     angles = np.array([[0.1, 0.4, 1.3], [2.0, 0.3, 5.0]])               # phi, theta, psi in [0, 2 pi)
     mats = np.array([matrix_from_euler313(*a) for a in angles])

@@ -2,7 +2,7 @@
 30 s, after the first 2 s; none with --quiet."""
 import io
 
-from spinorbit import progress
+from spinorbit.base import progress
 
 
 class Clock:

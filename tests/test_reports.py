@@ -12,8 +12,8 @@ import pytest
 from astropy.table import QTable
 from astropy.time import Time
 
+from spinorbit.edge.reports import painter, write_ecsv
 from spinorbit.plots import common
-from spinorbit.reports import painter, write_ecsv
 
 AWKWARD = [0.0, -0.0, 1e-300, 1e-5, 0.1, 1 / 3, 123456789.123, 1e16, -2.5e-7, np.nan, np.inf, -np.inf]
 
@@ -82,7 +82,7 @@ def test_painter_draws_what_it_is_sent(tmp_path):
 @pytest.mark.skipif(not Path("/proc").is_dir(), reason="reads /proc")
 def test_painter_ends_when_its_parent_dies(tmp_path):
     """A parent killed before sending anything (kill -9, os._exit) leaves no painter waiting for ever."""
-    code = ("import os; from spinorbit.reports import painter; "
+    code = ("import os; from spinorbit.edge.reports import painter; "
             "paint = painter().__enter__(); print(paint.pid, flush=True); os._exit(0)")
     pid = int(subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout)
     for _ in range(600):                                  # it ends once matplotlib is imported (~1 s)

@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 
-from spinorbit.rotations import (
+from spinorbit.base.rotations import (
     cross3,
     diag3,
     dot3,
@@ -129,7 +129,7 @@ def test_matrices_of_many_quaternions_are_scipys():
     """matrices_from_quats (what Python callers use) against scipy's rotation matrices, for (n, 4) and (4,)."""
     from scipy.spatial.transform import Rotation
 
-    from spinorbit.rotations import matrices_from_quats
+    from spinorbit.base.rotations import matrices_from_quats
 
     q = np.random.default_rng(7).normal(size=(50, 4))
     expected = Rotation.from_quat(q[:, [1, 2, 3, 0]]).as_matrix()           # scipy: scalar last

@@ -18,9 +18,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from spinorbit.cli import main
-from spinorbit.errors import ScenarioError
-from spinorbit.rundir import MANIFEST, RunDirectory, read_manifest
+from spinorbit.base.errors import ScenarioError
+from spinorbit.edge.cli import main
+from spinorbit.edge.rundir import MANIFEST, RunDirectory, read_manifest
 from tests.second_user import IS_ROOT, OTHER, as_user, chown_other, needs_root, shared_dir
 
 ROOT = Path(__file__).parents[1]
@@ -133,7 +133,7 @@ def test_kill_9_mid_run_and_a_concurrent_run(tmp_path):
     slow = tmp_path / "slow.toml"       # 4e7 rk4 steps: far longer than the test waits
     slow.write_text(re.sub(r'method = "dop853"\nrtol = .*\natol = .*\n', 'method = "rk4"\nstep = "1e-4 d"\n',
                            P93.read_text()))
-    command = [sys.executable, "-m", "spinorbit.cli", "run", str(slow), "--out", str(out), "--force",
+    command = [sys.executable, "-m", "spinorbit.edge.cli", "run", str(slow), "--out", str(out), "--force",
                "--set", 'span.end="4000 d"', "--set", 'span.step="10 d"']
     child = subprocess.Popen(command, cwd=tmp_path, env={**os.environ, "PYTHONPATH": str(ROOT)},
                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
@@ -398,7 +398,7 @@ def test_a_failed_run_beside_a_good_one_when_out_failed_is_a_file(tmp_path, caps
 def test_names_a_run_writes_beside_out_cannot_be_planted(tmp_path, shared):
     """Links planted (by another user, in a shared folder) where a run used to stage, retire and checkpoint
     (names from its pid alone) lead nowhere: those names now carry a random part and are made afresh."""
-    from spinorbit.checkpoint import Checkpoint
+    from spinorbit.edge.checkpoint import Checkpoint
 
     victim = tmp_path / "victim"
     victim.mkdir()

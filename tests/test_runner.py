@@ -13,14 +13,16 @@ import pytest
 from astropy.time import Time
 
 import spinorbit
-from spinorbit import runner, scene, solutions
-from spinorbit.errors import EphemerisRangeError, ScenarioError
+from spinorbit import solutions
+from spinorbit.analysis.theory import PlanarLibration, libration_n
+from spinorbit.base.errors import EphemerisRangeError, ScenarioError
+from spinorbit.base.rotations import quat_angle
+from spinorbit.edge import runner
+from spinorbit.edge.reports import write_run
+from spinorbit.edge.runner import mark_unmeasured, run_scenario
 from spinorbit.integrators import simulate
-from spinorbit.reports import write_run
-from spinorbit.rotations import quat_angle
-from spinorbit.runner import mark_unmeasured, run_scenario
+from spinorbit.scene import declaration as scene
 from spinorbit.solutions import chebyshev, fit, store
-from spinorbit.theory import PlanarLibration, libration_n
 from tests.units import arcsec
 
 uas = arcsec * 1e-6
@@ -55,7 +57,7 @@ def test_a_runs_table_is_its_solution_at_the_outputs_and_agrees_with_a_discrete_
     it: exactly), and those states are an independent simulate() to the output times within twice the run's
     own error estimate (each run within it of the truth) plus the fit's measured error."""
     from spinorbit.analysis.librations import icrf_to_body
-    from spinorbit.rotations import euler313_from_matrix
+    from spinorbit.base.rotations import euler313_from_matrix
 
     result = run_scenario("moon_libration", MOON_MONTH)
     assert simulations == {"fit": 1, "scene": 0}
@@ -131,7 +133,7 @@ def test_the_spin_segment_fits_a_turning_attitude_within_a_microarcsecond(rate):
     segments of spin_segment_d follows it within 1 uas at the extrema of T_15, where the interpolant's error peaks."""
     from types import SimpleNamespace
 
-    from spinorbit.layout import Layout
+    from spinorbit.base.layout import Layout
 
     system = SimpleNamespace(y0=np.array([1.0, 0, 0, 0, 0, 0, rate]),
                              layout=Layout([("body.q", 4, "quaternion", ""), ("body.omega", 3, "vector", "rad/d")]))
@@ -162,7 +164,7 @@ def test_a_fit_beyond_the_runs_error_is_named():
 def test_a_fitted_run_that_fails_leaves_its_partial_result_at_the_output_times(place):
     """A stored kind's run that stops (max_steps) raises with the partial result of the run to the outputs:
     its rows are output times (1 d apart from span.start), those the steps allowed reach."""
-    from spinorbit.errors import IntegrationError
+    from spinorbit.base.errors import IntegrationError
 
     with pytest.raises(IntegrationError) as caught:
         run_scenario("moon_libration", MOON_MONTH + ["integrator.step=0.5 d", "integrator.max_steps=20"])

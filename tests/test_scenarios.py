@@ -13,12 +13,12 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from spinorbit.budget import LIMITS
-from spinorbit.cli import main
-from spinorbit.errors import ScenarioError
-from spinorbit.params import values_of
-from spinorbit.scenarios import Scenario, load_scenario
-from spinorbit.schema import dotted_items
+from spinorbit.base.errors import ScenarioError
+from spinorbit.edge.budget import LIMITS
+from spinorbit.edge.cli import main
+from spinorbit.edge.scenarios import Scenario, load_scenario
+from spinorbit.scene.params import values_of
+from spinorbit.scene.schema import dotted_items
 
 FREE_BODY = Path(__file__).parents[1] / "scenarios" / "free_body.toml"
 P93 = Path(__file__).parents[1] / "scenarios" / "p93_bounded.toml"
@@ -90,7 +90,7 @@ def test_set_overrides_by_dotted_path(tmp_path, capsys):
 
 def test_no_traceback_from_the_command_line(tmp_path):
     path = write_scene(tmp_path, base_text().replace('step = "0.5 d"', 'step = "0.5 km"'))
-    proc = subprocess.run([sys.executable, "-m", "spinorbit.cli", "run", str(path)], capture_output=True,
+    proc = subprocess.run([sys.executable, "-m", "spinorbit.edge.cli", "run", str(path)], capture_output=True,
                           text=True, check=False)
     assert proc.returncode == 2
     assert "Traceback" not in proc.stderr
@@ -111,7 +111,7 @@ COUPLED = Path(__file__).parents[1] / "scenarios" / "stress" / "coupled_conserva
 # The peak resident memory of this process's image (VmHWM; ru_maxrss would keep the forking parent's peak).
 PEAK = """
 import sys
-from spinorbit.cli import main
+from spinorbit.edge.cli import main
 assert main(sys.argv[1:]) == 0
 print(next(int(line.split()[1]) * 1024 for line in open("/proc/self/status") if line.startswith("VmHWM")))
 """
@@ -135,7 +135,7 @@ def peak_bytes(tmp_path, scenario, sets):
 def test_the_memory_estimate_holds_the_measured_peak(tmp_path, scenario, common, sizes):
     """The estimate of the larger run is above its measured peak, and what the estimate adds for the extra
     samples (rows) is at least what they add to the measured peak and at most three times it."""
-    from spinorbit.scenarios import load_scenario
+    from spinorbit.edge.scenarios import load_scenario
 
     peaks = [peak_bytes(tmp_path, scenario, [*common, size]) for size in sizes]
     estimates = [load_scenario(scenario, [*common, size]).estimate()["memory_bytes"] for size in sizes]
@@ -159,7 +159,7 @@ def test_a_run_longer_than_the_time_limit_is_refused_with_its_estimate(capsys):
     assert err.startswith("error: integrator.step: got '0.0004 d'; expected a run the estimate finishes "
                           "within limits.time = 1 h: 91,312,501 integrator steps at ~")
     assert "raise limits.time" in err
-    from spinorbit.scenarios import load_scenario
+    from spinorbit.edge.scenarios import load_scenario
 
     allowed = load_scenario(COUPLED, ["integrator.step=0.0004 d", "span.end=100 yr", 'limits.time="100 d"'])
     assert allowed.estimate()["time_s"] > 3600
@@ -352,7 +352,7 @@ def test_non_utf8_bytes_from_the_shell_and_the_file(tmp_path):
     scene = tmp_path / "latin1.toml"
     scene.write_bytes(SCENE_FILES["p93_bounded"].read_bytes().replace(b'title = "', b'title = "\xe9'))
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    code = ("import sys; from spinorbit.cli import main; "
+    code = ("import sys; from spinorbit.edge.cli import main; "
             "sys.exit(max(main(['run', sys.argv[1], '--out', 'x']), "
             "main(['run', sys.argv[2], '--out', 'x', '--set', sys.argv[3]])))")
     done = subprocess.run([sys.executable, "-c", code, scene, SCENE_FILES["p93_bounded"],
@@ -411,7 +411,7 @@ def state(path):
 def test_nothing_of_the_users_is_lost(tmp_path_factory, entries, during, force, writes):
     """Entries a user puts in --out, before the run or while it computes: refused (one line) or kept, each
     as it was, except with --force the files of the names the run writes itself."""
-    from spinorbit.rundir import RunDirectory
+    from spinorbit.edge.rundir import RunDirectory
 
     out = tmp_path_factory.mktemp("rundir") / "run"
     with RunDirectory(out) as run:

@@ -1,12 +1,12 @@
-"""The scene protocol (spinorbit.scene): one runner that builds a scene's model once; what a scene declares is read
-from its Scene, not restated above it (its typed parameters: tests/test_params.py)."""
+"""The scene protocol (spinorbit.scene.declaration): one runner that builds a scene's model once; what a scene
+declares is read from its Scene, not restated above it (its typed parameters: tests/test_params.py)."""
 import dataclasses
 
 import pytest
 
-from spinorbit import api
-from spinorbit.errors import ScenarioError
-from spinorbit.scenarios import load_scenario
+from spinorbit.base.errors import ScenarioError
+from spinorbit.edge import api
+from spinorbit.edge.scenarios import load_scenario
 from spinorbit.scenes import SCENES, scene_module, scene_of
 
 
@@ -20,7 +20,7 @@ def test_every_scene_declares_a_scene_the_one_runner_runs():
 
 
 def test_the_runner_builds_a_scene_model_once(monkeypatch):
-    from spinorbit.runner import run_scenario
+    from spinorbit.edge.runner import run_scenario
 
     scene = scene_of("free_body")
     calls = []

@@ -4,7 +4,7 @@ from pathlib import Path
 
 import pytest
 
-from spinorbit.runner import run_scenario
+from spinorbit.edge.runner import run_scenario
 
 SCENARIOS = Path(__file__).resolve().parent.parent / "scenarios"
 

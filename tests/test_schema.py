@@ -1,9 +1,9 @@
-"""Dates and durations as a scenario key holds them (spinorbit.schema): an ISO date in TDB or a duration from
+"""Dates and durations as a scenario key holds them (spinorbit.scene.schema): an ISO date in TDB or a duration from
 span.start, in plural words too; anything else told what is accepted."""
 import pytest
 
-from spinorbit.errors import ScenarioError
-from spinorbit.scenarios import load_scenario
+from spinorbit.base.errors import ScenarioError
+from spinorbit.edge.scenarios import load_scenario
 
 
 @pytest.mark.parametrize("end", ["2000-13-45", "2030-01-01T00:00:00 UTC", "yesterday", "3 fortnights ago"])

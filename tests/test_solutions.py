@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 from spinorbit import solutions
+from spinorbit.base.rotations import quat_angle
+from spinorbit.edge.scenarios import load_scenario
 from spinorbit.integrators import simulate
-from spinorbit.rotations import quat_angle
-from spinorbit.scenarios import load_scenario
 from spinorbit.solutions import chebyshev, store, stretches
 from tests.units import arcsec
 
@@ -138,7 +138,7 @@ def test_two_processes_extending_one_solution_leave_one_good_file(place):
     solutions.for_scenario(load_scenario("moon_libration"), 0.0, 8.0)
     script = textwrap.dedent(f"""
         from spinorbit import solutions
-        from spinorbit.scenarios import load_scenario
+        from spinorbit.edge.scenarios import load_scenario
         from spinorbit.solutions import store
         store.PLACE["directory"] = __import__("pathlib").Path({str(place)!r})
         s = solutions.for_scenario(load_scenario("moon_libration"), -16.0, 40.0)
@@ -163,7 +163,7 @@ def test_a_runs_solution_is_its_model_over_its_span_as_a_qtable(place, capsys):
     from astropy.time import Time
 
     from spinorbit import cli
-    from spinorbit.runner import run_scenario
+    from spinorbit.edge.runner import run_scenario
 
     result = run_scenario("moon_libration", ["span.start=2000-01-01T12:00:00", "span.end=2000-01-11T12:00:00",
                                              "span.step=1 d", "output.plots=false"])

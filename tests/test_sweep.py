@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from spinorbit.sweep import members, parse_vary, run_sweep
+from spinorbit.edge.sweep import members, parse_vary, run_sweep
 
 FREE_BODY = Path(__file__).parents[1] / "scenarios" / "free_body.toml"
 
@@ -34,8 +34,8 @@ def test_sweep_over_tolerance_converges_to_the_closed_form(tmp_path, scheduler):
 
 def test_a_key_given_twice_to_vary_is_refused_in_one_line(capsys):
     from spinorbit import cli
-    from spinorbit.errors import ScenarioError
-    from spinorbit.sweep import grid
+    from spinorbit.base.errors import ScenarioError
+    from spinorbit.edge.sweep import grid
 
     with pytest.raises(ScenarioError, match="--vary integrator.rtol") as info:
         grid(["integrator.rtol=1e-8", "span.end=5 d", "integrator.rtol=1e-10,1e-12"])
@@ -127,7 +127,7 @@ def test_a_member_whose_worker_dies_each_time_stops_the_sweep_in_one_line(tmp_pa
     import dask
     from dask.distributed import Client, LocalCluster
 
-    from spinorbit.errors import ScenarioError
+    from spinorbit.base.errors import ScenarioError
 
     with dask.config.set({"distributed.scheduler.allowed-failures": 0}), \
             LocalCluster(n_workers=1, threads_per_worker=1, processes=True, host="127.0.0.1", scheduler_port=0,

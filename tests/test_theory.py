@@ -1,17 +1,17 @@
-"""The seeds' closed forms (spinorbit.theory) against published numbers and numerical integration."""
+"""The seeds' closed forms (spinorbit.analysis.theory) against published numbers and numerical integration."""
 import math
 
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from spinorbit import theory
-from spinorbit.errors import PhysicsError, ResonanceError
+from spinorbit.analysis import theory
+from spinorbit.base.errors import PhysicsError, ResonanceError
+from spinorbit.base.rotations import quat_angle
 from spinorbit.integrators import simulate
 from spinorbit.models.assemblies.idealised import free_body
 from spinorbit.models.interactions import point_mass
 from spinorbit.models.spin import euler_omega_dot
-from spinorbit.rotations import quat_angle
 
 HLW_MOMENTS = np.array([2 / 3, 1.0, 2.0])                         # (2, 1, 2/3) in A <= B <= C order
 HLW_OMEGA0 = np.array([math.sin(1.1), 0.0, math.cos(1.1)]) / HLW_MOMENTS

@@ -1,15 +1,15 @@
-"""The verdict of a run (spinorbit.verdict), its headline and --strict, provenance, titles."""
+"""The verdict of a run (spinorbit.scene.verdict), its headline and --strict, provenance, titles."""
 import json
 import math
 from pathlib import Path
 
 import pytest
 
-from spinorbit.cli import EXIT_VERDICT_FAIL, main
-from spinorbit.reports import write_run
-from spinorbit.runner import base_summary, run_scenario
-from spinorbit.scenarios import load_scenario
-from spinorbit.verdict import Check, Verdict, evaluate
+from spinorbit.edge.cli import EXIT_VERDICT_FAIL, main
+from spinorbit.edge.reports import write_run
+from spinorbit.edge.runner import base_summary, run_scenario
+from spinorbit.edge.scenarios import load_scenario
+from spinorbit.scene.verdict import Check, Verdict, evaluate
 
 SCENARIOS = Path(__file__).parents[1] / "scenarios"
 P92 = SCENARIOS / "p92_arc_ab.toml"

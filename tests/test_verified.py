@@ -1,4 +1,4 @@
-"""The verified-cache room (spinorbit.verified): what it writes reads back bit for bit; a file damaged in any way,
+"""The verified-cache room (spinorbit.base.verified): what it writes reads back bit for bit; a file damaged in any way,
 or of another record, is refused in one line; a failed write leaves nothing; the lock waits no longer than asked;
 leftovers of dead writers go, a live writer's stay; a folder others can write is refused.
 
@@ -13,8 +13,8 @@ import time
 import numpy as np
 import pytest
 
-from spinorbit import verified
-from spinorbit.errors import InputError
+from spinorbit.base import verified
+from spinorbit.base.errors import InputError
 
 RECORD = {"code": "1.0+abc", "settings": {"step": 2.5}}
 

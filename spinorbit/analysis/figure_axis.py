@@ -1,7 +1,7 @@
 """The figure axis of a P96 run (ZA, XZA) and the least-squares fit of Euler's terms to them (§846-849)."""
 import numpy as np
 
-from ..rotations import matrices_from_quats
+from ..base.rotations import matrices_from_quats
 
 
 def figure_axis(solution):

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..constants import JULIAN_CENTURY_D
+from ..base.constants import JULIAN_CENTURY_D
 from .spans import refusals
 
 

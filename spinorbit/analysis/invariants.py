@@ -5,7 +5,7 @@ momentum L = R(q) I w (inertial axes) are constant; their drift over a run measu
 """
 import numpy as np
 
-from ..rotations import matrices_from_quats
+from ..base.rotations import matrices_from_quats
 
 
 def kinetic_energy(moments, omega):

@@ -6,9 +6,9 @@ ladder with their own settings and error functions.
 """
 import numpy as np
 
-from ..errors import IntegrationError
+from ..base.errors import IntegrationError
+from ..base.rotations import quat_angle, vector_angle
 from ..integrators import get_method, simulate
-from ..rotations import quat_angle, vector_angle
 
 
 def work_precision(system, t_out, settings, error, until=None):

@@ -8,8 +8,8 @@ tau = phi_e + psi_e - (L + 180 deg), rho = theta_e - I, sigma = phi_e - (Om + 18
 """
 import numpy as np
 
-from ..constants import ARCSEC
-from ..rotations import euler313_from_matrix, matrices_from_quats, vector_angle
+from ..base.constants import ARCSEC
+from ..base.rotations import euler313_from_matrix, matrices_from_quats, vector_angle
 
 INCLINATION_RAD = np.radians(1.54242)       # mean inclination of the lunar equator to the ecliptic (Meeus ch. 53)
 # The metrics residual_metrics computes (the summary's comparison keys, read by verdicts and the API)
@@ -44,7 +44,7 @@ def optical_librations(icrf_to_ecliptic, mean_longitude, node, earth_from_moon):
     """The optical libration in longitude and latitude (rad): the sub-Earth point of the Cassini state (the
     lunar equator at inclination I to the mean ecliptic of date, its node Om + 180 deg, the prime meridian at
     L + 180 deg: tau = rho = sigma = 0).  Arguments as :func:`physical_librations`."""
-    from ..rotations import matrix_from_euler313
+    from ..base.rotations import matrix_from_euler313
 
     cassini = matrix_from_euler313(node + np.pi, np.full_like(node, INCLINATION_RAD), mean_longitude - node)
     mats = np.einsum("nij,njk->nik", cassini, icrf_to_ecliptic)

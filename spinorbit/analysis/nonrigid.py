@@ -12,8 +12,8 @@ MHB2000's nonlinear terms enter through their published contribution to the prec
 """
 import numpy as np
 
+from ..base.constants import ARCSEC, JULIAN_CENTURY_D
 from ..bodies.earth import ERA_RATE_RAD_D
-from ..constants import ARCSEC, JULIAN_CENTURY_D
 from .spans import resolvable
 
 # MHB2000's nonlinear terms (products of the nutation amplitudes in the non-rigid Earth's equations):

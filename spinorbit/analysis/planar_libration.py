@@ -4,8 +4,8 @@ import math
 
 import numpy as np
 
+from ..base.rotations import matrices_from_quats
 from ..models.assemblies.idealised import under_point_masses
-from ..rotations import matrices_from_quats
 
 
 def planar_system(moments, orbit, t0, zeta0, zeta_dot0, delta):

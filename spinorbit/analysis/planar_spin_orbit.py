@@ -9,11 +9,11 @@ import math
 
 import numpy as np
 
+from ..base.rotations import matrices_from_quats
 from ..integrators import simulate
 from ..models.assemblies.idealised import under_point_masses
 from ..models.planar import anomaly_and_distance, planar_ode, planar_rhs
 from ..orbits.analytic import KeplerOrbit
-from ..rotations import matrices_from_quats
 from .lyapunov import benettin, compiled_flow, displaced, scipy_flow, system_flow
 
 

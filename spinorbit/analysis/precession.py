@@ -7,7 +7,7 @@ precession rate needs RATE_MIN_SPAN_D: over a shorter span the 18.6-yr nutation 
 """
 import numpy as np
 
-from ..constants import ARCSEC, JULIAN_CENTURY_D, MAS
+from ..base.constants import ARCSEC, JULIAN_CENTURY_D, MAS
 from .harmonics import fit_harmonics
 
 RATE_MIN_SPAN_D = 50 * 365.25

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..rotations import matrices_from_quats, quat_from_matrix
+from ..base.rotations import matrices_from_quats, quat_from_matrix
 from .cassini import linear_fit, mean_normal, osculating
 from .planar_spin_orbit import libration_theory
 from .spans import resolvable

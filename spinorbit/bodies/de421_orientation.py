@@ -12,9 +12,9 @@ from pathlib import Path
 import numpy as np
 from numpy.polynomial import chebyshev
 
-from ..constants import J2000_JD
-from ..errors import EphemerisRangeError
-from ..linker import OnDemand
+from ..base.constants import J2000_JD
+from ..base.errors import EphemerisRangeError
+from ..base.linker import OnDemand
 from .de421_header import header
 
 compiled = OnDemand(cache=True, nogil=True)      # the kernels' series, compiled when first asked for

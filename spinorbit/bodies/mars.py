@@ -21,7 +21,7 @@ Lainey 2014, Planet. Space Sci. 102, 35), semi-major axes 9376 and 23458 km (Jac
 """
 import math
 
-from ..constants import DAY_S
+from ..base.constants import DAY_S
 
 RADIUS_KM = 3396.0                        # reference radius of MRO120D
 J2 = math.sqrt(5.0) * 8.750220925e-4       # MRO120D

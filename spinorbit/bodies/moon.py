@@ -12,7 +12,7 @@ from functools import cache
 
 import numpy as np
 
-from ..constants import J2000_JD
+from ..base.constants import J2000_JD
 from .de421_header import header
 from .table import gm_km3_d2
 

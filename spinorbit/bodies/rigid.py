@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import PhysicsError
+from ..base.errors import PhysicsError
 
 _REL_TOL = 1e-12
 

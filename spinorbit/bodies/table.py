@@ -9,7 +9,7 @@ body is one row here.
 """
 from dataclasses import dataclass
 
-from ..errors import InputError
+from ..base.errors import InputError
 from .de421_header import header
 
 

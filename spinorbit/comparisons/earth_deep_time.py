@@ -4,7 +4,7 @@ import math
 
 import numpy as np
 
-from ..constants import ARCSEC, JULIAN_YEAR_D
+from ..base.constants import ARCSEC, JULIAN_YEAR_D
 from ..starts.earth_deep_time import ERFA_SPAN_D, KYR_D
 
 WINDOWS_MYR = (1, 10)                 # the spans the issue sets targets over

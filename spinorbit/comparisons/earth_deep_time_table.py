@@ -2,7 +2,7 @@
 day) at the output times, with units."""
 import numpy as np
 
-from ..columns import quantity_table
+from ..scene.columns import quantity_table
 from ..starts.earth_deep_time import KYR_D
 
 

@@ -7,8 +7,8 @@ Edge module (astropy, ERFA through references.erfa_pole); the Earth scene declar
 import numpy as np
 
 from ..analysis.precession import PSI_RATE_MINUS_IAU_ARCSEC_CY, compare_with_iau, free_nutation_amplitude
+from ..base.constants import MAS
 from ..bodies import earth
-from ..constants import MAS
 from ..references import arguments, erfa_pole
 
 # The metrics ``residuals`` and ``full_checks`` compute (the summary's comparison keys, read by the verdict and the
@@ -59,7 +59,7 @@ def table(t, z, dx, dy, nutation):
     import astropy.units as u
     from astropy.table import QTable
 
-    from ..schema import tdb_days_to_time
+    from ..scene.schema import tdb_days_to_time
 
     columns = {"time": tdb_days_to_time(t), "cip_x": (z[:, 0] * u.rad).to(u.arcsec),
                "cip_y": (z[:, 1] * u.rad).to(u.arcsec), "cip_x_minus_erfa": dx * u.mas,
@@ -85,8 +85,8 @@ def rms(x):
 
 
 def full_model_checks(p, run, twin, z_full):
-    """The full model of ``run`` (spinorbit.scene.Run) against its gyroscopic ``twin`` on the same orbits and
-    start (start.gyroscopic_twin), and the free nutation it started (a dense run over
+    """The full model of ``run`` (spinorbit.scene.declaration.Run) against its gyroscopic ``twin`` on the same
+    orbits and start (start.gyroscopic_twin), and the free nutation it started (a dense run over
     ``comparison.free_nutation_span``)."""
     t, t0, system = run.times, p.span.start, run.model.system
     twin_run, _ = run.integrate(twin, t, "gyroscopic twin", "rk8", {"step": p.comparison.gyroscopic_step})

@@ -12,8 +12,8 @@ from ..analysis.librations import (
     POLE_ERROR_MAX_ARCSEC,
     POLE_ERROR_RMS_ARCSEC,
 )
-from ..constants import ARCSEC, JULIAN_CENTURY_D
-from ..rotations import vector_angle
+from ..base.constants import ARCSEC, JULIAN_CENTURY_D
+from ..base.rotations import vector_angle
 
 MAS = ARCSEC / 1000.0
 # The metrics ``metrics`` computes (the summary's comparison keys, read by the verdict and the API)
@@ -62,7 +62,7 @@ def metrics(t, direction, distance, lunar, earth_axis):
     data at; {metric: why not measured} where it has none)."""
     inside = covered(t)
     if not inside.any():
-        from ..errors import tdb_dates
+        from ..base.errors import tdb_dates
 
         why = ("DE421's lunar series covers 1899-12-04 to 2200-02-01 TDB; "
                f"the span is {tdb_dates((t[0], t[-1]))}")
@@ -130,8 +130,8 @@ def table(t, r, mats, errors, earth_axis):
     import astropy.units as u
     from astropy.table import QTable
 
-    from ..rotations import euler313_from_matrix
-    from ..schema import tdb_days_to_time
+    from ..base.rotations import euler313_from_matrix
+    from ..scene.schema import tdb_days_to_time
 
     out = QTable()
     out["time"] = tdb_days_to_time(t)

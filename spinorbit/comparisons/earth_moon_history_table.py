@@ -1,5 +1,5 @@
 """earth_moon_history's table: the history at the output times, with units."""
-from ..columns import quantity_table
+from ..scene.columns import quantity_table
 
 COLUMNS = {  # name: (unit, description)
     "t_gyr": ("Gyr", "time from J2000 (TDB), negative in the past"),

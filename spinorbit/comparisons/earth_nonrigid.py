@@ -12,7 +12,7 @@ from ..analysis import nonrigid
 from ..analysis.precession import fit_pole, term_table
 from ..analysis.transfer import forms
 from ..analysis.transfer.models import MODELS, PUBLISHED_CHANDLER_CPSD, PUBLISHED_FCN_CPSD
-from ..constants import MAS
+from ..base.constants import MAS
 from ..references import arguments, erfa_pole, ren2000
 from ..starts.earth_pole import geodesic_nutation, ren2000_scaled
 from . import earth_vlbi as observed

@@ -10,7 +10,7 @@ span, beside the same span with it left in.
 """
 import numpy as np
 
-from ..constants import JULIAN_YEAR_D, MAS
+from ..base.constants import JULIAN_YEAR_D, MAS
 from ..references import fcn_lambert, vlbi_pole
 
 

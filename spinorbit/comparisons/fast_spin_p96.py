@@ -7,10 +7,10 @@ import numpy as np
 
 from ..analysis.figure_axis import figure_axis, fit_angles
 from ..analysis.ladder import cheapest, work_precision
-from ..errors import ScenarioError
+from ..base.errors import ScenarioError
+from ..base.rotations import quat_angle
 from ..integrators import METHODS, get_method
-from ..rotations import quat_angle
-from ..scene import Outcome
+from ..scene.declaration import Outcome
 
 # The metrics the verdict judges (the summary's comparison keys)
 REFERENCE_AGREEMENT_AXIS_RAD, PRECESSION_RATE_REL_ERROR_MAX = ("reference_agreement_axis_rad",

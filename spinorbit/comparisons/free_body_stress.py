@@ -6,9 +6,9 @@ import numpy as np
 
 from ..analysis.invariants import invariant_drift, kinetic_energy
 from ..analysis.ladder import settings, work_precision
+from ..analysis.theory import FreeRigidBody, axisymmetric_attitude
+from ..base.rotations import quat_angle, quat_from_rotation_vector
 from ..models.assemblies.idealised import free_body, under_point_masses
-from ..rotations import quat_angle, quat_from_rotation_vector
-from ..theory import FreeRigidBody, axisymmetric_attitude
 
 Q0 = np.array([1.0, 0.0, 0.0, 0.0])
 # |L| after N rounded rotations random-walks by ~ eps sqrt(N): suzuki4, 1e7 steps = 2e8 rotations

@@ -8,7 +8,7 @@ import numpy as np
 from ..analysis.lyapunov import ensemble_mean
 from ..analysis.planar_spin_orbit import kepler_orbit, planar_lyapunov, planar_vs_rigid_body, rigid_body_lyapunov
 from ..models.planar import planar_params
-from ..scene import Outcome
+from ..scene.declaration import Outcome
 
 
 def lyapunov_map(p, planar, period):

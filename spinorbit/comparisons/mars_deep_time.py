@@ -3,7 +3,7 @@
 authors' solution from a precession rate 0.28 % away: how far the rate alone moves Mars's obliquity)."""
 import numpy as np
 
-from ..columns import quantity_table
+from ..scene.columns import quantity_table
 from ..starts.earth_deep_time import KYR_D
 
 WINDOWS_MYR = (1, 5, 20)

@@ -20,12 +20,12 @@ from ..analysis.precession import (
     node_and_inclination,
     rate_refusal,
 )
+from ..base.constants import ARCSEC, JULIAN_YEAR_D, MAS
 from ..bodies import mars
-from ..constants import ARCSEC, JULIAN_YEAR_D, MAS
 from ..orbits.sources import TwoBody
 from ..references import mars_iau2015, mars_nutation
+from ..scene.verdict import Check, Verdict
 from ..starts import mars as start
-from ..verdict import Check, Verdict
 
 NUTATION_MIN_SPAN_D = 10 * JULIAN_YEAR_D      # five Mars years: the annual term apart from the quadratic
 IAU_WINDOW_D = (-20 * JULIAN_YEAR_D, 30 * JULIAN_YEAR_D)      # 1980-2030, where IAU 2015's fit is compared
@@ -73,7 +73,7 @@ def verdict(p, comparison):
 
 def outcome(p, run):
     """The scene's Outcome: the comparisons, the budget (comparison.budget), the table and the figures."""
-    from ..scene import Outcome
+    from ..scene.declaration import Outcome
 
     t, system, y = run.times, run.model.system, run.solution.y
     poles = system.figure_axes("mars", t, y)
@@ -236,7 +236,7 @@ def prime_meridian_of(system, t, states, poles, t0):
     """W (rad, continuous) of the run: from the spin for a gyroscopic Mars (:func:`prime_meridian`), from the
     attitude otherwise (the prime meridian bodies.mars.A_AXIS_LONGITUDE_DEG west of the body x axis, measured
     from the equator's node on the ICRF equator)."""
-    from ..rotations import matrices_from_quats
+    from ..base.rotations import matrices_from_quats
 
     if "mars.spin" in system.layout:
         spin = system.state(states, "mars.spin")
@@ -265,7 +265,7 @@ COLUMNS = {
 
 def table(t, poles, w, columns, separation):
     """The run's table (COLUMNS)."""
-    from ..columns import quantity_table
+    from ..scene.columns import quantity_table
 
     ra, dec = np.arctan2(poles[:, 1], poles[:, 0]) % (2 * math.pi), np.arcsin(np.clip(poles[:, 2], -1.0, 1.0))
     values = {"pole_ra": np.degrees(ra), "pole_dec": np.degrees(dec), "prime_meridian": np.degrees(w),
@@ -279,7 +279,7 @@ def table(t, poles, w, columns, separation):
 
 def answer_table(t, poles, w):
     """The API's table (spinorbit.orientation): the pole, W in [0, 360) deg and the angle from IAU 2015's pole."""
-    from ..columns import quantity_table
+    from ..scene.columns import quantity_table
 
     separation = _angle(poles, mars_iau2015.pole(t))
     ra, dec = np.arctan2(poles[:, 1], poles[:, 0]) % (2 * math.pi), np.arcsin(np.clip(poles[:, 2], -1.0, 1.0))

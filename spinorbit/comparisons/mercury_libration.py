@@ -7,9 +7,9 @@ import numpy as np
 
 from ..analysis.planar_spin_orbit import theta_from_quaternions
 from ..analysis.spans import refusals, resolvable
-from ..constants import ARCSEC
+from ..base.constants import ARCSEC
 from ..plots.common import plot_series
-from ..scene import Outcome
+from ..scene.declaration import Outcome
 
 MARGOT_2007_ARCSEC = (35.8, 2.0)
 HARMONICS = 6          # fitted harmonics of M; the initial rate sums the linear forced solution to k = 24

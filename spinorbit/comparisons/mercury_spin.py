@@ -31,11 +31,11 @@ import numpy as np
 
 from ..analysis import cassini
 from ..analysis import resonant_spin as rs
+from ..base.constants import ARCSEC
 from ..bodies import mercury
-from ..constants import ARCSEC
 from ..plots.common import plot_series
-from ..scene import Outcome
-from ..verdict import Check, Verdict
+from ..scene.declaration import Outcome
+from ..scene.verdict import Check, Verdict
 
 ARCMIN = 60 * ARCSEC
 

@@ -11,7 +11,7 @@ from ..analysis.librations import (
     POLE_ERROR_MAX_ARCSEC,
     POLE_ERROR_RMS_ARCSEC,
 )
-from ..constants import ARCSEC
+from ..base.constants import ARCSEC
 
 LADDER = ([("rk8", {"step": h}) for h in (4.0, 2.0, 1.0, 0.5)]          # report.error_vs_runtime
           + [("dop853", {"rtol": r, "atol": r * 1e-2}) for r in (1e-8, 1e-10, 1e-12)])
@@ -29,8 +29,8 @@ def against_de421(t, mats):
     """(DE421's orientation on the outputs its series covers (a Comparable, or None), the covered rows (mask),
     the comparison's metrics, {metric: why not measured}): outside DE421's span nothing is compared."""
     from ..analysis.librations import residual_metrics
+    from ..base.errors import tdb_dates
     from ..bodies.de421_orientation import span
-    from ..errors import tdb_dates
 
     de421, covered = de421_where_covered(t)
     if de421 is None:
@@ -59,8 +59,8 @@ def table(solution, mats, de421, covered, lib):
     import astropy.units as u
 
     from ..analysis.librations import pole_and_longitude_difference
-    from ..rotations import euler313_from_matrix
-    from ..run_result import attitude_table
+    from ..base.rotations import euler313_from_matrix
+    from ..scene.run_result import attitude_table
 
     table, angles = attitude_table(solution), euler313_from_matrix(mats)
     arcsec = lambda x: x / ARCSEC * u.arcsec

@@ -6,9 +6,9 @@ import math
 import numpy as np
 
 from ..analysis.planar_libration import crossing_times, zeta_from_solution
-from ..constants import ARCSEC
+from ..base.constants import ARCSEC
 from ..plots.common import plot_series
-from ..scene import Outcome
+from ..scene.declaration import Outcome
 
 
 def compare_run(p, run):

@@ -6,7 +6,7 @@ Edge module (astropy units); the scene declares, this compares.
 import numpy as np
 
 from ..analysis.librations import LONGITUDE_ERROR_MAX_ARCSEC, POLE_ERROR_MAX_ARCSEC
-from ..constants import MAS
+from ..base.constants import MAS
 from ..models.assemblies.solar_system import PLANETS
 from .earth_moon_de421 import lunar_errors, orbit_errors
 
@@ -69,8 +69,8 @@ def table(t, r, mats, errors, planets):
     import astropy.units as u
     from astropy.table import QTable
 
-    from ..rotations import euler313_from_matrix
-    from ..schema import tdb_days_to_time
+    from ..base.rotations import euler313_from_matrix
+    from ..scene.schema import tdb_days_to_time
 
     out = QTable()
     out["time"] = tdb_days_to_time(t)

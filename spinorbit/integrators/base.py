@@ -28,14 +28,14 @@ Contract for subclass authors (numbered so reviews can point at it):
 7. A method that compiles the equations itself (``taylor``) reads ``system.expressions()`` (heyoka
    variables and derivatives) and ``system.traceable`` instead of ``rhs``.
 8. Hooks, set on the instance before ``solve``: ``label`` names its progress bar (None: no bar);
-   ``checkpoint`` (spinorbit.checkpoint.Checkpoint or None) is offered the outputs so far between
+   ``checkpoint`` (spinorbit.edge.checkpoint.Checkpoint or None) is offered the outputs so far between
    compiled chunks and resumes from them, by the methods whose ``resumable`` is True.
 """
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InputError, IntegrationError
+from ..base.errors import InputError, IntegrationError
 
 
 @dataclass

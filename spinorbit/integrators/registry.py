@@ -1,7 +1,7 @@
 """Integrator registry: method name -> class, imported only when asked for."""
 from importlib import import_module
 
-from ..errors import InputError
+from ..base.errors import InputError
 from .base import Integrator
 
 METHODS = {

@@ -17,10 +17,10 @@ import time
 
 import numpy as np
 
-from ..errors import InputError, IntegrationError
-from ..layout import Layout
-from ..linker import free, link, template
-from ..progress import progress, stage
+from ..base.errors import InputError, IntegrationError
+from ..base.layout import Layout
+from ..base.linker import free, link, template
+from ..base.progress import progress, stage
 from . import dop853_tableau as dop853
 from .base import Integrator, Trajectory, normalised, output_chunks
 from .options import MAX_STEPS, STEP
@@ -198,7 +198,7 @@ class RK8(Integrator):
              np.ascontiguousarray(dop853.D))
 
     def solve(self, system, t_out):
-        from .. import rotations
+        from ..base import rotations
 
         t_out = self._check_times(system, t_out)
         h = float(self.settings["step"])

@@ -9,7 +9,7 @@ from typing import ClassVar
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ..errors import IntegrationError
+from ..base.errors import IntegrationError
 from .base import Integrator, Trajectory, check_finite, normalised
 from .options import ATOL, MAX_STEP, RTOL
 

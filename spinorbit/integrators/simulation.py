@@ -20,9 +20,9 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
-from ..constants import ARCSEC
-from ..errors import InputError, IntegrationError
-from ..rotations import quat_angle, vector_angle
+from ..base.constants import ARCSEC
+from ..base.errors import InputError, IntegrationError
+from ..base.rotations import quat_angle, vector_angle
 from .base import Trajectory, normalised
 from .registry import get_method
 
@@ -87,7 +87,7 @@ def simulate(system, t_out, method="dop853", options=None, estimate_error=True, 
     the error is zero).  Only a run asked as the method takes it (one side, distinct times, away from t0) is
     checkpointed; a failing run's IntegrationError holds that run's partial solution.
 
-    ``checkpoint`` (spinorbit.checkpoint.Checkpoint or None) is offered the outputs as the run goes, by a method
+    ``checkpoint`` (spinorbit.edge.checkpoint.Checkpoint or None) is offered the outputs as the run goes, by a method
     that can resume (rk8 landing on its outputs; the others run without one); ``label`` names the progress bar
     (default: the method).  A compiled method's
     error-estimate run goes on in a second thread meanwhile (the kernels release the GIL), so on two cores it

@@ -48,10 +48,10 @@ import time
 import numpy as np
 from numba import njit
 
-from ..errors import InputError, IntegrationError
-from ..linker import free, link, template
-from ..progress import progress
-from ..rotations import put
+from ..base.errors import InputError, IntegrationError
+from ..base.linker import free, link, template
+from ..base.progress import progress
+from ..base.rotations import put
 from .base import Integrator, Trajectory, output_chunks
 from .options import FREE_FLOW, MAX_STEPS, STEP
 

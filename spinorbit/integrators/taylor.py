@@ -10,7 +10,7 @@ to the state (absolute below a state of order 1).
 Compilation: in compact mode (the default for every System but a free body) heyoka writes each kind of term once
 and loops over its instances, which compiles the closed Earth-Moon system in seconds where the unrolled code
 takes minutes (and a body under one point mass in 0.4 s instead of 1.4 s), at about twice the run time.  The
-compiled code is kept in heyoka's on-disk cache, under spinorbit's cache directory (spinorbit.linker), so that a
+compiled code is kept in heyoka's on-disk cache, under spinorbit's cache directory (spinorbit.base.linker), so that a
 later process compiles nothing.
 
 The outputs come from the Taylor polynomials of one propagation (heyoka's ``propagate_grid``: dense output, each
@@ -28,8 +28,8 @@ import time
 
 import numpy as np
 
-from ..errors import InputError, IntegrationError
-from ..progress import progress
+from ..base.errors import InputError, IntegrationError
+from ..base.progress import progress
 from .base import Integrator, Trajectory, normalised
 from .options import COMPACT_MODE, OPT_LEVEL, TOLERANCE
 
@@ -40,7 +40,7 @@ def heyoka():
     directory of another user's, or one others may read or write, is not used: every build compiles)."""
     import heyoka as hy
 
-    from ..linker.cache import kernels_dir
+    from ..base.linker.cache import kernels_dir
 
     path = kernels_dir().parent / "heyoka"
     path.mkdir(mode=0o700, exist_ok=True)

@@ -17,7 +17,7 @@ def __getattr__(name):
     """Each name from its module when first asked for (numba, which the models' kernels need, is imported then):
     a module that reads only data of the models (an assembly's levels) does not import it."""
     if name == "Layout":
-        from ..layout import Layout
+        from ..base.layout import Layout
 
         return Layout
     if name in _HOMES:

@@ -17,8 +17,8 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from ..linker import cached
-from ..rotations import cross3, dot3, put
+from ..base.linker import cached
+from ..base.rotations import cross3, dot3, put
 from .distortion import taylor_back
 from .motion import PairRelatives
 

@@ -45,13 +45,13 @@ import math
 import numpy as np
 from numba import njit
 
+from ..base.constants import JULIAN_YEAR_D
+from ..base.errors import InputError
+from ..base.layout import Layout
+from ..base.linker import cached
+from ..base.rotations import cross3, dot3
 from ..bodies import moon
 from ..bodies.table import gm_km3_d2
-from ..constants import JULIAN_YEAR_D
-from ..errors import InputError
-from ..layout import Layout
-from ..linker import cached
-from ..rotations import cross3, dot3
 from .ode import Ode
 
 LAMBECK_SPIN_TIDE = 51.0          # omega' = 51 n_m' (Lambeck 1980; Quinn et al. 1991 eq. 11)

@@ -19,8 +19,8 @@ import math
 
 import numpy as np
 
-from ..linker import cached
-from ..rotations import cross3, dot3, mat_t_vec3
+from ..base.linker import cached
+from ..base.rotations import cross3, dot3, mat_t_vec3
 
 DIFFERENCE_D = 1e-3        # days, central difference of an ephemeris position for the raiser's velocity
 

@@ -8,8 +8,8 @@ pieces write on; :func:`source` is what comes of it.
 """
 import numpy as np
 
-from ..linker import python_function
-from ..rotations import mat_t_vec3, matvec3
+from ..base.linker import python_function
+from ..base.rotations import mat_t_vec3, matvec3
 
 
 class Code:

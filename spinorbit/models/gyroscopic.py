@@ -19,8 +19,8 @@ import math
 import numpy as np
 from numba import njit
 
-from ..linker import cached
-from ..rotations import cross3, dot3, matvec3
+from ..base.linker import cached
+from ..base.rotations import cross3, dot3, matvec3
 
 
 @cached(nogil=True)

@@ -19,8 +19,8 @@ from typing import Protocol
 import numpy as np
 from numba import njit
 
+from ..base.rotations import put
 from ..orbits.interpolant import hermite_states
-from ..rotations import put
 from .distortion import DIFFERENCE_D, taylor_back
 
 
@@ -343,7 +343,7 @@ class Pair(PairRelatives):
         return f"0.5 * {code.param('reduced_mass', self.reduced_mass())} * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2])"
 
     def angular_momentum(self, code):
-        from ..rotations import cross3
+        from ..base.rotations import cross3
 
         return f"{code.param('reduced_mass', self.reduced_mass())} * {code.bind(cross3)}(r, v)"
 

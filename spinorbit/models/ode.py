@@ -4,7 +4,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..layout import Layout
+from ..base.layout import Layout
 
 
 @dataclass

@@ -12,8 +12,8 @@ import math
 
 import numpy as np
 
-from ..layout import Layout
-from ..linker import cached
+from ..base.layout import Layout
+from ..base.linker import cached
 from ..orbits.analytic import eccentric_anomaly
 from .ode import Ode
 

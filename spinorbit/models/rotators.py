@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..rotations import cross3, diag3, dot3, matrix_from_quat, matvec3, put, quat_rate
+from ..base.rotations import cross3, diag3, dot3, matrix_from_quat, matvec3, put, quat_rate
 from . import distortion as distortion_kernels
 from . import gyroscopic, spin
 

@@ -17,8 +17,8 @@ Every inertia, torque and friction constant in one unit (G I, km^5/d^2 in a Syst
 import numpy as np
 from numba import njit
 
-from ..linker import cached
-from ..rotations import cross3, diag3, mat_t_vec3, matvec3, quat_rate, solve3
+from ..base.linker import cached
+from ..base.rotations import cross3, diag3, mat_t_vec3, matvec3, quat_rate, solve3
 
 
 @njit(cache=True, nogil=True)

@@ -18,13 +18,13 @@ import math
 
 import numpy as np
 
+from ..base.constants import J2000_JD
+from ..base.layout import Layout
+from ..base.linker import cached
+from ..base.rotations import cross3, dot3, quat_from_matrix
 from ..bodies import de421_orientation
 from ..bodies.moon import de421
 from ..bodies.table import BODIES
-from ..constants import J2000_JD
-from ..layout import Layout
-from ..linker import cached
-from ..rotations import cross3, dot3, quat_from_matrix
 from .ode import Ode
 
 CORE_STEP_D = 0.25          # half the RK4 step carrying DE421's core

@@ -1,9 +1,9 @@
 """A System: a model written as data -- bodies, how they move, what acts between them -- and what follows.
 
-From the data the System derives its state layout (named slices, :mod:`~spinorbit.layout`), one
+From the data the System derives its state layout (named slices, :mod:`~spinorbit.base.layout`), one
 parameter record (``parameters``: name -> value, passed to the compiled functions as the tuple ``params``) and
 its compiled functions, generated and cached on disk (:mod:`~spinorbit.models.generate`,
-:mod:`spinorbit.linker`): ``rhs(t, y, params)`` always; ``torque(t, y, params)`` for a lone rigid body (what
+:mod:`spinorbit.base.linker`): ``rhs(t, y, params)`` always; ``torque(t, y, params)`` for a lone rigid body (what
 splitting integrators kick with) and ``frame_rate(t, y, params)``, the rate of the frame its equations hold in
 (what they turn its attitude by); ``energy`` and ``angular_momentum`` for a closed System.
 
@@ -17,8 +17,8 @@ import functools
 
 import numpy as np
 
-from ..layout import Layout
-from ..linker import link_source
+from ..base.layout import Layout
+from ..base.linker import link_source
 from .generate import angular_momentum_source, as_array, energy_source, frame_rate_source, rhs_source, torque_source
 from .rotators import Gyroscopic, Rigid
 
@@ -127,7 +127,7 @@ class System:
     def figure_axes(self, name, t, states):
         """Figure axes (n, 3, inertial) of body ``name`` at TDB days t: a Gyroscopic body's from its spin to third
         order in the Oppolzer terms (spinorbit.models.start.oppolzer_axes), an attitude's third column otherwise."""
-        from ..rotations import matrices_from_quats
+        from ..base.rotations import matrices_from_quats
         from .start import oppolzer_axes
 
         states = np.atleast_2d(states)

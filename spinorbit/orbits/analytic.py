@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
-from ..errors import InputError
+from ..base.errors import InputError
 
 
 def _per_body(n, *values):

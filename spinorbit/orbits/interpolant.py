@@ -21,7 +21,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..errors import EphemerisRangeError, InputError
+from ..base.errors import EphemerisRangeError, InputError
 
 
 @njit(cache=True)

@@ -14,9 +14,9 @@ from pathlib import Path
 
 import numpy as np
 
+from ..base.constants import J2000_JD
+from ..base.errors import EphemerisRangeError, InputError, tdb_dates
 from ..bodies.table import BODIES
-from ..constants import J2000_JD
-from ..errors import EphemerisRangeError, InputError, tdb_dates
 
 EPHEMERIDES_DIR = Path(__file__).resolve().parents[2] / "ephemerides"
 

@@ -8,12 +8,12 @@ given as GM (km^3/day^2), DE421 values.
 """
 import numpy as np
 
+from ..base.constants import DAY_S, JULIAN_YEAR_D
+from ..base.errors import InputError
+from ..base.progress import progress
+from ..base.rotations import vector_angle
 from ..bodies.de421_header import header
 from ..bodies.table import gm_km3_d2, integrated
-from ..constants import DAY_S, JULIAN_YEAR_D
-from ..errors import InputError
-from ..progress import progress
-from ..rotations import vector_angle
 from .interpolant import HermiteOrbits, grid
 from .interrupts import python_sigint
 from .kernel import DE421Arrays, JPLKernel

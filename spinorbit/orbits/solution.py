@@ -18,7 +18,7 @@ orbit normal, eccentricity vector (ICRF axes, the ephemeris's) and semi-major ax
 (backward and forward from J2000) keep their last state, so a file is extended bit for bit; it is written every
 ``SAVE_EVERY_S`` and when a run stops, and reloaded by the next.
 
-A file is input like any other, kept in the verified room (spinorbit.verified): opened only when it is a regular
+A file is input like any other, kept in the verified room (spinorbit.base.verified): opened only when it is a regular
 file, read without pickles, and used only when every array it holds (the outputs, the settings and the end states
 each branch continues from) matches the sha256 it carries and its record is these settings'; anything else is
 refused in one line (not remade: the file may hold hours of integration; delete it to recompute).  Leftovers of a
@@ -41,15 +41,15 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import verified
+from ..base import verified
+from ..base.constants import DAY_S
+from ..base.errors import InputError
+from ..base.files import NotRegular, open_regular
+from ..base.linker import cache
+from ..base.progress import progress
 from ..bodies import moon
 from ..bodies.de421_header import header
 from ..bodies.table import gm_km3_d2, heliocentric_set
-from ..constants import DAY_S
-from ..errors import InputError
-from ..files import NotRegular, open_regular
-from ..linker import cache
-from ..progress import progress
 from .interrupts import python_sigint
 
 BODIES = heliocentric_set()
@@ -119,7 +119,7 @@ def integration_digest():
 
 
 def cache_directory():
-    """Where solutions are kept: ``<spinorbit's private cache>/orbital_solutions`` (spinorbit.verified.folder)."""
+    """Where solutions are kept: ``<spinorbit's private cache>/orbital_solutions`` (spinorbit.base.verified.folder)."""
     return verified.folder("orbital_solutions")
 
 
@@ -192,7 +192,7 @@ class OrbitalSolution:
         return {"t_d": self.t_d, **orbits, **ends}
 
     def save(self, path):
-        """Write atomically, every array hashed (spinorbit.verified.write)."""
+        """Write atomically, every array hashed (spinorbit.base.verified.write)."""
         verified.write(path, self.arrays(), self.record, {**self.provenance, "span_d": list(self.span)})
 
     @classmethod

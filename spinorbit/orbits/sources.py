@@ -1,6 +1,6 @@
 """The orbit sources, each an :class:`OrbitSource` that owns its opening, its span, its provenance and what it can
 supply; one entry point, :func:`orbit_source`, names them.  A scenario's source is made once, when it is loaded
-(spinorbit.params.source_key), and code past loading asks that object, never a name.
+(spinorbit.scene.params.source_key), and code past loading asks that object, never a name.
 
 * :class:`JPLEphemeris` -- an SPK kernel (``'de440'``, a .bsp in ephemerides/, an installed naif-<name>);
 * :class:`DE421` -- DE421: its .bsp from skyfield-data, the ``de421`` package's arrays beyond 2053; the ephemeris
@@ -16,8 +16,8 @@ solar system's barycentre.  ``sample_orbits(name, ...)`` and ``barycentric(name,
 """
 import numpy as np
 
+from ..base.errors import EphemerisRangeError, InputError, tdb_dates
 from ..bodies.table import gm_km3_d2, has_gm
-from ..errors import EphemerisRangeError, InputError, tdb_dates
 
 # Common grid step, days.  Quintic Hermite, measured over 2000-2001 (max at mid-points,
 # |dr|/r): Moon-centred Earth 0.25 d 3.7e-12, Moon-centred Sun 0.25 d 8.7e-15 (the cubic

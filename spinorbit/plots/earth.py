@@ -9,7 +9,7 @@ def earth_precession_nutation(t, dx_mas, dy_mas, nutation, iau, model="rigid mod
     """The Earth scene's figures: CIP X, Y minus IAU 2006/2000A (mas) and, given the model's ``nutation``
     (dpsi, deps about its mean pole, rad), its nutation beside IAU 2000A's (``iau``: a Comparable); ``model``
     labels the model's curves."""
-    from ..constants import ARCSEC
+    from ..base.constants import ARCSEC
 
     years = 2000.0 + np.asarray(t) / 365.25
     figures = {"residual_vs_erfa": titled(plot_series(years, [dx_mas, dy_mas], "year (TDB)",

@@ -11,7 +11,7 @@ def moon_libration(t, table, rows, labelled, zoom, zoom_reference):
     """The Moon scene's figures: residuals and physical libration from ``table`` (arcsec columns), the
     spectrum of tau with the fitted ``rows``, and the librations ``zoom_reference`` (rad) of DE421 over
     the times ``zoom`` (a mask) beside the model's; without DE421's data (``zoom`` None) no residuals."""
-    from ..constants import ARCSEC
+    from ..base.constants import ARCSEC
 
     years = 2000.0 + np.asarray(t) / 365.25
     column = lambda *names: np.array([table[name].value for name in names])
@@ -103,7 +103,7 @@ def libration_zoom(years, model, reference):
 
 def driven_by(t, pole_rad, lon_rad, source, other):
     """A lunar run's pole and longitude minus the same run's driven by ``other`` (arcsec), against the year."""
-    from ..constants import ARCSEC
+    from ..base.constants import ARCSEC
 
     return plot_series(2000.0 + np.asarray(t) / 365.25, np.array([pole_rad, lon_rad]) / ARCSEC, "year (TDB)",
                        f"{source} - {other} driven [arcsec]", ["pole", "longitude"])

@@ -7,7 +7,7 @@ from J2000.0 (passed to ERFA as TT: they differ by < 2 ms); angles in rad.
 """
 import numpy as np
 
-from ..constants import J2000_JD, JULIAN_CENTURY_D
+from ..base.constants import J2000_JD, JULIAN_CENTURY_D
 
 
 def delaunay(t_tdb_d):

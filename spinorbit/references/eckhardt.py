@@ -9,7 +9,7 @@ left out.  The first MAIN terms are the ones compared in reports.
 """
 import numpy as np
 
-from ..constants import JULIAN_CENTURY_D
+from ..base.constants import JULIAN_CENTURY_D
 from . import arguments
 
 _DEG = 3600.0                                   # arcsec per degree

@@ -8,7 +8,7 @@ longitude) and eps (obliquity) place an equator on it (P03, Capitaine et al. 200
 """
 import numpy as np
 
-from ..constants import J2000_JD
+from ..base.constants import J2000_JD
 from .base import Comparable
 
 PSI_A_RATE_ARCSEC_CY = 5038.481507       # IAU 2006 precession in longitude psi_A, fixed J2000 ecliptic

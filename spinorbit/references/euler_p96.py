@@ -5,8 +5,8 @@ import math
 
 import numpy as np
 
+from ..base.constants import ARCSEC
 from ..bodies.table import gm_km3_d2
-from ..constants import ARCSEC
 
 # Euler's circles: mean distance (km) and sidereal period (d) of the Moon and the Sun.
 CIRCLES = {"moon": (384400.0, 27.321661), "sun": (149597870.7, 365.256363)}
@@ -30,7 +30,7 @@ def precession_rate(moments, spin_rad_d, tilt_rad):
     """Euler's P96 rate (rad/d) of a body of principal ``moments`` spinning at ``spin_rad_d``, its equator
     at ``tilt_rad`` to the circles' plane: the sum over Moon and Sun of N cos n (theory.precession_constant
     N, times the gyroscopic ratio A/C: the figure axis follows the angular momentum)."""
-    from ..theory import SymmetricPrecession, precession_constant
+    from ..analysis.theory import SymmetricPrecession, precession_constant
 
     rate = 0.0
     for name, (radius, period) in CIRCLES.items():
@@ -46,7 +46,7 @@ def compare(t_tdb_d, poles, ecliptic_pole, moments, spin_rad_d, circles, geodesi
     node rate is fitted with their 2-phi terms, and the P96 rate adds the model's ``geodesic_arcsec_cy``);
     else it ran on DE421, where the node rate needs analysis.precession.RATE_MIN_SPAN_D."""
     from ..analysis.precession import node_rate, rate_refusal
-    from ..constants import ARCSEC, JULIAN_CENTURY_D
+    from ..base.constants import ARCSEC, JULIAN_CENTURY_D
 
     t = np.asarray(t_tdb_d, dtype=float)
     tilt = math.acos(float(poles[0] @ ecliptic_pole))

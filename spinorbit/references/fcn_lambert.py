@@ -12,8 +12,8 @@ amplitudes fitted to VLBI year by year:
 """
 import numpy as np
 
-from ..constants import MAS
-from ..errors import InputError
+from ..base.constants import MAS
+from ..base.errors import InputError
 
 PERIOD_D = -430.21
 MJD_J2000 = 51544.5

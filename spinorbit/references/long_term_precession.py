@@ -8,7 +8,7 @@ arcseconds throughout the historical period, worsening to a few tenths of a degr
 """
 import numpy as np
 
-from ..errors import InputError
+from ..base.errors import InputError
 from .base import Comparable
 
 SPAN_YR = 200_000.0

@@ -8,7 +8,7 @@ written as part of a slow circle.  Valid as a fit over the tracking's decades, n
 """
 import numpy as np
 
-from ..constants import JULIAN_CENTURY_D
+from ..base.constants import JULIAN_CENTURY_D
 from .base import Comparable
 
 # (amplitude deg, phase deg, rate deg/cy)

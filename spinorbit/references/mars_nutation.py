@@ -21,8 +21,8 @@ import math
 
 import numpy as np
 
+from ..base.constants import MAS
 from ..bodies import mars
-from ..constants import MAS
 
 Q_DEG = 142.0
 # (k, with q, psi sin mas, I cos mas)

@@ -21,10 +21,10 @@ from functools import cache
 
 import numpy as np
 
+from ..base.constants import J2000_JD
+from ..base.errors import EphemerisRangeError
+from ..base.rotations import matrix_from_euler313, omega_body_from_euler313_rates
 from ..bodies import de421_orientation
-from ..constants import J2000_JD
-from ..errors import EphemerisRangeError
-from ..rotations import matrix_from_euler313, omega_body_from_euler313_rates
 from .base import Comparable
 
 FREE_LIBRATION_LONGITUDE_PERIOD_D = 1056.16     # DE421's free libration in longitude (Yang et al. 2017)
@@ -37,8 +37,8 @@ MEAN_EARTH_TK_ANGLES = ((3, 67.92), (2, 78.56), (1, 0.30))     # (axis, arcsec),
 def principal_to_mean_earth():
     """The matrix taking vectors from DE421's principal-axis frame to its mean-Earth/polar-axis frame:
     [-0.30"]_1 [-78.56"]_2 [-67.92"]_3 (frame rotations), what SPICE makes of the TK frame's angles."""
-    from ..constants import ARCSEC
-    from ..rotations import frame_rotation
+    from ..base.constants import ARCSEC
+    from ..base.rotations import frame_rotation
 
     m = np.eye(3)
     for axis, angle in MEAN_EARTH_TK_ANGLES:

@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..constants import ARCSEC, DAY_S
+from ..base.constants import ARCSEC, DAY_S
 from . import arguments
 
 OM_NM = 7.292115146706979e-05            # rad/s, nut_const.i: nominal Earth angular velocity

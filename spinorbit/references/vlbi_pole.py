@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..constants import J2000_JD
+from ..base.constants import J2000_JD
 
 
 @dataclass(frozen=True, eq=False)

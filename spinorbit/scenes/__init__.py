@@ -1,14 +1,14 @@
 """Scene kinds: ``scene.kind`` in a scenario names a module of this folder, which declares it.
 
-Each scene module defines ``SCENE`` (a spinorbit.scene.Scene: its keys, model, comparison, verdict, cost);
-the runner (spinorbit.runner) does the rest.  The kinds are the folder's modules (``common`` holds what they
+Each scene module defines ``SCENE`` (a spinorbit.scene.declaration.Scene: its keys, model, comparison, verdict, cost);
+the runner (spinorbit.edge.runner) does the rest.  The kinds are the folder's modules (``common`` holds what they
 share), found without importing them: a new scene is one file here, and a scenario loads only the scene it
 names.
 """
 import pkgutil
 from importlib import import_module
 
-from ..errors import ScenarioError
+from ..base.errors import ScenarioError
 
 SHARED = ("common",)          # modules of this folder that are not scenes
 SCENES = tuple(sorted(module.name for module in pkgutil.iter_modules(__path__)

@@ -4,10 +4,10 @@ from dataclasses import fields
 
 import numpy as np
 
+from ..base.errors import PhysicsError, ScenarioError
 from ..bodies import RigidBody
-from ..errors import PhysicsError, ScenarioError
 from ..plots.common import plot_series  # scenes call common.plot_series
-from ..scene import TimeScale
+from ..scene.declaration import TimeScale
 
 
 def u():

@@ -15,11 +15,11 @@ under 10 yr is not compared.
 """
 import numpy as np
 
-from ..constants import JULIAN_CENTURY_D
+from ..base.constants import JULIAN_CENTURY_D
 from ..models.assemblies.earth_moon import FIGURES
-from ..params import Params, key, table
-from ..scene import Cost, Model, Outcome, Scene
-from ..verdict import Check, Verdict
+from ..scene.declaration import Cost, Model, Outcome, Scene
+from ..scene.params import Params, key, table
+from ..scene.verdict import Check, Verdict
 from . import common
 
 
@@ -86,7 +86,7 @@ def build(p, times):
 def compare_run(p, run):
     from astropy.table import QTable
 
-    from ..schema import tdb_days_to_time
+    from ..scene.schema import tdb_days_to_time
 
     t, t0, solution = run.times, p.span.start, run.solution
     energy, big_l = run.model.system.invariants(solution.y, t)

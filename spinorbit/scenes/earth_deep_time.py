@@ -15,10 +15,10 @@ precession), compared with ERFA's long-term precession over the first 2 kyr and 
 """
 import time
 
-from ..params import Params, key, table, values_of
-from ..scene import Model, Outcome, Scene
+from ..scene.declaration import Model, Outcome, Scene
+from ..scene.params import Params, key, table, values_of
+from ..scene.verdict import Check, Verdict
 from ..starts.earth_deep_time import MYR_D, DeepTimeOrbitTable, check_span, nbody_counts
-from ..verdict import Check, Verdict
 
 # The physics La2004 is judged against (numerical keys, the ephemeris and the file may change).
 NOMINAL = {"model.Td": 1.0, "model.Ed": 1.0, "model.precession": "iau2006_rate", "model.tidal_tilt": True,

@@ -18,14 +18,14 @@ import time
 
 import numpy as np
 
+from ..base.errors import ScenarioError
 from ..comparisons import earth_moon_de421 as de421
-from ..errors import ScenarioError
 from ..models.assemblies.earth_moon import EXTERNAL, PLANETS, SWITCHES
 from ..orbits.sources import OrbitSource
-from ..params import Params, key, source_key, table
 from ..plots.solar_system import moon_vs_de421
-from ..scene import Answer, Cost, Model, Outcome, Scene, Stored
-from ..verdict import Check, Verdict
+from ..scene.declaration import Answer, Cost, Model, Outcome, Scene, Stored
+from ..scene.params import Params, key, source_key, table
+from ..scene.verdict import Check, Verdict
 from . import common
 
 

@@ -24,12 +24,12 @@ measured precession constant and its distance within 2 sigma; the other tides' p
 one-parameter tides are the classical models, whose collision ~1.5 Ga is the known failure the resonant ocean
 tide resolves).
 """
-from ..errors import ScenarioError
+from ..base.errors import ScenarioError
 from ..models.tidal_history.tides import TIDES
-from ..params import Params, key, table
-from ..scene import Model, Outcome, Scene
+from ..scene.declaration import Model, Outcome, Scene
+from ..scene.params import Params, key, table
+from ..scene.verdict import Check, Verdict
 from ..starts.earth_moon_history import GYR_D
-from ..verdict import Check, Verdict
 
 MODELS = tuple(TIDES)
 OCEANS = tuple(name for name, tide in TIDES.items() if tide.depth is not None)

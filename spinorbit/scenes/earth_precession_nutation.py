@@ -7,21 +7,17 @@ conditions (starts/earth.py); the CIP X, Y, the fitted precession and nutation, 
 (comparisons/earth_iau.py).  The rigid-minus-IAU nutation is the non-rigid response, not an error:
 ``earth.nonrigid`` applies it (comparisons/earth_nonrigid.py; REN-2000 and VLBI's observed pole beside).
 """
-from ..analysis.precession import (
-    OBLIQUITY_RATE_MINUS_IAU_ARCSEC_CY,
-    PSI_RATE_MINUS_IAU_ARCSEC_CY,
-    RATE_MIN_SPAN_D,
-)
+from ..analysis.precession import OBLIQUITY_RATE_MINUS_IAU_ARCSEC_CY, PSI_RATE_MINUS_IAU_ARCSEC_CY, RATE_MIN_SPAN_D
 from ..analysis.transfer.models import MODELS
 from ..bodies import earth
 from ..comparisons.earth_iau import X_RMS_MAS
 from ..orbits.sources import OrbitSource
-from ..params import Params, key, source_key, table
 from ..references import euler_p96
-from ..scene import Answer, Cost, Model, Outcome, Scene, Stored
-from ..schema import SAMPLE_STEP
+from ..scene.declaration import Answer, Cost, Model, Outcome, Scene, Stored
+from ..scene.params import Params, key, source_key, table
+from ..scene.schema import SAMPLE_STEP
+from ..scene.verdict import Check, Verdict
 from ..starts.earth import restarted
-from ..verdict import Check, Verdict
 
 
 @table

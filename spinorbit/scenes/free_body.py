@@ -1,7 +1,7 @@
 """Torque-free asymmetric rigid body against Euler's closed form (ch. 15 §808; Euler 1758 via Cayley).
 
 Compares the integrated body angular velocity and attitude with the Jacobi
-elliptic-function solution of spinorbit.theory.FreeRigidBody.  Euler's
+elliptic-function solution of spinorbit.analysis.theory.FreeRigidBody.  Euler's
 equations need only 0 < A <= B <= C; the triangle inequality A + B >= C of a
 real mass distribution is not required here, so that the classic
 Hairer-Lubich-Wanner test case (moments 2/3, 1, 2) can be run as published.
@@ -9,14 +9,14 @@ Hairer-Lubich-Wanner test case (moments 2/3, 1, 2) can be run as published.
 import numpy as np
 
 from ..analysis.invariants import invariant_drift
-from ..constants import ARCSEC
-from ..errors import PhysicsError, ScenarioError
+from ..base.constants import ARCSEC
+from ..base.errors import PhysicsError, ScenarioError
+from ..base.rotations import quat_angle, quat_from_euler313
 from ..models.assemblies.idealised import free_body
-from ..params import Params, key, table
-from ..rotations import quat_angle, quat_from_euler313
-from ..scene import Model, Outcome, Scene
-from ..schema import ANGLE, SPIN
-from ..verdict import Check, Verdict
+from ..scene.declaration import Model, Outcome, Scene
+from ..scene.params import Params, key, table
+from ..scene.schema import ANGLE, SPIN
+from ..scene.verdict import Check, Verdict
 from . import common
 
 
@@ -43,7 +43,7 @@ VERDICT = Verdict("Euler's closed form", (
 
 def build(p, times):
     """The free body and its closed form (theory.FreeRigidBody) from the same start."""
-    from ..theory import FreeRigidBody
+    from ..analysis.theory import FreeRigidBody
 
     q0 = quat_from_euler313(*p.body.attitude0)
     try:

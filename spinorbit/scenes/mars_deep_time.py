@@ -3,8 +3,8 @@ averaged precession under the Sun set by the present rate, the Sun's tide, from 
 (spinorbit.starts.mars_deep_time), against La2004 Mars over 1, 5 and 20 Myr; a sweep's obliquity band."""
 import time
 
-from ..params import Params, key, table, values_of
-from ..scene import Model, Outcome, Scene
+from ..scene.declaration import Model, Outcome, Scene
+from ..scene.params import Params, key, table, values_of
 from ..starts.earth_deep_time import MYR_D, DeepTimeOrbitTable, check_span, nbody_counts
 
 
@@ -30,7 +30,7 @@ class MarsDeepTimeParams(Params):
 
 def verdict(p, comparison):
     from ..comparisons.mars_deep_time import LA2004, TARGET
-    from ..verdict import Check, Verdict
+    from ..scene.verdict import Check, Verdict
 
     values = values_of(p)
     judged = all(values[key] == value for key, value in LA2004.items()) and abs(p.span.end) >= MYR_D - 1.0

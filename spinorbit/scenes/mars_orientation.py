@@ -13,9 +13,9 @@ from ..bodies import mars
 from ..comparisons.mars_orientation import POLE_MINUS_IAU2015_MAX_ARCSEC, answer_table, verdict
 from ..models.assemblies.planet import MODELS
 from ..orbits.sources import OrbitSource
-from ..params import Params, key, source_key, table
-from ..scene import Answer, Cost, Model, Scene, Stored
-from ..schema import SAMPLE_STEP
+from ..scene.declaration import Answer, Cost, Model, Scene, Stored
+from ..scene.params import Params, key, source_key, table
+from ..scene.schema import SAMPLE_STEP
 from ..starts.mars import restarted, start_epoch
 
 

@@ -8,9 +8,9 @@ spinorbit.comparisons.mercury_spin.
 from ..bodies import mercury
 from ..comparisons.mercury_spin import verdict
 from ..orbits.sources import OrbitSource
-from ..params import Params, key, source_key, table
-from ..scene import Cost, Model, Scene
-from ..schema import ANGLE, SAMPLE_STEP
+from ..scene.declaration import Cost, Model, Scene
+from ..scene.params import Params, key, source_key, table
+from ..scene.schema import ANGLE, SAMPLE_STEP
 
 
 @table

@@ -18,12 +18,12 @@ from dataclasses import replace
 import numpy as np
 
 from ..analysis.librations import LONGITUDE_ERROR_MAX_ARCSEC, POLE_ERROR_MAX_ARCSEC
-from ..constants import ARCSEC
+from ..base.constants import ARCSEC
 from ..orbits.sources import OrbitSource
-from ..params import Params, key, source_key, table, time_key
-from ..scene import Answer, Cost, Model, Outcome, Scene, Stored
-from ..schema import SAMPLE_STEP
-from ..verdict import Check, Verdict
+from ..scene.declaration import Answer, Cost, Model, Outcome, Scene, Stored
+from ..scene.params import Params, key, source_key, table, time_key
+from ..scene.schema import SAMPLE_STEP
+from ..scene.verdict import Check, Verdict
 
 # Targets (max over the run, arcsec) against DE421 per level: (pole, longitude, source).
 _RIGID = ("project target for level 2 (pole 12\", longitude 2\"): a rigid Moon lacks DE421's fluid core "

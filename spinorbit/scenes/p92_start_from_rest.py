@@ -9,12 +9,12 @@ import math
 
 import numpy as np
 
-from ..constants import ARCSEC
+from ..base.constants import ARCSEC
 from ..models.assemblies.idealised import under_point_masses
-from ..params import Params, key, table
-from ..scene import Model, Outcome, Scene
-from ..schema import DISTANCE, GM
-from ..verdict import Check, Verdict
+from ..scene.declaration import Model, Outcome, Scene
+from ..scene.params import Params, key, table
+from ..scene.schema import DISTANCE, GM
+from ..scene.verdict import Check, Verdict
 from . import common
 
 
@@ -64,7 +64,7 @@ def build(p, times):
 
 
 def compare_run(p, run):
-    from ..theory import start_from_rest
+    from ..analysis.theory import start_from_rest
 
     solution = run.solution
     axis, cos_of, rate = start_from_rest(p.body.moments, run.model.direction, p.orbit.gm, p.orbit.radius)

@@ -12,10 +12,10 @@ import numpy as np
 
 from ..analysis.planar_libration import planar_system
 from ..comparisons.planar_libration_euler import compare_run
-from ..params import Params, key, table
-from ..scene import Model, Scene
-from ..schema import DISTANCE, GM, RATE
-from ..verdict import Check, Verdict
+from ..scene.declaration import Model, Scene
+from ..scene.params import Params, key, table
+from ..scene.schema import DISTANCE, GM, RATE
+from ..scene.verdict import Check, Verdict
 from . import common
 
 
@@ -56,8 +56,8 @@ def verdict(p, comparison):
 
 def build(p, times):
     """The body on Euler's circle with zeta = 0 and zeta' from the energy constant; the closed form."""
+    from ..analysis.theory import PlanarLibration, libration_n
     from ..orbits.analytic import CircularOrbits
-    from ..theory import PlanarLibration, libration_n
 
     body = common.rigid_body(p.body.moments)
     gm, s, delta = p.orbit.gm, p.orbit.radius, p.orbit.rate

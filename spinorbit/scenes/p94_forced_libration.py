@@ -9,12 +9,12 @@ with the full 3-D rigid body.  The neglected terms are O(alpha beta^2, n zeta^3)
 import numpy as np
 
 from ..analysis.planar_libration import planar_system, zeta_from_solution
-from ..constants import ARCSEC
-from ..errors import ScenarioError
-from ..params import Params, key, table
-from ..scene import Model, Outcome, Scene
-from ..schema import ANGLE, DISTANCE, GM, RATE
-from ..verdict import Check, Verdict
+from ..base.constants import ARCSEC
+from ..base.errors import ScenarioError
+from ..scene.declaration import Model, Outcome, Scene
+from ..scene.params import Params, key, table
+from ..scene.schema import ANGLE, DISTANCE, GM, RATE
+from ..scene.verdict import Check, Verdict
 from . import common
 
 
@@ -47,8 +47,8 @@ VERDICT = Verdict("Euler's forced libration to second order (§835)", (
 
 def build(p, times):
     """The body with A towards F and the spin §838 prescribes (no free libration excited)."""
+    from ..analysis.theory import forced_libration_initial_rate, libration_n
     from ..orbits.analytic import UnevenCircle
-    from ..theory import forced_libration_initial_rate, libration_n
 
     body, o = common.rigid_body(p.body.moments), p.orbit
     n = libration_n(body.moments, o.gm, o.f)
@@ -62,7 +62,7 @@ def build(p, times):
 
 
 def compare_run(p, run):
-    from ..theory import forced_libration
+    from ..analysis.theory import forced_libration
 
     o, n, dt = p.orbit, run.model.n, run.solution.t - p.span.start
     zeta_num = zeta_from_solution(run.solution, o.rate * dt + o.alpha * np.sin(o.frequency * dt))

@@ -13,12 +13,12 @@ import math
 
 import numpy as np
 
-from ..errors import ScenarioError
+from ..base.errors import ScenarioError
 from ..models.assemblies.idealised import under_point_masses
-from ..params import Params, key, table
-from ..scene import Model, Outcome, Scene
-from ..schema import ANGLE, DISTANCE, GM, SPIN
-from ..verdict import Check, Verdict
+from ..scene.declaration import Model, Outcome, Scene
+from ..scene.params import Params, key, table
+from ..scene.schema import ANGLE, DISTANCE, GM, SPIN
+from ..scene.verdict import Check, Verdict
 from . import common
 
 
@@ -77,7 +77,7 @@ def build(p, times):
 
 
 def compare_run(p, run):
-    from ..theory import pole_rates_symmetric
+    from ..analysis.theory import pole_rates_symmetric
 
     solution, (cc, _, aa) = run.solution, p.body.moments
     gamma, alpha, rho = p.body.spin, p.body.pole_offset, p.body.pole_angle

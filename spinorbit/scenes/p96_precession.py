@@ -17,13 +17,13 @@ import math
 import numpy as np
 
 from ..analysis.figure_axis import fit_angles
-from ..constants import ARCSEC
-from ..errors import ResonanceError, ScenarioError
+from ..base.constants import ARCSEC
+from ..base.errors import ResonanceError, ScenarioError
 from ..models.assemblies.idealised import under_point_masses
-from ..params import Params, key, table
-from ..scene import Model, Outcome, Scene
-from ..schema import ANGLE, DISTANCE, GM, RATE, SPIN
-from ..verdict import Check, Verdict
+from ..scene.declaration import Model, Outcome, Scene
+from ..scene.params import Params, key, table
+from ..scene.schema import ANGLE, DISTANCE, GM, RATE, SPIN
+from ..scene.verdict import Check, Verdict
 from . import common
 
 
@@ -69,8 +69,8 @@ def verdict(p, comparison):
 def build(p, times):
     """The spinner on Euler's forced solution (§844), or at its pole where the formulas fail (§849); the
     closed forms of Euler's text and with the pole's free rotation (``true``)."""
+    from ..analysis.theory import SymmetricPrecession, p96_initial_state, precession_constant
     from ..orbits.analytic import CircularOrbits
-    from ..theory import SymmetricPrecession, p96_initial_state, precession_constant
 
     body = common.rigid_body(p.body.moments)
     cc, aa = body.moments[0], body.moments[2]

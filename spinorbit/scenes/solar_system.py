@@ -11,10 +11,10 @@ integrated 343 asteroids this does not; what they move in each planet is stated 
 Runs with the Taylor integrator (``integrator.method = "taylor"``) or any other.
 """
 from ..models.assemblies.solar_system import SWITCHES
-from ..params import Params, key, table
 from ..plots.solar_system import moon_vs_de421, planets_vs_de421
-from ..scene import Model, Outcome, Scene, Stored
-from ..verdict import Check, Verdict
+from ..scene.declaration import Model, Outcome, Scene, Stored
+from ..scene.params import Params, key, table
+from ..scene.verdict import Check, Verdict
 from . import common
 
 
@@ -69,8 +69,8 @@ def build(p, times):
 
 def start_epoch(p):
     """TDB days of the run's start: DE421's epoch JDEPOC, or span.start."""
+    from ..base.constants import J2000_JD
     from ..bodies.de421_header import header
-    from ..constants import J2000_JD
 
     return header()["JDEPOC"] - J2000_JD if p.start.epoch == "de421" else p.span.start
 

@@ -18,16 +18,12 @@ Passes when the reference's figure axis agrees with the best other run to
 """
 import numpy as np
 
-from ..comparisons.fast_spin_p96 import (
-    PRECESSION_RATE_REL_ERROR_MAX,
-    REFERENCE_AGREEMENT_AXIS_RAD,
-    compare_run,
-)
+from ..comparisons.fast_spin_p96 import PRECESSION_RATE_REL_ERROR_MAX, REFERENCE_AGREEMENT_AXIS_RAD, compare_run
 from ..models.assemblies.idealised import under_point_masses
-from ..params import Params, key, table
-from ..scene import Model, Scene
-from ..schema import ANGLE, SPIN
-from ..verdict import Check, Verdict
+from ..scene.declaration import Model, Scene
+from ..scene.params import Params, key, table
+from ..scene.schema import ANGLE, SPIN
+from ..scene.verdict import Check, Verdict
 from . import common
 
 
@@ -71,8 +67,8 @@ RADIUS = 1.0          # F's distance (length unit arbitrary: only GM/s^3 enters)
 def build(p, times):
     """No main run (a converged reference and the ladder of ``stress.runs``, compare): the spinner started on
     Euler's forced solution (§844), its closed form."""
+    from ..analysis.theory import SymmetricPrecession, p96_initial_state, precession_constant
     from ..orbits.analytic import CircularOrbits
-    from ..theory import SymmetricPrecession, p96_initial_state, precession_constant
 
     body = common.rigid_body(p.body.moments)
     a_, b_, aa = body.moments

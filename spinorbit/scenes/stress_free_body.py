@@ -10,14 +10,14 @@ through analysis.ladder.work_precision.
 """
 import numpy as np
 
+from ..analysis.theory import FreeRigidBody
+from ..base.errors import ScenarioError
 from ..comparisons.free_body_stress import Q0, attitude_error, degenerate, flip, long_run, shapes
-from ..errors import ScenarioError
 from ..integrators import METHODS
 from ..models.assemblies.idealised import free_body
-from ..params import Params, key, table
-from ..scene import Model, Outcome, Scene
-from ..theory import FreeRigidBody
-from ..verdict import Check, Verdict
+from ..scene.declaration import Model, Outcome, Scene
+from ..scene.params import Params, key, table
+from ..scene.verdict import Check, Verdict
 from . import common
 
 CASES = ("flip", "degenerate", "shapes", "long_run")

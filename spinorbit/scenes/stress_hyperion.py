@@ -21,10 +21,10 @@ an ensemble of ``lyapunov.ensemble`` starts 1e-3 rad apart around the nominal on
 import numpy as np
 
 from ..comparisons.hyperion_lyapunov import compare_run
-from ..params import Params, key, table
-from ..scene import Model, Scene
-from ..schema import DISTANCE, GM
-from ..verdict import Check, Verdict
+from ..scene.declaration import Model, Scene
+from ..scene.params import Params, key, table
+from ..scene.schema import DISTANCE, GM
+from ..scene.verdict import Check, Verdict
 from . import common
 
 

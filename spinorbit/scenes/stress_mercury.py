@@ -29,10 +29,10 @@ from ..comparisons.mercury_libration import (
     LIBRATION_88D_REL_ERROR_VS_SERIES,
     compare_run,
 )
-from ..params import Params, key, table
-from ..scene import Model, Scene
-from ..schema import DISTANCE, GM
-from ..verdict import Check, Verdict
+from ..scene.declaration import Model, Scene
+from ..scene.params import Params, key, table
+from ..scene.schema import DISTANCE, GM
+from ..scene.verdict import Check, Verdict
 from . import common
 
 RADAR_NOT_INDEPENDENT = ("Margot et al. (2007)'s 35.8\" radar amplitude is not compared: the (B - A)/C used "

@@ -16,12 +16,12 @@ import numpy as np
 
 from ..analysis.ladder import settings, work_precision
 from ..analysis.planar_libration import crossing_times, planar_system, zeta_from_solution
-from ..errors import ScenarioError
+from ..base.errors import ScenarioError
 from ..integrators import METHODS
-from ..params import Params, key, table
-from ..scene import Model, Outcome, Scene
-from ..schema import DISTANCE, GM, RATE
-from ..verdict import Check, Verdict
+from ..scene.declaration import Model, Outcome, Scene
+from ..scene.params import Params, key, table
+from ..scene.schema import DISTANCE, GM, RATE
+from ..scene.verdict import Check, Verdict
 from . import common
 
 
@@ -61,8 +61,8 @@ class StressSeparatrixParams(Params):
 
 
 def _setup(p, offset):
+    from ..analysis.theory import PlanarLibration, libration_n
     from ..orbits.analytic import CircularOrbits
-    from ..theory import PlanarLibration, libration_n
 
     gm, s, delta = p.orbit.gm, p.orbit.radius, p.orbit.rate
     n = libration_n(p.body.moments, gm, s)

@@ -33,7 +33,7 @@ def for_scenario(scenario, t_start=None, t_end=None):
     stretches.stored(scenario)
     lo, hi = scenario.params.span.bounds if t_start is None else (min(t_start, t_end), max(t_start, t_end))
     def extend(solution, a, b):
-        from ..scene import scenario_errors
+        from ..scene.declaration import scenario_errors
 
         with scenario_errors(scenario):         # a library InputError on the scenario key that set it
             return _extended(scenario, solution, a, b)
@@ -45,7 +45,7 @@ def for_export(scenario):
     """The Solution of exactly ``scenario``'s model over the whole segments covering its span: the store's
     (extended where it lacks the span) when its model is the stored one, else (a key starts it elsewhere:
     Stored.own_start) the scenario's own run fitted (for_run: its segments tile the span)."""
-    from ..errors import InputError
+    from ..base.errors import InputError
 
     anchor, start = stretches.stored(scenario).anchor, stretches.own_start(scenario)
     if start is None or abs(start - anchor) < 1e-9:
@@ -266,7 +266,7 @@ def stored_model(scenario, t0):
     """Why a run of ``scenario`` started at t0 (TDB days) is not the model the store keeps for its record, or
     "": the store's starts at the scene's anchor (the Earth's record holds its span, so its start), its error
     estimated."""
-    from ..errors import tdb_dates
+    from ..base.errors import tdb_dates
 
     anchor = stretches.stored(scenario).anchor
     if not scenario.params.integrator.estimate_error:

@@ -14,7 +14,7 @@ Earth's by at most ~0.3 mas.  The axis's position angle is measured from the nor
 """
 import numpy as np
 
-from ..errors import InputError
+from ..base.errors import InputError
 
 C_KM_D = 299_792.458 * 86_400.0       # km per day
 AU_KM = 149_597_870.7

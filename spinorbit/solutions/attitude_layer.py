@@ -15,7 +15,7 @@ frame: z its figure axis, x its prime meridian.
 import numpy as np
 from numpy.polynomial import chebyshev as cheb
 
-from ..layout import Layout
+from ..base.layout import Layout
 from . import store
 from .chebyshev import Segments, extrema, first_kind, interpolating
 from .fit import errors

@@ -15,8 +15,8 @@ import os
 import shutil
 from pathlib import Path
 
-from .. import private
-from ..files import open_regular
+from ..base import private
+from ..base.files import open_regular
 
 PACKAGE = Path(__file__).resolve().parents[1]
 HEX = frozenset("0123456789abcdef")
@@ -108,6 +108,6 @@ def content_version(package, directory):
 def package_version(directory):
     """spinorbit's version and the sha256 (16 hex digits) of every Python file of the package, its record kept
     in ``directory`` (the solution store's)."""
-    from ..version import __version__
+    from ..base.version import __version__
 
     return f"{__version__}+{content_version(PACKAGE, directory)}"

@@ -18,8 +18,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError
-from ..layout import Layout
+from ..base.errors import InputError
+from ..base.layout import Layout
 from . import store, stretches
 from .chebyshev import Segments, interpolating
 from .solution import Solution
@@ -200,8 +200,8 @@ def table(solution, t):
     import astropy.units as u
     from astropy.table import QTable
 
-    from ..constants import MAS
-    from ..schema import tdb_days_to_time
+    from ..base.constants import MAS
+    from ..scene.schema import tdb_days_to_time
 
     values = solution.components(t)
     z, cip = values[:, LAYOUT["earth.pole"]], values[:, LAYOUT["iau.cip"]]

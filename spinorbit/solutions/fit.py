@@ -13,10 +13,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..constants import ARCSEC
+from ..base.constants import ARCSEC
+from ..base.layout import Layout
+from ..base.rotations import quat_angle, vector_angle
 from ..integrators import simulate
-from ..layout import Layout
-from ..rotations import quat_angle, vector_angle
 from .chebyshev import Grid, Segments, grid_indices, interpolating_at  # noqa: F401  (fit.Grid)
 
 

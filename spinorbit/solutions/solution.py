@@ -10,7 +10,7 @@ of each body turned by its spin, the position of each integrated body; ``states(
 """
 import numpy as np
 
-from ..layout import Layout
+from ..base.layout import Layout
 
 
 class Solution:
@@ -55,7 +55,7 @@ class Solution:
     def quantities(self, t):
         """{column name: (values (n,), astropy unit name)} of the named quantities at TDB days ``t``."""
         from ..analysis.librations import icrf_to_body
-        from ..rotations import euler313_from_matrix
+        from ..base.rotations import euler313_from_matrix
 
         values, out = self.components(t), {}
         for part in self.layout.slices:
@@ -122,7 +122,7 @@ def tdb_days(times):
     """(TDB days from J2000 (n,), the Times) of astropy ``times``; InputError unless Times, finite."""
     from astropy.time import Time
 
-    from ..errors import InputError
+    from ..base.errors import InputError
 
     if not isinstance(times, Time):
         raise InputError("times", type(times).__name__, "astropy Time (any scale)")

@@ -38,10 +38,10 @@ from pathlib import Path
 
 import numpy as np
 
+from ..base.constants import ARCSEC, DAY_S
+from ..base.errors import EphemerisRangeError, InputError
+from ..base.files import write_atomically
 from ..bodies.table import EMB
-from ..constants import ARCSEC, DAY_S
-from ..errors import EphemerisRangeError, InputError
-from ..files import write_atomically
 from .chebyshev import Segments, interpolating_at
 from .tracks import body_code, tracks
 
@@ -122,7 +122,7 @@ def export(solution, directory, asked=None):
 def angle_series(solution, body):
     """(Chebyshev coefficients (segments, 3, degree + 1) of the 3-1-3 angles of ``body`` on the solution's grid,
     the largest rotation (arcsec) between the angles' series and the solution's attitude between the points)."""
-    from ..rotations import matrix_from_euler313
+    from ..base.rotations import matrix_from_euler313
 
     segments = solution.segments
     count, degree = len(segments.coefficients), segments.degree
@@ -145,7 +145,7 @@ def body_angles(solution, body, t):
     """The 3-1-3 angles (n, 3) of ``body``'s ICRF-to-body rotation at TDB days ``t``: from its attitude
     quaternion, or from its pole and prime meridian (phi = alpha + 90 deg, theta = 90 deg - delta, psi = W)."""
     from ..analysis.librations import icrf_to_body
-    from ..rotations import euler313_from_matrix
+    from ..base.rotations import euler313_from_matrix
 
     if f"{body}.q" in solution.layout:
         return euler313_from_matrix(icrf_to_body(solution.part(f"{body}.q", t)))

@@ -1,12 +1,12 @@
 """The solution store: every solution computed, kept in spinorbit's private cache and extended on demand.
 
-Where: ``<spinorbit's private cache>/solutions`` (spinorbit.verified: 0700, refused in one line when another
+Where: ``<spinorbit's private cache>/solutions`` (spinorbit.base.verified: 0700, refused in one line when another
 user owns it or can write it).  A solution is keyed by what decides its numbers: the scene, every key of the
 scenario but its comparisons, outputs and span (kept for a scene whose start is fitted over its span: the
 Earth's), the integrator's options, the ephemeris *file* the orbit source names (its sha256 and size: another
 file under the same name, or a file replaced at its path, is another solution), and the code's version
 (solutions.code_version: spinorbit's version and a sha256 of the package's source: a changed integration never
-reuses an old file).  Each file is a verified npz (spinorbit.verified: every array hashed, written aside and
+reuses an old file).  Each file is a verified npz (spinorbit.base.verified: every array hashed, written aside and
 renamed) holding the series, the layout, the provenance, the states where the integration stopped and the record
 it was keyed by; one that is not intact (truncated, tampered with, another model's) is refused in one line,
 deleted and computed again.  A read that fails for a reason that is not the file's (EIO, EMFILE) is said and the
@@ -30,8 +30,8 @@ import warnings
 
 import numpy as np
 
-from .. import private, verified
-from ..layout import Layout
+from ..base import private, verified
+from ..base.layout import Layout
 from ..orbits.sources import OrbitSource
 from .chebyshev import Segments
 from .code_version import package_version
@@ -62,7 +62,7 @@ def record(scenario):
     """What decides a solution's numbers: the scene kind, its model keys, the ephemeris file's identity, the code's
     version (and the span, for a scene whose start depends on it: the Earth's is fitted over its span's
     outputs)."""
-    from ..params import values_of
+    from ..scene.params import values_of
 
     anchored = scenario.scene.stored is not None and scenario.scene.stored.anchor is not None
     ignored = LAYER_KEYS if anchored else tuple(k for k in LAYER_KEYS if k not in ("span.", "model.start"))
@@ -97,7 +97,7 @@ def _arrays(solution):
 
 
 def save(solution, rec, path):
-    """Write atomically (spinorbit.verified.write), then keep the store within LIMIT."""
+    """Write atomically (spinorbit.base.verified.write), then keep the store within LIMIT."""
     verified.write(path, _arrays(solution), rec, solution.provenance)
     verified.prune(path.parent, "*.npz", LIMIT["bytes"], keep=[path])
 
@@ -262,7 +262,7 @@ def entries():
 def clear():
     """Delete every stored solution no process holds (and the leftovers of killed writes) and the code-version
     records; a solution another live process holds the lock of is kept, with its lock and temporary files, and
-    said (spinorbit.verified.clear).  Returns the number of files removed."""
+    said (spinorbit.base.verified.clear).  Returns the number of files removed."""
     folder = directory()
     removed = verified.clear(folder, "*.npz")
     for path in folder.glob("*.json"):

@@ -12,7 +12,7 @@ def stored(scenario):
     """What ``scenario``'s scene keeps as a solution (its Stored); InputError for a scene that keeps none."""
     declared = scenario.scene.stored
     if declared is None:
-        from ..errors import InputError
+        from ..base.errors import InputError
         from ..scenes import stored_kinds
 
         raise InputError("scene", scenario.kind, f"a scene kept as a solution: {sorted(stored_kinds())}")

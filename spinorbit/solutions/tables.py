@@ -70,7 +70,7 @@ def attitude(layer, body, t):
 def earth_from_moon(source, t):
     """The Earth seen from the Moon (n, 3) km, ICRF, at TDB days ``t`` from orbit source ``source``: read from
     the ephemeris at the dates where it is a JPL kernel, else sampled (orbits.sources)."""
-    from ..errors import InputError
+    from ..base.errors import InputError
     from ..orbits import kernel
     from ..orbits.sources import sample_orbits
 

@@ -89,7 +89,7 @@ def scaled(series, factor):
 def barycentre_track(solution):
     """The Earth-Moon barycentre (3) about the solar-system barycentre (0) over the solution's span, refitted on
     its RECORDS from the ephemeris the solution's run read (``provenance["ephemeris"]``)."""
-    from ..errors import InputError
+    from ..base.errors import InputError
     from ..orbits.sources import ephemeris_identity, orbit_source
 
     read = solution.provenance.get("ephemeris")

@@ -5,8 +5,8 @@ IAU 2000A's arguments)."""
 
 import numpy as np
 
+from ..base.errors import ScenarioError
 from ..bodies import earth
-from ..errors import ScenarioError
 from ..references import euler_p96
 from .earth_pole import PLANETS, ecliptic_pole, ren2000_scaled, started
 

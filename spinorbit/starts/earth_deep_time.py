@@ -5,10 +5,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..constants import ARCSEC, DAY_S, JULIAN_CENTURY_D, JULIAN_YEAR_D
-from ..errors import InputError, ScenarioError
+from ..base.constants import ARCSEC, DAY_S, JULIAN_CENTURY_D, JULIAN_YEAR_D
+from ..base.errors import InputError, ScenarioError
 from ..orbits.sources import OrbitSource
-from ..params import key, source_key, table
+from ..scene.params import key, source_key, table
 
 KYR_D = 1000 * JULIAN_YEAR_D
 MYR_D = 1000 * KYR_D

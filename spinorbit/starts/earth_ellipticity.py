@@ -25,9 +25,9 @@ import math
 
 import numpy as np
 
+from ..base.constants import ARCSEC, JULIAN_CENTURY_D, JULIAN_YEAR_D
+from ..base.progress import stage
 from ..bodies import earth
-from ..constants import ARCSEC, JULIAN_CENTURY_D, JULIAN_YEAR_D
-from ..progress import stage
 from ..references import arguments, erfa_pole
 
 HALF_SPAN_D = 50 * JULIAN_YEAR_D         # the run: J2000 +- 50 yr

@@ -7,9 +7,9 @@ from functools import partial
 
 import numpy as np
 
+from ..base.constants import JULIAN_YEAR_D
+from ..base.errors import IntegrationError
 from ..bodies.table import gm_km3_d2
-from ..constants import JULIAN_YEAR_D
-from ..errors import IntegrationError
 
 GYR_D = 1e9 * JULIAN_YEAR_D
 AU_KM = 1.495978707e8                  # IAU 2012 Resolution B2
@@ -55,7 +55,7 @@ def tide(p, c, y0, model):
     """The tidal response of ``model`` (tides.TIDES) calibrated to tides.recession_rate (cm/yr): the one
     parameter of the simple tides, an ocean's drag at its depth (its key; fitted with the Moon's age by
     ``python benchmarks/fit_tides.py``), the continent from its keys; costly tables kept in the cache."""
-    from ..errors import ScenarioError
+    from ..base.errors import ScenarioError
     from ..models.tidal_history.tides import TIDES, Continent, NoDrag, Setting
 
     chosen = TIDES[model]
@@ -79,7 +79,7 @@ def fit_trial(p, model, depth_km, recession_cm_per_yr, span_gyr=-4.6):
     import astropy.units as u
 
     from ..models.tidal_history.tides import TIDES
-    from ..params import converted
+    from ..scene.params import converted
 
     kind, depth = type(p), TIDES[model].depth
     tides = replace(p.tides, model=model,
@@ -91,7 +91,7 @@ def fit_trial(p, model, depth_km, recession_cm_per_yr, span_gyr=-4.6):
 
 
 def keep_table(name, settings, compute):
-    """``compute()``'s array kept in spinorbit's verified cache (spinorbit.verified: ``<cache>/tables/<name>-<hash>
+    """``compute()``'s array kept in spinorbit's verified cache (spinorbit.base.verified: ``<cache>/tables/<name>-<hash>
     .npz``, its record the settings and the tidal-history modules' source, every array hashed, written aside
     and renamed), else computed and kept there; a damaged file is computed again, said in one line; a cache
     that cannot be read or written is done without, said in one line."""
@@ -99,8 +99,8 @@ def keep_table(name, settings, compute):
     import json
     from pathlib import Path
 
-    from .. import verified
-    from ..linker import cache
+    from ..base import verified
+    from ..base.linker import cache
     from ..models import tidal_history
 
     source = hashlib.sha256()
@@ -129,7 +129,7 @@ def keep_table(name, settings, compute):
 
 def run(p, model, t, integrate, part=None):
     """The history of ``model`` over the output times t (from J2000 back), integrated by the runner's
-    ``integrate(system, times, part, ...)`` (spinorbit.scene.Run); its error estimated as the scenario says
+    ``integrate(system, times, part, ...)`` (spinorbit.scene.declaration.Run); its error estimated as the scenario says
     for the main run (``part`` None), not for a tide beside it (the summary reports the main run's alone)."""
     from ..models.tidal_history import equations
 

@@ -6,8 +6,8 @@ import math
 
 import numpy as np
 
+from ..base.constants import ARCSEC, JULIAN_CENTURY_D
 from ..bodies import earth
-from ..constants import ARCSEC, JULIAN_CENTURY_D
 from ..references import ren2000
 
 PLANETS = ("mercury", "venus", "mars", "jupiter", "saturn")

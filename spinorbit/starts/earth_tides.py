@@ -22,10 +22,10 @@ import functools
 
 import numpy as np
 
+from ..base.constants import ARCSEC, JULIAN_CENTURY_D, JULIAN_YEAR_D
+from ..base.progress import stage
 from ..bodies import earth
 from ..bodies.table import gm_km3_d2
-from ..constants import ARCSEC, JULIAN_CENTURY_D, JULIAN_YEAR_D
-from ..progress import stage
 from ..references import erfa_pole
 
 CHOICES = ("none", "de421", "williams1994")

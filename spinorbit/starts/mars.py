@@ -5,8 +5,8 @@ import math
 
 import numpy as np
 
+from ..base.errors import ScenarioError
 from ..bodies import mars
-from ..errors import ScenarioError
 
 PLANETS = ("mercury", "venus", "earth", "moon", "jupiter", "saturn")   # direct torques (Uranus on: < 1e-4 of them)
 MARGIN_D = 1.0        # the orbits sampled beyond the run: the Oppolzer terms difference the torque at t +- 1/64 d
@@ -30,7 +30,7 @@ def mean_orbit_frame():
 
 def start_epoch(p):
     """mars.start in TDB days."""
-    from ..schema import parse_tdb_days
+    from ..scene.schema import parse_tdb_days
 
     return float(parse_tdb_days("mars.start", p.mars.start))
 
@@ -50,9 +50,9 @@ def orbits(p, t0):
 
 def geodesic():
     """De Sitter's precession of Mars on its J2000 mean orbit (models.assemblies.planet.geodesic_rate)."""
+    from ..base.constants import DAY_S
     from ..bodies.de421_header import header
     from ..bodies.table import gm_km3_d2
-    from ..constants import DAY_S
     from ..models.assemblies.planet import geodesic_rate
 
     pole = mean_orbit_frame().T @ np.array([0.0, 0.0, 1.0])

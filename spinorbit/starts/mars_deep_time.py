@@ -18,7 +18,7 @@ import math
 
 import numpy as np
 
-from ..constants import ARCSEC, DAY_S, JULIAN_YEAR_D
+from ..base.constants import ARCSEC, DAY_S, JULIAN_YEAR_D
 from .earth_deep_time import SpinModel
 
 BODY = "mars"

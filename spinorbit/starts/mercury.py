@@ -3,8 +3,8 @@ node precession scaled when asked (the orbit turned about k x dk/dt, spinorbit.o
 body's interior from the parameters, the System and its start from spinorbit.analysis.resonant_spin."""
 import math
 
+from ..base.errors import ScenarioError
 from ..bodies import mercury
-from ..errors import ScenarioError
 
 
 def interior(p):

@@ -3,7 +3,7 @@ DE421's state (orientation, rates, core) at span.start -- or, for a span DE421's
 (another ephemeris, e.g. DE440's 1550-2650), at the nearest epoch it does, integrated out from there."""
 import numpy as np
 
-from ..errors import InputError, ScenarioError
+from ..base.errors import InputError, ScenarioError
 from ..models.assemblies.moon import LEVELS, TERMS
 
 MARGIN_D = 1.0          # orbit samples beyond the outputs: the tide looks back tau (0.1 d)

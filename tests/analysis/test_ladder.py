@@ -2,9 +2,9 @@
 import numpy as np
 
 from spinorbit.analysis.ladder import work_precision
+from spinorbit.analysis.theory import FreeRigidBody
+from spinorbit.base.rotations import quat_angle
 from spinorbit.models.assemblies.idealised import free_body
-from spinorbit.rotations import quat_angle
-from spinorbit.theory import FreeRigidBody
 
 MOMENTS, OMEGA0, Q0 = np.array([0.3, 0.35, 0.4]), np.array([0.1, 1.5, 0.1]), np.array([1.0, 0.0, 0.0, 0.0])
 

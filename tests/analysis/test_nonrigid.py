@@ -19,9 +19,9 @@ from spinorbit.analysis.transfer.models import (
     RIGID,
     TWO_LAYER,
 )
+from spinorbit.base.errors import ScenarioError
 from spinorbit.bodies.earth import H_D
-from spinorbit.errors import ScenarioError
-from spinorbit.runner import run_scenario
+from spinorbit.edge.runner import run_scenario
 from tests.units import mas
 
 SCENARIO = "scenarios/earth_precession_nutation_nonrigid.toml"

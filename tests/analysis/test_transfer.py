@@ -77,7 +77,7 @@ def test_lambert_fcn_model_is_the_iers_routines():
 
 
 def test_lambert_fcn_model_refuses_to_extrapolate():
-    from spinorbit.errors import InputError
+    from spinorbit.base.errors import InputError
 
     with pytest.raises(InputError, match="1984.0-2013.0"):
         fcn_lambert.fcn_pole(np.array([fcn_lambert.SPAN_TDB_D[1] + 1.0]))

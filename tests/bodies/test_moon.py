@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 from spinorbit.analysis.librations import pole_and_longitude_difference
+from spinorbit.base.errors import EphemerisRangeError
+from spinorbit.base.rotations import omega_body_from_euler313_rates
 from spinorbit.bodies.moon import de421
-from spinorbit.errors import EphemerisRangeError
 from spinorbit.references import moon_de421 as ref
-from spinorbit.rotations import omega_body_from_euler313_rates
 from tests.units import arcsec, mas
 
 C = de421()
@@ -67,9 +67,9 @@ def test_spherical_core_carry_equals_linear_solution():
     (h w)^4 k T |w_m - <w_m>| / 120 ~ 1e-11): bound 1e-9 of |w|."""
     from scipy.integrate import trapezoid
 
+    from spinorbit.base.layout import Layout
     from spinorbit.bodies import de421_orientation
     from spinorbit.integrators import simulate
-    from spinorbit.layout import Layout
     from spinorbit.models.ode import Ode
     from spinorbit.models.start import core_rhs
 
@@ -97,6 +97,7 @@ def test_the_generated_rhs_is_the_lunar_model(level):
     Earth raised tau ago (its position from the orbit source, its velocity by central differences of 1e-3 d)
     and the spin, the mantle and fluid core (Folkner et al. 2014, §III); q' = q (0, w) / 2.  Bound 1e-13 of
     each slice's largest rate (at this state the Earth's J2 is 6e-6 of the torque, the planets' 4e-8)."""
+    from spinorbit.base.rotations import matrix_from_quat, quat_rate
     from spinorbit.bodies.de421_header import header
     from spinorbit.models import distortion, spin
     from spinorbit.models.assemblies.moon import LEVELS, moon
@@ -105,7 +106,6 @@ def test_the_generated_rhs_is_the_lunar_model(level):
     from spinorbit.models.start import moon_de421
     from spinorbit.orbits.sources import sample_orbits
     from spinorbit.references.moon_de421 import earth_pole
-    from spinorbit.rotations import matrix_from_quat, quat_rate
 
     t, spec = 1234.5, LEVELS[level]
     orbits = sample_orbits("de421", "moon", spec.bodies, t - 2.0, t + 2.0, 0.5)
@@ -156,7 +156,7 @@ def test_the_generated_rhs_is_the_lunar_model(level):
 # --- the scene against DE421 on 5 years (2000-2005) ------------------------------------
 
 def _run(level, years=5):
-    from spinorbit.runner import run_scenario
+    from spinorbit.edge.runner import run_scenario
 
     return run_scenario("scenarios/moon_libration.toml",
                         [f"model.level={level}", 'span.start="2000-01-01T12:00:00"', f'span.end="{years} yr"',
@@ -184,15 +184,15 @@ def test_level3_against_de421_5yr():
 
 
 def test_span_outside_source_raises():
-    from spinorbit.runner import run_scenario
+    from spinorbit.edge.runner import run_scenario
 
     with pytest.raises(EphemerisRangeError):
         run_scenario("scenarios/moon_libration.toml", ['span.start="1850-01-01T00:00:00"', 'span.end="1 yr"'])
 
 
 def test_bad_level_names_key():
-    from spinorbit.errors import ScenarioError
-    from spinorbit.runner import run_scenario
+    from spinorbit.base.errors import ScenarioError
+    from spinorbit.edge.runner import run_scenario
 
     with pytest.raises(ScenarioError, match="model.level"):
         run_scenario("scenarios/moon_libration.toml", ["model.level=7", 'span.end="1900-02-01T00:00:00"'])

@@ -5,9 +5,9 @@ import sys
 
 import pytest
 
+from spinorbit.base.constants import DAY_S
+from spinorbit.base.errors import InputError
 from spinorbit.bodies.table import gm_km3_d2
-from spinorbit.constants import DAY_S
-from spinorbit.errors import InputError
 
 # DE421's GMs as Folkner, Williams & Boggs (2008, IOM 343R-08-003, Table 2) publish them, km^3/s^2.
 IOM_GM_KM3_S2 = {"sun": 132712440040.944, "earth": 398600.436233, "moon": 4902.800076, "mercury": 22032.090,
@@ -31,8 +31,8 @@ import dataclasses
 from spinorbit.bodies import table
 table.BODIES["ceres"] = table.Attractor("ceres", (2000001,), "MA0001")    # the one change: a row of the table
 from spinorbit.bodies.de421_header import header
-from spinorbit.constants import DAY_S
-from spinorbit.errors import InputError
+from spinorbit.base.constants import DAY_S
+from spinorbit.base.errors import InputError
 from spinorbit.models.assemblies import earth_moon, solar_system
 from spinorbit.orbits import kernel, nbody, solution
 from spinorbit.orbits.sources import gm_of

@@ -5,13 +5,13 @@ import math
 import numpy as np
 import pytest
 
-from spinorbit import rotations
+from spinorbit.base import rotations
+from spinorbit.base.linker import link
+from spinorbit.base.rotations import quat_from_euler313
 from spinorbit.integrators import simulate
 from spinorbit.integrators.rk8 import RK8, rk8_dense, rk_step
-from spinorbit.linker import link
 from spinorbit.models.assemblies.idealised import under_point_masses
 from spinorbit.orbits.analytic import CircularOrbits
-from spinorbit.rotations import quat_from_euler313
 
 STEP = 0.2
 

@@ -2,8 +2,8 @@
 import numpy as np
 import pytest
 
+from spinorbit.base.errors import InputError
 from spinorbit.bodies import earth
-from spinorbit.errors import InputError
 from spinorbit.integrators import simulate
 from spinorbit.integrators.simulation import differences
 from spinorbit.models.assemblies.earth_moon import closed

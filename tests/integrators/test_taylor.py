@@ -7,15 +7,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from spinorbit.errors import IntegrationError, ScenarioError
+from spinorbit.base.errors import IntegrationError, ScenarioError
+from spinorbit.base.rotations import quat_angle, quat_from_euler313
+from spinorbit.edge.runner import run_scenario
+from spinorbit.edge.scenarios import load_scenario, taylor_kinds
 from spinorbit.integrators import simulate
 from spinorbit.integrators.taylor import heyoka, scales
 from spinorbit.models.assemblies.earth_moon import closed
 from spinorbit.models.assemblies.idealised import free_body, under_point_masses
 from spinorbit.orbits.analytic import CircularOrbits, KeplerOrbit
-from spinorbit.rotations import quat_angle, quat_from_euler313
-from spinorbit.runner import run_scenario
-from spinorbit.scenarios import load_scenario, taylor_kinds
 
 SCENARIOS = Path(__file__).resolve().parents[2] / "scenarios"
 EPS = np.finfo(float).eps
@@ -69,9 +69,9 @@ def test_the_state_is_scaled_slice_by_slice_by_powers_of_two():
 
 
 def test_free_body_against_euler_at_heyokas_floor():
-    """Euler's closed form (spinorbit.theory) over 100 periods of the HLW body at tolerance 1e-15: 1e-11 rad
+    """Euler's closed form (spinorbit.analysis.theory) over 100 periods of the HLW body at tolerance 1e-15: 1e-11 rad
     (the rounding of 1e4 steps), and the error estimate (a run at 1e-17) says as much."""
-    from spinorbit.theory import FreeRigidBody
+    from spinorbit.analysis.theory import FreeRigidBody
 
     moments, omega0, q0 = np.array([2 / 3, 1.0, 2.0]), np.array([1.0, 0.1, 0.3]), quat_from_euler313(0.1, 0.2, 0.3)
     t = np.linspace(0.0, 1000.0, 1001)[1:]
@@ -155,7 +155,7 @@ def test_taylor_is_refused_by_a_scene_that_reads_an_ephemeris():
 
 def test_heyoka_caches_under_spinorbits_cache_directory():
     """heyoka's on-disk cache lives beside spinorbit's compiled kernels, private to the user."""
-    from spinorbit.linker.cache import kernels_dir
+    from spinorbit.base.linker.cache import kernels_dir
 
     path = Path(heyoka().llvm_state.get_diskcache_path())
     assert path == kernels_dir().parent / "heyoka" and heyoka().llvm_state.get_diskcache_enabled()

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from spinorbit import linker, rotations
+from spinorbit.base import linker, rotations
 from spinorbit.integrators import rk8, splitting
 from spinorbit.models.interactions import point_mass
 from tests.second_user import OTHER, as_user, chown_other, needs_root, shared_dir
@@ -130,7 +130,7 @@ def test_a_damaged_numba_cache_file_is_never_unpickled_but_compiled_again(cache,
 
 def refusal(cache, **env):
     """The one line `spinorbit cache` prints (exit 2) for ``cache``."""
-    done = subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache"], capture_output=True, text=True,
+    done = subprocess.run([sys.executable, "-m", "spinorbit.edge.cli", "cache"], capture_output=True, text=True,
                           check=False, env=environment(cache, **env))
     lines = done.stderr.strip().splitlines()
     assert done.returncode == 2 and len(lines) == 1, done.stderr
@@ -171,7 +171,7 @@ def test_a_cache_made_by_another_user_is_refused_and_nothing_in_it_runs(tmp_path
     assert f"{cache} belongs to uid {OTHER}" in refusal(cache)
     done = run(cache)
     assert done.returncode != 0 and "SPINORBIT_CACHE_DIR" in done.stderr and not marker.exists()
-    moon = subprocess.run([sys.executable, "-m", "spinorbit.cli", "run", "scenarios/moon_libration.toml",
+    moon = subprocess.run([sys.executable, "-m", "spinorbit.edge.cli", "run", "scenarios/moon_libration.toml",
                            "--out", str(tmp_path / "out"), "--set", 'span.start="2000-01-01T12:00:00"',
                            "--set", "span.end=4 d", "--set", "model.level=1", "--set", "output.plots=false"],
                           capture_output=True, text=True, cwd=ROOT, check=False,
@@ -188,7 +188,7 @@ def test_no_fallback_into_a_shared_temporary_directory(tmp_path):
     home = Path("/proc/self/no-home")                       # nothing can be created under /proc
     env = {k: v for k, v in os.environ.items() if k not in ("SPINORBIT_CACHE_DIR", "XDG_CACHE_HOME")}
     env.update(HOME=str(home), TMPDIR=str(tmp_path), PYTHONPATH=str(ROOT))
-    done = subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache"], capture_output=True, text=True,
+    done = subprocess.run([sys.executable, "-m", "spinorbit.edge.cli", "cache"], capture_output=True, text=True,
                           check=False, env=env)
     err = done.stderr.strip().splitlines()
     assert done.returncode == 2 and len(err) == 1 and "set SPINORBIT_CACHE_DIR" in err[0], done.stderr
@@ -198,7 +198,7 @@ def test_no_fallback_into_a_shared_temporary_directory(tmp_path):
 def test_a_cache_with_one_second_timestamps_loads_what_it_just_wrote(tmp_path, monkeypatch):
     """Two modules written within one second into a folder whose mtime does not change: both load (they
     are loaded by path, not found by an import finder that caches the folder's listing)."""
-    from spinorbit.linker import cache
+    from spinorbit.base.linker import cache
 
     monkeypatch.setenv("SPINORBIT_CACHE_DIR", str(tmp_path / "cache"))
     cache.kernels_dir.cache_clear()
@@ -227,7 +227,7 @@ def test_cache_lists_every_cache_and_clear_empties_them_all(cache):
     solutions.mkdir(mode=0o700)
     (solutions / "de421-0123.npz").write_bytes(b"y" * 3000)
     (solutions / ".de421-0123.npz.tmp-999999999").write_bytes(b"z" * 10)     # a killed save's leftover
-    show = subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache"], capture_output=True, text=True,
+    show = subprocess.run([sys.executable, "-m", "spinorbit.edge.cli", "cache"], capture_output=True, text=True,
                           check=False, env=environment(cache))
     lines = show.stdout.splitlines()
     assert show.returncode == 0 and len(lines) == 6, show.stdout + show.stderr
@@ -237,7 +237,7 @@ def test_cache_lists_every_cache_and_clear_empties_them_all(cache):
     assert f"{kernels / 1e6:.3g} MB" in lines[0] and lines[0].endswith(f"{cache}/kernels/")
     assert lines[1].startswith("heyoka's compiled integrators") and "1 files" in lines[1] and "0.001 MB" in lines[1]
     assert lines[2].startswith("orbital solutions") and "2 files" in lines[2] and "0.00301 MB" in lines[2]
-    cleared = subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache", "clear"], capture_output=True,
+    cleared = subprocess.run([sys.executable, "-m", "spinorbit.edge.cli", "cache", "clear"], capture_output=True,
                              text=True, check=False, env=environment(cache))
     assert cleared.returncode == 0, cleared.stderr
     assert cleared.stdout.splitlines() == [f"compiled kernels: removed {len(files)} files from {cache}/kernels/",
@@ -255,10 +255,10 @@ def test_kernels_reach_only_what_they_use():
     """An interaction's kernel reaches its own module and the rotations it calls, not the modules no kernel
     uses (editing one of those leaves every kernel warm)."""
     reached = linker.reached(point_mass.torque)
-    assert {"spinorbit.models.interactions.point_mass", "spinorbit.rotations"} <= set(reached)
-    assert not {"spinorbit.verdict", "spinorbit.scenarios", "spinorbit.models.system"} & set(reached)
+    assert {"spinorbit.models.interactions.point_mass", "spinorbit.base.rotations"} <= set(reached)
+    assert not {"spinorbit.scene.verdict", "spinorbit.edge.scenarios", "spinorbit.models.system"} & set(reached)
     assert set(linker.reached(rk8.rk_step)) == {"spinorbit.integrators.rk8"}        # rotations.put: a binding
-    assert "spinorbit.rotations" in linker.reached(rotations.put)
+    assert "spinorbit.base.rotations" in linker.reached(rotations.put)
 
 
 def test_free_names_are_declared_placeholders():
@@ -276,11 +276,11 @@ INDEX_OF_DOT3 = """
 import sys
 from numba.core import config
 from numba.core.caching import FunctionCache
-import spinorbit.rotations
+import spinorbit.base.rotations
 config.CACHE_DIR = sys.argv[1]
-print(FunctionCache(spinorbit.rotations.dot3.py_func)._cache_file._index_path)
+print(FunctionCache(spinorbit.base.rotations.dot3.py_func)._cache_file._index_path)
 """
-CALL_DOT3 = "import numpy as np, spinorbit.rotations as r; print(r.dot3(np.ones(3), np.ones(3)))"
+CALL_DOT3 = "import numpy as np, spinorbit.base.rotations as r; print(r.dot3(np.ones(3), np.ones(3)))"
 
 
 class _Planted:
@@ -304,21 +304,21 @@ def test_a_numba_cache_dir_others_can_write_is_refused_and_its_pickles_never_run
     env["NUMBA_CACHE_DIR"] = str(shared)
     called = subprocess.run([sys.executable, "-c", CALL_DOT3], capture_output=True, text=True, env=env)
     assert called.stdout.strip() == "3.0" and not marker.exists(), called.stderr
-    done = subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache"], capture_output=True, text=True,
+    done = subprocess.run([sys.executable, "-m", "spinorbit.edge.cli", "cache"], capture_output=True, text=True,
                           env=env)
     err = done.stderr.strip().splitlines()
     assert done.returncode == 2 and len(err) == 1, done.stderr
     assert err[0].startswith(f"error: NUMBA_CACHE_DIR: got '{shared}'") and "writable by others" in err[0]
     assert not marker.exists()
     os.chmod(shared, 0o700)                                             # a private one is used
-    assert subprocess.run([sys.executable, "-m", "spinorbit.cli", "cache"], capture_output=True,
+    assert subprocess.run([sys.executable, "-m", "spinorbit.edge.cli", "cache"], capture_output=True,
                           env=env).returncode == 0
 
 
 def test_a_generated_module_that_cannot_be_written_runs_from_memory(tmp_path, monkeypatch, capfd):
     """Found by benchmarks/fuzz_store.py: a full disk (EFBIG) while the cache wrote a generated module was an OSError
     traceback; the module is run from its verified bytes, said in one line."""
-    from spinorbit.linker import cache
+    from spinorbit.base.linker import cache
 
     def full(path, data):
         raise OSError(27, "File too large")

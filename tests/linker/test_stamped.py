@@ -12,8 +12,8 @@ from pathlib import Path
 from numba.core.caching import NullCache
 
 import spinorbit
-from spinorbit import linker
-from spinorbit.linker.stamped import ReachCache
+from spinorbit.base import linker
+from spinorbit.base.linker.stamped import ReachCache
 
 ROOT = Path(__file__).parents[2]
 CALLEE = """from numba import njit
@@ -25,7 +25,7 @@ SCALE = {scale}
 def offset(x):
     return SCALE * x
 """
-CALLER = """from spinorbit.linker import cached
+CALLER = """from spinorbit.base.linker import cached
 
 from .callee import offset
 

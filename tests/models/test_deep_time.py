@@ -11,13 +11,13 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+from spinorbit.analysis.theory import SymmetricPrecession, precession_constant
+from spinorbit.base.constants import ARCSEC, JULIAN_CENTURY_D
+from spinorbit.base.errors import InputError, ScenarioError
 from spinorbit.bodies.table import gm_km3_d2
-from spinorbit.constants import ARCSEC, JULIAN_CENTURY_D
-from spinorbit.errors import InputError, ScenarioError
 from spinorbit.integrators.rk8 import fixed_step
 from spinorbit.models import deep_time
 from spinorbit.orbits import solution
-from spinorbit.theory import SymmetricPrecession, precession_constant
 from tests.units import arcsec, deg
 
 AU_KM = 149597870.7
@@ -274,7 +274,7 @@ def test_orbit_interrupted_half_way_is_kept_and_continued_bit_for_bit(tmp_path, 
 
 
 def test_sweep_over_td_and_ed_computes_the_orbit_once(tmp_path, monkeypatch):
-    from spinorbit.sweep import run_sweep
+    from spinorbit.edge.sweep import run_sweep
 
     extend, calls = solution._extend, []
     monkeypatch.setattr(solution, "_extend", lambda *args: calls.append(1) or extend(*args))

@@ -15,11 +15,12 @@ from dataclasses import dataclass
 import numpy as np
 import pytest
 
+from spinorbit.base.constants import JULIAN_CENTURY_D
+from spinorbit.base.errors import InputError, PhysicsError
+from spinorbit.base.rotations import matrix_from_quat, quat_angle
 from spinorbit.bodies import RigidBody, earth, sun
 from spinorbit.bodies.moon import de421
 from spinorbit.bodies.table import gm_km3_d2
-from spinorbit.constants import JULIAN_CENTURY_D
-from spinorbit.errors import InputError, PhysicsError
 from spinorbit.integrators import simulate
 from spinorbit.models import System
 from spinorbit.models.assemblies.earth import figure, rigid_earth
@@ -30,7 +31,6 @@ from spinorbit.models.motion import Centred
 from spinorbit.models.rotators import Gyroscopic, Rigid, oppolzer_attractors
 from spinorbit.models.start import on_pole
 from spinorbit.orbits.analytic import CircularOrbits
-from spinorbit.rotations import matrix_from_quat, quat_angle
 from tests.units import arcsec
 
 GM = 2.9755e15          # km^3/d^2, about the Earth's

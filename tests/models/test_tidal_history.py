@@ -7,9 +7,9 @@ import math
 import numpy as np
 import pytest
 
+from spinorbit.base.constants import JULIAN_YEAR_D
 from spinorbit.bodies import earth
 from spinorbit.bodies.table import gm_km3_d2
-from spinorbit.constants import JULIAN_YEAR_D
 from spinorbit.integrators import simulate
 from spinorbit.models.tidal_history import equations, response, secular
 from spinorbit.models.tidal_history.tides import TIDES
@@ -304,7 +304,7 @@ def test_scene_holds_todays_rates_and_stops_at_the_roche_limit():
                                            ('moon.stop_distance=1.0', "moon.stop_distance")])
 def test_scene_refuses_what_the_model_cannot_vouch_for(override, key):
     from spinorbit import run_scenario
-    from spinorbit.errors import ScenarioError
+    from spinorbit.base.errors import ScenarioError
 
     with pytest.raises(ScenarioError) as info:
         run_scenario("scenarios/earth_moon_history.toml", [override, "compare.models=false"])
@@ -316,7 +316,7 @@ def test_sweep_draws_the_band_over_its_members(tmp_path):
     """spinorbit sweep over the LLR rate's +-1 sigma (synchronous Dask): every member holds its fitted rate,
     the Moon's age moves with the tide's strength (a stronger tide reaches the Earth sooner), and the band
     figures are drawn into the sweep's directory."""
-    from spinorbit.sweep import run_sweep
+    from spinorbit.edge.sweep import run_sweep
 
     out = tmp_path / "sweep"
     records = run_sweep("scenarios/earth_moon_history.toml",
@@ -359,13 +359,13 @@ def test_obliquity_rate_of_a_single_circular_orbit_is_mignards():
 
 
 def test_a_failed_fit_write_leaves_the_old_fit_whole(tmp_path, monkeypatch):
-    """benchmarks/fit_tides.py --write (spinorbit.files.write_atomically) on a full disk: the old fit stays as it
+    """benchmarks/fit_tides.py --write (spinorbit.base.files.write_atomically) on a full disk: the old fit stays as it
     was, nothing left aside (issue 42's 0-byte ocean_fit.json)."""
     import errno
     import json
     import os
 
-    from spinorbit.files import write_atomically
+    from spinorbit.base.files import write_atomically
 
     path = tmp_path / "ocean_fit.json"
     path.write_text(json.dumps({"depth_km": 4.0}))
@@ -392,7 +392,7 @@ def test_the_day_at_a_distance_is_read_on_the_first_crossing_back():
 
 
 def test_a_kept_table_is_read_back_and_a_damaged_one_computed_again(tmp_path, capsys):
-    """starts.earth_moon_history.keep_table on spinorbit.verified: computed once, read back equal; a file
+    """starts.earth_moon_history.keep_table on spinorbit.base.verified: computed once, read back equal; a file
     damaged in place is refused in one line and computed again."""
     from spinorbit import verified
     from spinorbit.starts.earth_moon_history import keep_table
@@ -455,8 +455,8 @@ def test_a_fit_trials_parameters_are_the_scene_with_the_tide_alone_at_the_depth(
     """starts.earth_moon_history.fit_trial (the depth fit's history, built typed) holds what the scene loaded with
     the same settings as --set text holds: the tide and its depth, LLR's rate, 4.6 Gyr back, no other tide, no
     error estimate."""
-    from spinorbit.params import values_of
-    from spinorbit.scenarios import load_scenario
+    from spinorbit.edge.scenarios import load_scenario
+    from spinorbit.scene.params import values_of
     from spinorbit.starts.earth_moon_history import fit_trial
 
     scenario = load_scenario("earth_moon_history")

@@ -8,8 +8,8 @@ import pytest
 from jplephem.daf import DAF
 from jplephem.spk import SPK
 
-from spinorbit.cli import main
-from spinorbit.errors import InputError
+from spinorbit.base.errors import InputError
+from spinorbit.edge.cli import main
 from spinorbit.orbits.sources import sample_orbits
 
 DE421 = importlib.resources.files("skyfield_data") / "data" / "de421.bsp"

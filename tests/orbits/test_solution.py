@@ -3,7 +3,7 @@ branch continues from too), only a regular file is opened (a FIFO never blocks),
 a killed save's leftovers are cleaned, and the folder of solutions is private.
 
 References: a fresh solution of the same settings (an extension from an intact file is bit for bit the same,
-tests/models/test_deep_time.py), and the rule of the kernel cache (spinorbit.linker.cache) for the folder."""
+tests/models/test_deep_time.py), and the rule of the kernel cache (spinorbit.base.linker.cache) for the folder."""
 import os
 import subprocess
 import sys
@@ -11,7 +11,7 @@ import sys
 import numpy as np
 import pytest
 
-from spinorbit.errors import InputError
+from spinorbit.base.errors import InputError
 from spinorbit.orbits import solution
 
 YEAR_D = 365.25
@@ -127,7 +127,7 @@ def test_stale_leftovers_of_a_killed_save_are_removed_live_ones_kept(tmp_path, s
 
 
 def test_the_folder_of_solutions_is_private(tmp_path, monkeypatch):
-    from spinorbit.linker import cache
+    from spinorbit.base.linker import cache
 
     monkeypatch.setenv(cache.ENVIRONMENT, str(tmp_path / "cache"))
     cache.kernels_dir.cache_clear()
@@ -144,7 +144,7 @@ def test_the_folder_of_solutions_is_private(tmp_path, monkeypatch):
 
 def test_the_command_line_says_an_orbit_file_at_a_fifo_in_one_line(tmp_path):
     os.mkfifo(tmp_path / "fifo.npz")
-    done = subprocess.run([sys.executable, "-m", "spinorbit.cli", "--quiet", "run", "earth_deep_time", "--set",
+    done = subprocess.run([sys.executable, "-m", "spinorbit.edge.cli", "--quiet", "run", "earth_deep_time", "--set",
                            f"orbit.file={tmp_path / 'fifo.npz'}", "--set", "output.plots=false", "--out",
                            str(tmp_path / "out")], capture_output=True, text=True, timeout=120)
     assert done.returncode == 2

@@ -6,13 +6,13 @@ import math
 import numpy as np
 import pytest
 
+from spinorbit.base.rotations import matrix_from_quat
 from spinorbit.bodies import earth
 from spinorbit.integrators.rk8 import fixed_step
 from spinorbit.models.assemblies.earth_moon import FIGURES, closed
 from spinorbit.models.interactions import Newton, harmonics, point_mass
 from spinorbit.models.rotators import Gyroscopic, Rigid
 from spinorbit.models.system import System
-from spinorbit.rotations import matrix_from_quat
 
 EPS = np.finfo(float).eps
 RNG = np.random.default_rng(11)
@@ -238,7 +238,7 @@ def test_the_stress_scene_reports_the_drifts_and_judges_only_a_decade():
     (4 eps sqrt(N), N = 400 steps), and a span under 10 yr is not judged."""
     from pathlib import Path
 
-    from spinorbit.runner import run_scenario
+    from spinorbit.edge.runner import run_scenario
 
     path = Path(__file__).parents[2] / "scenarios" / "stress" / "coupled_conservation.toml"
     summary = run_scenario(path, ['span.end="20 d"', "output.plots=false"]).summary

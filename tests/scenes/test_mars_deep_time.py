@@ -11,10 +11,10 @@ import math
 import numpy as np
 import pytest
 
+from spinorbit.base.constants import ARCSEC, DAY_S, JULIAN_YEAR_D
+from spinorbit.base.errors import ScenarioError
 from spinorbit.bodies import mars
 from spinorbit.bodies.table import gm_km3_d2
-from spinorbit.constants import ARCSEC, DAY_S, JULIAN_YEAR_D
-from spinorbit.errors import ScenarioError
 from spinorbit.models import deep_time
 from spinorbit.starts import mars_deep_time
 

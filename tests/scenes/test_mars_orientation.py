@@ -7,11 +7,11 @@ import math
 import numpy as np
 import pytest
 
+from spinorbit.base.constants import DAY_S
 from spinorbit.bodies import mars
 from spinorbit.bodies.table import gm_km3_d2
-from spinorbit.constants import DAY_S
+from spinorbit.edge.runner import run_scenario
 from spinorbit.references import mars_iau2015, mars_nutation
-from spinorbit.runner import run_scenario
 from spinorbit.starts.mars import mean_orbit_frame
 from tests.units import arcsec, deg, mas
 

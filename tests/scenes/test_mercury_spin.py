@@ -10,7 +10,7 @@ import pytest
 
 from spinorbit.analysis.cassini import eccentricity_functions, peale_obliquity, precession_constant
 from spinorbit.bodies import mercury
-from spinorbit.runner import run_scenario
+from spinorbit.edge.runner import run_scenario
 from tests.units import arcsec
 
 ARCMIN = 60 * arcsec
@@ -81,7 +81,7 @@ def test_a_start_away_from_the_state_settles_to_the_same_state(run):
 
 
 def test_bad_scales_are_refused_in_one_line():
-    from spinorbit.errors import ScenarioError
+    from spinorbit.base.errors import ScenarioError
 
     with pytest.raises(ScenarioError, match="precession.scales") as info:
         run_scenario("scenarios/mercury_spin.toml", ["precession.scales=[-1]"])

@@ -8,11 +8,11 @@ from astropy.time import Time
 
 import spinorbit
 from spinorbit import solutions
-from spinorbit.constants import DAY_S
-from spinorbit.errors import InputError
-from spinorbit.rotations import matrix_from_euler313
-from spinorbit.runner import run_scenario
-from spinorbit.scenarios import load_scenario
+from spinorbit.base.constants import DAY_S
+from spinorbit.base.errors import InputError
+from spinorbit.base.rotations import matrix_from_euler313
+from spinorbit.edge.runner import run_scenario
+from spinorbit.edge.scenarios import load_scenario
 from spinorbit.solutions import store
 from spinorbit.solutions.spice import FRAME_BASE, body_angles
 from tests.units import arcsec, deg, mas
@@ -135,7 +135,7 @@ def test_turned_part_is_exact_to_the_last_bit():
 
 def test_spinorbit_at_mars_prints_the_answer(mars, capsys):
     """`spinorbit at mars DATE`: the API's row as CSV, units in the header."""
-    from spinorbit.cli import main
+    from spinorbit.edge.cli import main
 
     assert main(["--quiet", "at", "mars", "2000-06-01T00:00", "--scale", "tdb"]) == 0
     header, row = (line.split(",") for line in capsys.readouterr().out.splitlines()[:2])

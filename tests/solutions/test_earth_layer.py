@@ -4,7 +4,7 @@ A two-year scene stands for the validated century (its windows are two years lon
 import numpy as np
 import pytest
 
-from spinorbit.scenarios import load_scenario
+from spinorbit.edge.scenarios import load_scenario
 from spinorbit.solutions import earth_layer, for_scenario, store
 from tests.units import mas
 

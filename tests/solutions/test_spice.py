@@ -11,8 +11,8 @@ import pytest
 
 from spinorbit import solutions
 from spinorbit.analysis.librations import icrf_to_body
-from spinorbit.constants import DAY_S
-from spinorbit.scenarios import load_scenario
+from spinorbit.base.constants import DAY_S
+from spinorbit.edge.scenarios import load_scenario
 from spinorbit.solutions import store
 from tests.units import arcsec
 
@@ -156,7 +156,7 @@ def solar_system(tmp_path_factory):
 def carried(solution, t):
     """{NAIF code: (n, 3) km about the solar-system barycentre} of every body the solution carries: the free ones
     as integrated, the Earth and the Moon from their barycentre by the model's own mass ratio (its System's)."""
-    from spinorbit.scenarios import load_scenario
+    from spinorbit.edge.scenarios import load_scenario
     from spinorbit.solutions import stretches
 
     share = stretches.system(load_scenario("solar_system", []), solution.ends["start"]).motion.share
@@ -184,8 +184,8 @@ def furnished(files):
 
 
 def test_the_solar_system_is_stored_from_de421s_epoch(solar_system):
+    from spinorbit.base.constants import J2000_JD
     from spinorbit.bodies.de421_header import header
-    from spinorbit.constants import J2000_JD
     from spinorbit.scenes import scene_of
 
     solution, _, _ = solar_system
@@ -352,8 +352,8 @@ def test_spinorbit_export_refuses_a_scene_without_kernels_before_integrating(tmp
 
 
 def test_a_solution_with_nothing_spice_holds_is_refused_in_one_line(tmp_path):
-    from spinorbit.errors import InputError
-    from spinorbit.layout import Layout
+    from spinorbit.base.errors import InputError
+    from spinorbit.base.layout import Layout
     from spinorbit.solutions.chebyshev import Segments
 
     pole = solutions.Solution(Segments(0.0, 8.0, 0, np.zeros((1, 3, 15))), Layout([("earth.pole", 3, "vector", "")]),
@@ -422,7 +422,7 @@ def test_an_export_writes_the_segments_covering_its_span_whatever_the_store_hold
 def test_two_exported_solutions_loaded_together_each_read_in_its_own_frame(moon_kernels, place):
     """The J2000-started solution and one started at 2000-01-21 (another model: 0.1 mas from it a week on), loaded
     together: each frame gives its own solution within 1 uas, under its own name and ID."""
-    from spinorbit.scenarios import load_scenario
+    from spinorbit.edge.scenarios import load_scenario
 
     solution, written = moon_kernels
     restarted = solutions.for_export(load_scenario("moon_libration", [

@@ -16,11 +16,12 @@ import time
 import numpy as np
 import pytest
 
-from spinorbit import solutions, verified
-from spinorbit.errors import InputError
+from spinorbit import solutions
+from spinorbit.base import verified
+from spinorbit.base.errors import InputError
+from spinorbit.edge.runner import run_scenario
+from spinorbit.edge.scenarios import load_scenario
 from spinorbit.orbits.kernel import kernel_path
-from spinorbit.runner import run_scenario
-from spinorbit.scenarios import load_scenario
 from spinorbit.solutions import store, stretches
 from tests.units import arcsec
 
@@ -60,7 +61,7 @@ def test_a_different_file_under_the_same_name_gets_its_own_solution(tmp_path, mo
 
 
 def test_a_solutions_folder_others_can_write_is_refused_in_one_line(place):
-    """42.2: the store's folder under the rule of every other cache (spinorbit.private)."""
+    """42.2: the store's folder under the rule of every other cache (spinorbit.base.private)."""
     place.chmod(0o777)
     with pytest.raises(InputError, match="writable by others") as info:
         store.directory()
@@ -132,7 +133,7 @@ def test_a_full_disk_keeps_the_answer_with_a_warning_and_leaves_no_file(place, m
     store.PLACE["directory"] = place
     stored = solutions.for_scenario(load_scenario("moon_libration"), 0.0, 4.0)
     t = np.linspace(0.0, 4.0, 9)
-    from spinorbit.rotations import quat_angle
+    from spinorbit.base.rotations import quat_angle
 
     assert quat_angle(answered.part("moon.q", t), stored.part("moon.q", t)).max() < 1e-3 * uas
 
@@ -163,7 +164,7 @@ def test_solution_at_refuses_masked_dates():
 
 def test_reversed_dates_are_matched_to_rows_at_once():
     """42.14: 10^5 dates in reverse order matched to the table's rows (closest date) as fast as in order."""
-    from spinorbit.api import _rows
+    from spinorbit.edge.api import _rows
 
     days = np.linspace(0.0, 100.0, 100_000)
     t = days[::-1].copy()

@@ -5,8 +5,8 @@ stored solution starts; the span and start asked for a stretch."""
 import numpy as np
 import pytest
 
-from spinorbit.errors import InputError
-from spinorbit.scenarios import load_scenario
+from spinorbit.base.errors import InputError
+from spinorbit.edge.scenarios import load_scenario
 from spinorbit.solutions import stretches
 from tests.units import arcsec
 

@@ -8,9 +8,9 @@ import pytest
 
 from spinorbit.bodies import earth
 from spinorbit.bodies.table import gm_km3_d2
+from spinorbit.edge.runner import run_scenario
 from spinorbit.orbits.sources import DE421
 from spinorbit.references import erfa_pole
-from spinorbit.runner import run_scenario
 from spinorbit.starts import earth_tides as tides
 from spinorbit.starts.earth_ellipticity import from_observed_rate
 from tests.units import arcsec, mas
@@ -129,7 +129,7 @@ def test_de421_tides_tilt_the_axis_less_than_williams():
     (["earth.dynamical_ellipticity=0.00327"], "earth.dynamical_ellipticity")])
 def test_observed_rate_refuses_what_it_cannot_take(overrides, key):
     """H_d from the observed rate needs the real Moon and Sun, and sets H_d itself: refused in one line."""
-    from spinorbit.errors import ScenarioError
+    from spinorbit.base.errors import ScenarioError
 
     with pytest.raises(ScenarioError) as err:
         run_scenario("scenarios/earth_precession_nutation_nonrigid.toml", overrides + ["output.plots=false"])

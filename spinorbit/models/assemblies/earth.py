@@ -16,10 +16,10 @@ import math
 
 import numpy as np
 
+from ...base.constants import ARCSEC, JULIAN_CENTURY_D
+from ...base.errors import PhysicsError
 from ...bodies import earth
 from ...bodies.table import gm_km3_d2
-from ...constants import ARCSEC, JULIAN_CENTURY_D
-from ...errors import PhysicsError
 from ..figure import Body, Field, Figure
 from ..interactions import GeodesicRate, Harmonics, PointMass
 from ..motion import Centred

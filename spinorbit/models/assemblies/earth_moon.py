@@ -22,12 +22,12 @@ import math
 
 import numpy as np
 
+from ...base.constants import DAY_S
+from ...base.errors import InputError
 from ...bodies import earth
 from ...bodies.de421_header import header
 from ...bodies.moon import de421
 from ...bodies.table import gm_km3_d2, heliocentric_set
-from ...constants import DAY_S
-from ...errors import InputError
 from ..figure import Body, Field, Figure
 from ..interactions import FigureFigure, Geodesic, Harmonics, Newton, PointMass, Relativity, Tides
 from ..motion import Pair

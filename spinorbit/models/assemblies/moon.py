@@ -18,9 +18,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...base.errors import InputError
 from ...bodies import sun
 from ...bodies.de421_header import header
-from ...errors import InputError
 from ..interactions import FigureFigure, Harmonics, PointMass, PoleTable
 from ..motion import Centred
 from ..system import System

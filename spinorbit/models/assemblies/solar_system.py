@@ -61,7 +61,7 @@ def solar_system(switches=tuple(SWITCHES), t0=0.0, start=None, extra=()):
     ((name, GM km^3/d^2), ...: an asteroid, to see what it moves): a System."""
     unknown = sorted(set(switches) - set(SWITCHES))
     if unknown:
-        from ...errors import InputError
+        from ...base.errors import InputError
 
         raise InputError("switches", unknown, f"names from {list(SWITCHES)}")
     members, motion = bodies(switches, extra=extra)

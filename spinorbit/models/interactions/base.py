@@ -11,7 +11,7 @@ read the orbit's acceleration so far (the delayed tide); the others after.  ``en
 a closed System's energy, where it has one.
 """
 
-from ...errors import PhysicsError
+from ...base.errors import PhysicsError
 
 
 class Interaction:

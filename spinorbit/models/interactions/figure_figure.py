@@ -17,8 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...linker import cached
-from ...rotations import cross3, dot3, mat_t_vec3, matvec3
+from ...base.linker import cached
+from ...base.rotations import cross3, dot3, mat_t_vec3, matvec3
 from .base import Interaction, needs_forces
 from .point_mass import anisotropic
 

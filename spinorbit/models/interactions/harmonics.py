@@ -15,8 +15,8 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from ...linker import cached
-from ...rotations import cross3, mat_t_vec3, matvec3
+from ...base.linker import cached
+from ...base.rotations import cross3, mat_t_vec3, matvec3
 from .base import Interaction
 from .point_mass import act
 

@@ -10,8 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...linker import cached
-from ...rotations import dot3
+from ...base.linker import cached
+from ...base.rotations import dot3
 from .base import Interaction
 from .relativity import newtonian
 

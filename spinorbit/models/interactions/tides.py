@@ -47,8 +47,8 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from ...linker import cached
-from ...rotations import cross3, dot3
+from ...base.linker import cached
+from ...base.rotations import cross3, dot3
 from .base import Interaction
 
 GM_E, GM_M, GM_S, RADIUS, K2, TAU = 0, 1, 2, 3, 4, 7     # offsets in the parameters

@@ -4,7 +4,7 @@ import math
 
 import numpy as np
 
-from ...constants import DAY_S, JULIAN_CENTURY_D, JULIAN_YEAR_D, MAS
+from ...base.constants import DAY_S, JULIAN_CENTURY_D, JULIAN_YEAR_D, MAS
 from .equations import GM_EARTH, GM_MOON, GM_SUN, INERTIA, RADIUS, SUN_A, rhs
 from .response import STRENGTH, responses
 

@@ -40,7 +40,7 @@ from numba import njit
 from scipy.linalg import eigh
 from scipy.special import assoc_legendre_p_all, legendre_p_all, roots_legendre
 
-from ...linker import cached
+from ...base.linker import cached
 from .ocean import DENSITY_RATIO, GRAVITY, LOAD_H2, LOAD_K2, RADIUS, SOLID_H2, SOLID_K2
 from .ocean import SIZE as OCEAN_SIZE
 

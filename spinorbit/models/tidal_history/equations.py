@@ -28,8 +28,8 @@ import math
 
 import numpy as np
 
-from ...layout import Layout
-from ...linker import cached
+from ...base.layout import Layout
+from ...base.linker import cached
 from ..ode import Ode
 from .secular import exchange, lags, strength, torque_on_spin
 

@@ -32,7 +32,7 @@ import math
 
 from numba import njit
 
-from ...linker import cached
+from ...base.linker import cached
 
 # Indices into the ocean's constants.
 GRAVITY, RADIUS, DENSITY_RATIO, LOAD_K2, LOAD_H2, SOLID_K2, SOLID_H2, DEGREES = range(8)

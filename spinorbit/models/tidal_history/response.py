@@ -25,7 +25,7 @@ import math
 
 import numpy as np
 
-from ...linker import cached
+from ...base.linker import cached
 from .cap_ocean import cap_radius, love_number_imag
 from .ocean import SIZE as OCEAN_SIZE
 from .ocean import love_number

@@ -34,7 +34,7 @@ from numba import njit
 from scipy.linalg import eigh, null_space
 from scipy.special import sph_harm_y
 
-from ...linker import cached
+from ...base.linker import cached
 from .cap_ocean import gram, load_factors, projections, ritz_basis
 from .ocean import DENSITY_RATIO, GRAVITY, LOAD_K2, RADIUS, SOLID_H2, SOLID_K2
 from .ocean import SIZE as OCEAN_SIZE

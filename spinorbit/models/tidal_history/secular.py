@@ -22,7 +22,7 @@ O(e^2) the sums give Hut's (1981, A&A 99, 126) constant-time-lag f-functions (te
 import numpy as np
 from numba import njit
 
-from ...linker import cached
+from ...base.linker import cached
 from .response import dissipation
 
 # (k, q, c_k X_q^{-3,k}(e)^2 as (constant, e^2 coefficient)): Kaula's G_{2pq} to O(e^2).

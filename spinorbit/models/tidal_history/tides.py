@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...constants import DAY_S, JULIAN_YEAR_D
+from ...base.constants import DAY_S, JULIAN_YEAR_D
 from . import calibration, cap_ocean, equations, ocean, response, rotating_cap, solid
 
 GYR_D = 1e9 * JULIAN_YEAR_D

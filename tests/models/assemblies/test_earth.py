@@ -9,16 +9,16 @@ import numpy as np
 import pytest
 
 from spinorbit.analysis.precession import free_nutation_amplitude
+from spinorbit.analysis.theory import SymmetricPrecession
+from spinorbit.base.constants import JULIAN_CENTURY_D
+from spinorbit.base.errors import PhysicsError, ScenarioError
 from spinorbit.bodies import earth
 from spinorbit.bodies.table import gm_km3_d2
-from spinorbit.constants import JULIAN_CENTURY_D
-from spinorbit.errors import PhysicsError, ScenarioError
+from spinorbit.edge.runner import run_scenario
 from spinorbit.integrators import simulate
 from spinorbit.models.assemblies.earth import SUN_MEAN_ANOMALY_RAD, geodesic_precession, rigid_earth
 from spinorbit.models.start import on_pole
 from spinorbit.orbits.analytic import CircularOrbits
-from spinorbit.runner import run_scenario
-from spinorbit.theory import SymmetricPrecession
 from tests.units import arcsec, mas
 
 SCENARIOS = "scenarios/earth_precession_nutation"
@@ -158,8 +158,8 @@ def j4_torque(rows, gm, z, j4_coef):
 def test_j4_torque_equals_the_degree4_recursion():
     """The closed form N = GM J4 R^2 P4'(s) (r x z)/(c r^6) per C equals the harmonics interaction's
     Montenbruck-Gill recursion with C40 = -J4 (per M R^2: scale 1, divided by c = C/MR^2)."""
+    from spinorbit.base.rotations import matrix_from_quat
     from spinorbit.models.interactions import harmonics
-    from spinorbit.rotations import matrix_from_quat
 
     c_nm, s_nm = np.zeros((5, 5)), np.zeros((5, 5))
     c_nm[4, 0] = -earth.J4
@@ -257,7 +257,7 @@ def test_full_rhs_is_eulers_equations_in_the_geodesic_frame():
     I w' + w x I w = N, N = sum 3 GM/r^5 r x (I (1 + k t) r) in body axes (§813, §815; I less its isotropic
     part C 1, which exerts none and would cancel to rounding), and q' = q (0, w + R^T Omega_gp) / 2 (the
     equations hold in the frame turning at Omega_gp)."""
-    from spinorbit.rotations import matrix_from_quat, quat_rate
+    from spinorbit.base.rotations import matrix_from_quat, quat_rate
 
     orbits = circles()
     system = rigid_earth(orbits, "full", b_minus_a_over_c=earth.B_MINUS_A_OVER_C, ecliptic_pole=ECLIPTIC_POLE)

@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from spinorbit.base.rotations import matrix_from_quat
 from spinorbit.bodies import earth
 from spinorbit.integrators.rk8 import fixed_step
 from spinorbit.models.assemblies.earth_moon import EXTERNAL, solar_system
@@ -17,7 +18,6 @@ from spinorbit.models.start import earth_moon_de421
 from spinorbit.orbits.kernel import open_ephemeris
 from spinorbit.orbits.sources import barycentric
 from spinorbit.references.erfa_pole import cip_vector
-from spinorbit.rotations import matrix_from_quat
 from tests.units import arcsec
 
 T0 = -18262.5                       # 1950-01-01 TDB, days from J2000
@@ -70,15 +70,15 @@ def direct_rhs(external, t, y):
     from l by the first-order Oppolzer term of the Moon's and the Sun's tidal tensor, its spin turned by the
     torques, the tides' reaction and the geodesic precession Omega x l, Omega = 3/2 GM_sun/(c^2 |x|^3) x x w.
     Returns (dy/dt, the Keplerian part of the orbit's acceleration)."""
+    from spinorbit.base.constants import DAY_S
+    from spinorbit.base.rotations import quat_rate
     from spinorbit.bodies.de421_header import header
     from spinorbit.bodies.moon import de421
     from spinorbit.bodies.table import gm_km3_d2
-    from spinorbit.constants import DAY_S
     from spinorbit.models import distortion, gyroscopic, spin
     from spinorbit.models.assemblies.earth_moon import PLANETS
     from spinorbit.models.interactions import figure_figure, harmonics, point_mass, relativity, tides
     from spinorbit.orbits.interpolant import hermite_states
-    from spinorbit.rotations import quat_rate
 
     h, moon = header(), de421()
     names = list(external.names)
@@ -195,7 +195,7 @@ def test_planets_off_with_an_orbit_source_that_carries_them_is_refused(external)
     """The "planets" switch puts Mercury to Pluto on the orbit; Newton takes every mass the orbit source
     carries, so the switch off with a source that carries them would leave them acting: refused, naming the
     switches (the scene samples a source without them)."""
-    from spinorbit.errors import InputError
+    from spinorbit.base.errors import InputError
 
     with pytest.raises(InputError, match="^switches: got .*'planets' among them"):
         solar_system(external, ("relativity", "earth_tides"))
@@ -266,7 +266,7 @@ def test_rebound_externals_move_the_moon_no_more_than_their_departure_from_de421
 def test_the_scene_writes_the_moon_and_judges_it():
     """scenarios/earth_moon_coupled.toml over 60 days: the geocentric Moon and the angles in the table, the
     four DE421 checks judged; asking for the tidal acceleration on a short span is not judged."""
-    from spinorbit.runner import run_scenario
+    from spinorbit.edge.runner import run_scenario
 
     path = Path(__file__).parents[3] / "scenarios" / "earth_moon_coupled.toml"
     result = run_scenario(path, ['span.end="1950-03-02T00:00:00"', "compare.tides_off=true",

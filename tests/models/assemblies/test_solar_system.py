@@ -4,16 +4,16 @@ DE421's initial conditions staying with DE421 over a year."""
 import numpy as np
 import pytest
 
+from spinorbit.base.constants import J2000_JD
+from spinorbit.base.rotations import cross3, matrix_from_quat
 from spinorbit.bodies import earth
 from spinorbit.bodies.de421_header import header
-from spinorbit.constants import J2000_JD
 from spinorbit.integrators import simulate
 from spinorbit.models.assemblies.solar_system import SUN_SPIN_RAD_D, closed, solar_system
 from spinorbit.models.interactions import Newton
 from spinorbit.models.start import solar_system_de421
 from spinorbit.models.system import System
 from spinorbit.references.erfa_pole import cip_vector
-from spinorbit.rotations import cross3, matrix_from_quat
 from tests.units import mas
 
 EPS = np.finfo(float).eps

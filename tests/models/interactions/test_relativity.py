@@ -4,9 +4,9 @@ import math
 import numpy as np
 from numba import njit
 
+from spinorbit.base.constants import JULIAN_YEAR_D
 from spinorbit.bodies.de421_header import header
 from spinorbit.bodies.table import gm_km3_d2
-from spinorbit.constants import JULIAN_YEAR_D
 from spinorbit.integrators.rk8 import fixed_step
 from spinorbit.models.assemblies.earth_moon import c_km_d
 from spinorbit.models.interactions.relativity import accelerations

@@ -16,8 +16,8 @@ from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
 
-from .integrators.options import OPTIONS
-from .orbits.sources import orbit_source
+from ..integrators.options import OPTIONS
+from ..orbits.sources import orbit_source
 from .schema import REQUIRED, Key, checked_float, parse_tdb_days
 
 _table = dataclass(frozen=True, kw_only=True, eq=False)
@@ -227,7 +227,7 @@ def check_values(params):
     """Raise ScenarioError naming the key unless each number of ``params`` (each element of a vector, each
     [integrator] option) is finite and inside its key's range and each choice one its key accepts: what loading
     checks of a file's values, for parameters made by ``dataclasses.replace`` (Scenario.with_params)."""
-    from .errors import ScenarioError
+    from ..base.errors import ScenarioError
     from .schema import INTEGRATOR_OPTIONS
 
     specs = {**keys_of(type(params)), **{f"integrator.{name}": spec for name, spec in INTEGRATOR_OPTIONS.items()}}

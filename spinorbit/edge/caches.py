@@ -1,7 +1,7 @@
 """Every cache spinorbit keeps, by name: where it is, what it holds and how much, and emptying it
 (``spinorbit cache``, ``spinorbit cache clear``).
 
-All live in spinorbit's private cache directory (spinorbit.linker.cache: ``$SPINORBIT_CACHE_DIR``, else
+All live in spinorbit's private cache directory (spinorbit.base.linker.cache: ``$SPINORBIT_CACHE_DIR``, else
 ``~/.cache/spinorbit``): the compiled kernels, heyoka's compiled integrators, the deep-time orbital solutions
 (spinorbit.orbits.solution), the stored continuous solutions (spinorbit.solutions.store) and the tidal
 history's ocean tables.  To add a cache:
@@ -31,20 +31,20 @@ class Cache:
 
 
 def _kernels():
-    from .linker import cache
+    from ..base.linker import cache
 
     return cache.kernels_dir()
 
 
 def _clear_kernels(folder):
-    from .linker import cache
+    from ..base.linker import cache
 
     return cache.clear()
 
 
 def _heyoka():
     """heyoka's on-disk cache of compiled Taylor integrators (spinorbit.integrators.taylor)."""
-    from .linker import cache
+    from ..base.linker import cache
 
     folder = cache.kernels_dir().parent / "heyoka"
     return folder if folder.is_dir() and not folder.is_symlink() else None
@@ -61,34 +61,34 @@ def _clear_files(folder):
 
 
 def _solutions():
-    from .orbits import solution
+    from ..orbits import solution
 
     return solution.cache_directory()
 
 
 def _clear_solutions(folder):
     """Delete the orbital solutions no process is working on (their lock free) and the leftovers of killed
-    saves; a solution another run is extending is kept and said (spinorbit.verified.clear)."""
-    from . import verified
+    saves; a solution another run is extending is kept and said (spinorbit.base.verified.clear)."""
+    from ..base import verified
 
     return verified.clear(folder, "*.npz")
 
 
 def _stored():
-    from .solutions import store
+    from ..solutions import store
 
     return store.directory()
 
 
 def _clear_stored(folder):
-    from .solutions import store
+    from ..solutions import store
 
     return store.clear()
 
 
 def _tables():
     """The tidal history's tables (the ocean basins' responses: starts.earth_moon_history.keep_table)."""
-    from .linker import cache
+    from ..base.linker import cache
 
     folder = cache.kernels_dir().parent / "tables"
     return folder if folder.is_dir() and not folder.is_symlink() else None

@@ -43,8 +43,8 @@ import stat
 import sys
 from pathlib import Path
 
-from .errors import ScenarioError
-from .files import open_regular
+from ..base.errors import ScenarioError
+from ..base.files import open_regular
 
 MANIFEST = ".spinorbit-manifest.json"
 MAX_MANIFEST_BYTES = 64 << 20

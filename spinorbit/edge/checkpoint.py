@@ -6,7 +6,7 @@ the same states as one never interrupted): they are saved every ``every_s`` seco
 when the run stops on an exception; a save that fails (a full disk, a name too long) is said in one line and the
 run goes on.
 
-A checkpoint is a file of the verified room (spinorbit.verified.write): the ``outputs`` beside the run's record
+A checkpoint is a file of the verified room (spinorbit.base.verified.write): the ``outputs`` beside the run's record
 (:func:`run_fingerprint`: the code's version, solutions.code_version, and what decides the states) and a sha256
 over all of them, written aside and renamed, so that a save interrupted half-way, even killed, leaves the last
 checkpoint whole (the next save removes what a killed one left).  ``resume=True`` continues from the file if it
@@ -31,11 +31,11 @@ from pathlib import Path
 
 import numpy as np
 
-from . import verified
-from .errors import ScenarioError
-from .files import open_regular
-from .linker import fingerprint, python_function
-from .solutions.store import code_version
+from ..base import verified
+from ..base.errors import ScenarioError
+from ..base.files import open_regular
+from ..base.linker import fingerprint, python_function
+from ..solutions.store import code_version
 
 WHAT_DIFFERS = {"settings": "scenario settings", "source": "spinorbit source code", "rhs": "equations",
                 "start": "initial time or state", "output_times": "output times", "step": "step",
@@ -78,7 +78,7 @@ class Checkpoint:
         return outputs
 
     def save(self, fingerprint, outputs):
-        """Write the outputs so far with ``fingerprint`` as their record (spinorbit.verified.write: aside, synced,
+        """Write the outputs so far with ``fingerprint`` as their record (spinorbit.base.verified.write: aside, synced,
         renamed over the checkpoint)."""
         verified.write(self.path, {"outputs": np.ascontiguousarray(outputs, dtype=np.float64)}, fingerprint)
         self.written.add(self.path)

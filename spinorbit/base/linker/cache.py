@@ -18,13 +18,13 @@ verified bytes in memory, said in one line.
 
 numba's cache files are pickles, so they are trusted only as far as they are checked: a generated kernel's
 index and data files live in the private ``kernels/numba/`` whatever NUMBA_CACHE_DIR says, each a file of the
-verified room (spinorbit.verified: the pickle's bytes hashed, numba's version as its record, written aside and
+verified room (spinorbit.base.verified: the pickle's bytes hashed, numba's version as its record, written aside and
 renamed) that is checked before it is unpickled; a damaged one is deleted, the kernel compiled again, and said
 in one line.  The generated modules stay plain ``.py`` files, checked by their name (the sha256 of their text),
 because numba and tracebacks read a function's source from its file.  Functions of the package itself,
 ``@njit(cache=True)``, are cached by numba beside them (the same trust as the package's own files and their
 ``.pyc``) or in NUMBA_CACHE_DIR, which must meet the same rule: ``import spinorbit`` hides a NUMBA_CACHE_DIR
-that breaks it from numba, and the first kernel asked for refuses it in one line (spinorbit.private).
+that breaks it from numba, and the first kernel asked for refuses it in one line (spinorbit.base.private).
 """
 import errno
 import hashlib

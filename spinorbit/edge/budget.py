@@ -1,6 +1,6 @@
 """What a run asks for, and whether it fits, decided before it starts: the rows, orbit samples, integrator steps
 and N-body stage a scenario's span asks for at its step keys; the time and memory they cost (measured per
-item for its scene kind: its Scene's ``cost``, spinorbit.scene.NBODY_COSTS); the cycles its rates make it
+item for its scene kind: its Scene's ``cost``, spinorbit.scene.declaration.NBODY_COSTS); the cycles its rates make it
 follow.  A step over ``LIMITS``, an estimate over ``limits.time`` or ``limits.memory``, or over ``MAX_CYCLES``
 cycles is refused on the key that sets it, with the estimate, instead of hanging or filling the memory.
 
@@ -11,10 +11,10 @@ import os
 
 import numpy as np
 
-from .errors import ScenarioError
-from .orbits.sources import OrbitSource
-from .params import values_of
-from .schema import INTEGRATOR_OPTIONS, Key, has_key, lookup
+from ..base.errors import ScenarioError
+from ..orbits.sources import OrbitSource
+from ..scene.params import values_of
+from ..scene.schema import INTEGRATOR_OPTIONS, Key, has_key, lookup
 
 # The most a step over the span may ask for, whatever the time and memory limits.
 LIMITS = {"output rows": 1_000_000, "orbit samples": 10_000_000, "integrator steps": 1_000_000_000,
@@ -74,7 +74,7 @@ def estimate(scenario):
 
 def step_cost(scenario, kind):
     """Seconds per item of a count (0 for those that cost memory only)."""
-    from .scene import NBODY_COSTS
+    from ..scene.declaration import NBODY_COSTS
 
     return {"integrator steps": scenario.cost().step_s, "adaptive steps (at max_step)": ADAPTIVE_STEP_S,
             **NBODY_COSTS}.get(kind, 0.0)

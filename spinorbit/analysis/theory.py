@@ -10,8 +10,8 @@ import math
 import numpy as np
 from scipy.special import ellipj, ellipk, ellipkinc, elliprf, elliprj
 
-from .errors import PhysicsError, ResonanceError
-from .rotations import (
+from ..base.errors import PhysicsError, ResonanceError
+from ..base.rotations import (
     matrices_from_quats,
     matrix_from_euler313,
     quat_from_matrix,

@@ -1,6 +1,6 @@
 """The verdict of a run: does the comparison a scene exists for meet its tolerance?
 
-A scene declares its ``verdict`` (spinorbit.scene.Scene): a ``Verdict``, or a function ``verdict(p,
+A scene declares its ``verdict`` (spinorbit.scene.declaration.Scene): a ``Verdict``, or a function ``verdict(p,
 comparison) -> Verdict`` when the question depends on the scene's parameters ``p`` (or, for P96, on whether
 the run met the resonance), naming the reference, and ``Check``s on keys of
 ``summary["comparison"]`` with a tolerance in the metric's unit and its source.  ``evaluate`` turns it into

@@ -1,6 +1,6 @@
 """Work-precision of the integrators on one scene: ``spinorbit bench SCENE.toml``.
 
-A scene that can be benchmarked declares ``bench`` (spinorbit.scene.Scene): on the model its ``build``
+A scene that can be benchmarked declares ``bench`` (spinorbit.scene.declaration.Scene): on the model its ``build``
 makes for the output times, ``error(solution)``, the maximum attitude error in rad against the scene's
 closed form or a converged run (:func:`spinorbit.analysis.ladder.converged_error`).
 
@@ -22,9 +22,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .analysis.ladder import cheapest, work_precision
-from .errors import ScenarioError
-from .integrators import METHODS, get_method
+from ..analysis.ladder import cheapest, work_precision
+from ..base.errors import ScenarioError
+from ..integrators import METHODS, get_method
 
 COLUMNS = ("method", "kind", "order", "setting", "wall_s", "rhs_evaluations", "steps", "error_rad")
 LEVELS = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12)
@@ -144,11 +144,11 @@ def write(rows, out, title, command, note=""):
 
 def bench_scenario(path, methods=None, out=None, budget_s=10.0, overrides=(), force=False):
     """Load a scenario, build its system and write the work-precision table into the run directory ``out``
-    (spinorbit.rundir: a previous table replaced whole, files spinorbit did not write refused unless
+    (spinorbit.edge.rundir: a previous table replaced whole, files spinorbit did not write refused unless
     ``force``); returns (rows, paths)."""
+    from ..scene.declaration import scenario_errors
     from .rundir import RunDirectory
     from .scenarios import load_scenario
-    from .scene import scenario_errors
 
     if not isinstance(budget_s, (int, float)) or not 0 < budget_s <= MAX_BUDGET_S:
         raise ScenarioError("--budget", budget_s, f"seconds in (0, {MAX_BUDGET_S:g}]")
@@ -183,6 +183,6 @@ def bench_scenario(path, methods=None, out=None, budget_s=10.0, overrides=(), fo
 
 def bench_kinds():
     """The scene kinds ``spinorbit bench`` takes: their Scene declares ``bench``."""
-    from .scenes import SCENES, scene_of
+    from ..scenes import SCENES, scene_of
 
     return sorted(kind for kind in SCENES if scene_of(kind).bench is not None)

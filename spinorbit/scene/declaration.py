@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from types import SimpleNamespace
 from typing import Callable
 
-from .errors import EphemerisRangeError, InputError, ScenarioError
+from ..base.errors import EphemerisRangeError, InputError, ScenarioError
 
 
 @dataclass(frozen=True)
@@ -96,7 +96,7 @@ class Outcome:
 
 @dataclass(frozen=True, eq=False)
 class Answer:
-    """What spinorbit.api answers from a scene's stored solution and the accuracy it states there
+    """What spinorbit.edge.api answers from a scene's stored solution and the accuracy it states there
     (``meta["expected_accuracy"]``, ``api.expected(name)``).  ``name``: the answer ("moon", "earth_rigid");
     ``scenario``: the validated built-in scenario it is answered from, whose verdict's tolerances it states;
     ``tolerances``: {stated name: the verdict's metric it is} (the name's last word its unit); ``stated``:
@@ -146,7 +146,7 @@ class Stored:
 
 @dataclass(frozen=True)
 class Scene:
-    """A scene's declarations.  ``params``: its parameter class (a spinorbit.params.Params with a table per
+    """A scene's declarations.  ``params``: its parameter class (a spinorbit.scene.params.Params with a table per
     scenario table, each field declared with its key), which the scenario is loaded into and every function
     below receives as ``p``; ``schema``: the keys read off it; ``build(p, times) -> Model``;
     ``compare(p, run) -> Outcome`` (a scene module names it ``compare_run``: the ``compare`` submodule some
@@ -163,7 +163,7 @@ class Scene:
     ``nbody_counts(p) -> {count: items}``: N-body work its run does (NBODY_COSTS' counts: an orbital solution
     or a REBOUND run first, or its own run where its integrator chooses its steps), for the up-front estimate;
     ``stored``: what it keeps as a continuous solution (a Stored; None: it keeps none);
-    ``answers``: what spinorbit.api answers from its stored solution (:class:`Answer`), the accuracy it states
+    ``answers``: what spinorbit.edge.api answers from its stored solution (:class:`Answer`), the accuracy it states
     and the body it answers for."""
 
     params: type
@@ -198,7 +198,7 @@ def integrate(scenario, system, times, part=None, method=None, options=None, est
     checkpointed when the command line gives a checkpoint, a further run ``part`` in a checkpoint of its own
     and a progress bar named for it; its error estimated as the scenario says (or as ``estimate_error``; a run
     with its own ``method``: not estimated, not checkpointed)."""
-    from .integrators import simulate
+    from ..integrators import simulate
 
     label = scenario.name if part is None else f"{scenario.name} ({part})"
     if method is not None:

@@ -1,16 +1,16 @@
 """``spinorbit show``: every key a scene reads, its value in the file, default, unit, range and meaning."""
 import math
 
-from .integrators import METHODS, get_method
+from ..integrators import METHODS, get_method
+from ..scene.schema import INTEGRATOR_OPTIONS, REQUIRED, dotted_items
 from .scenarios import load_scenario
-from .schema import INTEGRATOR_OPTIONS, REQUIRED, dotted_items
 
 
 def key_table(scene):
     """(heading, rows): the kind's docstring's first paragraph, and every key of ``scene``'s kind as a row of
     texts, nothing cut (key, its file's value, the default, unit, range, meaning), the [integrator] options
     among them; what ``spinorbit show`` prints."""
-    from .scenes import scene_module
+    from ..scenes import scene_module
 
     scenario = load_scenario(scene)
     path, kind = scenario.path, scenario.params.scene.kind

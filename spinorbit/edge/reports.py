@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .schema import dotted_items
+from ..scene.schema import dotted_items
 
 
 def write_run(result, out_dir, status="ok", error=None, painter=None):

@@ -4,7 +4,7 @@
 runs the Cartesian product of the values (at most ``MAX_MEMBERS``), one run directory
 per member (``OUT/000/``, ``OUT/001/`` ...), and collects every member's comparison and
 run metrics into ``OUT/sweep.json`` and ``OUT/sweep.csv``.  ``OUT`` is a run directory
-(spinorbit.rundir): a previous sweep is replaced whole, files spinorbit did not write are
+(spinorbit.edge.rundir): a previous sweep is replaced whole, files spinorbit did not write are
 refused (or kept, with ``force``).  Each member writes its own files as it finishes, so
 nothing done is lost if the sweep stops (it is kept in ``OUT`` or ``OUT.failed``).
 
@@ -17,7 +17,7 @@ import json
 import math
 from pathlib import Path
 
-from .errors import ScenarioError
+from ..base.errors import ScenarioError
 
 MAX_MEMBERS = 10_000            # a grid's members: each is a run and a directory
 CONNECT_TIMEOUT_S = 10          # waiting for a scheduler at an address
@@ -64,7 +64,7 @@ def members(grid):
 def run_member(scenario_path, overrides, staged, out_dir):
     """Run one member and write its run directory whole into ``staged`` (it will be ``out_dir``); return a
     flat record (never raises on bad input or a failed write)."""
-    from .errors import SpinorbitError
+    from ..base.errors import SpinorbitError
     from .reports import write_run
     from .rundir import write_whole
     from .runner import run_scenario
@@ -83,7 +83,7 @@ def run_member(scenario_path, overrides, staged, out_dir):
 
 
 def run_sweep(scenario_path, grid, out_dir, scheduler="local", base_overrides=(), force=False):
-    """Run every member of ``grid`` on Dask into the run directory ``out_dir`` (spinorbit.rundir: each member
+    """Run every member of ``grid`` on Dask into the run directory ``out_dir`` (spinorbit.edge.rundir: each member
     in ``NNN/`` as it finishes, the tables at the end, swapped in whole; a stopped sweep keeps what
     finished); return the list of records."""
     import dask

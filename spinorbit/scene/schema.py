@@ -13,9 +13,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .constants import J2000_JD
-from .errors import InputError, ScenarioError
-from .integrators.options import OPTIONS
+from ..base.constants import J2000_JD
+from ..base.errors import InputError, ScenarioError
+from ..integrators.options import OPTIONS
 
 REQUIRED = object()
 MAX_TEXT = 10_000              # characters in a string value

@@ -16,11 +16,11 @@ Times are ISO strings in TDB; ``span.end`` may also be a duration from
 Beyond types and units, every number must be finite and inside its key's
 plausible range (``Key.min``/``Key.max``), tolerances inside [100 eps, 1e-3];
 what the run asks for (rows, samples, steps, cycles, time, memory) must fit its
-limits (spinorbit.budget).  Files must be UTF-8, at most ``MAX_FILE_BYTES``, and
+limits (spinorbit.edge.budget).  Files must be UTF-8, at most ``MAX_FILE_BYTES``, and
 nest at most ``MAX_DEPTH`` levels.  Python's values (the API's) go in through
 ``load_scenario(values=...)``, validated alike; a valid scenario carries them as
 its scene's typed parameters, ``scenario.params`` (an instance of the scene's ``params`` class,
-spinorbit.params: ``scenario.params.orbit.source``).
+spinorbit.scene.params: ``scenario.params.orbit.source``).
 """
 import datetime
 import math
@@ -30,11 +30,10 @@ from pathlib import Path
 
 import numpy as np
 
-from . import budget
-from .errors import ScenarioError
-from .params import SpanTable, filled
-from .scene import scenario_errors
-from .schema import (
+from ..base.errors import ScenarioError
+from ..scene.declaration import scenario_errors
+from ..scene.params import SpanTable, filled
+from ..scene.schema import (
     INTEGRATOR_OPTIONS,
     MAX_TEXT,
     REQUIRED,
@@ -46,6 +45,7 @@ from .schema import (
     lookup,
     parse_tdb_days,
 )
+from . import budget
 
 MAX_DEPTH = 8                  # nesting of tables and arrays in a scenario
 MAX_FILE_BYTES = 1 << 20       # a scenario file (a few kB; every string in it is at most schema.MAX_TEXT)
@@ -67,7 +67,7 @@ class Scenario:
         self.checkpoint = None          # a checkpoint.Checkpoint when the command line runs it (--resume)
         self.extra_times = None         # TDB days the Python API asks for, besides the span's grid
         self.notes = []                 # what loading changed and says (method_switch)
-        from .scenes import scene_of  # the scene registry (lazy imports)
+        from ..scenes import scene_of  # the scene registry (lazy imports)
 
         check_depth(data, str(self.path) if self.path else "scenario")
         kind = lookup(data, "scene.kind", Key(type=str))
@@ -90,7 +90,7 @@ class Scenario:
         options), as a scenario is checked when it is loaded: after ``params`` is replaced, e.g. by
         ``with_params``."""
         budget.check(self)
-        from .integrators import get_method
+        from ..integrators import get_method
 
         with scenario_errors(self):
             get_method(self.params.integrator.method)(**self.params.integrator.options())
@@ -100,7 +100,7 @@ class Scenario:
         its key's range (params.check_values), then the budget and the method's options."""
         import copy
 
-        from .params import check_values
+        from ..scene.params import check_values
 
         check_values(params)
         other = copy.copy(self)
@@ -109,7 +109,7 @@ class Scenario:
         return other
 
     def output_times(self):
-        """Output times in TDB days from J2000 (the span's, spinorbit.params.SpanTable.times), with the API's
+        """Output times in TDB days from J2000 (the span's, spinorbit.scene.params.SpanTable.times), with the API's
         ``extra_times`` among them."""
         return self.params.span.times(self.extra_times)
 
@@ -175,7 +175,7 @@ class Scenario:
 
     def _check_options(self, content):
         """[integrator] names: the method's options (its class says which), method and estimate_error."""
-        from .integrators import METHODS, get_method
+        from ..integrators import METHODS, get_method
 
         method = content.get("method", self.schema["integrator.method"].default)
         known = set(get_method(method).options) if isinstance(method, str) and method in METHODS else \
@@ -219,11 +219,11 @@ class Scenario:
         return self.scene.cost
 
     def counts(self):
-        """{count: items} the span asks for (spinorbit.budget.counts)."""
+        """{count: items} the span asks for (spinorbit.edge.budget.counts)."""
         return budget.counts(self)
 
     def estimate(self):
-        """{"time_s", "memory_bytes"} of the run (spinorbit.budget.estimate)."""
+        """{"time_s", "memory_bytes"} of the run (spinorbit.edge.budget.estimate)."""
         return budget.estimate(self)
 
 def check_depth(data, where, limit=MAX_DEPTH):
@@ -242,7 +242,7 @@ def check_depth(data, where, limit=MAX_DEPTH):
 
 def backward_kinds():
     """Scene kinds that run a span backward (their Scene says ``backward``)."""
-    from .scenes import SCENES, scene_of
+    from ..scenes import SCENES, scene_of
 
     return sorted(kind for kind in SCENES if scene_of(kind).backward)
 
@@ -250,7 +250,7 @@ def backward_kinds():
 def taylor_kinds():
     """Scene kinds whose every term is a function of the state and the time (their Scene says ``taylor``):
     heyoka's Taylor integrator takes them."""
-    from .scenes import SCENES, scene_of
+    from ..scenes import SCENES, scene_of
 
     return sorted(kind for kind in SCENES if scene_of(kind).taylor)
 
@@ -305,7 +305,7 @@ def set_value(data, key, value, given=None):
 
 
 def load_scenario(path, overrides=(), values=None):
-    """Read and validate a scenario file (a path, or a built-in scene's name: spinorbit.catalogue); ``overrides``
+    """Read and validate a scenario file (a path, or a built-in scene's name: spinorbit.edge.catalogue); ``overrides``
     are ``key=value`` strings (the command line's ``--set``), ``values`` a dict of dotted key -> value (Python's
     values, e.g. the API's: no text to parse), applied after them."""
     from .catalogue import resolve

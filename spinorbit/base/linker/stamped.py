@@ -4,7 +4,7 @@ files.
 numba keys a cached function's compiled code by its own bytecode and stamps its index with its own file's time
 and size, so an edit to a callee's file alone leaves the caller running the old callee (a limitation numba's
 documentation states, "Cache invalidation fails to recognize changes in symbols defined in a different file";
-numba issue #1833).  :class:`ReachCache` adds to the key the :func:`spinorbit.linker.fingerprint` of what the
+numba issue #1833).  :class:`ReachCache` adds to the key the :func:`spinorbit.base.linker.fingerprint` of what the
 function reaches in its package (the sources of the modules whose functions and constants it uses, followed
 through compiled callees, and numba's version), as the linker names its generated kernels: after such an edit
 the key is new and the function compiles afresh; with none, a later process loads the cache as before.  The

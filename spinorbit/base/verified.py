@@ -2,7 +2,7 @@
 
 Every cache of numbers spinorbit keeps on disk goes through these few calls, so that each keeps the same rules:
 
-- ``folder(name)``: ``<spinorbit's private cache>/<name>`` (spinorbit.linker.cache: ``$SPINORBIT_CACHE_DIR``,
+- ``folder(name)``: ``<spinorbit's private cache>/<name>`` (spinorbit.base.linker.cache: ``$SPINORBIT_CACHE_DIR``,
   else ``~/.cache/spinorbit``), created 0700; ``private(path)`` checks a folder named elsewhere (a test's).  A
   folder another user owns or can write is refused in one line (an InputError naming SPINORBIT_CACHE_DIR):
   nothing planted there is read.
@@ -22,7 +22,7 @@ Every cache of numbers spinorbit keeps on disk goes through these few calls, so 
   (:func:`discard`) and makes it again.  An OSError that says nothing about the file (EIO, EMFILE, EACCES) is
   raised as it is: the caller answers without the cache, and never deletes the file for it.
   ``read_file(f, record=None)`` checks a file its caller opened (a file the user named, whose owner the caller
-  checks first: spinorbit.checkpoint) by the same rules.
+  checks first: spinorbit.edge.checkpoint) by the same rules.
 - ``peek(path, names)``: some arrays read without the hash checked (a listing; a span compared), None if
   unreadable.
 - ``lock(path, wait_s=None, repair=True)``: the exclusive lock of ``path`` (``<name>.lock`` beside it, a regular

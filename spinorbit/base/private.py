@@ -78,7 +78,7 @@ def root():
 @functools.cache
 def kernels_dir():
     """The private directory of the generated modules (created 0700; refused if not private, and refused when
-    NUMBA_CACHE_DIR is not: spinorbit.private)."""
+    NUMBA_CACHE_DIR is not: spinorbit.base.private)."""
     refusal = numba_cache_refusal()
     if refusal is not None:
         raise refusal

@@ -1,7 +1,7 @@
 """Command line: ``spinorbit run | list | bench``.
 
 ``run`` prints the verdict first: ``<scene>: pass | fail | not-compared — <figure> <= <tolerance>
-... vs <reference> (<span>)`` (spinorbit.verdict), then the comparison metrics.
+... vs <reference> (<span>)`` (spinorbit.scene.verdict), then the comparison metrics.
 
 Exit codes: 0 the run finished (whatever its verdict); 2 bad input (one line
 ``error: <key>: got ...; expected ...``, or ``error: <path>: <reason>`` for a file that cannot be read or
@@ -19,8 +19,8 @@ import sys
 import threading
 from pathlib import Path
 
-from .errors import IntegrationError, SpinorbitError
-from .version import __version__
+from ..base.errors import IntegrationError, SpinorbitError
+from ..base.version import __version__
 
 EXIT_VERDICT_FAIL = 4
 FORCE_HELP = ("write into an --out holding entries spinorbit did not write: they are kept, except files of "
@@ -96,7 +96,7 @@ def main(argv=None):
     if extra:
         parser.error(f"unrecognized arguments: {' '.join(extra)}{_quote_hint(argv, extra)}")
     if args.quiet:
-        os.environ["SPINORBIT_QUIET"] = "1"          # read by spinorbit.progress, here and in Dask workers
+        os.environ["SPINORBIT_QUIET"] = "1"          # read by spinorbit.base.progress, here and in Dask workers
     try:
         if args.command == "run":
             with _sigterm_interrupts():
@@ -297,9 +297,9 @@ def _bench(args):
 
 
 def _cache(action):
+    from ..base.linker import cache
+    from ..solutions import store
     from . import caches
-    from .linker import cache
-    from .solutions import store
 
     if action == "clear":
         print("\n".join(caches.clear()))
@@ -325,7 +325,7 @@ class _ExportHelp(argparse.Action):
 
 class _AtHelp(argparse.Action):
     """``spinorbit at --help``: the help, with the bodies the scenes answer for and what each gives (read off the
-    scenes, spinorbit.api.answers, only when asked: the other commands do not import them)."""
+    scenes, spinorbit.edge.api.answers, only when asked: the other commands do not import them)."""
 
     def __call__(self, parser, namespace, values, option_string=None):
         from . import api
@@ -338,7 +338,7 @@ class _AtHelp(argparse.Action):
 
 
 def _exportable():
-    from .scenes import stored_kinds
+    from ..scenes import stored_kinds
 
     return sorted(kind for kind, stored in stored_kinds().items() if stored.kernels)
 
@@ -347,9 +347,9 @@ def _export(args):
     """Write the SPICE kernels of exactly the scenario's model over its span (solutions.for_export)."""
     import time
 
-    from .errors import InputError
+    from ..base.errors import InputError
+    from ..solutions import for_export
     from .scenarios import load_scenario
-    from .solutions import for_export
 
     scenario = load_scenario(args.scenario, args.overrides)
     if scenario.scene.stored is None or not scenario.scene.stored.kernels:     # refused before anything is integrated
@@ -357,7 +357,7 @@ def _export(args):
     _out_folder(args.out)
     solution = for_export(scenario)
     started = time.perf_counter()
-    from .params import values_of
+    from ..scene.params import values_of
 
     written = solution.export(args.out, asked=values_of(scenario.params))
     wall = time.perf_counter() - started
@@ -374,7 +374,7 @@ def _out_folder(given):
     longer than NAME_MAX, the whole longer than PATH_MAX) is an InputError naming --out and the limits."""
     import errno
 
-    from .errors import InputError
+    from ..base.errors import InputError
 
     folder = Path(given)
     try:
@@ -397,8 +397,8 @@ def _at(args):
 
     from astropy.time import Time
 
+    from ..base.errors import InputError
     from . import api
-    from .errors import InputError
 
     if args.body not in api.bodies():
         raise InputError("BODY", args.body, f"one of {list(api.bodies())} (the bodies the scenes answer for)")

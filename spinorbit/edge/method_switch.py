@@ -6,8 +6,8 @@ not a Taylor option.  The file's options the new method does not take are transl
 new option's range, else dropped for the method's default; each change is said in one line.  Options set on the
 command line are never touched: they are checked as typed.
 """
-from .errors import ScenarioError
-from .schema import INTEGRATOR_OPTIONS, checked_float
+from ..base.errors import ScenarioError
+from ..scene.schema import INTEGRATOR_OPTIONS, checked_float
 
 SAME_MEANING = {"rtol": "tolerance", "tolerance": "rtol"}
 ALWAYS = ("method", "estimate_error")
@@ -22,7 +22,7 @@ def option_names(overrides):
 def switch_method(table, file_table, typed):
     """Fit ``table`` (the [integrator] table after the overrides) to its method when ``typed`` (the names set on
     the command line) switched it from ``file_table``'s; returns the notes saying what changed."""
-    from .integrators import METHODS, get_method
+    from ..integrators import METHODS, get_method
 
     method = table.get("method")
     if "method" not in typed or method == file_table.get("method") or method not in METHODS:
