@@ -13,7 +13,7 @@ import numpy as np
 
 from spinorbit.edge.scenarios import load_scenario
 from spinorbit.integrators import simulate, taylor
-from spinorbit.scenes.solar_system import system as solar_system
+from spinorbit.starts.solar_system import system as solar_system
 
 END_D = 18262.5                 # 2050-01-01, TDB days from J2000
 

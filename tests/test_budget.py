@@ -81,7 +81,7 @@ def test_the_solar_system_counts_the_days_its_taylor_run_follows():
 
 
 def test_the_solar_system_estimate_is_its_days_times_the_measured_cost():
-    from spinorbit import budget
+    from spinorbit.edge import budget
 
     scenario = load_scenario("solar_system")                     # 1950-2050, Taylor, no error estimate
     days = 2469807.5 - 2433282.5                                   # 2050-01-01 less 1950-01-01, JD TDB

@@ -14,18 +14,14 @@ leaves by 99 mas over the century).
 secular acceleration (n_dot, "/cy^2) and recession (mm/yr), judged against lunar laser ranging (Williams &
 Boggs 2016: -25.8"/cy^2, 38.3 mm/yr, +-1) on spans of 100 yr or more.
 """
-import time
-
-import numpy as np
-
-from ..base.errors import ScenarioError
 from ..comparisons import earth_moon_de421 as de421
-from ..models.assemblies.earth_moon import EXTERNAL, PLANETS, SWITCHES
+from ..models.assemblies.earth_moon import SWITCHES
 from ..orbits.sources import OrbitSource
 from ..plots.solar_system import moon_vs_de421
 from ..scene.declaration import Answer, Cost, Model, Outcome, Scene, Stored
 from ..scene.params import Params, key, source_key, table
 from ..scene.verdict import Check, Verdict
+from ..starts import earth_moon as start
 from . import common
 
 
@@ -89,45 +85,11 @@ def verdict(p, comparison):
                    tuple(checks), earth_axis)
 
 
-def start_epoch(p):
-    """span.start, or the nearest epoch of DE421's lunar series (TDB days) when it lies outside."""
-    from ..bodies.de421_orientation import span
-
-    first, last = span()
-    return float(np.clip(p.span.start, first + 1.0, last - 1.0))
-
-
-def external_bodies(p):
-    """(the Sun, planets and EMB sampled from orbit.source over the span and the start, the sampling's wall
-    time s)."""
-    t0, (first, last) = start_epoch(p), p.span.bounds
-    names = EXTERNAL if p.model.planets else tuple(n for n in EXTERNAL if n not in PLANETS)
-    started = time.perf_counter()
-    external = p.orbit.source.barycentric(names, min(first, t0) - 1.0, max(last, t0) + 1.0, p.orbit.step)
-    return external, time.perf_counter() - started
-
-
-def system(p, external, switches):
-    """The Earth-Moon System on ``external`` with ``switches``, started from DE421 at span.start (or at the
-    nearest epoch its lunar series covers, integrated out from there)."""
-    from ..bodies import earth
-    from ..models.assemblies.earth_moon import solar_system
-    from ..models.start import earth_moon_de421
-    from ..references.erfa_pole import cip_vector
-
-    t0 = start_epoch(p)
-    built = solar_system(external, switches, t0)
-    built.y0 = built.layout.pack(earth_moon_de421(built, t0, cip_vector(t0), earth.ERA_RATE_RAD_D))
-    return built
-
-
 def build(p, times):
     """The Earth-Moon System on the Sun, planets and barycentre sampled from orbit.source."""
-    switches = tuple(name for name in SWITCHES if getattr(p.model, name))
-    if p.compare.tides_off and "earth_tides" not in switches:
-        raise ScenarioError("compare.tides_off", True, "false when model.earth_tides is false")
-    external, sampled = external_bodies(p)
-    return Model(system(p, external, switches), external=external, sampled=sampled, switches=switches)
+    switches = start.switches(p)
+    external, sampled = start.external_bodies(p)
+    return Model(start.system(p, external, switches), external=external, sampled=sampled, switches=switches)
 
 
 def compare_run(p, run):
@@ -143,7 +105,7 @@ def compare_run(p, run):
                 "external_bodies": {"source": m.external.source, "step_d": m.external.step,
                                     "wall_s": m.sampled}}
     if p.compare.tides_off:
-        without = system(p, m.external, tuple(s for s in m.switches if s != "earth_tides"))
+        without = start.system(p, m.external, start.without_tides(m.switches))
         other, sections["run_tides_off"] = run.integrate(without, t, "tides_off")
         comparison.update(vs.tidal_acceleration(t, solution.part("moon.r"), other.part("moon.r"),
                                                 other.part("moon.v")))
@@ -151,20 +113,12 @@ def compare_run(p, run):
               "earth_axis": axis_error}
     table = vs.table(t, solution.part("moon.r"), mats, errors, axis)
     year = common.decimal_year(t)
-    in_arcsec = [table[name].value for name in ("moon_direction_error", "pole_error", "longitude_error")]
     figures = {
-        "moon_vs_de421": moon_vs_de421(year, *in_arcsec, "arcsec"),
+        "moon_vs_de421": moon_vs_de421(year, table["moon_direction_error"].value, table["pole_error"].value,
+                                       table["longitude_error"].value, "arcsec"),
         "moon_range_vs_de421": common.plot_series(year, [distance * 1e3], "year (TDB)", "range error [m]",
                                                   ["range"])}
     return Outcome(comparison, figures=figures, sections=sections, not_measured=not_measured, table=table)
-
-
-def restart(p, start):
-    """The Earth-Moon System of ``p`` started at a stored state ``start`` = (t0, y)."""
-    from ..models.assemblies.earth_moon import solar_system
-
-    switches = tuple(name for name in SWITCHES if getattr(p.model, name))
-    return solar_system(external_bodies(p)[0], switches, float(start[0])).with_start(*start)
 
 
 STORED = Stored(segment_d=4.0, degree=13, anchor=0.0)       # kept as a solution from J2000
@@ -185,5 +139,5 @@ ANSWER = Answer(
              "moon_direction_error", "moon_range_error", "pole_error", "longitude_error",
              "earth_axis_x", "earth_axis_y", "earth_axis_z"))
 
-SCENE = Scene(EarthMoonCoupledParams, build, compare_run, verdict, Cost(step_s=3e-4), restart=restart, stored=STORED,
-              answers=(ANSWER,))
+SCENE = Scene(EarthMoonCoupledParams, build, compare_run, verdict, Cost(step_s=3e-4), restart=start.started_at,
+              stored=STORED, answers=(ANSWER,))

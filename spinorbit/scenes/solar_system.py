@@ -15,6 +15,7 @@ from ..plots.solar_system import moon_vs_de421, planets_vs_de421
 from ..scene.declaration import Model, Outcome, Scene, Stored
 from ..scene.params import Params, key, table
 from ..scene.verdict import Check, Verdict
+from ..starts import solar_system as start
 from . import common
 
 
@@ -64,36 +65,7 @@ def verdict(p, comparison):
 
 
 def build(p, times):
-    return Model(system(p))
-
-
-def start_epoch(p):
-    """TDB days of the run's start: DE421's epoch JDEPOC, or span.start."""
-    from ..base.constants import J2000_JD
-    from ..bodies.de421_header import header
-
-    return header()["JDEPOC"] - J2000_JD if p.start.epoch == "de421" else p.span.start
-
-
-def nbody_counts(p):
-    """The days the Taylor integrator follows for the up-front estimate (its steps are its own: it is
-    counted by the day), from the start epoch both ways over the span, twice when its error is estimated."""
-    if p.integrator.method != "taylor":
-        return {}
-    t0 = start_epoch(p)
-    days = max(p.span.start, p.span.end, t0) - min(p.span.start, p.span.end, t0)
-    return {"Taylor days (solar system)": days * (2 if p.integrator.estimate_error else 1)}
-
-
-def switches(p):
-    return tuple(name for name in SWITCHES if getattr(p.model, name))
-
-
-def restart(p, start):
-    """The solar system of ``p`` started at a stored state ``start`` = (t0, y)."""
-    from ..models.assemblies.solar_system import solar_system
-
-    return solar_system(switches(p), float(start[0])).with_start(*start)
+    return Model(start.system(p))
 
 
 def bench(p, model, times):
@@ -102,19 +74,6 @@ def bench(p, model, times):
 
     error, model.system.meta["reference_agreement_rad"] = converged_error(model.system, times, 0.125)
     return error
-
-
-def system(scenario):
-    """DE421's solar system with the scenario's switches, started as ``start.epoch`` says."""
-    from ..bodies import earth
-    from ..models.assemblies.solar_system import solar_system
-    from ..models.start import solar_system_de421
-    from ..references.erfa_pole import cip_vector
-
-    t0 = start_epoch(scenario)
-    built = solar_system(switches(scenario), t0)
-    built.y0 = built.layout.pack(solar_system_de421(built, t0, cip_vector(t0), earth.ERA_RATE_RAD_D))
-    return built
 
 
 def compare_run(p, run):
@@ -130,20 +89,15 @@ def compare_run(p, run):
     errors = {"direction": direction, "range": distance, "pole": pole, "longitude": longitude}
     table = vs.table(t, solution.part("moon.r"), mats, errors, planets)
     year = common.decimal_year(t)
-    in_mas = (table[name].value for name in ("moon_direction_error", "pole_error", "longitude_error"))
-    figures = {"moon_vs_de421": moon_vs_de421(year, *in_mas, "mas"),
+    figures = {"moon_vs_de421": moon_vs_de421(year, table["moon_direction_error"].value, table["pole_error"].value,
+                                              table["longitude_error"].value, "mas"),
                "planets_vs_de421": planets_vs_de421(year, planets)}
     return Outcome(vs.metrics(direction, distance, lunar, planets), figures=figures, sections=sections,
                    table=table)
 
 
-# every term a function of the state: heyoka's Taylor integrator takes it; from DE421's epoch both ways
-def own_start(p):
-    """span.start with ``start.epoch = "span"``, or None: the stored solution's anchor, DE421's epoch."""
-    return p.span.start if p.start.epoch == "span" else None
-
-
 DE421_EPOCH_TDB_D = -11144.5        # DE421's JDEPOC, 2440400.5 TDB (1969-06-28): its initial conditions' epoch
-STORED = Stored(segment_d=4.0, degree=13, anchor=DE421_EPOCH_TDB_D, own_start=own_start)
-SCENE = Scene(SolarSystemParams, build, compare_run, verdict, bench=bench, backward=True, taylor=True, restart=restart,
-              nbody_counts=nbody_counts, stored=STORED)
+STORED = Stored(segment_d=4.0, degree=13, anchor=DE421_EPOCH_TDB_D, own_start=start.own_start)
+# every term a function of the state: heyoka's Taylor integrator takes it; from DE421's epoch both ways
+SCENE = Scene(SolarSystemParams, build, compare_run, verdict, bench=bench, backward=True, taylor=True,
+              restart=start.started_at, nbody_counts=start.nbody_counts, stored=STORED)
