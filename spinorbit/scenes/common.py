@@ -1,4 +1,5 @@
-"""Pieces scene modules share: a rigid body from its moments, its time-scales, plots (spinorbit.plots.common)."""
+"""Pieces scene modules share: the orbit tables of Euler's idealised problems, a rigid body from its moments, its
+time-scales, plots (spinorbit.plots.common)."""
 import math
 from dataclasses import fields
 
@@ -8,6 +9,34 @@ from ..base.errors import PhysicsError, ScenarioError
 from ..bodies import RigidBody
 from ..plots.common import plot_series  # scenes call common.plot_series
 from ..scene.declaration import TimeScale
+from ..scene.params import key, table
+from ..scene.schema import DISTANCE, GM, RATE
+
+
+@table
+class CentreOfForcesTable:
+    """A centre of forces F at rest (Euler's P92, P95)."""
+
+    gm: float = key(**GM, help="GM of the centre of forces")
+    radius: float = key(**DISTANCE, help="distance s of F")
+
+
+@table
+class CircularCentreTable:
+    """A centre of forces F on a circle about the body (Euler's P93, P96)."""
+
+    gm: float = key(**GM, help="GM of the centre of forces")
+    radius: float = key(**DISTANCE, help="distance s of F")
+    rate: float = key(**RATE, help="angular speed delta of F")
+
+
+@table
+class KeplerOrbitTable:
+    """The body on a Kepler orbit about a central mass."""
+
+    gm: float = key(**GM, help="GM of the central mass")
+    a: float = key(**DISTANCE, help="semi-major axis")
+    e: float = key(unit="", min=0.0, max=0.99, help="eccentricity")
 
 
 def u():

@@ -13,7 +13,6 @@ from ..base.constants import ARCSEC
 from ..models.assemblies.idealised import under_point_masses
 from ..scene.declaration import Model, Outcome, Scene
 from ..scene.params import Params, key, table
-from ..scene.schema import DISTANCE, GM
 from ..scene.verdict import Check, Verdict
 from . import common
 
@@ -21,12 +20,6 @@ from . import common
 @table
 class BodyTable:
     moments: np.ndarray = key(unit="", size=3, help="principal moments A <= B <= C, any unit")
-
-
-@table
-class OrbitTable:
-    gm: float = key(**GM, help="GM of the centre of forces")
-    radius: float = key(**DISTANCE, help="distance s of F")
 
 
 @table
@@ -38,7 +31,7 @@ class ForceTable:
 @table
 class P92StartFromRestParams(Params):
     body: BodyTable
-    orbit: OrbitTable
+    orbit: common.CentreOfForcesTable
     force: ForceTable
 
 

@@ -14,7 +14,6 @@ from ..analysis.planar_libration import planar_system
 from ..comparisons.planar_libration_euler import compare_run
 from ..scene.declaration import Model, Scene
 from ..scene.params import Params, key, table
-from ..scene.schema import DISTANCE, GM, RATE
 from ..scene.verdict import Check, Verdict
 from . import common
 
@@ -22,13 +21,6 @@ from . import common
 @table
 class BodyTable:
     moments: np.ndarray = key(unit="", size=3, help="principal moments A < B <= C, any unit")
-
-
-@table
-class OrbitTable:
-    gm: float = key(**GM, help="GM of the centre of forces")
-    radius: float = key(**DISTANCE, help="distance s of F")
-    rate: float = key(**RATE, help="angular speed delta of F")
 
 
 @table
@@ -40,7 +32,7 @@ class LibrationTable:
 @table
 class P93PlanarLibrationParams(Params):
     body: BodyTable
-    orbit: OrbitTable
+    orbit: common.CircularCentreTable
     libration: LibrationTable
 
 

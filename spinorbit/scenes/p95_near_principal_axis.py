@@ -17,7 +17,7 @@ from ..base.errors import ScenarioError
 from ..models.assemblies.idealised import under_point_masses
 from ..scene.declaration import Model, Outcome, Scene
 from ..scene.params import Params, key, table
-from ..scene.schema import ANGLE, DISTANCE, GM, SPIN
+from ..scene.schema import ANGLE, SPIN
 from ..scene.verdict import Check, Verdict
 from . import common
 
@@ -31,12 +31,6 @@ class BodyTable:
 
 
 @table
-class OrbitTable:
-    gm: float = key(**GM, help="GM of the centre of forces")
-    radius: float = key(**DISTANCE, help="distance s of F")
-
-
-@table
 class ForceTable:
     direction: np.ndarray = key(unit="", size=3, direction=True,
                                 help="(cos AF, cos BF, cos CF) in Euler's axes A (= our z), B, C")
@@ -45,7 +39,7 @@ class ForceTable:
 @table
 class P95NearPrincipalAxisParams(Params):
     body: BodyTable
-    orbit: OrbitTable
+    orbit: common.CentreOfForcesTable
     force: ForceTable
 
 

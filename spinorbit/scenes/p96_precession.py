@@ -22,7 +22,7 @@ from ..base.errors import ResonanceError, ScenarioError
 from ..models.assemblies.idealised import under_point_masses
 from ..scene.declaration import Model, Outcome, Scene
 from ..scene.params import Params, key, table
-from ..scene.schema import ANGLE, DISTANCE, GM, RATE, SPIN
+from ..scene.schema import ANGLE, SPIN
 from ..scene.verdict import Check, Verdict
 from . import common
 
@@ -35,16 +35,9 @@ class BodyTable:
 
 
 @table
-class OrbitTable:
-    gm: float = key(**GM, help="GM of the centre of forces")
-    radius: float = key(**DISTANCE, help="distance s of F")
-    rate: float = key(**RATE, help="angular speed delta of F")
-
-
-@table
 class P96PrecessionParams(Params):
     body: BodyTable
-    orbit: OrbitTable
+    orbit: common.CircularCentreTable
 
 
 _SECOND_ORDER = ("Euler's theory is first order in N/delta and drops eps aa/cc - eps; "

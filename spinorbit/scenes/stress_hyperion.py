@@ -23,7 +23,6 @@ import numpy as np
 from ..comparisons.hyperion_lyapunov import compare_run
 from ..scene.declaration import Model, Scene
 from ..scene.params import Params, key, table
-from ..scene.schema import DISTANCE, GM
 from ..scene.verdict import Check, Verdict
 from . import common
 
@@ -43,13 +42,6 @@ def verdict(p, comparison):
 @table
 class BodyTable:
     moments: np.ndarray = key(unit="", size=3, help="principal moments A < B < C (3-D runs); (B - A)/C for planar")
-
-
-@table
-class OrbitTable:
-    gm: float = key(**GM, help="GM of Saturn")
-    a: float = key(**DISTANCE, help="semi-major axis")
-    e: float = key(unit="", min=0.0, max=0.99, help="eccentricity")
 
 
 @table
@@ -82,7 +74,7 @@ class MapTable:
 @table
 class StressHyperionParams(Params):
     body: BodyTable
-    orbit: OrbitTable
+    orbit: common.KeplerOrbitTable
     lyapunov: LyapunovTable
     map: MapTable
 

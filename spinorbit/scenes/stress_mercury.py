@@ -31,7 +31,6 @@ from ..comparisons.mercury_libration import (
 )
 from ..scene.declaration import Model, Scene
 from ..scene.params import Params, key, table
-from ..scene.schema import DISTANCE, GM
 from ..scene.verdict import Check, Verdict
 from . import common
 
@@ -55,13 +54,6 @@ class BodyTable:
 
 
 @table
-class OrbitTable:
-    gm: float = key(**GM, help="GM of the Sun")
-    a: float = key(**DISTANCE, help="semi-major axis")
-    e: float = key(unit="", min=0.0, max=0.99, help="eccentricity")
-
-
-@table
 class StressTable:
     linear_rel_tol: float = key(unit="", default=1e-3, help="pass: |measured/linear theory - 1|")
     series_rel_tol: float = key(unit="", default=1e-2, help="pass: |measured/Margot series - 1|")
@@ -70,7 +62,7 @@ class StressTable:
 @table
 class StressMercuryParams(Params):
     body: BodyTable
-    orbit: OrbitTable
+    orbit: common.KeplerOrbitTable
     stress: StressTable
 
 

@@ -20,7 +20,6 @@ from ..base.errors import ScenarioError
 from ..integrators import METHODS
 from ..scene.declaration import Model, Outcome, Scene
 from ..scene.params import Params, key, table
-from ..scene.schema import DISTANCE, GM, RATE
 from ..scene.verdict import Check, Verdict
 from . import common
 
@@ -40,13 +39,6 @@ class BodyTable:
 
 
 @table
-class OrbitTable:
-    gm: float = key(**GM)
-    radius: float = key(**DISTANCE)
-    rate: float = key(**RATE)
-
-
-@table
 class StressTable:
     offsets: list = key(type=list, default=[-1e-9, 1e-9], help="C/n - 1 for each run")
     methods: list = key(type=list, default=["rk8", "suzuki4", "dop853"])
@@ -56,7 +48,7 @@ class StressTable:
 @table
 class StressSeparatrixParams(Params):
     body: BodyTable
-    orbit: OrbitTable
+    orbit: common.CircularCentreTable
     stress: StressTable
 
 
