@@ -11,7 +11,7 @@
   and against CSPICE reading the Moon's kernels ``export`` writes (frame MOON_ME_SPINORBIT_<id>).
 * observer: ``moon_librations(observer=...)`` at La Palma, N dates over 1973-2025 (where the IERS tables astropy
   and skyfield-data ship hold measured UT1 and polar motion), in both frames, against skyfield's own chain
-  (tests/test_api.observed_by_skyfield: its UT1, skyfield-data's polar motion, ``observe().apparent()``
+  (tests/edge/test_api.observed_by_skyfield: its UT1, skyfield-data's polar motion, ``observe().apparent()``
   on DE421, JPL's lunar PCK and frame kernel): the sub-observer point and the axis's position angle, and how far
   astropy and skyfield place the observer (m); the call's time for the N dates without and with the observer.
 """
@@ -128,7 +128,7 @@ def observer(count):
     import spinorbit
 
     sys.path.insert(0, str(__import__("pathlib").Path(__file__).resolve().parents[1]))
-    from tests.test_api import PLACE, observed_by_skyfield
+    from tests.edge.test_api import PLACE, observed_by_skyfield
 
     t = dates(IERS_1973_2025, count, 46).utc
     place = EarthLocation.from_geodetic(PLACE["lon_deg"] * u.deg, PLACE["lat_deg"] * u.deg, PLACE["height_m"] * u.m)

@@ -80,7 +80,7 @@ def test_p96_resonance_detected_and_secular_growth():
 
 # Stress scenes (scenarios/stress/*.toml): each passes or fails on a number it reports in summary.json,
 # and a failing integration writes its partial output through the command line
-# (tests/test_cli.py).
+# (tests/edge/test_cli.py).
 
 
 STRESS = Path(__file__).parent.parent / "scenarios" / "stress"

@@ -3,7 +3,7 @@
 Each scene builds its table (``timeseries.ecsv``, ``RunResult.table``) with unit-carrying columns;
 :func:`describe` sets each column's astropy ``description`` from :data:`COLUMNS`, which the ECSV header then
 carries.  A column a scene adds is described here, or by the scene itself where its meaning is its own (deep
-time's La2004 quantities, whose ``obliquity`` is not the Earth scene's); tests/test_columns.py holds every scene
+time's La2004 quantities, whose ``obliquity`` is not the Earth scene's); tests/scene/test_columns.py holds every scene
 to it, and the README lists them.
 """
 

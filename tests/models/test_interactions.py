@@ -369,7 +369,7 @@ def test_splitting_keeps_the_geodesic_precession_with_its_annual_term():
     """A full Earth with the geodesic nutation on, 30 d: suzuki4 turning the attitude by the System's generated
     frame rate agrees with a converged rk8 run far inside the geodesic precession over the span, 1.92"/cy x 30 d
     = 7.6e-9 rad (what a splitting that dropped it would miss); bound 1e-10 rad (rk8 at 0.05 d and suzuki4 at
-    0.125 d carry ~1e-12 rad each, tests/test_bench.py)."""
+    0.125 d carry ~1e-12 rad each, tests/edge/test_bench.py)."""
     system = started(rigid_earth(circles(), "full", j2_rate=False, ecliptic_pole=ECLIPTIC_POLE,
                                  geodesic_nutation=True))
     t = np.linspace(0.0, 30.0, 31)

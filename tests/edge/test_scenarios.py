@@ -20,8 +20,8 @@ from spinorbit.edge.scenarios import Scenario, load_scenario
 from spinorbit.scene.params import values_of
 from spinorbit.scene.schema import dotted_items
 
-FREE_BODY = Path(__file__).parents[1] / "scenarios" / "free_body.toml"
-P93 = Path(__file__).parents[1] / "scenarios" / "p93_bounded.toml"
+FREE_BODY = Path(__file__).parents[2] / "scenarios" / "free_body.toml"
+P93 = Path(__file__).parents[2] / "scenarios" / "p93_bounded.toml"
 
 
 def write_scene(tmp_path, text):
@@ -106,8 +106,8 @@ def test_list_shows_every_scene(capsys):
 
 # --- issue 27: the up-front estimate, honest in time and memory ---------------------------------
 
-MOON = Path(__file__).parents[1] / "scenarios" / "moon_libration.toml"
-COUPLED = Path(__file__).parents[1] / "scenarios" / "stress" / "coupled_conservation.toml"
+MOON = Path(__file__).parents[2] / "scenarios" / "moon_libration.toml"
+COUPLED = Path(__file__).parents[2] / "scenarios" / "stress" / "coupled_conservation.toml"
 # The peak resident memory of this process's image (VmHWM; ru_maxrss would keep the forking parent's peak).
 PEAK = """
 import sys
@@ -122,7 +122,7 @@ def peak_bytes(tmp_path, scenario, sets):
     for assignment in ["output.plots=false", "integrator.estimate_error=false", *sets]:
         argv += ["--set", assignment]
     done = subprocess.run([sys.executable, "-c", PEAK, *argv], capture_output=True, text=True, check=False,
-                          env={**os.environ, "PYTHONPATH": str(Path(__file__).parents[1])})
+                          env={**os.environ, "PYTHONPATH": str(Path(__file__).parents[2])})
     assert done.returncode == 0, done.stderr
     return int(done.stdout.split()[-1])
 
@@ -194,7 +194,7 @@ def test_a_free_body_whose_euler_rates_would_never_end_is_refused(capsys):
 # no integration; a few cases go through the command line.
 
 
-ROOT = Path(__file__).parents[1]
+ROOT = Path(__file__).parents[2]
 SCENE_FILES = {name: ROOT / "scenarios" / f"{name}.toml"
                for name in ("p93_bounded", "free_body", "moon_libration", "earth_precession_nutation")}
 SCENES = {name: tomllib.loads(path.read_text()) for name, path in SCENE_FILES.items()}
@@ -466,7 +466,7 @@ def test_run_scenario_with_any_python_values_is_refused_in_one_line(scenario, ov
 # run backward refuse in one line naming span.end.
 
 
-SCENARIOS = Path(__file__).parent.parent / "scenarios"
+SCENARIOS = Path(__file__).parents[2] / "scenarios"
 
 
 def test_forward_only_scene_refuses_a_backward_span():

@@ -17,7 +17,7 @@ from spinorbit.integrators import rk8, splitting
 from spinorbit.models.interactions import point_mass
 from tests.second_user import OTHER, as_user, chown_other, needs_root, shared_dir
 
-ROOT = Path(__file__).parents[2]
+ROOT = Path(__file__).parents[3]
 # A rigid body without torque, its rhs generated and linked (with its torque, not called): Euler's
 # equations in closed form, omega' = ((B - C) wy wz / A, (C - A) wz wx / B, (A - B) wx wy / C).
 LINK = """

@@ -27,7 +27,7 @@ from tests.second_user import OTHER, chown_other, needs_root
 
 T_OUT = np.arange(0.0, 31.0)         # 31 outputs, one per chunk (integrators.base.output_chunks)
 STEP = 0.5
-SCENE = Path(__file__).parents[1] / "scenarios" / "stress" / "coupled_conservation.toml"
+SCENE = Path(__file__).parents[2] / "scenarios" / "stress" / "coupled_conservation.toml"
 SHORT = ["--set", "span.end=60 d", "--set", "span.step=1 d", "--set", "integrator.step=0.5 d"]
 
 
@@ -298,7 +298,7 @@ def test_a_save_interrupted_half_way_leaves_the_last_checkpoint(system, tmp_path
             Checkpoint(path).save(record, np.vstack([outputs, outputs]))
     assert sorted(os.listdir(tmp_path)) == ["run.npz"]
     killed = subprocess.run([sys.executable, "-c", KILLED_SAVE, str(path), json.dumps(record)], timeout=120,
-                            env={**os.environ, "PYTHONPATH": str(Path(__file__).parents[1])})
+                            env={**os.environ, "PYTHONPATH": str(Path(__file__).parents[2])})
     assert killed.returncode == -signal.SIGKILL
     (left,) = set(os.listdir(tmp_path)) - {"run.npz"}
     assert left.startswith(".run.npz.tmp-")              # the killed save's half

@@ -14,7 +14,7 @@ from spinorbit.edge.cli import main
 from spinorbit.edge.scenarios import load_scenario
 from spinorbit.orbits.sources import OrbitSource
 
-SCENARIOS = Path(__file__).parents[1] / "scenarios"
+SCENARIOS = Path(__file__).parents[2] / "scenarios"
 
 
 @pytest.mark.parametrize("name", ["moon_libration", "moon_libration_rebound", "earth_moon_coupled_rebound",

@@ -259,10 +259,10 @@ def test_remedy_rebound():
 
 # Backward runs: a span that ends before it starts.  The DE lunar integrations run both ways from their
 # epoch; the Moon scene does too, and is held to the same DE421 tolerances as forward.  Scenes that cannot
-# run backward refuse in one line naming span.end (tests/test_scenarios.py).
+# run backward refuse in one line naming span.end (tests/edge/test_scenarios.py).
 
 
-SCENARIOS = Path(__file__).parent.parent / "scenarios"
+SCENARIOS = Path(__file__).parents[2] / "scenarios"
 
 
 def test_moon_from_de421_epoch_backward_matches_de421():

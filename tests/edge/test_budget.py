@@ -14,7 +14,7 @@ from spinorbit.edge.scenarios import load_scenario
 from spinorbit.orbits import solution
 from spinorbit.scene.declaration import NBODY_COSTS
 
-ROOT = Path(__file__).parents[1]
+ROOT = Path(__file__).parents[2]
 YEAR_D = 365.25
 MYR_D = 1e6 * YEAR_D
 

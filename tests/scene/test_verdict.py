@@ -11,7 +11,7 @@ from spinorbit.edge.runner import base_summary, run_scenario
 from spinorbit.edge.scenarios import load_scenario
 from spinorbit.scene.verdict import Check, Verdict, evaluate
 
-SCENARIOS = Path(__file__).parents[1] / "scenarios"
+SCENARIOS = Path(__file__).parents[2] / "scenarios"
 P92 = SCENARIOS / "p92_arc_ab.toml"
 P95 = SCENARIOS / "p95_symmetric.toml"
 SPEC = Verdict("DE421", (Check("pole", "pole_arcsec", 0.1, "″", "target"),

@@ -10,7 +10,7 @@ from spinorbit.models import System
 from spinorbit.models.interactions import GeodesicRate
 from spinorbit.models.spin import euler_omega_dot
 
-SCENARIOS = Path(__file__).parent.parent / "scenarios"
+SCENARIOS = Path(__file__).parents[2] / "scenarios"
 
 
 def test_moon_rigid_levels_expose_the_torque_of_their_rhs():

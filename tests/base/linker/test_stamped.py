@@ -15,7 +15,7 @@ import spinorbit
 from spinorbit.base import linker
 from spinorbit.base.linker.stamped import ReachCache
 
-ROOT = Path(__file__).parents[2]
+ROOT = Path(__file__).parents[3]
 CALLEE = """from numba import njit
 
 SCALE = {scale}

@@ -25,7 +25,7 @@ from spinorbit.edge.scenarios import load_scenario
 from spinorbit.integrators import simulate
 from spinorbit.models.ode import Ode
 
-ROOT = Path(__file__).parents[1]
+ROOT = Path(__file__).parents[2]
 FREE_BODY = ROOT / "scenarios" / "free_body.toml"
 
 
@@ -371,8 +371,8 @@ def test_the_stops_sent_again_never_interrupt_the_saving_of_a_stopped_run(tmp_pa
 
 # What a user types at the command line works or is answered in words that say what is accepted: a value with a
 # space left unquoted, and `list` printing every word at any terminal width (a method switched with --set over a
-# file written for another: tests/test_method_switch.py; dates and durations: tests/test_schema.py; `show`:
-# tests/test_key_table.py).
+# file written for another: tests/edge/test_method_switch.py; dates and durations: tests/scene/test_schema.py; `show`:
+# tests/edge/test_key_table.py).
 
 
 def test_a_value_with_a_space_left_unquoted_gets_a_hint_to_quote_it(capsys):

@@ -11,7 +11,7 @@ import pytest
 
 from spinorbit.edge.sweep import members, parse_vary, run_sweep
 
-FREE_BODY = Path(__file__).parents[1] / "scenarios" / "free_body.toml"
+FREE_BODY = Path(__file__).parents[2] / "scenarios" / "free_body.toml"
 
 
 def test_vary_parsing_keeps_lists_and_quantities():
@@ -53,7 +53,7 @@ def test_a_key_given_twice_to_vary_is_refused_in_one_line(capsys):
 # and the README's sweep example is one whose members pass.
 
 
-ROOT = Path(__file__).parents[1]
+ROOT = Path(__file__).parents[2]
 SHORT = ["span.end=20 d", "output.plots=false"]
 GRID = {"integrator.rtol": ["1e-10", "1e-13"], "body.moments": ["[0.5, 1.0, 2.0]", "[0.6666666666666666, 1.0, 2.0]"]}
 NOT_NUMBERS = {"out", "wall_s"}        # where each member ran, and how long it took

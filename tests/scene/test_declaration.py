@@ -1,5 +1,5 @@
 """The scene protocol (spinorbit.scene.declaration): one runner that builds a scene's model once; what a scene
-declares is read from its Scene, not restated above it (its typed parameters: tests/test_params.py)."""
+declares is read from its Scene, not restated above it (its typed parameters: tests/scene/test_params.py)."""
 import dataclasses
 
 import pytest
