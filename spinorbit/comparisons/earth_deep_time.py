@@ -5,13 +5,49 @@ import math
 import numpy as np
 
 from ..base.constants import ARCSEC, JULIAN_YEAR_D
-from ..starts.earth_deep_time import ERFA_SPAN_D, KYR_D
+from ..starts.earth_deep_time import ERFA_SPAN_D, KYR_D, MYR_D
 
 WINDOWS_MYR = (1, 10)                 # the spans the issue sets targets over
 CHAOS_MYR = 50.0                      # La2004: "age calibrations of paleoclimatic data over 40 to 50 Myr"
 ERFA_STEP_D = 10 * JULIAN_YEAR_D
 # The metrics erfa_metrics computes (the summary's comparison keys, read by the verdict)
 ERFA_OBLIQUITY_MAX_ARCSEC, ERFA_EQUATOR_MAX_ARCSEC = "erfa_obliquity_max_arcsec", "erfa_equator_max_arcsec"
+# The differences of two solutions over a window (_differences); a window's metric is window_metric's name
+ECCENTRICITY_MAX, OBLIQUITY_MAX_DEG = "eccentricity_max", "obliquity_max_deg"
+CLIMATIC_PRECESSION_VECTOR_MAX, PERIHELION_LONGITUDE_END_DEG = ("climatic_precession_vector_max",
+                                                                "perihelion_longitude_end_deg")
+DIFFERENCES = (ECCENTRICITY_MAX, OBLIQUITY_MAX_DEG, CLIMATIC_PRECESSION_VECTOR_MAX, PERIHELION_LONGITUDE_END_DEG)
+SPAN = "span"                         # the window of the whole span compared
+
+
+def window_name(myr):
+    """The name of the window of the first ``myr`` Myr ("1myr")."""
+    return f"{myr}myr"
+
+
+def window_metric(prefix, difference, window):
+    """The summary's key of ``difference`` (one of DIFFERENCES) between the solutions ``prefix`` names
+    ("la2004": the model minus La2004) over ``window`` (window_name's, or SPAN)."""
+    return f"{prefix}_{difference}_{window}"
+
+
+def la2004_metric(difference, window):
+    """The summary's key of the model minus La2004's ``difference`` over ``window``, read by the verdicts."""
+    return window_metric("la2004", difference, window)
+
+
+def la2004_checks(span_length_d, targets, source):
+    """The verdict's checks of the model minus La2004, one per ``targets``' (window in Myr, what, difference,
+    tolerance, unit) whose window a span of ``span_length_d`` days covers (a shorter span's is not asked)."""
+    from ..scene.verdict import Check
+
+    checks = []
+    for myr, what, difference, tolerance, unit in targets:
+        window_d = myr * MYR_D
+        if span_length_d >= window_d - 1.0:
+            checks.append(Check(f"{what} vs La2004 ({window_name(myr)})", la2004_metric(difference, window_name(myr)),
+                                tolerance, unit, source, min_span_d=window_d - 1.0))
+    return checks
 
 
 def erfa_metrics(p, model):
@@ -43,9 +79,9 @@ def laskar_metrics(t, q):
     if reason is None and not np.allclose(kyr, np.round(kyr), rtol=0, atol=1e-6):
         reason = "outputs off La2004's whole-kyr grid: give span.step a whole number of kyr"
     reach = min(abs(kyr[-1]), CHAOS_MYR * 1000)
-    windows = [*((f"{m}myr", m * 1000.0) for m in WINDOWS_MYR if reach >= m * 1000), ("span", reach)]
+    windows = [*((window_name(m), m * 1000.0) for m in WINDOWS_MYR if reach >= m * 1000), (SPAN, reach)]
     if reason is not None:
-        keys = [f"la2004_{name}_{w}" for w, _ in windows for name in DIFFERENCES]
+        keys = [la2004_metric(name, w) for w, _ in windows for name in DIFFERENCES]
         return dict.fromkeys(keys), {f"comparison.{k}": f"not compared: {reason}" for k in keys}, None, None
     inside = np.abs(kyr) <= reach + 1e-9
     solutions = {"model": {"eccentricity": q["eccentricity"][inside], "obliquity_rad": q["obliquity"][inside],
@@ -61,7 +97,7 @@ def laskar_metrics(t, q):
             size = int(np.sum(np.abs(kyr[inside]) <= limit + 1e-9))
             if solutions[a] is not None and solutions[b] is not None and min(
                     len(solutions[a]["eccentricity"]), len(solutions[b]["eccentricity"])) >= size:
-                metrics.update({f"{prefix}_{k}_{window}": v for k, v in
+                metrics.update({window_metric(prefix, k, window): v for k, v in
                                 _differences(solutions[a], solutions[b], slice(0, size)).items()})
     not_measured = {}
     if abs(kyr[-1]) > reach:
@@ -82,8 +118,6 @@ EXPLAINED = {
                     "Laskar's own solution moves with its tidal model, the scale a tidal law sets on "
                     "agreement",
     "la2004_minus_la93_*": "La2004 minus La93 (with tides): how far two of Laskar's solutions differ"}
-DIFFERENCES = ("eccentricity_max", "obliquity_max_deg", "climatic_precession_vector_max",
-               "perihelion_longitude_end_deg")
 
 
 def figure_series(q, la2004):
@@ -102,8 +136,7 @@ def _differences(a, b, part):
         return x["eccentricity"][part] * np.exp(1j * x["perihelion_longitude_rad"][part])
 
     end = np.angle(vector(a)[-1] / vector(b)[-1])
-    return {"eccentricity_max": float(np.abs(a["eccentricity"][part] - b["eccentricity"][part]).max()),
-            "obliquity_max_deg": float(np.degrees(np.abs(a["obliquity_rad"][part]
-                                                         - b["obliquity_rad"][part]).max())),
-            "climatic_precession_vector_max": float(np.abs(vector(a) - vector(b)).max()),
-            "perihelion_longitude_end_deg": float(np.degrees(end))}
+    return {ECCENTRICITY_MAX: float(np.abs(a["eccentricity"][part] - b["eccentricity"][part]).max()),
+            OBLIQUITY_MAX_DEG: float(np.degrees(np.abs(a["obliquity_rad"][part] - b["obliquity_rad"][part]).max())),
+            CLIMATIC_PRECESSION_VECTOR_MAX: float(np.abs(vector(a) - vector(b)).max()),
+            PERIHELION_LONGITUDE_END_DEG: float(np.degrees(end))}

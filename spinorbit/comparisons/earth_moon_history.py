@@ -9,6 +9,20 @@ import numpy as np
 from ..starts.earth_moon_history import GYR_D
 
 DAY_AT_XIAMALING = "length_of_day_at_xiamaling_distance_h"
+# The metrics `metrics` computes that the scene's verdict judges (the summary's comparison keys)
+RECESSION_RATE_TODAY_CM_PER_YR = "recession_rate_today_cm_per_yr"
+ANGULAR_MOMENTUM_RELATIVE_ERROR_MAX = "angular_momentum_relative_error_max"
+OBLIQUITY_PERIOD_TODAY_KYR, PRECESSION_PERIOD_TODAY_KYR = "obliquity_period_today_kyr", "precession_period_today_kyr"
+MOON_AGE_GYR = "moon_age_gyr"
+
+
+def residual_sigma(proxy):
+    """The summary's key of the proxy named ``proxy``'s residual in its own sigma."""
+    return f"{proxy}_residual_sigma"
+
+
+XIAMALING_DISTANCE_RESIDUAL_SIGMA = residual_sigma("xiamaling_distance")
+XIAMALING_PRECESSION_CONSTANT_RESIDUAL_SIGMA = residual_sigma("xiamaling_precession_constant")
 
 
 def quantities(history):
@@ -39,14 +53,14 @@ def metrics(history, q):
     from ..references.lunar_proxies import PROXIES
 
     rates = calibration.today_rates(history.constants, history.response, history.y[0])
-    out = {"recession_rate_today_cm_per_yr": rates["recession_rate_cm_per_yr"],
+    out = {RECESSION_RATE_TODAY_CM_PER_YR: rates["recession_rate_cm_per_yr"],
            "length_of_day_rate_today_ms_per_cy": rates["length_of_day_rate_ms_per_cy"],
            "eccentricity_rate_today_per_gyr": rates["eccentricity_rate_per_gyr"],
            "obliquity_rate_today_mas_per_cy": rates["obliquity_rate_mas_per_cy"],
-           "angular_momentum_relative_error_max": float(np.abs(q["angular_momentum_error"]).max()),
-           "obliquity_period_today_kyr": float(q["obliquity_period"][0]),
-           "precession_period_today_kyr": float(q["precession_period"][0]),
-           "moon_age_gyr": None if history.stop_t is None else -history.stop_t / GYR_D,
+           ANGULAR_MOMENTUM_RELATIVE_ERROR_MAX: float(np.abs(q["angular_momentum_error"]).max()),
+           OBLIQUITY_PERIOD_TODAY_KYR: float(q["obliquity_period"][0]),
+           PRECESSION_PERIOD_TODAY_KYR: float(q["precession_period"][0]),
+           MOON_AGE_GYR: None if history.stop_t is None else -history.stop_t / GYR_D,
            "laplace_radius_reached_gyr": _first_age(q, q["laplace_radius_ratio"] < 1.0)}
     if out["laplace_radius_reached_gyr"] is None and history.stop_t is not None:
         out["laplace_radius_reached_gyr"] = float(-q["t_gyr"][-1])      # crossed after the last output
@@ -54,11 +68,11 @@ def metrics(history, q):
     if out["laplace_radius_reached_gyr"] is None:
         not_measured["comparison.laplace_radius_reached_gyr"] = "the Moon stays beyond the Laplace radius"
     if history.stop_t is None:
-        not_measured["comparison.moon_age_gyr"] = ("the history reaches the span's end without the Moon "
+        not_measured[f"comparison.{MOON_AGE_GYR}"] = ("the history reaches the span's end without the Moon "
                                                    "at the Roche limit")
     ages = -q["t_gyr"]
     for proxy in PROXIES:
-        key, residual = f"{proxy.name}_residual_sigma", f"{proxy.name}_residual_{proxy.unit}"
+        key, residual = residual_sigma(proxy.name), f"{proxy.name}_residual_{proxy.unit}"
         if proxy.age_gyr > ages[-1]:
             out[residual] = out[key] = None
             not_measured[f"comparison.{key}"] = not_measured[f"comparison.{residual}"] = (

@@ -5,8 +5,10 @@ import numpy as np
 
 from ..scene.columns import quantity_table
 from ..starts.earth_deep_time import KYR_D
+from .earth_deep_time import OBLIQUITY_MAX_DEG, la2004_metric, window_name
 
 WINDOWS_MYR = (1, 5, 20)
+LA2004_OBLIQUITY_MAX_DEG_1MYR = la2004_metric(OBLIQUITY_MAX_DEG, window_name(1))   # laskar_metrics', judged
 LA2004 = {"mars.precession_rate": -7.597, "tides.k2": 0.149, "tides.Q": 92.0}   # its README's parameters
 TARGET = ("project target (issue 41): a rate 0.3 % away moves the obliquity by 0.75° at -1 Myr, so 0.1° asks "
           "the rate, the tides and the orbit right")
@@ -54,7 +56,7 @@ def table(t, q):
 def laskar_metrics(t, q):
     """(metrics, not_measured, provenance, La2004 Mars at the outputs it covers or None)."""
     from ..references import laskar
-    from .earth_deep_time import _differences
+    from .earth_deep_time import DIFFERENCES, SPAN, _differences, window_metric
 
     reason = laskar.available()
     kyr = t / KYR_D
@@ -63,9 +65,9 @@ def laskar_metrics(t, q):
     low, high = laskar.Insolation("La2004_Mars").span_kyr() if reason is None else (0.0, 0.0)
     inside = (kyr >= low - 1e-9) & (kyr <= high + 1e-9)
     reach = float(np.abs(kyr[inside]).max()) if inside.any() else 0.0
-    windows = [*((f"{m}myr", m * 1000.0) for m in WINDOWS_MYR if reach >= m * 1000 - 1e-6), ("span", reach)]
+    windows = [*((window_name(m), m * 1000.0) for m in WINDOWS_MYR if reach >= m * 1000 - 1e-6), (SPAN, reach)]
     if reason is not None:
-        keys = [f"la2004_{name}_{m}myr" for m in WINDOWS_MYR for name in DIFFERENCES]
+        keys = [la2004_metric(name, window_name(m)) for m in WINDOWS_MYR for name in DIFFERENCES]
         return dict.fromkeys(keys), {f"comparison.{k}": f"not compared: {reason}" for k in keys}, None, None
     ours = {"eccentricity": q["eccentricity"][inside], "obliquity_rad": q["obliquity"][inside],
             "perihelion_longitude_rad": q["perihelion_longitude"][inside]}
@@ -74,10 +76,10 @@ def laskar_metrics(t, q):
     metrics = {}
     for window, limit in windows:
         part = slice(0, int(np.sum(np.abs(kyr[inside]) <= limit + 1e-9)))
-        metrics.update({f"la2004_{k}_{window}": v for k, v in _differences(ours, la2004, part).items()})
-        metrics.update({f"la2003_minus_la2004_{k}_{window}": v
+        metrics.update({la2004_metric(k, window): v for k, v in _differences(ours, la2004, part).items()})
+        metrics.update({window_metric("la2003_minus_la2004", k, window): v
                         for k, v in _differences(la2003, la2004, part).items()})
-    not_measured = {f"comparison.la2004_{m}myr": f"the span reaches {reach / 1000:g} Myr"
+    not_measured = {f"comparison.la2004_{window_name(m)}": f"the span reaches {reach / 1000:g} Myr"
                     for m in WINDOWS_MYR if reach < m * 1000 - 1e-6}
     reference = {"t_kyr": kyr[inside], "obliquity_deg": np.degrees(la2004["obliquity_rad"]),
                  "climatic_precession": la2004["eccentricity"] * np.sin(la2004["perihelion_longitude_rad"]),
@@ -85,8 +87,6 @@ def laskar_metrics(t, q):
     return metrics, not_measured, laskar.Insolation("La2004_Mars").provenance(), reference
 
 
-DIFFERENCES = ("eccentricity_max", "obliquity_max_deg", "climatic_precession_vector_max",
-               "perihelion_longitude_end_deg")
 
 
 def figure(q, la2004):

@@ -15,10 +15,11 @@ precession), compared with ERFA's long-term precession over the first 2 kyr and 
 """
 import time
 
+from ..comparisons import earth_deep_time as compare
 from ..scene.declaration import Model, Outcome, Scene
 from ..scene.params import Params, key, table, values_of
 from ..scene.verdict import Check, Verdict
-from ..starts.earth_deep_time import MYR_D, DeepTimeOrbitTable, check_span, nbody_counts
+from ..starts.earth_deep_time import DeepTimeOrbitTable, check_span, nbody_counts
 
 # The physics La2004 is judged against (numerical keys, the ephemeris and the file may change).
 NOMINAL = {"model.Td": 1.0, "model.Ed": 1.0, "model.precession": "iau2006_rate", "model.tidal_tilt": True,
@@ -46,6 +47,12 @@ class EarthDeepTimeParams(Params):
 ISSUE = ("project target, not a published accuracy: La93 with and without tides differ by 3° in ϖ̄ at "
          "-1 Myr and 75° at -5 Myr (la93_tides_*), so La2004's own tidal model bounds what agreement can "
          "mean; 5e-4 in e(cos ϖ̄, sin ϖ̄) is about 1° of ϖ̄ at today's e")
+# The model minus La2004 judged over the first 1 and 10 Myr: (window, Myr; what; its difference; tolerance; unit)
+LA2004_TARGETS = ((1, "obliquity", compare.OBLIQUITY_MAX_DEG, 0.005, "°"),
+                  (1, "climatic_precession_vector", compare.CLIMATIC_PRECESSION_VECTOR_MAX, 5e-4, ""),
+                  (10, "eccentricity", compare.ECCENTRICITY_MAX, 0.002, ""),
+                  (10, "obliquity", compare.OBLIQUITY_MAX_DEG, 0.05, "°"),
+                  (10, "climatic_precession_vector", compare.CLIMATIC_PRECESSION_VECTOR_MAX, 2e-3, ""))
 VCW = ("Vondrák, Capitaine & Wallace 2011: their model is good to a few arcsec over the historical period; "
        "1\" and 5\" are project targets within that")
 
@@ -53,23 +60,12 @@ VCW = ("Vondrák, Capitaine & Wallace 2011: their model is good to a few arcsec 
 def verdict(p, comparison):
     """ERFA over the first 2 kyr; La2004 over 1 and 10 Myr when the span covers them, for the nominal physics
     only (a variant is compared with La2004, not judged)."""
-    from ..comparisons.earth_deep_time import ERFA_EQUATOR_MAX_ARCSEC, ERFA_OBLIQUITY_MAX_ARCSEC
-
-    checks = [Check("obliquity vs ERFA", ERFA_OBLIQUITY_MAX_ARCSEC, 1.0, "″", VCW),
-              Check("mean equator vs ERFA", ERFA_EQUATOR_MAX_ARCSEC, 5.0, "″", VCW)]
+    checks = [Check("obliquity vs ERFA", compare.ERFA_OBLIQUITY_MAX_ARCSEC, 1.0, "″", VCW),
+              Check("mean equator vs ERFA", compare.ERFA_EQUATOR_MAX_ARCSEC, 5.0, "″", VCW)]
     values = values_of(p)
     nominal = all(values[key] == value for key, value in NOMINAL.items())
     if nominal:
-        for window, targets in (("1myr", (("obliquity_max_deg", 0.005, "°"),
-                                          ("climatic_precession_vector_max", 5e-4, ""))),
-                                ("10myr", (("eccentricity_max", 0.002, ""), ("obliquity_max_deg", 0.05, "°"),
-                                           ("climatic_precession_vector_max", 2e-3, "")))):
-            span = float(window.removesuffix("myr")) * MYR_D
-            if p.span.length < span - 1.0:
-                continue                                    # a span shorter than the window: not asked
-            checks += [Check(f"{name.removesuffix('_max_deg').removesuffix('_max')} vs La2004 ({window})",
-                             f"la2004_{name}_{window}", tol, unit, ISSUE, min_span_d=span - 1.0)
-                       for name, tol, unit in targets]
+        checks += compare.la2004_checks(p.span.length, LA2004_TARGETS, ISSUE)
     note = "" if nominal else f"a variant of the nominal model ({NOMINAL}): compared with La2004, not judged"
     return Verdict("ERFA long-term precession; La2004", tuple(checks), note)
 
@@ -88,7 +84,6 @@ def build(p, times):
 
 
 def compare_run(p, run):
-    from ..comparisons import earth_deep_time as compare
     from ..comparisons import earth_deep_time_table as table
     from ..plots.deep_time import deep_time as deep_time_plot
     from ..plots.deep_time import deep_time_spectra

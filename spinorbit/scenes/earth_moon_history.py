@@ -116,23 +116,25 @@ def verdict(p, comparison):
     """Today's recession (the fitted one: tides.recession_rate), the angular momentum, today's periods; for
     the oceans, the Moon's age; for the default ocean, Xiamaling's distance and precession constant within 2
     sigma (the day Meyers & Malinverno derived from them is reported, not judged: docs/TIDAL_HISTORY.md)."""
+    from ..comparisons import earth_moon_history as compare
+
     fitted = p.tides.recession_rate
     checks = (
-        Check("recession today", "recession_rate_today_cm_per_yr", 1e-6, " cm/yr", LLR, expected=fitted),
-        Check("angular momentum", "angular_momentum_relative_error_max", 1e-9, "", EXACT),
-        Check("obliquity period today", "obliquity_period_today_kyr", 0.05, " kyr", PERIODS, expected=41.0),
-        Check("precession period today", "precession_period_today_kyr", 0.05, " kyr", PERIODS,
+        Check("recession today", compare.RECESSION_RATE_TODAY_CM_PER_YR, 1e-6, " cm/yr", LLR, expected=fitted),
+        Check("angular momentum", compare.ANGULAR_MOMENTUM_RELATIVE_ERROR_MAX, 1e-9, "", EXACT),
+        Check("obliquity period today", compare.OBLIQUITY_PERIOD_TODAY_KYR, 0.05, " kyr", PERIODS, expected=41.0),
+        Check("precession period today", compare.PRECESSION_PERIOD_TODAY_KYR, 0.05, " kyr", PERIODS,
               expected=23.7))
     judged = TIDES[p.tides.model].judged
     if "moon_age" not in judged:
         return Verdict("lunar laser ranging; La2004's periods", checks, NOT_JUDGED)
-    checks += (Check("Moon's age (the history's stop)", "moon_age_gyr", 0.025, " Gyr", AGE, expected=4.425,
+    checks += (Check("Moon's age (the history's stop)", compare.MOON_AGE_GYR, 0.025, " Gyr", AGE, expected=4.425,
                      min_span_d=4.45 * GYR_D),)
     if "xiamaling" not in judged:
         return Verdict("lunar laser ranging; the Moon's age; La2004's periods", checks, OTHER_OCEAN_NOTE)
-    checks += (Check("Xiamaling distance", "xiamaling_distance_residual_sigma", 2.0, " sigma", XIAMALING,
+    checks += (Check("Xiamaling distance", compare.XIAMALING_DISTANCE_RESIDUAL_SIGMA, 2.0, " sigma", XIAMALING,
                      min_span_d=1.4 * GYR_D),
-               Check("Xiamaling precession constant", "xiamaling_precession_constant_residual_sigma", 2.0,
+               Check("Xiamaling precession constant", compare.XIAMALING_PRECESSION_CONSTANT_RESIDUAL_SIGMA, 2.0,
                      " sigma", XIAMALING, min_span_d=1.4 * GYR_D))
     return Verdict("lunar laser ranging; the Moon's age; Xiamaling; La2004's periods", checks, OCEAN_NOTE)
 

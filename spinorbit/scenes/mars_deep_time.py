@@ -29,12 +29,12 @@ class MarsDeepTimeParams(Params):
 
 
 def verdict(p, comparison):
-    from ..comparisons.mars_deep_time import LA2004, TARGET
+    from ..comparisons.mars_deep_time import LA2004, LA2004_OBLIQUITY_MAX_DEG_1MYR, TARGET
     from ..scene.verdict import Check, Verdict
 
     values = values_of(p)
     judged = all(values[key] == value for key, value in LA2004.items()) and abs(p.span.end) >= MYR_D - 1.0
-    checks = (Check("obliquity vs La2004 Mars (1myr)", "la2004_obliquity_max_deg_1myr", 0.1, "°", TARGET,
+    checks = (Check("obliquity vs La2004 Mars (1myr)", LA2004_OBLIQUITY_MAX_DEG_1MYR, 0.1, "°", TARGET,
                     min_span_d=MYR_D - 1.0),) if judged else ()
     return Verdict("La2004 Mars (Laskar et al. 2004, Icarus 170, 343)", checks,
                    "" if judged else f"not La2004's parameters {LA2004} over 1 Myr: compared, not judged")
