@@ -62,3 +62,21 @@ def started_at(p, start):
 
     on = tuple(name for name in SWITCHES if getattr(p.model, name))
     return solar_system(external_bodies(p)[0], on, float(start[0])).with_start(*start)
+
+
+def closed_system(p):
+    """The closed Earth-Moon System of scene coupled_conservation (models.assemblies.earth_moon.closed): the
+    figures ``p.model`` switches on, the Earth gyroscopic or rigid (``model.earth_rotator``), the Moon rigid,
+    started from DE421 at span.start."""
+    from ..bodies import earth
+    from ..models.assemblies.earth_moon import FIGURES, closed
+    from ..models.rotators import Rigid
+    from ..models.start import earth_moon_de421
+    from ..references.erfa_pole import cip_vector
+
+    t0 = p.span.start
+    rotator = Rigid() if p.model.earth_rotator == "rigid" else None
+    built = closed(tuple(name for name in FIGURES if getattr(p.model, name)), t0, earth_rotator=rotator,
+                   moon_core=False)
+    built.y0 = built.layout.pack(earth_moon_de421(built, t0, cip_vector(t0), earth.ERA_RATE_RAD_D))
+    return built
