@@ -73,7 +73,7 @@ def main():
         os.environ.update(NUMBA_CACHE_DIR=f"{tmp}/numba", SPINORBIT_CACHE_DIR=f"{tmp}/spinorbit", SPINORBIT_QUIET="1")
         times = CompileTimes()
         times.register()
-        from spinorbit import cli
+        from spinorbit.edge import cli
 
         start = time.perf_counter()
         code = cli.main(["run", str(ROOT / args.scenario), "--out", f"{tmp}/run"])

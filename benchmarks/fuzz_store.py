@@ -121,7 +121,7 @@ def leftovers(cache):
 
 def intact(cache):
     """Whether every stored file reads back whole (spinorbit.base.verified.read)."""
-    code = ("import sys; from pathlib import Path; from spinorbit import verified\n"
+    code = ("import sys; from pathlib import Path; from spinorbit.base import verified\n"
             "[verified.read(Path(p)) for p in sys.argv[1:]]")
     files = [str(p) for p in store_files(cache)]
     return not files or run([sys.executable, "-c", code, *files], environment(cache))[0] == 0
@@ -235,7 +235,7 @@ def damage(path, how, rng, cache):
         else:
             path.write_bytes(b"")
     elif how == "planted":                   # another record's arrays, the hash recomputed with the room's own
-        code = ("import sys, numpy as np; from spinorbit import verified; e = verified.read(sys.argv[1]);"
+        code = ("import sys, numpy as np; from spinorbit.base import verified; e = verified.read(sys.argv[1]);"
                 "e.arrays['coefficients'] = e.arrays['coefficients'] * (1 + 1e-7);"
                 "e.record['keys']['model.level'] = 2; verified.write(sys.argv[1], e.arrays, e.record, e.meta)")
         run([sys.executable, "-c", code, str(path)], environment(cache))

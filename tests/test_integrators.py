@@ -165,7 +165,7 @@ def test_bad_output_times_get_one_clear_error(t_out, torqued):
 def test_rk8_runs_one_compiled_loop_whatever_the_layout_of_the_output_times(torqued):
     """Output times given as a strided view (every other output, as the error estimate's coarse run takes them)
     run the loop compiled for contiguous ones: one specialisation, not one per array layout (each costs seconds)."""
-    from spinorbit import rotations
+    from spinorbit.base import rotations
     from spinorbit.base.linker import link
     from spinorbit.integrators.rk8 import rk_fixed, rk_step
 

@@ -162,7 +162,7 @@ def test_a_runs_solution_is_its_model_over_its_span_as_a_qtable(place, capsys):
     import astropy.units as u
     from astropy.time import Time
 
-    from spinorbit import cli
+    from spinorbit.edge import cli
     from spinorbit.edge.runner import run_scenario
 
     result = run_scenario("moon_libration", ["span.start=2000-01-01T12:00:00", "span.end=2000-01-11T12:00:00",

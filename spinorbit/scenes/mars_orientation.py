@@ -14,7 +14,7 @@ from ..comparisons.mars_orientation import POLE_MINUS_IAU2015_MAX_ARCSEC, answer
 from ..models.assemblies.planet import MODELS
 from ..orbits.sources import OrbitSource
 from ..scene.declaration import Answer, Cost, Model, Scene, Stored
-from ..scene.params import Params, key, source_key, table
+from ..scene.params import Params, key, source_key, table, time_key
 from ..scene.schema import SAMPLE_STEP
 from ..starts.mars import restarted, start_epoch
 
@@ -25,7 +25,7 @@ class MarsTable:
                      help="the spin angular momentum alone, or Euler's equations with the day (and C22)")
     c_mr2: float = key(unit="", default=mars.C_MR2, min=0.2, max=0.4,
                        help="polar moment C/(M R^2) at 3396 km (Baland et al. 2020; Konopliv et al. 2011: 0.3644)")
-    start: str = key(type=str, default="2000-01-01T12:00:00", help="ISO TDB epoch of the IAU 2015 start")
+    start: float = time_key("ISO TDB epoch of the IAU 2015 start", default="2000-01-01T12:00:00")
     satellites: bool = key(type=bool, default=True, help="Phobos and Deimos as rings on the equator")
     geodesic_precession: bool = key(type=bool, default=True)
 

@@ -30,9 +30,7 @@ def mean_orbit_frame():
 
 def start_epoch(p):
     """mars.start in TDB days."""
-    from ..scene.schema import parse_tdb_days
-
-    return float(parse_tdb_days("mars.start", p.mars.start))
+    return p.mars.start
 
 
 def orbits(p, t0):

@@ -20,7 +20,7 @@ PACKAGE = {
 def scaled(x):
     return 3.0 * x
 """,
-    "kernel.py": """from spinorbit import linker
+    "kernel.py": """from spinorbit.base import linker
 
 from .callee import scaled
 

@@ -249,7 +249,7 @@ def test_sigterm_stops_a_bench_as_ctrl_c_does(tmp_path):
 
 
 def test_an_interrupted_bench_keeps_the_methods_that_finished(tmp_path, monkeypatch):
-    from spinorbit import bench
+    from spinorbit.edge import bench
 
     run_method, calls = bench.run_method, []
 
@@ -390,7 +390,7 @@ def words(text):
 def test_list_prints_every_title_whole_at_any_width(monkeypatch, capsys):
     import tomllib
 
-    from spinorbit import catalogue
+    from spinorbit.edge import catalogue
 
     titles = [tomllib.loads(path.read_text())["scene"]["title"] for path in catalogue.folder().rglob("*.toml")]
     for columns in ("60", "200"):

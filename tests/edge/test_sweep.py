@@ -33,8 +33,8 @@ def test_sweep_over_tolerance_converges_to_the_closed_form(tmp_path, scheduler):
 
 
 def test_a_key_given_twice_to_vary_is_refused_in_one_line(capsys):
-    from spinorbit import cli
     from spinorbit.base.errors import ScenarioError
+    from spinorbit.edge import cli
     from spinorbit.edge.sweep import grid
 
     with pytest.raises(ScenarioError, match="--vary integrator.rtol") as info:

@@ -102,7 +102,7 @@ def test_output_times_that_are_not_a_finite_list_are_refused(t_out):
 
 def test_a_run_on_both_sides_of_t0_names_each_side_in_its_progress(monkeypatch, capsys):
     """Two runs from t0, one each way: their progress lines say which, not the same label twice."""
-    from spinorbit import progress
+    from spinorbit.base import progress
 
     monkeypatch.setattr(progress, "DELAY_S", 0.0)
     monkeypatch.delenv("SPINORBIT_QUIET", raising=False)

@@ -394,7 +394,7 @@ def test_the_day_at_a_distance_is_read_on_the_first_crossing_back():
 def test_a_kept_table_is_read_back_and_a_damaged_one_computed_again(tmp_path, capsys):
     """starts.earth_moon_history.keep_table on spinorbit.base.verified: computed once, read back equal; a file
     damaged in place is refused in one line and computed again."""
-    from spinorbit import verified
+    from spinorbit.base import verified
     from spinorbit.starts.earth_moon_history import keep_table
 
     calls = []

@@ -152,7 +152,7 @@ def test_the_command_line_says_an_orbit_file_at_a_fifo_in_one_line(tmp_path):
 
 
 def test_the_command_line_says_any_os_error_in_one_line(monkeypatch, capsys):
-    from spinorbit import cli
+    from spinorbit.edge import cli
 
     def denied(scene):
         raise PermissionError(13, "Permission denied", "/somewhere/scene.toml")

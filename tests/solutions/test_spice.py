@@ -317,7 +317,7 @@ def test_the_solar_system_extended_equals_one_computed_whole(solar_system, tmp_p
 
 
 def test_spinorbit_export_writes_the_scenes_kernels(place, capsys):
-    from spinorbit import cli
+    from spinorbit.edge import cli
 
     out = place / "kernels"
     assert cli.main(["export", "moon_libration", "--set", "span.start=2000-01-01T12:00:00",
@@ -327,7 +327,7 @@ def test_spinorbit_export_writes_the_scenes_kernels(place, capsys):
 
 
 def test_spinorbit_export_writes_the_solar_systems_kernels_from_its_store(solar_system, capsys):
-    from spinorbit import cli
+    from spinorbit.edge import cli
 
     _, _, place = solar_system
     out = place / "kernels"
@@ -341,8 +341,8 @@ def test_spinorbit_export_writes_the_solar_systems_kernels_from_its_store(solar_
 
 
 def test_spinorbit_export_refuses_a_scene_without_kernels_before_integrating(tmp_path, capsys, monkeypatch):
-    from spinorbit import cli
     from spinorbit import solutions as package
+    from spinorbit.edge import cli
 
     monkeypatch.setattr(package, "for_export", lambda *a, **k: pytest.fail("integrated before refusing"))
     assert cli.main(["export", "earth_precession_nutation", "--out", str(tmp_path / "k")]) == 2
@@ -380,8 +380,8 @@ def test_a_key_that_starts_the_model_elsewhere_exports_that_model_over_the_span_
     """``model.start`` starts the Moon from DE421's state at that date (its scene's start): exported, the frame
     there is DE421's within 1 uas (the J2000-started stored solution is 0.35 mas from it then), the PCK covers the
     span asked (7 days), and the comments name every key asked."""
-    from spinorbit import cli
     from spinorbit.analysis.librations import pole_and_longitude_difference
+    from spinorbit.edge import cli
     from spinorbit.references.moon_de421 import Orientation
 
     out = place / "kernels"
@@ -405,7 +405,7 @@ def test_a_key_that_starts_the_model_elsewhere_exports_that_model_over_the_span_
 
 def test_an_export_writes_the_segments_covering_its_span_whatever_the_store_holds(moon_kernels, place):
     """The store holds -20..60 d; asked 10..17 d, the PCK covers the 4-d segments 8..20 d, no more."""
-    from spinorbit import cli
+    from spinorbit.edge import cli
 
     solution, written = moon_kernels
     out = place / "week"
@@ -455,7 +455,7 @@ def test_every_comment_line_reads_back_with_dafec(moon_kernels):
 def test_export_to_a_folder_path_spice_cannot_name_writes_only_there(moon_kernels, place, capsys):
     """An --out of 262 characters (SPICE cuts a file name at 255): the kernels are in it and nothing is written
     anywhere else; a name the system cannot hold is refused in one line naming --out."""
-    from spinorbit import cli
+    from spinorbit.edge import cli
 
     root = place / "long"
     out = root.joinpath(*["d" * 50] * 5)
