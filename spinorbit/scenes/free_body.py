@@ -9,9 +9,9 @@ Hairer-Lubich-Wanner test case (moments 2/3, 1, 2) can be run as published.
 import numpy as np
 
 from ..analysis.invariants import invariant_drift
-from ..base.constants import ARCSEC
 from ..base.errors import PhysicsError, ScenarioError
 from ..base.rotations import quat_angle, quat_from_euler313
+from ..comparisons import free_body_closed_form as vs
 from ..models.assemblies.idealised import free_body
 from ..scene.declaration import Model, Outcome, Scene
 from ..scene.params import Params, key, table
@@ -33,10 +33,10 @@ class FreeBodyParams(Params):
 
 
 VERDICT = Verdict("Euler's closed form", (
-    Check("attitude", "attitude_max_error_vs_closed_form_rad", 1e-10, " rad",
+    Check("attitude", vs.ATTITUDE_MAX_ERROR_RAD, 1e-10, " rad",
           "dop853 at rtol 1e-13 over 100 periods: rounding and tolerance floor ~1e-11 rad "
           "(benchmarks/RESULTS.md)"),
-    Check("ω relative", "omega_max_rel_error_vs_closed_form", 1e-10, "",
+    Check("ω relative", vs.OMEGA_MAX_REL_ERROR, 1e-10, "",
           "same floor, relative to |omega0|"),
 ))
 
@@ -55,19 +55,8 @@ def build(p, times):
 
 
 def compare_run(p, run):
-    solution, exact = run.solution, run.model.exact
-    dt = solution.t - p.span.start
-    omega_err = np.abs(solution.omega - exact.omega(dt)).max() / np.linalg.norm(p.body.omega0)
-    attitude_err = quat_angle(solution.quaternion, exact.attitude(dt)) / ARCSEC
-    comparison = {
-        "regime": exact.regime,
-        "period_d": exact.period,
-        "two_T": exact.two_t,
-        "k2": exact.m,
-        "omega_max_rel_error_vs_closed_form": float(omega_err),
-        "attitude_max_error_vs_closed_form_arcsec": float(attitude_err.max()),
-        "attitude_max_error_vs_closed_form_rad": float(attitude_err.max() * ARCSEC),
-    }
+    solution = run.solution
+    comparison, dt, attitude_err = vs.compare(p, solution, run.model.exact)
     figures = {"omega": common.plot_omega(solution),
                "error_vs_closed_form": common.plot_series(dt, attitude_err, "days from start",
                                                           "attitude error vs closed form [arcsec]")}

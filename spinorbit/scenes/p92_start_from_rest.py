@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from ..base.constants import ARCSEC
+from ..comparisons import start_from_rest_p92 as vs
 from ..models.assemblies.idealised import under_point_masses
 from ..scene.declaration import Model, Outcome, Scene
 from ..scene.params import Params, key, table
@@ -36,9 +36,9 @@ class P92StartFromRestParams(Params):
 
 
 VERDICT = Verdict("Euler's first motion (§821-823)", (
-    Check("axis", "axis_error_arcsec", 1e-3, "″",
+    Check("axis", vs.AXIS_ERROR_ARCSEC, 1e-3, "″",
           "omega(t)/t turns by O(t): ~1e-4 of the 1e-4 d first step"),
-    Check("rate relative", "rate_rel_error", 1e-9, "",
+    Check("rate relative", vs.RATE_REL_ERROR, 1e-9, "",
           "omega(t)/t = d gamma'/dt + O(t^2) for a body at rest"),
 ))
 
@@ -57,25 +57,8 @@ def build(p, times):
 
 
 def compare_run(p, run):
-    from ..analysis.theory import start_from_rest
-
-    solution = run.solution
-    axis, cos_of, rate = start_from_rest(p.body.moments, run.model.direction, p.orbit.gm, p.orbit.radius)
-    dt1 = solution.t[1] - solution.t[0]
-    w1 = solution.omega[1]
-    axis_num = w1 / np.linalg.norm(w1)
-    comparison = {
-        "axis_cos_alpha": float(axis[0]), "axis_cos_beta": float(axis[1]), "axis_cos_gamma": float(axis[2]),
-        "cos_OF": cos_of,
-        "rate_euler_rad_per_d2": rate,
-        "rate_integrated_rad_per_d2": float(np.linalg.norm(w1) / dt1),
-        "rate_rel_error": float(abs(np.linalg.norm(w1) / dt1 / rate - 1)),
-        # atan2 of |a x b| and a.b: acos(a.b) floors at sqrt(2 eps) = 0.003" near zero
-        "axis_error_arcsec": float(
-            math.atan2(np.linalg.norm(np.cross(axis_num, axis)), axis_num @ axis) / ARCSEC),
-        "first_step_d": float(dt1),
-    }
-    return Outcome(comparison, figures={"omega": common.plot_omega(solution)})
+    comparison = vs.compare(p, run.solution, run.model.direction)
+    return Outcome(comparison, figures={"omega": common.plot_omega(run.solution)})
 
 
 SCENE = Scene(P92StartFromRestParams, build, compare_run, VERDICT, time_scales=common.rigid_body_time_scales,

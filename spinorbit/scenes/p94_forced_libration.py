@@ -8,9 +8,10 @@ with the full 3-D rigid body.  The neglected terms are O(alpha beta^2, n zeta^3)
 """
 import numpy as np
 
-from ..analysis.planar_libration import planar_system, zeta_from_solution
+from ..analysis.planar_libration import planar_system
 from ..base.constants import ARCSEC
 from ..base.errors import ScenarioError
+from ..comparisons import forced_libration_p94 as vs
 from ..scene.declaration import Model, Outcome, Scene
 from ..scene.params import Params, key, table
 from ..scene.schema import ANGLE, DISTANCE, GM, RATE
@@ -40,7 +41,7 @@ class P94ForcedLibrationParams(Params):
 
 
 VERDICT = Verdict("Euler's forced libration to second order (§835)", (
-    Check("zeta relative", "zeta_error_second_order_rel", 3e-4, "",
+    Check("zeta relative", vs.ZETA_ERROR_SECOND_ORDER_REL, 3e-4, "",
           "the neglected terms O(alpha beta^2, n zeta^3) relative to the amplitude"),
 ))
 
@@ -62,21 +63,7 @@ def build(p, times):
 
 
 def compare_run(p, run):
-    from ..analysis.theory import forced_libration
-
-    o, n, dt = p.orbit, run.model.n, run.solution.t - p.span.start
-    zeta_num = zeta_from_solution(run.solution, o.rate * dt + o.alpha * np.sin(o.frequency * dt))
-    zeta_first = forced_libration(dt, n, o.frequency, o.alpha)
-    zeta_second = forced_libration(dt, n, o.frequency, o.alpha, o.beta)
-    amplitude = o.frequency**2 * o.alpha / (o.frequency**2 - 2 * n)
-    comparison = {
-        "n_rad2_per_d2": n,
-        "amplitude_euler_arcsec": amplitude / ARCSEC,
-        "amplitude_measured_arcsec": float(np.abs(zeta_num).max() / ARCSEC),
-        "zeta_error_first_order_max_arcsec": float(np.abs(zeta_num - zeta_first).max() / ARCSEC),
-        "zeta_error_second_order_max_arcsec": float(np.abs(zeta_num - zeta_second).max() / ARCSEC),
-        "zeta_error_second_order_rel": float(np.abs(zeta_num - zeta_second).max() / abs(amplitude)),
-    }
+    comparison, dt, zeta_num, zeta_second = vs.compare(p, run.solution, run.model.n)
     figures = {"zeta": common.plot_series(dt, np.array([zeta_num, zeta_second]) / ARCSEC, "days from start",
                                           "zeta = AF [arcsec]", ["integrated", "Euler §835"])}
     rad = common.u().rad

@@ -14,6 +14,7 @@ import math
 import numpy as np
 
 from ..base.errors import ScenarioError
+from ..comparisons import pole_rates_p95 as vs
 from ..models.assemblies.idealised import under_point_masses
 from ..scene.declaration import Model, Outcome, Scene
 from ..scene.params import Params, key, table
@@ -44,9 +45,9 @@ class P95NearPrincipalAxisParams(Params):
 
 
 VERDICT = Verdict("Euler's pole rates (§843a)", (
-    Check("pole shift relative", "pole_shift_rel_error", 2e-3, "",
+    Check("pole shift relative", vs.POLE_SHIFT_REL_ERROR, 2e-3, "",
           "O((aa - cc)/cc gamma' t) over 0.002 d: the free rotation §840 drops"),
-    Check("spin change", "spin_rel_change", 1e-9, "", "§841: gamma' constant; integration floor"),
+    Check("spin change", vs.SPIN_REL_CHANGE, 1e-9, "", "§841: gamma' constant; integration floor"),
 ))
 
 
@@ -71,28 +72,7 @@ def build(p, times):
 
 
 def compare_run(p, run):
-    from ..analysis.theory import pole_rates_symmetric
-
-    solution, (cc, _, aa) = run.solution, p.body.moments
-    gamma, alpha, rho = p.body.spin, p.body.pole_offset, p.body.pole_angle
-    dt = solution.t - p.span.start
-    pole = solution.omega / np.linalg.norm(solution.omega, axis=1, keepdims=True)
-    shift = pole[:, :2] - pole[0, :2]                              # (xi, eta) displacement of O
-    d_alpha, alpha_d_rho = pole_rates_symmetric(aa, cc, gamma, p.orbit.gm, p.orbit.radius, rho,
-                                                run.model.u_euler)
-    rate = np.array([d_alpha * math.cos(rho) - alpha_d_rho * math.sin(rho),
-                     d_alpha * math.sin(rho) + alpha_d_rho * math.cos(rho)])
-    predicted = np.outer(dt, rate)
-    error = np.linalg.norm(shift - predicted, axis=1).max() / np.linalg.norm(predicted[-1])
-    comparison = {
-        "d_alpha_dt_euler_rad_per_d": d_alpha,
-        "alpha_d_rho_dt_euler_rad_per_d": alpha_d_rho,
-        "pole_shift_integrated_rad": float(np.linalg.norm(shift[-1])),
-        "pole_shift_euler_rad": float(np.linalg.norm(predicted[-1])),
-        "pole_shift_rel_error": float(error),
-        "free_rotation_over_torque_rate": float((aa - cc) / cc * gamma * alpha / np.linalg.norm(rate)),
-        "spin_rel_change": float(abs(np.linalg.norm(solution.omega[-1]) / gamma - 1)),
-    }
+    comparison, dt, shift, predicted = vs.compare(p, run.solution, run.model.u_euler)
     shifts = np.array([shift[:, 0], predicted[:, 0], shift[:, 1], predicted[:, 1]])
     figures = {"pole": common.plot_series(dt, shifts, "days from start", "pole shift [rad]",
                                           ["xi integrated", "xi §843a", "eta integrated", "eta §843a"])}
