@@ -12,13 +12,11 @@ ResonanceError; the scene reports it and compares the secular growth of the
 Both Euler's text (eps in the pole equations) and the version with the pole's
 free rotation in the body (eps aa/cc, which §841 drops) are compared.
 """
-import math
 
 import numpy as np
 
-from ..analysis.figure_axis import fit_angles
-from ..base.constants import ARCSEC
 from ..base.errors import ResonanceError, ScenarioError
+from ..comparisons import precession_p96 as vs
 from ..models.assemblies.idealised import under_point_masses
 from ..scene.declaration import Model, Outcome, Scene
 from ..scene.params import Params, key, table
@@ -47,16 +45,16 @@ _SECOND_ORDER = ("Euler's theory is first order in N/delta and drops eps aa/cc -
 def verdict(p, comparison):
     """Away from resonance: rate and 2 phi terms vs the closed form; where theory.SymmetricPrecession
     finds eps aa/cc = 2 delta (``resonance_detected``): §849's growth."""
-    if comparison.get("resonance_detected"):
+    if comparison.get(vs.RESONANCE_DETECTED):
         return Verdict("Euler's singular solution (§849)", (
-            Check("2φ growth relative", "za_2phi_growth_rel_error", 0.01, "",
+            Check("2φ growth relative", vs.ZA_2PHI_GROWTH_REL_ERROR, 0.01, "",
                   "§849 is first order in the detuning and in N/delta"),))
     return Verdict("Euler's P96 closed forms (§846-847)", (
-        Check("precession rate relative", "precession_rate_gyroscopic_rel_error", 2e-3, "", _SECOND_ORDER),
-        Check("ZA 2φ relative", "za_2phi_half_range_measured_arcsec", 5e-3, "", _SECOND_ORDER,
-              versus="za_2phi_half_range_gyroscopic_arcsec", relative=True),
-        Check("XZA 2φ relative", "xza_2phi_amplitude_measured_arcsec", 5e-3, "", _SECOND_ORDER,
-              versus="xza_2phi_amplitude_gyroscopic_arcsec", relative=True)))
+        Check("precession rate relative", vs.precession_rate_rel_error(vs.GYROSCOPIC), 2e-3, "", _SECOND_ORDER),
+        Check("ZA 2φ relative", vs.ZA_2PHI_HALF_RANGE_MEASURED_ARCSEC, 5e-3, "", _SECOND_ORDER,
+              versus=vs.za_half_range(vs.GYROSCOPIC), relative=True),
+        Check("XZA 2φ relative", vs.XZA_2PHI_AMPLITUDE_MEASURED_ARCSEC, 5e-3, "", _SECOND_ORDER,
+              versus=vs.xza_amplitude(vs.GYROSCOPIC), relative=True)))
 
 
 def build(p, times):
@@ -85,53 +83,12 @@ def build(p, times):
     return Model(system, big_n=big_n, euler=euler, true=true, resonance=resonance)
 
 
-def compare_run(params, run):
-    m, delta, eps = run.model, params.orbit.rate, params.body.spin
-    euler, true, resonance = m.euler, m.true, m.resonance
-    comparison = {"N_rad_per_d": m.big_n, "eps_over_delta": eps / delta}
-    dt, p, lam, lam_fit, p_fit = fit_angles(run.solution, params.span.start, delta, true.eps_f,
-                                            resonant=resonance is not None)
-    if resonance is None:
-        comparison.update({
-            "resonance_detected": False,
-            "precession_rate_measured_arcsec_per_d": float(-lam_fit[1] / ARCSEC),
-            "za_2phi_half_range_measured_arcsec": float(abs(p_fit[1]) / ARCSEC),
-            "xza_2phi_amplitude_measured_arcsec": float(abs(lam_fit[2]) / ARCSEC),
-            "diurnal_nutation_measured_arcsec": float(math.hypot(p_fit[3], p_fit[4]) / ARCSEC)})
-        for name, model in (("euler", euler), ("gyroscopic", true)):
-            comparison.update({
-                f"precession_rate_{name}_arcsec_per_d": model.precession_rate / ARCSEC,
-                f"precession_rate_{name}_rel_error": float(model.precession_rate / -lam_fit[1] - 1),
-                f"za_2phi_half_range_{name}_arcsec": model.inequalities()["za_half_range"] / ARCSEC,
-                f"xza_2phi_amplitude_{name}_arcsec": model.inequalities()["xza_amplitude"] / ARCSEC})
-    else:
-        # §849: ZA's 2 phi term grows like |a| delta t; fit (c + g t) cos 2phi + (c' + g' t) sin 2phi.
-        growth, secular = math.hypot(p_fit[3], p_fit[4]), euler.secular()
-        comparison.update({
-            "resonance_detected": True, "resonance_message": str(resonance),
-            "za_2phi_growth_measured_arcsec_per_d": growth / ARCSEC,
-            "za_2phi_growth_euler_849_arcsec_per_d": secular["growth_rate"] / ARCSEC,
-            "za_2phi_growth_rel_error": growth / secular["growth_rate"] - 1,
-            "detuning_eps_aa_over_cc_minus_2delta_rad_per_d": true.eps_f - 2 * delta,
-        })
-    not_measured = _unsupported(comparison, dt[-1], delta)
-    figures = {"ZA": common.plot_series(dt, np.degrees(p), "days from start", "ZA [deg]"),
-               "XZA": common.plot_series(dt, np.degrees(lam), "days from start", "XZA [deg]")}
-    return Outcome(comparison, {"ZA": p * common.u().rad, "XZA": lam * common.u().rad}, figures,
+def compare_run(p, run):
+    comparison, not_measured, dt, za, xza = vs.compare(p, run.model, run.solution)
+    figures = {"ZA": common.plot_series(dt, np.degrees(za), "days from start", "ZA [deg]"),
+               "XZA": common.plot_series(dt, np.degrees(xza), "days from start", "XZA [deg]")}
+    return Outcome(comparison, {"ZA": za * common.u().rad, "XZA": xza * common.u().rad}, figures,
                    not_measured=not_measured)
-
-
-def _unsupported(comparison, span_d, delta):
-    """Blank the fitted values (None, with the reason) when the span is shorter than one orbit of F:
-    the fit cannot then tell the precession from the 2 phi inequality."""
-    orbit_d = 2 * math.pi / abs(delta) if delta else math.inf
-    if span_d >= orbit_d:
-        return {}
-    reason = (f"not measured: the {span_d:.6g} d span is shorter than one orbit of F ({orbit_d:.6g} d), "
-              "so the fit cannot separate the precession from the 2 phi inequality; lengthen span.end")
-    fitted = [key for key in comparison if "measured" in key or key.endswith("rel_error")]
-    comparison.update(dict.fromkeys(fitted))
-    return {f"comparison.{key}": reason for key in fitted}
 
 
 SCENE = Scene(P96PrecessionParams, build, compare_run, verdict, time_scales=common.rigid_body_time_scales,
