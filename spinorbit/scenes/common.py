@@ -1,12 +1,10 @@
-"""Pieces scene modules share: the orbit tables of Euler's idealised problems, a rigid body from its moments, its
+"""Pieces scene modules share: the orbit tables of Euler's idealised problems, a rigid body's
 time-scales, plots (spinorbit.plots.common)."""
 import math
 from dataclasses import fields
 
 import numpy as np
 
-from ..base.errors import PhysicsError, ScenarioError
-from ..bodies import RigidBody
 from ..plots.common import plot_series  # scenes call common.plot_series
 from ..scene.declaration import TimeScale
 from ..scene.params import key, table
@@ -44,15 +42,6 @@ def u():
     import astropy.units as units
 
     return units
-
-
-def rigid_body(moments, key="body.moments"):
-    """RigidBody from the principal ``moments`` a scenario ``key`` gives; a non-physical body is a ScenarioError
-    on that key."""
-    try:
-        return RigidBody.from_principal(*moments, name=key)
-    except PhysicsError as exc:
-        raise ScenarioError(key, moments.tolist(), f"a rigid body ({exc})") from None
 
 
 DISTANCES = ("radius", "f", "a")        # the orbit table's distance, by the name a scene gives it

@@ -5,15 +5,14 @@ begins to turn about the axis (cos alpha, cos beta, cos gamma) ~ (P/A, Q/B, R/C)
 with d gamma'/dt = |(P/A, Q/B, R/C)|.  The integrator's omega(t)/t at the
 first output step gives the same axis and rate to O(t).
 """
-import math
 
 import numpy as np
 
 from ..comparisons import start_from_rest_p92 as vs
-from ..models.assemblies.idealised import under_point_masses
-from ..scene.declaration import Model, Outcome, Scene
+from ..scene.declaration import Outcome, Scene
 from ..scene.params import Params, key, table
 from ..scene.verdict import Check, Verdict
+from ..starts import idealised as start
 from . import common
 
 
@@ -46,14 +45,7 @@ VERDICT = Verdict("Euler's first motion (§821-823)", (
 def build(p, times):
     """The body at rest, F fixed (rate 0) at ``force.direction``: a circle point (cos a, sin a cos i,
     sin a sin i)."""
-    from ..orbits.analytic import CircularOrbits
-
-    body = common.rigid_body(p.body.moments)
-    u = p.force.direction / np.linalg.norm(p.force.direction)
-    orbit = CircularOrbits(("F",), [p.orbit.gm], [p.orbit.radius], [0.0], phase=[math.acos(u[0])],
-                           inclination=[math.atan2(u[2], u[1])])
-    system = under_point_masses(body.moments, orbit, [1.0, 0, 0, 0], np.zeros(3), p.span.start, "body at rest")
-    return Model(system, direction=u)
+    return start.at_rest(p)
 
 
 def compare_run(p, run):

@@ -6,15 +6,14 @@ inertial x-y plane).  zeta = AF = (longitude of F) - (longitude of A) obeys
 zeta'' + n sin 2 zeta = 0 with n = (3/2) GM (B - A)/(C s^3); the scenario picks
 Euler's energy constant C as a multiple of n (-1, 0, 1, > 1: §826's cases).
 """
-import math
 
 import numpy as np
 
-from ..analysis.planar_libration import planar_system
 from ..comparisons.planar_libration_euler import compare_run
-from ..scene.declaration import Model, Scene
+from ..scene.declaration import Scene
 from ..scene.params import Params, key, table
 from ..scene.verdict import Check, Verdict
+from ..starts import idealised as start
 from . import common
 
 
@@ -48,16 +47,7 @@ def verdict(p, comparison):
 
 def build(p, times):
     """The body on Euler's circle with zeta = 0 and zeta' from the energy constant; the closed form."""
-    from ..analysis.theory import PlanarLibration, libration_n
-    from ..orbits.analytic import CircularOrbits
-
-    body = common.rigid_body(p.body.moments)
-    gm, s, delta = p.orbit.gm, p.orbit.radius, p.orbit.rate
-    n = libration_n(body.moments, gm, s)
-    zeta_dot0 = math.sqrt(max(p.libration.energy_over_n * n + n, 0.0))
-    orbit = CircularOrbits(("F",), [gm], [s], [delta], phase=[-delta * p.span.start])
-    return Model(planar_system(body.moments, orbit, p.span.start, 0.0, zeta_dot0, delta), n=n,
-                 theory=PlanarLibration(n, 0.0, zeta_dot0))
+    return start.planar_libration(p)
 
 
 SCENE = Scene(P93PlanarLibrationParams, build, compare_run, verdict, time_scales=common.rigid_body_time_scales,

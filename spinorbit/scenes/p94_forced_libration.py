@@ -8,14 +8,13 @@ with the full 3-D rigid body.  The neglected terms are O(alpha beta^2, n zeta^3)
 """
 import numpy as np
 
-from ..analysis.planar_libration import planar_system
 from ..base.constants import ARCSEC
-from ..base.errors import ScenarioError
 from ..comparisons import forced_libration_p94 as vs
-from ..scene.declaration import Model, Outcome, Scene
+from ..scene.declaration import Outcome, Scene
 from ..scene.params import Params, key, table
 from ..scene.schema import ANGLE, DISTANCE, GM, RATE
 from ..scene.verdict import Check, Verdict
+from ..starts import idealised as start
 from . import common
 
 
@@ -48,18 +47,7 @@ VERDICT = Verdict("Euler's forced libration to second order (§835)", (
 
 def build(p, times):
     """The body with A towards F and the spin §838 prescribes (no free libration excited)."""
-    from ..analysis.theory import forced_libration_initial_rate, libration_n
-    from ..orbits.analytic import UnevenCircle
-
-    body, o = common.rigid_body(p.body.moments), p.orbit
-    n = libration_n(body.moments, o.gm, o.f)
-    orbit = UnevenCircle(("F",), [o.gm], [o.f], [o.rate], [o.alpha], [o.beta], [o.frequency])
-    if p.span.start != 0.0:
-        raise ScenarioError("span.start", p.span.start,
-                            "'2000-01-01T12:00:00' (J2000): Euler's inequality sin At is timed from t = 0")
-    zeta_dot0 = forced_libration_initial_rate(n, o.frequency, o.alpha, o.beta)
-    start_rate = zeta_dot0 - o.frequency * o.alpha
-    return Model(planar_system(body.moments, orbit, p.span.start, 0.0, start_rate, o.rate), n=n)
+    return start.forced_libration(p)
 
 
 def compare_run(p, run):

@@ -9,17 +9,15 @@ integrated pole over a short span; the free rotation of O about A at
 (aa - cc)/cc gamma', which §840 drops by taking y = z = 0, limits the
 agreement to O(alpha (aa - cc) gamma'^2 s^3/GM) and O((aa - cc)/cc gamma' t).
 """
-import math
 
 import numpy as np
 
-from ..base.errors import ScenarioError
 from ..comparisons import pole_rates_p95 as vs
-from ..models.assemblies.idealised import under_point_masses
-from ..scene.declaration import Model, Outcome, Scene
+from ..scene.declaration import Outcome, Scene
 from ..scene.params import Params, key, table
 from ..scene.schema import ANGLE, SPIN
 from ..scene.verdict import Check, Verdict
+from ..starts import idealised as start
 from . import common
 
 
@@ -53,22 +51,7 @@ VERDICT = Verdict("Euler's pole rates (§843a)", (
 
 def build(p, times):
     """The symmetric body spinning about a pole alpha from its figure axis, F fixed at ``force.direction``."""
-    from ..orbits.analytic import CircularOrbits
-
-    body, b = common.rigid_body(p.body.moments), p.body
-    cc, aa = body.moments[0], body.moments[2]
-    if abs(body.moments[1] - cc) > 1e-12 * aa:
-        raise ScenarioError("body.moments", body.moments.tolist(),
-                            "a symmetric body [cc, cc, aa] (§841: bb = cc)")
-    u_euler = p.force.direction / np.linalg.norm(p.force.direction)
-    u = np.array([u_euler[1], u_euler[2], u_euler[0]])          # our (x, y, z) = Euler's (B, C, A)
-    orbit = CircularOrbits(("F",), [p.orbit.gm], [p.orbit.radius], [0.0], phase=[math.acos(u[0])],
-                           inclination=[math.atan2(u[2], u[1])])
-    alpha, rho = b.pole_offset, b.pole_angle
-    omega0 = b.spin * np.array([math.sin(alpha) * math.cos(rho), math.sin(alpha) * math.sin(rho),
-                                math.cos(alpha)])
-    system = under_point_masses(body.moments, orbit, [1.0, 0, 0, 0], omega0, p.span.start, "near principal axis")
-    return Model(system, u_euler=u_euler)
+    return start.near_principal_axis(p)
 
 
 def compare_run(p, run):

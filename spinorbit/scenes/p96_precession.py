@@ -15,13 +15,12 @@ free rotation in the body (eps aa/cc, which §841 drops) are compared.
 
 import numpy as np
 
-from ..base.errors import ResonanceError, ScenarioError
 from ..comparisons import precession_p96 as vs
-from ..models.assemblies.idealised import under_point_masses
-from ..scene.declaration import Model, Outcome, Scene
+from ..scene.declaration import Outcome, Scene
 from ..scene.params import Params, key, table
 from ..scene.schema import ANGLE, SPIN
 from ..scene.verdict import Check, Verdict
+from ..starts import idealised as start
 from . import common
 
 
@@ -60,27 +59,7 @@ def verdict(p, comparison):
 def build(p, times):
     """The spinner on Euler's forced solution (§844), or at its pole where the formulas fail (§849); the
     closed forms of Euler's text and with the pole's free rotation (``true``)."""
-    from ..analysis.theory import SymmetricPrecession, p96_initial_state, precession_constant
-    from ..orbits.analytic import CircularOrbits
-
-    body = common.rigid_body(p.body.moments)
-    cc, aa = body.moments[0], body.moments[2]
-    if not (abs(body.moments[1] - cc) <= 1e-12 * aa and aa > cc):
-        raise ScenarioError("body.moments", body.moments.tolist(),
-                            "a symmetric oblate body [cc, cc, aa] with aa > cc")
-    eps, n, o = p.body.spin, p.body.obliquity, p.orbit
-    big_n = precession_constant(o.gm, o.radius, eps, aa, cc)
-    euler = SymmetricPrecession(eps, o.rate, big_n, n)
-    true = SymmetricPrecession(eps, o.rate, big_n, n, ratio=aa / cc)
-    try:
-        e, f, _ = true.coefficients()
-        x0, resonance = e + f, None
-    except ResonanceError as exc:
-        x0, resonance = 0.0, exc
-    q0, omega0 = p96_initial_state(n, eps, x0, 0.0)
-    orbit = CircularOrbits(("F",), [o.gm], [o.radius], [o.rate], phase=[-o.rate * p.span.start])
-    system = under_point_masses(body.moments, orbit, q0, omega0, p.span.start, "symmetric spinner")
-    return Model(system, big_n=big_n, euler=euler, true=true, resonance=resonance)
+    return start.symmetric_spinner(p)
 
 
 def compare_run(p, run):

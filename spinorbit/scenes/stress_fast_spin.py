@@ -24,6 +24,7 @@ from ..scene.declaration import Model, Scene
 from ..scene.params import Params, key, table
 from ..scene.schema import ANGLE, SPIN
 from ..scene.verdict import Check, Verdict
+from ..starts.idealised import rigid_body
 from . import common
 
 
@@ -70,7 +71,7 @@ def build(p, times):
     from ..analysis.theory import SymmetricPrecession, p96_initial_state, precession_constant
     from ..orbits.analytic import CircularOrbits
 
-    body = common.rigid_body(p.body.moments)
+    body = rigid_body(p.body.moments)
     a_, b_, aa = body.moments
     cc = 0.5 * (a_ + b_)
     eps, n = p.body.spin, p.body.obliquity

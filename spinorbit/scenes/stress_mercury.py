@@ -32,6 +32,7 @@ from ..comparisons.mercury_libration import (
 from ..scene.declaration import Model, Scene
 from ..scene.params import Params, key, table
 from ..scene.verdict import Check, Verdict
+from ..starts.idealised import rigid_body
 from . import common
 
 RADAR_NOT_INDEPENDENT = ("Margot et al. (2007)'s 35.8\" radar amplitude is not compared: the (B - A)/C used "
@@ -68,7 +69,7 @@ class StressMercuryParams(Params):
 
 def build(p, times):
     """The body in the 3:2 state on its linear forced solution (gamma(0) = 0 at periapsis)."""
-    body = common.rigid_body(p.body.moments)
+    body = rigid_body(p.body.moments)
     a_, b_, c_ = body.moments
     gamma, o = (b_ - a_) / c_, p.orbit
     n = math.sqrt(o.gm / o.a**3)
