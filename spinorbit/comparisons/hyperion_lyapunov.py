@@ -10,6 +10,16 @@ from ..analysis.planar_spin_orbit import kepler_orbit, planar_lyapunov, planar_v
 from ..models.planar import planar_params
 from ..scene.declaration import Outcome
 
+# The metrics the verdict judges (the summary's comparison keys)
+LYAPUNOV_REGULAR_PER_T, PASSED = "lyapunov_regular_per_T", "passed"
+ENSEMBLE_PAIRS = ("rk8_T_vs_rk8_2T", "rk8_T_vs_dop853_T")       # the ensemble means compared: run length, method
+
+
+def nominal_sigmas(pair):
+    """The summary's key of the ensemble means' difference of ``pair`` (one of ENSEMBLE_PAIRS), in their
+    standard errors."""
+    return f"lyapunov_nominal_{pair}_sigmas"
+
 
 def lyapunov_map(p, planar, period):
     """(theta grid, rate/n grid, exponent (n_rate, n_theta) in 1/T) at periapsis after map.orbits periods."""
@@ -60,12 +70,12 @@ def compare_run(p, run):
                   "T and 2T (rk8) and with dop853; 3-D exponent; planar model vs 3-D body",
         "b_minus_a_over_c": gamma,
         "orbital_period_d": period,
-        "lyapunov_regular_per_T": float(regular[-1]),
+        LYAPUNOV_REGULAR_PER_T: float(regular[-1]),
         "lyapunov_regular_ln_t_over_t_per_T": float(math.log(regular.size) / regular.size),
         "lyapunov_regular_ratio_2T_over_T": decay,
         **{f"lyapunov_nominal_{k}_per_T": v[0] for k, v in nominal.items()},
         **{f"lyapunov_nominal_{k}_stderr_per_T": v[1] for k, v in nominal.items()},
-        **{f"lyapunov_nominal_{k}_sigmas": v for k, v in sigmas.items()},
+        **{nominal_sigmas(k): v for k, v in sigmas.items()},
         "lyapunov_time_nominal_T": 1 / nominal["rk8_2T"][0],
         "lyapunov_3d_per_T": float(tilted[-1]),
         "lyapunov_3d_half_run_per_T": float(tilted[tilted.size // 2 - 1]),
@@ -77,7 +87,7 @@ def compare_run(p, run):
         "map_exponent_median_chaotic_per_T":
             float(np.median(exponent[chaotic])) if chaotic.any() else math.nan,
         "planar_vs_3d_theta_max_rad_5_orbits": planar_error,
-        "passed": bool(regular[-1] < p.lyapunov.regular_max and decay < 0.75
+        PASSED: bool(regular[-1] < p.lyapunov.regular_max and decay < 0.75
                        and min(v[0] for v in nominal.values()) > chaotic_min
                        and max(sigmas.values()) < p.lyapunov.max_sigma and planar_error < 1e-8),
     }

@@ -10,6 +10,9 @@ from ..base.constants import ARCSEC
 from ..plots.common import plot_series
 from ..scene.declaration import Outcome
 
+# The metrics the verdict judges (the summary's comparison keys): zeta's error, on the separatrix below 80 deg
+ZETA_ERROR_MAX_ARCSEC, ZETA_ERROR_MAX_ARCSEC_BELOW_80DEG = "zeta_error_max_arcsec", "zeta_error_max_arcsec_below_80deg"
+
 
 def compare_run(p, run):
     """zeta against Euler's closed form for the energy constant's case: the error, and the times, periods and
@@ -26,7 +29,7 @@ def compare_run(p, run):
         # Euler's t = ln tan(45 deg + zeta/2)/sqrt(2n); the separatrix is unstable, so compare while
         # zeta < 80 deg.
         keep = zeta_num < math.radians(80)
-        comparison["zeta_error_max_arcsec_below_80deg"] = float(
+        comparison[ZETA_ERROR_MAX_ARCSEC_BELOW_80DEG] = float(
             np.abs(zeta_num - zeta_cf)[keep].max() / ARCSEC)
         for deg in (30, 60, 80):
             reached = crossing_times(dt, zeta_num, math.radians(deg))
@@ -38,7 +41,7 @@ def compare_run(p, run):
                     "so lengthen span.end")
             comparison[f"time_to_{deg}deg_euler_d"] = float(theory.separatrix_time(math.radians(deg)))
     else:
-        comparison["zeta_error_max_arcsec"] = float(np.abs(zeta_num - zeta_cf).max() / ARCSEC)
+        comparison[ZETA_ERROR_MAX_ARCSEC] = float(np.abs(zeta_num - zeta_cf).max() / ARCSEC)
     if theory.case == "bounded":
         ups = crossing_times(dt, zeta_num)
         comparison["period_closed_form_d"] = float(theory.period)

@@ -9,7 +9,7 @@ Euler's energy constant C as a multiple of n (-1, 0, 1, > 1: §826's cases).
 
 import numpy as np
 
-from ..comparisons.planar_libration_euler import compare_run
+from ..comparisons import planar_libration_euler as vs
 from ..scene.declaration import Scene
 from ..scene.params import Params, key, table
 from ..scene.verdict import Check, Verdict
@@ -40,8 +40,7 @@ _ZETA = "dop853 at rtol 1e-12 over 200 d: ~1e-4\" (tests/test_scenes.py)"
 
 def verdict(p, comparison):
     """zeta against Euler's closed form; on the separatrix only while zeta < 80 deg (it is unstable)."""
-    metric = ("zeta_error_max_arcsec_below_80deg" if p.libration.energy_over_n == 1
-              else "zeta_error_max_arcsec")
+    metric = vs.ZETA_ERROR_MAX_ARCSEC_BELOW_80DEG if p.libration.energy_over_n == 1 else vs.ZETA_ERROR_MAX_ARCSEC
     return Verdict("Euler's closed form (§826-831)", (Check("zeta", metric, 1e-3, "″", _ZETA),))
 
 
@@ -50,5 +49,5 @@ def build(p, times):
     return start.planar_libration(p)
 
 
-SCENE = Scene(P93PlanarLibrationParams, build, compare_run, verdict, time_scales=common.rigid_body_time_scales,
+SCENE = Scene(P93PlanarLibrationParams, build, vs.compare_run, verdict, time_scales=common.rigid_body_time_scales,
               taylor=True)

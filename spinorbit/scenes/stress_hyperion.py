@@ -20,7 +20,7 @@ an ensemble of ``lyapunov.ensemble`` starts 1e-3 rad apart around the nominal on
 
 import numpy as np
 
-from ..comparisons.hyperion_lyapunov import compare_run
+from ..comparisons import hyperion_lyapunov as vs
 from ..scene.declaration import Model, Scene
 from ..scene.params import Params, key, table
 from ..scene.verdict import Check, Verdict
@@ -30,13 +30,13 @@ from . import common
 def verdict(p, comparison):
     """The exponents' agreement between integrators and run lengths, the regular orbit, and all criteria."""
     return Verdict("Benettin exponents, rk8 and dop853", (
-        Check("regular exponent", "lyapunov_regular_per_T", p.lyapunov.regular_max, "/T",
+        Check("regular exponent", vs.LYAPUNOV_REGULAR_PER_T, p.lyapunov.regular_max, "/T",
               "a regular orbit's exponent falls like ln t/t (lyapunov.regular_max)"),
         *(Check(f"ensemble means, {pair.replace('_vs_', ' vs ').replace('_', ' ')}",
-                f"lyapunov_nominal_{pair}_sigmas", p.lyapunov.max_sigma, " sigma",
+                vs.nominal_sigmas(pair), p.lyapunov.max_sigma, " sigma",
                 "two integrators and two run lengths must give one mean exponent, within the ensemble's own "
-                "standard errors (lyapunov.max_sigma)") for pair in ("rk8_T_vs_rk8_2T", "rk8_T_vs_dop853_T")),
-        Check("all criteria", "passed", source="module docstring: (a)-(d)")))
+                "standard errors (lyapunov.max_sigma)") for pair in vs.ENSEMBLE_PAIRS),
+        Check("all criteria", vs.PASSED, source="module docstring: (a)-(d)")))
 
 
 @table
@@ -84,4 +84,4 @@ def build(p, times):
     return Model(None)
 
 
-SCENE = Scene(StressHyperionParams, build, compare_run, verdict, time_scales=common.rigid_body_time_scales)
+SCENE = Scene(StressHyperionParams, build, vs.compare_run, verdict, time_scales=common.rigid_body_time_scales)
