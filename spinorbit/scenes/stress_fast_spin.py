@@ -19,12 +19,11 @@ Passes when the reference's figure axis agrees with the best other run to
 import numpy as np
 
 from ..comparisons.fast_spin_p96 import PRECESSION_RATE_REL_ERROR_MAX, REFERENCE_AGREEMENT_AXIS_RAD, compare_run
-from ..models.assemblies.idealised import under_point_masses
-from ..scene.declaration import Model, Scene
+from ..scene.declaration import Scene
 from ..scene.params import Params, key, table
 from ..scene.schema import ANGLE, SPIN
 from ..scene.verdict import Check, Verdict
-from ..starts.idealised import rigid_body
+from ..starts import idealised as start
 from . import common
 
 
@@ -62,29 +61,10 @@ class StressFastSpinParams(Params):
     stress: StressTable
 
 
-RADIUS = 1.0          # F's distance (length unit arbitrary: only GM/s^3 enters)
-
-
 def build(p, times):
     """No main run (a converged reference and the ladder of ``stress.runs``, compare): the spinner started on
     Euler's forced solution (§844), its closed form."""
-    from ..analysis.theory import SymmetricPrecession, p96_initial_state, precession_constant
-    from ..orbits.analytic import CircularOrbits
-
-    body = rigid_body(p.body.moments)
-    a_, b_, aa = body.moments
-    cc = 0.5 * (a_ + b_)
-    eps, n = p.body.spin, p.body.obliquity
-    delta = eps / p.stress.spin_over_orbit
-    big_n = p.stress.precession_over_orbit * delta
-    gm = big_n / precession_constant(1.0, RADIUS, eps, aa, cc)          # N is proportional to GM
-    theory = SymmetricPrecession(eps, delta, big_n, n, ratio=aa / cc)
-    e, f, _ = theory.coefficients()
-    q0, omega0 = p96_initial_state(n, eps, e + f, 0.0)
-    t0 = p.span.start
-    orbit = CircularOrbits(("F",), [gm], [RADIUS], [delta], phase=[-delta * t0])
-    system = under_point_masses(body.moments, orbit, q0, omega0, t0, "fast spinner, slow orbit")
-    return Model(None, spinner=system, theory=theory, delta=delta)
+    return start.fast_spinner(p)
 
 
 SCENE = Scene(StressFastSpinParams, build, compare_run, verdict, time_scales=common.rigid_body_time_scales)

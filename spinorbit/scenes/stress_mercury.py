@@ -19,20 +19,18 @@ The radar amplitude is NOT an independent check: Margot's 35.8 +- 2" is the obse
 (B - A)/C (their mantle (B - A)/C_m = 2.03e-4) was inferred from, so agreeing with it is circular.  The
 scene reports it, and its verdict says so; it passes or fails on the integration against the theory.
 """
-import math
 
 import numpy as np
 
-from ..analysis.planar_spin_orbit import kepler_orbit, libration_theory, rigid_body_system
 from ..comparisons.mercury_libration import (
     LIBRATION_88D_REL_ERROR_VS_LINEAR,
     LIBRATION_88D_REL_ERROR_VS_SERIES,
     compare_run,
 )
-from ..scene.declaration import Model, Scene
+from ..scene.declaration import Scene
 from ..scene.params import Params, key, table
 from ..scene.verdict import Check, Verdict
-from ..starts.idealised import rigid_body
+from ..starts import idealised as start
 from . import common
 
 RADAR_NOT_INDEPENDENT = ("Margot et al. (2007)'s 35.8\" radar amplitude is not compared: the (B - A)/C used "
@@ -69,16 +67,7 @@ class StressMercuryParams(Params):
 
 def build(p, times):
     """The body in the 3:2 state on its linear forced solution (gamma(0) = 0 at periapsis)."""
-    body = rigid_body(p.body.moments)
-    a_, b_, c_ = body.moments
-    gamma, o = (b_ - a_) / c_, p.orbit
-    n = math.sqrt(o.gm / o.a**3)
-    theory = libration_theory(gamma, o.e)
-    k = np.arange(1, theory["g"].size + 1)
-    gamma_dot0 = n * float(np.sum(k * theory["g"]))
-    system = rigid_body_system(body.moments, kepler_orbit(o.gm, o.a, o.e, p.span.start), p.span.start, 0.0,
-                               1.5 * n + gamma_dot0)
-    return Model(system, gamma=gamma, n=n, theory=theory)
+    return start.mercury_3_2(p)
 
 
 SCENE = Scene(StressMercuryParams, build, compare_run, verdict, time_scales=common.rigid_body_time_scales)

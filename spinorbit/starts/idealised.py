@@ -1,6 +1,7 @@
-"""The Systems and starts of Euler's idealised problems (ch. 16 P92-P96): the rigid body of a scene's moments
-on its centre of forces F, started as each problem sets it, with the closed form it is compared with; each a
-``scene.Model`` whose context the scene's comparison reads."""
+"""The Systems and starts of Euler's idealised problems (ch. 16 P92-P96) and of the stress scenes on them (a fast
+spinner on P96's forced solution, Mercury's 3:2 libration): the rigid body of a scene's moments on its centre of
+forces, started as each problem sets it, with the closed form it is compared with; each a ``scene.Model`` whose
+context the scene's comparison reads."""
 import math
 
 import numpy as np
@@ -10,6 +11,8 @@ from ..base.errors import PhysicsError, ResonanceError, ScenarioError
 from ..bodies import RigidBody
 from ..models.assemblies.idealised import under_point_masses
 from ..scene.declaration import Model
+
+RADIUS = 1.0          # the fast spinner's F distance (length unit arbitrary: only GM/s^3 enters)
 
 
 def rigid_body(moments, key="body.moments"):
@@ -108,3 +111,41 @@ def symmetric_spinner(p):
     orbit = CircularOrbits(("F",), [o.gm], [o.radius], [o.rate], phase=[-o.rate * p.span.start])
     system = under_point_masses(body.moments, orbit, q0, omega0, p.span.start, "symmetric spinner")
     return Model(system, big_n=big_n, euler=euler, true=true, resonance=resonance)
+
+
+def fast_spinner(p):
+    """No main run (a converged reference and the ladder of ``stress.runs``, compare): the spinner started on
+    Euler's forced solution (§844), its closed form."""
+    from ..analysis.theory import SymmetricPrecession, p96_initial_state, precession_constant
+    from ..orbits.analytic import CircularOrbits
+
+    body = rigid_body(p.body.moments)
+    a_, b_, aa = body.moments
+    cc = 0.5 * (a_ + b_)
+    eps, n = p.body.spin, p.body.obliquity
+    delta = eps / p.stress.spin_over_orbit
+    big_n = p.stress.precession_over_orbit * delta
+    gm = big_n / precession_constant(1.0, RADIUS, eps, aa, cc)          # N is proportional to GM
+    theory = SymmetricPrecession(eps, delta, big_n, n, ratio=aa / cc)
+    e, f, _ = theory.coefficients()
+    q0, omega0 = p96_initial_state(n, eps, e + f, 0.0)
+    t0 = p.span.start
+    orbit = CircularOrbits(("F",), [gm], [RADIUS], [delta], phase=[-delta * t0])
+    system = under_point_masses(body.moments, orbit, q0, omega0, t0, "fast spinner, slow orbit")
+    return Model(None, spinner=system, theory=theory, delta=delta)
+
+
+def mercury_3_2(p):
+    """The body in the 3:2 state on its linear forced solution (gamma(0) = 0 at periapsis)."""
+    from ..analysis.planar_spin_orbit import kepler_orbit, libration_theory, rigid_body_system
+
+    body = rigid_body(p.body.moments)
+    a_, b_, c_ = body.moments
+    gamma, o = (b_ - a_) / c_, p.orbit
+    n = math.sqrt(o.gm / o.a**3)
+    theory = libration_theory(gamma, o.e)
+    k = np.arange(1, theory["g"].size + 1)
+    gamma_dot0 = n * float(np.sum(k * theory["g"]))
+    system = rigid_body_system(body.moments, kepler_orbit(o.gm, o.a, o.e, p.span.start), p.span.start, 0.0,
+                               1.5 * n + gamma_dot0)
+    return Model(system, gamma=gamma, n=n, theory=theory)
