@@ -146,3 +146,33 @@ def _first_age(q, mask):
     """The first age (Gyr before present) where ``mask`` holds, None if it never does."""
     where = np.flatnonzero(mask)
     return None if where.size == 0 else float(-q["t_gyr"][where[0]])
+
+
+def histories(p, run):
+    """({tide: History}, {tide: its quantities}): the chosen tide's (``tides.model``) first, then with
+    ``compare.models`` every other model's, each run to its stop through ``run.integrate``."""
+    from ..models.tidal_history.tides import TIDES
+    from ..starts import earth_moon_history as model
+
+    chosen = p.tides.model
+    names = [chosen] + ([m for m in TIDES if m != chosen] if p.compare.models else [])
+    runs = {name: model.run(p, name, run.times, run.integrate, None if name == chosen else name)
+            for name in names}
+    return runs, {name: quantities(h) for name, h in runs.items()}
+
+
+def sections(chosen, runs, q):
+    """The summary's sections of the histories ``runs`` (their quantities ``q``): the chosen tide's run, model,
+    resonances and stop; every other model's metrics, description and stop; the proxies' provenance."""
+    from ..references.lunar_proxies import provenance
+    from .earth_moon_history_figures import description
+
+    main = runs[chosen]
+    return {"run": main.point, "model": {"tides": chosen, **description(main, chosen)},
+            "resonances": resonances(q[chosen]),      # the distance's fast steps
+            "stop": {"reason": main.stop_reason or "the span's end",
+                     "t_gyr": None if main.stop_t is None else main.stop_t / GYR_D},
+            "other_models": {name: {**metrics(h, q[name])[0], **description(h, name),
+                                    "stop": h.stop_reason or "the span's end"}
+                             for name, h in runs.items() if name != chosen},
+            "reference": provenance()}

@@ -171,30 +171,15 @@ def compare_run(p, run):
     from ..comparisons import earth_moon_history_figures as figures
     from ..comparisons import earth_moon_history_table as table
     from ..plots.history import earth_moon_history, milankovitch_periods
-    from ..references.lunar_proxies import provenance
-    from ..starts import earth_moon_history as model
 
     chosen = p.tides.model
-    names = [chosen] + ([m for m in MODELS if m != chosen] if p.compare.models else [])
-    histories = {name: model.run(p, name, run.times, run.integrate, None if name == chosen else name)
-                 for name in names}
-    quantities = {name: compare.quantities(h) for name, h in histories.items()}
-    main = histories[chosen]
-    comparison, not_measured = compare.metrics(main, quantities[chosen])
-    sections = {"run": main.point, "model": {"tides": chosen, **figures.description(main, chosen)},
-                "resonances": compare.resonances(quantities[chosen]),      # the distance's fast steps
-                "stop": {"reason": main.stop_reason or "the span's end",
-                         "t_gyr": None if main.stop_t is None else main.stop_t / GYR_D},
-                "other_models": {name: {**compare.metrics(h, quantities[name])[0],
-                                        **figures.description(h, name),
-                                        "stop": h.stop_reason or "the span's end"}
-                                 for name, h in histories.items() if name != chosen},
-                "reference": provenance()}
+    histories, quantities = compare.histories(p, run)
+    comparison, not_measured = compare.metrics(histories[chosen], quantities[chosen])
     ages, series = figures.series(quantities)
     figs = {"distance_length_of_day": earth_moon_history(ages, series, figures.proxies()),
             "milankovitch_periods": milankovitch_periods(ages, series, proxies=figures.proxies())}
-    return Outcome(comparison, figures=figs, sections=sections, not_measured=not_measured,
-                   table=table.table(main.t, quantities[chosen]))
+    return Outcome(comparison, figures=figs, sections=compare.sections(chosen, histories, quantities),
+                   not_measured=not_measured, table=table.table(histories[chosen].t, quantities[chosen]))
 
 
 def sweep_figures(tables):
