@@ -120,6 +120,16 @@ EXPLAINED = {
     "la2004_minus_la93_*": "La2004 minus La93 (with tides): how far two of Laskar's solutions differ"}
 
 
+def sections(model, erfa_provenance, la2004_provenance):
+    """The summary's model, orbital solution and reference sections of the scene's ``model`` (its spin, orbit
+    and orbit_wall)."""
+    orbit = model.orbit
+    return {"model": model.spin.description,
+            "orbital_solution": {"file": str(orbit.path), "span_d": list(orbit.span), "settings": orbit.record,
+                                 **orbit.provenance, "wall_s_this_run": model.orbit_wall},
+            "reference": {"erfa": erfa_provenance, "la2004": la2004_provenance}, "metrics_explained": EXPLAINED}
+
+
 def figure_series(q, la2004):
     """(kyr, the model's obliquity (deg) and climatic precession, La2004's or None), where La2004 reaches."""
     size = len(q["t_kyr"]) if la2004 is None else len(la2004["t_kyr"])

@@ -13,8 +13,6 @@ Out: La2004's quantities every span.step (t_kyr, e, obliquity, varpi_bar, e sin 
 precession), compared with ERFA's long-term precession over the first 2 kyr and with La2004 (inso) over
 1 Myr, 10 Myr and the span up to 50 Myr, La93's tidal variants beside it; the nominal physics is judged.
 """
-import time
-
 from ..comparisons import earth_deep_time as compare
 from ..scene.declaration import Model, Outcome, Scene
 from ..scene.params import Params, key, table, values_of
@@ -76,9 +74,7 @@ def build(p, times):
     from ..starts import earth_deep_time as model
 
     check_span(p)
-    started = time.perf_counter()
-    orbit = model.orbital_solution(p, "earth_deep_time: orbital solution")
-    orbit_wall = time.perf_counter() - started
+    orbit, orbit_wall = model.timed_orbital_solution(p, "earth_deep_time: orbital solution")
     spin = model.spin_model(p, orbit)
     return Model(spin.system, spin=spin, orbit=orbit, orbit_wall=orbit_wall)
 
@@ -88,16 +84,11 @@ def compare_run(p, run):
     from ..plots.deep_time import deep_time as deep_time_plot
     from ..plots.deep_time import deep_time_spectra
 
-    t, spin, orbit = run.times, run.model.spin, run.model.orbit
+    t, spin = run.times, run.model.spin
     q = table.quantities(t, run.solution.y, spin)
     erfa, erfa_provenance = compare.erfa_metrics(p, spin)
     laskar, not_measured, la2004_provenance, la2004 = compare.laskar_metrics(t, q)
-    sections = {"model": spin.description,
-                "orbital_solution": {"file": str(orbit.path), "span_d": list(orbit.span),
-                                     "settings": orbit.record, **orbit.provenance,
-                                     "wall_s_this_run": run.model.orbit_wall},
-                "reference": {"erfa": erfa_provenance, "la2004": la2004_provenance},
-                "metrics_explained": compare.EXPLAINED}
+    sections = compare.sections(run.model, erfa_provenance, la2004_provenance)
     x, ours, reference = compare.figure_series(q, la2004)
     figures = {"obliquity_climatic_precession": deep_time_plot(x, ours, reference, "La2004"),
                "spectra": deep_time_spectra(x, ours, reference, "La2004")}

@@ -1,8 +1,6 @@
 """Mars's obliquity and precession over Myr on its orbit in earth_deep_time's (cached) orbital solution: the
 averaged precession under the Sun set by the present rate, the Sun's tide, from the IAU 2015 mean pole
 (spinorbit.starts.mars_deep_time), against La2004 Mars over 1, 5 and 20 Myr; a sweep's obliquity band."""
-import time
-
 from ..scene.declaration import Model, Outcome, Scene
 from ..scene.params import Params, key, table, values_of
 from ..starts.earth_deep_time import MYR_D, DeepTimeOrbitTable, check_span, nbody_counts
@@ -45,9 +43,7 @@ def build(p, times):
     from ..starts import mars_deep_time as model
 
     check_span(p)
-    started = time.perf_counter()
-    orbit = orbits.orbital_solution(p, "mars_deep_time: orbital solution")
-    wall = time.perf_counter() - started
+    orbit, wall = orbits.timed_orbital_solution(p, "mars_deep_time: orbital solution")
     return Model((spin := model.spin_model(p, orbit)).system, spin=spin, orbit=orbit, orbit_wall=wall)
 
 

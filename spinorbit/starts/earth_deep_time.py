@@ -1,6 +1,7 @@
 """earth_deep_time's model: the orbital solution its orbit keys name, and the averaged spin equations on it,
 the axis started on IAU 2006's mean pole at J2000."""
 import math
+import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -88,6 +89,13 @@ def orbital_solution(p, label):
         return solution.solve(settings(p), p.span.start, end, path=p.orbit.file or None, label=label)
     except InputError as exc:
         raise ScenarioError(ORBIT_KEYS.get(exc.name, exc.name), exc.given, exc.accepted) from None
+
+
+def timed_orbital_solution(p, label):
+    """(orbital_solution(p, label), the wall time it took, s: the N-body run when the cache lacks it)."""
+    started = time.perf_counter()
+    orbit = orbital_solution(p, label)
+    return orbit, time.perf_counter() - started
 
 
 @dataclass
