@@ -106,6 +106,46 @@ def beside_de421(terms, de421_terms):
                      "series', not the integration's")
 
 
+def longitude_terms(t, mats, earth, de421, covered):
+    """(the run's physical librations (references.eckhardt, ``earth`` the Earth seen from the Moon), the
+    longitude terms fitted to them, with DE421's own fitted alike beside where it covers (where Eckhardt's series
+    differs), {term: why refused})."""
+    from ..references import eckhardt
+    from ..references.moon_de421 import FREE_LIBRATION_LONGITUDE_PERIOD_D
+
+    lib = eckhardt.physical_librations(t, mats, earth)
+    terms, refused = eckhardt.fit_longitude_terms(t, lib["tau"] / ARCSEC, FREE_LIBRATION_LONGITUDE_PERIOD_D)
+    if de421 is not None:
+        beside_de421(terms, eckhardt.fit_longitude_terms(t[covered], eckhardt.physical_librations(
+            t[covered], de421["icrf_to_body"], earth[covered])["tau"] / ARCSEC,
+            FREE_LIBRATION_LONGITUDE_PERIOD_D)[0])
+    return lib, terms, refused
+
+
+ZOOM_D = 730.5                      # the figure's last two years against DE421, days
+
+
+def last_years(t, covered, de421, earth):
+    """(the outputs of the last ZOOM_D days DE421 covers, DE421's physical librations there), or (None, None)
+    where it covers none."""
+    from ..references import eckhardt
+
+    zoom = covered & (np.abs(t - t[covered][-1]) <= ZOOM_D) if covered.any() else None
+    de421_zoom = None if zoom is None else eckhardt.physical_librations(
+        t[zoom], de421["icrf_to_body"][zoom[covered]], earth[zoom])
+    return zoom, de421_zoom
+
+
+def model_summary(level, system, orbits):
+    """The summary's model section: the lunar level, its degree, core, tides, bodies and terms."""
+    from ..models.assemblies.moon import LEVELS
+
+    return {"level": level, "name": LEVELS[level].name, "start_tdb_d": system.t0,
+            "degree": 4 if "harmonics" in system.meta["terms"] else 2,
+            "core": LEVELS[level].core, "tides": bool(system.meta["tides"]),
+            "bodies": list(orbits.names), "terms": list(system.meta["terms"])}
+
+
 def orbit_summary(source, step_d, orbits):
     """The orbit source as the summary reports it (the interpolant's measured error where it has one)."""
     error = getattr(orbits, "max_error_km", None)

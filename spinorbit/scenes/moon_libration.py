@@ -15,10 +15,7 @@ difference beside it.
 """
 from dataclasses import replace
 
-import numpy as np
-
 from ..analysis.librations import LONGITUDE_ERROR_MAX_ARCSEC, POLE_ERROR_MAX_ARCSEC
-from ..base.constants import ARCSEC
 from ..orbits.sources import OrbitSource
 from ..scene.declaration import Answer, Cost, Model, Outcome, Scene, Stored
 from ..scene.params import Params, key, source_key, table, time_key
@@ -89,9 +86,6 @@ class MoonLibrationParams(Params):
     report: ReportTable
 
 
-ZOOM_D = 730.5                      # days
-
-
 def build(p, times):
     """The lunar model of the level, driven by orbit.source, started from DE421's state (starts/moon.py)."""
     from ..starts.moon import build_system
@@ -103,11 +97,8 @@ def build(p, times):
 def compare_run(p, run):
     from ..analysis.librations import icrf_to_body
     from ..comparisons import moon_de421 as vs
-    from ..models.assemblies.moon import LEVELS
     from ..plots.error_vs_cost import plot_error_vs_cost
     from ..plots.moon import driven_by, moon_libration
-    from ..references import eckhardt
-    from ..references.moon_de421 import FREE_LIBRATION_LONGITUDE_PERIOD_D
     from ..starts.moon import difference_driven_by
 
     solution, system, orbits, level = run.solution, run.model.system, run.model.orbits, p.model.level
@@ -115,22 +106,11 @@ def compare_run(p, run):
     de421, covered, comparison, not_measured = vs.against_de421(t, mats)
     # the Earth seen from the Moon: the Solution's (DE421's own series on a JPL source), else the orbits'
     earth = run.fitted.part("earth.from_moon", t) if run.fitted is not None else orbits.positions(t)[:, 0]
-    lib = eckhardt.physical_librations(t, mats, earth)
-    terms, refused = eckhardt.fit_longitude_terms(t, lib["tau"] / ARCSEC, FREE_LIBRATION_LONGITUDE_PERIOD_D)
-    if de421 is not None:           # DE421's own librations fitted alike: where Eckhardt's series differs
-        vs.beside_de421(terms, eckhardt.fit_longitude_terms(t[covered], eckhardt.physical_librations(
-            t[covered], de421["icrf_to_body"], earth[covered])["tau"] / ARCSEC,
-            FREE_LIBRATION_LONGITUDE_PERIOD_D)[0])
-    sections = {"reference": de421.provenance if de421 else None,
-                "model": {"level": level, "name": LEVELS[level].name, "start_tdb_d": system.t0,
-                          "degree": 4 if "harmonics" in system.meta["terms"] else 2,
-                          "core": LEVELS[level].core, "tides": bool(system.meta["tides"]),
-                          "bodies": list(orbits.names), "terms": list(system.meta["terms"])},
+    lib, terms, refused = vs.longitude_terms(t, mats, earth, de421, covered)
+    sections = {"reference": de421.provenance if de421 else None, "model": vs.model_summary(level, system, orbits),
                 "orbits": vs.orbit_summary(p.orbit.source.name, p.orbit.step, orbits), "longitude_terms": terms}
     table, rows = vs.table(solution, mats, de421, covered, lib), terms["main"] + terms["other"]
-    zoom = covered & (np.abs(t - t[covered][-1]) <= ZOOM_D) if covered.any() else None   # two years vs DE421
-    de421_zoom = None if zoom is None else eckhardt.physical_librations(
-        t[zoom], de421["icrf_to_body"][zoom[covered]], earth[zoom])
+    zoom, de421_zoom = vs.last_years(t, covered, de421, earth)
     figures = moon_libration(t, table, rows, [r["term"] for r in terms["main"]], zoom, de421_zoom)
     if p.compare.source is not None:
         other = p.compare.source
