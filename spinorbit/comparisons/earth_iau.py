@@ -16,6 +16,34 @@ from ..references import arguments, erfa_pole
 X_RMS_MAS, Y_RMS_MAS = "x_rms_mas", "y_rms_mas"
 FULL_MINUS_GYROSCOPIC_MAX_MAS = "full_minus_gyroscopic_max_mas"
 
+def geodesic_arcsec_cy(p):
+    """De Sitter's precession the model holds ("/cy), or 0 without it (earth.geodesic_precession)."""
+    return earth.GEODESIC_PRECESSION_ARCSEC_CY if p.earth.geodesic_precession else 0.0
+
+
+def poles(p, t, system, y):
+    """(the rigid model's figure axis at t, tilted by the tides' secular rates; the pole compared: that, with
+    earth.nonrigid the non-rigid Earth's response applied (comparisons.earth_nonrigid); IAU 2006/2000A's pole
+    at t; the non-rigid settings, or False)."""
+    from ..starts import earth_tides as tides
+    from . import earth_nonrigid as nr
+
+    z = system.figure_axes("earth", t, y)
+    z = z_rigid = tides.tilted(t, z, *tides.rates(p.earth.tides, p.orbit.source))
+    iau, nonrigid = erfa_pole.IauPole()(t), p.earth.nonrigid and nr.settings(p)
+    z = nr.nonrigid_pole(t, z, **nonrigid) if nonrigid else z
+    return z_rigid, z, iau, nonrigid
+
+
+def p96_rate(p, t, z, model, moments):
+    """Euler's P96 rate beside the model's (references.euler_p96.compare): (metrics, not measured); ``model``
+    the scene's (its ecliptic pole, and the plane's tilt on a circular orbit)."""
+    from ..references import euler_p96
+
+    return euler_p96.compare(t, z, model.pole_ecl, moments / moments[2], earth.ERA_RATE_RAD_D,
+                             model.plane_tilt is not None, geodesic_arcsec_cy(p))
+
+
 def model_summary(moments, orbits, geodesic_arcsec_cy, j2_rate, j4):
     """The model's settings as the summary reports them."""
     error = getattr(orbits, "max_relative_error", None)

@@ -120,24 +120,17 @@ def compare_run(p, run):
     from ..comparisons import earth_iau as vs
     from ..comparisons import earth_nonrigid as nr
     from ..plots.earth import earth_precession_nutation, full_minus_gyroscopic
-    from ..references import erfa_pole
     from ..starts import earth_ellipticity as hd
-    from ..starts import earth_tides as tides
 
     t, system, m = run.times, run.model.system, run.model
-    z = system.figure_axes("earth", t, run.solution.y)
-    z = z_rigid = tides.tilted(t, z, *tides.rates(p.earth.tides, p.orbit.source))
-    iau, nonrigid = erfa_pole.IauPole()(t), p.earth.nonrigid and nr.settings(p)
-    z = nr.nonrigid_pole(t, z, **nonrigid) if nonrigid else z
+    z_rigid, z, iau, nonrigid = vs.poles(p, t, system, run.solution.y)
     dx, dy, comparison = vs.residuals(z, iau)
     not_measured, nutation = {}, {}
     if m.plane_tilt is None:                         # on DE421: IAU 2000A's nutation applies
         fitted, not_measured, nutation = vs.precession_nutation(t, z, iau)
         comparison.update(fitted)
     moments = system.bodies["earth"].figure.moments
-    geodesic = earth.GEODESIC_PRECESSION_ARCSEC_CY if p.earth.geodesic_precession else 0.0
-    p96, p96_not_measured = euler_p96.compare(t, z, m.pole_ecl, moments / moments[2], earth.ERA_RATE_RAD_D,
-                                              m.plane_tilt is not None, geodesic)
+    p96, p96_not_measured = vs.p96_rate(p, t, z, m, moments)
     comparison.update(p96)
     not_measured.update(p96_not_measured)
     table, figures = vs.table(t, z, dx, dy, nutation), earth_precession_nutation(
@@ -146,7 +139,7 @@ def compare_run(p, run):
         comparison.update(vs.full_model_checks(p, run, m.twin, z))
         twin = comparison.pop("_full_minus_gyro_mas")
         figures["full_minus_gyroscopic"] = full_minus_gyroscopic(t, twin)
-    model = vs.model_summary(moments, m.orbits, geodesic, p.earth.j2_rate, p.earth.j4)
+    model = vs.model_summary(moments, m.orbits, vs.geodesic_arcsec_cy(p), p.earth.j2_rate, p.earth.j4)
     sections = {"reference": iau.provenance, "model": model, "dynamical_ellipticity": hd.summary(p),
                 **(nr.summaries(t, z_rigid, z, iau, dx, dy, **nonrigid) if nonrigid else {})}
     return Outcome(comparison, figures=figures, sections=sections, not_measured=not_measured, table=table)
