@@ -11,13 +11,12 @@ through analysis.ladder.work_precision.
 import numpy as np
 
 from ..analysis.theory import FreeRigidBody
-from ..base.errors import ScenarioError
 from ..comparisons.free_body_stress import PASSED, Q0, attitude_error, degenerate, flip, long_run, shapes
-from ..integrators import METHODS
 from ..models.assemblies.idealised import free_body
 from ..scene.declaration import Model, Outcome, Scene
 from ..scene.params import Params, key, table
 from ..scene.verdict import Check, Verdict
+from ..starts.idealised import check_methods
 from . import common
 
 CASES = ("flip", "degenerate", "shapes", "long_run")
@@ -61,9 +60,7 @@ CHECKS = {
 
 def build(p, times):
     """No main run: the case runs its methods (cases.py); for bench, the case's torque-free body."""
-    for method in p.stress.methods:
-        if not isinstance(method, str) or method not in METHODS:
-            raise ScenarioError("stress.methods", method, f"method names, of {sorted(METHODS)}")
+    check_methods(p.stress.methods)
     return Model(None, bench_system=free_body(p.body.moments, Q0, p.body.omega0))
 
 

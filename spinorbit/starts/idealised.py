@@ -24,6 +24,15 @@ def rigid_body(moments, key="body.moments"):
         raise ScenarioError(key, moments.tolist(), f"a rigid body ({exc})") from None
 
 
+def check_methods(methods):
+    """``stress.methods``: each the name of an integrator (integrators.METHODS), or a ScenarioError on the key."""
+    from ..integrators import METHODS
+
+    for method in methods:
+        if not isinstance(method, str) or method not in METHODS:
+            raise ScenarioError("stress.methods", method, f"method names, of {sorted(METHODS)}")
+
+
 def at_rest(p):
     """The body at rest, F fixed (rate 0) at ``force.direction``: a circle point (cos a, sin a cos i,
     sin a sin i)."""

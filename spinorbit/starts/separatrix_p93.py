@@ -3,8 +3,6 @@
 (analysis.theory.PlanarLibration)."""
 import math
 
-from ..base.errors import ScenarioError
-
 
 def planar_run(p, offset):
     """(System, closed form) of the libration started at C/n - 1 = ``offset``."""
@@ -22,9 +20,7 @@ def planar_run(p, offset):
 
 def runs(p):
     """[(offset, System, closed form)] for each of ``stress.offsets``; ``stress.methods`` checked."""
-    from ..integrators import METHODS
+    from .idealised import check_methods
 
-    for method in p.stress.methods:
-        if not isinstance(method, str) or method not in METHODS:
-            raise ScenarioError("stress.methods", method, f"method names, of {sorted(METHODS)}")
+    check_methods(p.stress.methods)
     return [(float(offset), *planar_run(p, float(offset))) for offset in p.stress.offsets]
