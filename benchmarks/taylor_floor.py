@@ -51,7 +51,7 @@ def largest(a, b):
 
 
 def main():
-    system = solar_system(load_scenario("scenarios/solar_system.toml"))
+    system = solar_system(load_scenario("scenarios/solar_system.toml").params)
     t20 = system.t0 + np.arange(20.0, END_D - system.t0, 20.0)
     t30 = system.t0 + np.arange(30.0, END_D - system.t0, 30.0)
     every20, every30 = double(system, t20, 1e-15), double(system, t30, 1e-15)
