@@ -9,7 +9,6 @@ from .earth_deep_time import OBLIQUITY_MAX_DEG, la2004_metric, window_name
 
 WINDOWS_MYR = (1, 5, 20)
 LA2004_OBLIQUITY_MAX_DEG_1MYR = la2004_metric(OBLIQUITY_MAX_DEG, window_name(1))   # laskar_metrics', judged
-LA2004 = {"mars.precession_rate": -7.597, "tides.k2": 0.149, "tides.Q": 92.0}   # its README's parameters
 TARGET = ("project target (issue 41): a rate 0.3 % away moves the obliquity by 0.75° at -1 Myr, so 0.1° asks "
           "the rate, the tides and the orbit right")
 COLUMNS = {  # name: (unit, description)

@@ -249,3 +249,10 @@ def values_of(params):
     records, the budget counts and an export writes in its comments, generically."""
     return {f"{table_field.name}.{leaf.name}": getattr(getattr(params, table_field.name), leaf.name)
             for table_field in fields(params) for leaf in fields(table_field.type) if "key" in leaf.metadata}
+
+
+def at_defaults(table, *names):
+    """Whether the keyed fields of a table instance (those ``names``, or all) hold their declared defaults: the
+    model a scene declares as its reference's, e.g. La2004's physics."""
+    chosen = [f for f in fields(table) if "key" in f.metadata and (not names or f.name in names)]
+    return all(np.array_equal(getattr(table, f.name), f.metadata["key"].default) for f in chosen)

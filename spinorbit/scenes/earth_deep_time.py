@@ -15,13 +15,13 @@ precession), compared with ERFA's long-term precession over the first 2 kyr and 
 """
 from ..comparisons import earth_deep_time as compare
 from ..scene.declaration import Model, Outcome, Scene
-from ..scene.params import Params, key, table, values_of
+from ..scene.params import Params, at_defaults, key, table
 from ..scene.verdict import Check, Verdict
 from ..starts.earth_deep_time import DeepTimeOrbitTable, check_span, nbody_counts
 
-# The physics La2004 is judged against (numerical keys, the ephemeris and the file may change).
-NOMINAL = {"model.Td": 1.0, "model.Ed": 1.0, "model.precession": "iau2006_rate", "model.tidal_tilt": True,
-           "orbit.moon": "ring", "orbit.relativity": True}
+# The physics La2004 is judged against: the [model] table's defaults, the Moon as a ring and GR on the orbits (the
+# ephemeris, the step, the cadence and the file may change).
+NOMINAL_ORBIT = ("moon", "relativity")
 
 
 @table
@@ -60,11 +60,11 @@ def verdict(p, comparison):
     only (a variant is compared with La2004, not judged)."""
     checks = [Check("obliquity vs ERFA", compare.ERFA_OBLIQUITY_MAX_ARCSEC, 1.0, "″", VCW),
               Check("mean equator vs ERFA", compare.ERFA_EQUATOR_MAX_ARCSEC, 5.0, "″", VCW)]
-    values = values_of(p)
-    nominal = all(values[key] == value for key, value in NOMINAL.items())
+    nominal = at_defaults(p.model) and at_defaults(p.orbit, *NOMINAL_ORBIT)
     if nominal:
         checks += compare.la2004_checks(p.span.length, LA2004_TARGETS, ISSUE)
-    note = "" if nominal else f"a variant of the nominal model ({NOMINAL}): compared with La2004, not judged"
+    note = "" if nominal else ("a variant of the nominal model (the [model] table's defaults, orbit.moon = 'ring', "
+                                "orbit.relativity = true): compared with La2004, not judged")
     return Verdict("ERFA long-term precession; La2004", tuple(checks), note)
 
 

@@ -2,12 +2,15 @@
 averaged precession under the Sun set by the present rate, the Sun's tide, from the IAU 2015 mean pole
 (spinorbit.starts.mars_deep_time), against La2004 Mars over 1, 5 and 20 Myr; a sweep's obliquity band."""
 from ..scene.declaration import Model, Outcome, Scene
-from ..scene.params import Params, key, table, values_of
+from ..scene.params import Params, at_defaults, key, table
 from ..starts.earth_deep_time import MYR_D, DeepTimeOrbitTable, check_span, nbody_counts
 
 
 @table
 class MarsTable:
+    """Mars's spin; its defaults and the [tides] table's are La2004's parameters (its README), which the verdict
+    judges."""
+
     precession_rate: float = key(unit="arcsec/yr", default=-7.597, min=-7.7, max=-7.5,
                                  help="present precession rate in longitude (La2004: -7.597; Konopliv et al. "
                                       "2016: -7.6083 +- 0.0021), sets the dynamical ellipticity")
@@ -27,15 +30,14 @@ class MarsDeepTimeParams(Params):
 
 
 def verdict(p, comparison):
-    from ..comparisons.mars_deep_time import LA2004, LA2004_OBLIQUITY_MAX_DEG_1MYR, TARGET
+    from ..comparisons.mars_deep_time import LA2004_OBLIQUITY_MAX_DEG_1MYR, TARGET
     from ..scene.verdict import Check, Verdict
 
-    values = values_of(p)
-    judged = all(values[key] == value for key, value in LA2004.items()) and abs(p.span.end) >= MYR_D - 1.0
+    judged = at_defaults(p.mars) and at_defaults(p.tides) and abs(p.span.end) >= MYR_D - 1.0
     checks = (Check("obliquity vs La2004 Mars (1myr)", LA2004_OBLIQUITY_MAX_DEG_1MYR, 0.1, "°", TARGET,
                     min_span_d=MYR_D - 1.0),) if judged else ()
-    return Verdict("La2004 Mars (Laskar et al. 2004, Icarus 170, 343)", checks,
-                   "" if judged else f"not La2004's parameters {LA2004} over 1 Myr: compared, not judged")
+    judged_note = "not La2004's parameters (the [mars] and [tides] tables' defaults) over 1 Myr: compared, not judged"
+    return Verdict("La2004 Mars (Laskar et al. 2004, Icarus 170, 343)", checks, "" if judged else judged_note)
 
 
 def build(p, times):
