@@ -41,7 +41,7 @@ def winner(rows, key, levels):
 
 
 def precession_rate(solution, t0, delta, eps_f):
-    """Mean regression rate of the figure axis (rad/d), from p96_precession.fit_angles."""
+    """Mean regression rate of the figure axis (rad/d), from analysis.figure_axis.fit_angles."""
     return float(-fit_angles(solution, t0, delta, eps_f)[3][1])
 
 
