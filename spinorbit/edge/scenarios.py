@@ -97,12 +97,15 @@ class Scenario:
 
     def with_params(self, params):
         """This scenario with ``params`` (a ``dataclasses.replace`` of its own), validated alike: each value in
-        its key's range (params.check_values), then the budget and the method's options."""
+        its key's range (params.check_values), the span the scene can run, then the budget and the method's
+        options."""
         import copy
 
         from ..scene.params import check_values
 
         check_values(params)
+        span = params.span
+        self._check_span(span, f"{span.start:.9g} TDB days from J2000", f"{span.end:.9g} TDB days from J2000")
         other = copy.copy(self)
         other.params = params
         other.validate()
@@ -206,13 +209,19 @@ class Scenario:
                 end = start + checked_float("span.end", end_text, Key(unit="d"))
             except ScenarioError:
                 raise ScenarioError("span.end", end_text, SPAN_END_ACCEPTED) from None
-        if end < start and not self.scene.backward:
-            raise ScenarioError("span.end", end_text, f"a time after span.start ({start_text}); "
+        span = SpanTable(start=start, end=end, step=values["span.step"])
+        self._check_span(span, start_text, end_text)
+        return span
+
+    def _check_span(self, span, start_given, end_given):
+        """Refuse a span the scene cannot run: backward for a scene that runs forward only, or shorter than
+        MIN_SPAN_D; the file's text (or the replaced days) named as given."""
+        if span.backward and not self.scene.backward:
+            raise ScenarioError("span.end", end_given, f"a time after span.start ({start_given}); "
                                 f"scene kind '{self.kind}' runs forward only (backward runs: "
                                 f"{', '.join(backward_kinds())})")
-        if abs(end - start) < MIN_SPAN_D:
-            raise ScenarioError("span.end", end_text, f"a span of at least {MIN_SPAN_D:g} d from span.start")
-        return SpanTable(start=start, end=end, step=values["span.step"])
+        if span.length < MIN_SPAN_D:
+            raise ScenarioError("span.end", end_given, f"a span of at least {MIN_SPAN_D:g} d from span.start")
 
     def cost(self):
         """The measured per-item costs of this scene kind (its Scene's cost)."""

@@ -12,7 +12,7 @@ keys a scene accepts are read off its class (:func:`keys_of`), never written twi
 
 Edge module, below ``scenarios`` and ``scenes``.
 """
-from dataclasses import dataclass, field, fields, replace
+from dataclasses import MISSING, dataclass, field, fields, replace
 
 import numpy as np
 
@@ -216,13 +216,6 @@ def filled(params_type, values, span, options):
     return params_type(**made, span=span, integrator=integrator)
 
 
-def check_integrator_fields():
-    """The integrator table's option fields are spinorbit.integrators.options.OPTIONS, no more, no fewer."""
-    declared = {f.name for f in fields(IntegratorTable)} - {"method", "estimate_error"}
-    return declared == set(OPTIONS)
-
-
-
 def check_values(params):
     """Raise ScenarioError naming the key unless each number of ``params`` (each element of a vector, each
     [integrator] option) is finite and inside its key's range and each choice one its key accepts: what loading
@@ -253,6 +246,8 @@ def values_of(params):
 
 def at_defaults(table, *names):
     """Whether the keyed fields of a table instance (those ``names``, or all) hold their declared defaults: the
-    model a scene declares as its reference's, e.g. La2004's physics."""
+    model a scene declares as its reference's, e.g. La2004's physics.  A default is the field's (what its key's
+    default text names, for a key that names an object)."""
     chosen = [f for f in fields(table) if "key" in f.metadata and (not names or f.name in names)]
-    return all(np.array_equal(getattr(table, f.name), f.metadata["key"].default) for f in chosen)
+    return all(np.array_equal(getattr(table, f.name), f.default_factory() if f.default is MISSING else f.default)
+               for f in chosen)

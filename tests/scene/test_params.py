@@ -115,3 +115,26 @@ def test_a_scene_run_from_python_with_its_parameters_replaced_is_the_run_the_tex
         scenario.with_params(dataclasses.replace(p, integrator=dataclasses.replace(p.integrator, rtol=1.0)))
     with pytest.raises(ScenarioError, match="span.step"):
         converted(type(p), "span.step", 3 * u.km)
+
+
+def test_the_integrator_table_declares_every_option_the_methods_know():
+    """IntegratorTable's option fields are spinorbit.integrators.options.OPTIONS, no more, no fewer: an option a
+    method accepts but the table lacked could not be loaded."""
+    from spinorbit.integrators.options import OPTIONS
+    from spinorbit.scene.params import IntegratorTable
+
+    declared = {f.name for f in dataclasses.fields(IntegratorTable)} - {"method", "estimate_error"}
+    assert declared == set(OPTIONS)
+
+
+def test_replaced_parameters_are_refused_a_span_the_scene_cannot_run_as_a_file_is():
+    """A backward span for a scene that runs forward only, and a span under a microday, are refused in one line
+    on span.end whether the file gives them or Python replaces them (Scenario.with_params)."""
+    scenario = load_scenario("free_body")
+    p = scenario.params
+    for end in (p.span.start - 10.0, p.span.start + 1e-8):
+        with pytest.raises(ScenarioError) as info:
+            scenario.with_params(p.with_span(end=end))
+        assert str(info.value).startswith("span.end:") and "\n" not in str(info.value)
+    with pytest.raises(ScenarioError, match="runs forward only"):
+        load_scenario("free_body", ["span.end=-10 d"])
