@@ -22,20 +22,15 @@ from ..scene.declaration import Answer, Cost, Model, Outcome, Scene, Stored
 from ..scene.params import Params, key, source_key, table
 from ..scene.verdict import Check, Verdict
 from ..starts import earth_moon as start
+from ..starts.earth_moon import EarthMoonTermsTable
 from . import common
 
 
 @table
-class ModelTable:
+class ModelTable(EarthMoonTermsTable):
     """The model's terms, each switched by a key (spinorbit.models.assemblies.earth_moon.SWITCHES)."""
 
-    relativity: bool = key(type=bool, default=True, help=SWITCHES["relativity"])
-    earth_tides: bool = key(type=bool, default=True, help=SWITCHES["earth_tides"])
-    moon_distortion: bool = key(type=bool, default=True, help=SWITCHES["moon_distortion"])
-    geodesic: bool = key(type=bool, default=True, help=SWITCHES["geodesic"])
     planets: bool = key(type=bool, default=True, help=SWITCHES["planets"])
-    planets_on_moon_figure: bool = key(type=bool, default=True, help=SWITCHES["planets_on_moon_figure"])
-    sun_on_earth_j3_j4: bool = key(type=bool, default=True, help=SWITCHES["sun_on_earth_j3_j4"])
 
 
 @table

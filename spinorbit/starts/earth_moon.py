@@ -8,6 +8,20 @@ import numpy as np
 
 from ..base.errors import ScenarioError
 from ..models.assemblies.earth_moon import EXTERNAL, PLANETS, SWITCHES
+from ..scene.params import key, table
+
+
+@table
+class EarthMoonTermsTable:
+    """The Earth-Moon model's terms each switched by a key, shared by the scenes built on it (the coupled Earth and
+    Moon, the solar system: models.assemblies.earth_moon.SWITCHES, which the solar system's derive from)."""
+
+    relativity: bool = key(type=bool, default=True, help=SWITCHES["relativity"])
+    earth_tides: bool = key(type=bool, default=True, help=SWITCHES["earth_tides"])
+    moon_distortion: bool = key(type=bool, default=True, help=SWITCHES["moon_distortion"])
+    geodesic: bool = key(type=bool, default=True, help=SWITCHES["geodesic"])
+    planets_on_moon_figure: bool = key(type=bool, default=True, help=SWITCHES["planets_on_moon_figure"])
+    sun_on_earth_j3_j4: bool = key(type=bool, default=True, help=SWITCHES["sun_on_earth_j3_j4"])
 
 
 def switches(p):
