@@ -88,24 +88,25 @@ class Tide:
         raise NotImplementedError
 
 
-class ConstantTimeLag(Tide):
-    name, code = "constant_time_lag", response.CONSTANT_TIME_LAG
-    summary = "a constant time lag (Mignard 1979), k2 dt fitted to the recession rate"
+class _OneParameter(Tide):
+    """A tide of one parameter, its strength, calibrated to today's recession rate (calibration.calibrated)."""
 
     def response(self, setting):
         return calibration.calibrated(setting.constants, self.code, setting.today, setting.recession_cm_per_yr)
+
+
+class ConstantTimeLag(_OneParameter):
+    name, code = "constant_time_lag", response.CONSTANT_TIME_LAG
+    summary = "a constant time lag (Mignard 1979), k2 dt fitted to the recession rate"
 
     def describe(self, values):
         return {"k2_time_lag_s": float(values[response.STRENGTH]) * DAY_S,
                 "time_lag_s_for_k2_0.30": calibration.time_lag_s(values, LOVE_K2)}
 
 
-class ConstantQ(Tide):
+class ConstantQ(_OneParameter):
     name, code = "constant_q", response.CONSTANT_Q
     summary = "a constant phase lag (Goldreich 1966), k2/Q fitted to the recession rate"
-
-    def response(self, setting):
-        return calibration.calibrated(setting.constants, self.code, setting.today, setting.recession_cm_per_yr)
 
     def describe(self, values):
         strength = float(values[response.STRENGTH])
